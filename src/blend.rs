@@ -1,0 +1,319 @@
+//! The Möbius-invariant blends F4 and F6 (seed 000 §4.4.1–4.4.2, Eq. (3), Appendix A).
+//!
+//! Both solve `cr[e, a, b, p] = χ` for `p` (with `e = c` for F4):
+//! `p = (M + χ)⁻¹ (χ e + M b)` with `M = (a − e)(b − a)⁻¹`, which is Eq. (3) multiplied
+//! out (`M = ((a − b)(c − a)⁻¹)⁻¹`). The inputs are first moved to a normalised frame
+//! (centroid at the origin, unit diameter): similarities are Möbius maps, so this changes
+//! nothing in exact arithmetic and keeps intermediates far from overflow.
+
+use crate::error::{Error, Result, Status};
+use crate::mobius::{add, norm, scale, sub};
+use crate::quat::{cross_ratio, point_is_finite, Point, Quat};
+
+/// Relative distance below which two inputs count as coincident (DESIGN.md).
+pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
+
+/// Relative size of `Im ρ` below which a cross-ratio with negative real part counts as a
+/// negative real (DESIGN.md).
+pub const NEGATIVE_REAL_TOLERANCE: f64 = 1e-12;
+
+/// A similarity frame: `x ↦ (x − centre) / size`.
+#[derive(Clone, Copy)]
+struct Frame {
+    centre: Point,
+    size: f64,
+}
+
+impl Frame {
+    fn of(points: &[Point]) -> Frame {
+        let mut centre = [0.0; 3];
+        for p in points {
+            centre = add(centre, *p);
+        }
+        centre = scale(centre, 1.0 / points.len() as f64);
+        let mut size: f64 = 0.0;
+        for (i, p) in points.iter().enumerate() {
+            for q in points.iter().skip(i + 1) {
+                size = size.max(norm(sub(*p, *q)));
+            }
+        }
+        Frame { centre, size }
+    }
+    fn to_local(self, p: Point) -> Point {
+        scale(sub(p, self.centre), 1.0 / self.size)
+    }
+    fn to_world(self, p: Point) -> Point {
+        add(self.centre, scale(p, self.size))
+    }
+    fn coincide(self, p: Point, q: Point) -> bool {
+        norm(sub(p, q)) <= COINCIDENT_TOLERANCE * self.size
+    }
+}
+
+/// Whether `q` is a negative real in the sense of DESIGN.md: `Re q < 0` and
+/// `|Im q| ≤ 1e-12 |q|`.
+pub fn is_negative_real(q: Quat) -> bool {
+    q.w < 0.0 && q.abs_im() <= NEGATIVE_REAL_TOLERANCE * q.abs()
+}
+
+/// The unit normal of the plane through `a, b, c` (`(a − b) × (c − b)` normalised); for
+/// collinear points a fixed unit vector orthogonal to `c − b` (or `a − b`), chosen by the
+/// smallest coordinate so that the choice is deterministic.
+fn plane_normal(a: Point, b: Point, c: Point) -> Point {
+    let u = sub(a, b);
+    let w = sub(c, b);
+    let n = cross(u, w);
+    let len = norm(n);
+    if len > 0.0 && len.is_finite() {
+        return scale(n, 1.0 / len);
+    }
+    let d = if norm(w) > 0.0 { w } else { u };
+    let axis = if d[0].abs() <= d[1].abs() && d[0].abs() <= d[2].abs() {
+        [1.0, 0.0, 0.0]
+    } else if d[1].abs() <= d[2].abs() {
+        [0.0, 1.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let n = cross(d, axis);
+    let len = norm(n);
+    if len > 0.0 {
+        scale(n, 1.0 / len)
+    } else {
+        [0.0, 0.0, 1.0]
+    }
+}
+
+fn cross(a: Point, b: Point) -> Point {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `√q` with the branch of the paper; for a negative real `q` the root `√|q| [0, n]` with
+/// the given plane normal `n` (the printed rule of seed 000 §4.4.1).
+fn sqrt_or_axis(q: Quat, n: Point) -> Option<Quat> {
+    if is_negative_real(q) {
+        let t = libm::sqrt(q.abs());
+        return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
+    }
+    q.sqrt()
+}
+
+/// Solves `cr[e, a, b, p] = χ` for `p` (local frame).
+fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    let (qa, qb, qe) = (
+        Quat::from_point(a),
+        Quat::from_point(b),
+        Quat::from_point(e),
+    );
+    let m = (qa - qe) * (qb - qa).inverse().ok_or(degenerate)?;
+    let p = (m + chi).inverse().ok_or(degenerate)? * (chi * qe + m * qb);
+    let p = p.to_point();
+    if point_is_finite(&p) {
+        Ok(p)
+    } else {
+        Err(degenerate)
+    }
+}
+
+/// The four-point blend `F4(a, b, c, d)`: the point `p` with `cr[c, a, b, p] = −√cr[c, a, b, d]`
+/// (seed 000 §4.4.1, Eq. (3)).
+///
+/// Möbius-equivariant, sphere preserving, circle preserving when `(a, d)` is not separated by
+/// `(b, c)`, symmetric: `F4(a, b, c, d) = F4(d, c, b, a)` (Lemma 4.1). On a line with equal
+/// spacing it is the midpoint of `b` and `c`.
+///
+/// Defined results where the formula is singular (DESIGN.md), tested in this order with a
+/// tolerance of 1e-13 × the diameter of the four points: `b = c` → `b`; `a = b` → `b`;
+/// `c = d` → `c`; `a = c` → `c`; `b = d` → `b`. A negative real cross-ratio `ρ` (the pair
+/// `(b, c)` separates `(a, d)`) takes `χ = √|ρ| [0, n]` with `n` the unit normal of
+/// `(a − b) × (c − b)`, as printed; the result then stays in the plane but leaves the circle,
+/// and the rule is not Möbius-equivariant there (a documented discontinuity).
+///
+/// # Errors
+/// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`] when
+/// the new point is at infinity.
+pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
+    if ![a, b, c, d].iter().all(point_is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    let frame = Frame::of(&[a, b, c, d]);
+    if !frame.size.is_finite() {
+        return Err(Error::new(Status::NumericalFailure));
+    }
+    if frame.size == 0.0 || frame.coincide(b, c) || frame.coincide(a, b) {
+        return Ok(b);
+    }
+    if frame.coincide(c, d) || frame.coincide(a, c) {
+        return Ok(c);
+    }
+    if frame.coincide(b, d) {
+        return Ok(b);
+    }
+    let (la, lb, lc, ld) = (
+        frame.to_local(a),
+        frame.to_local(b),
+        frame.to_local(c),
+        frame.to_local(d),
+    );
+    let rho = cross_ratio(lc, la, lb, ld)?;
+    let root = sqrt_or_axis(rho, plane_normal(la, lb, lc))
+        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
+    let chi = if is_negative_real(rho) { root } else { -root };
+    let p = solve_cross_ratio(la, lb, lc, chi)?;
+    let out = frame.to_world(p);
+    if point_is_finite(&out) {
+        Ok(out)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
+}
+
+/// The noncircularity `1 − |Re ρ| / |ρ|` of the quadruplet `(a, b, c, d)` with the cross-ratio
+/// `ρ = cr[c, a, b, d]` that [`f4`] uses: 0 for cocircular points (seed 000 §4.4.3 (ii)).
+///
+/// # Errors
+/// As [`crate::quat::cross_ratio`].
+pub fn noncircularity(a: Point, b: Point, c: Point, d: Point) -> Result<f64> {
+    let rho = cross_ratio(c, a, b, d)?;
+    let m = rho.abs();
+    if m == 0.0 {
+        return Ok(0.0);
+    }
+    Ok(1.0 - rho.w.abs() / m)
+}
+
+/// The six-point blend `F6(a, b, c, d, e, f)` of the chains `a, b, c` and `d, e, f`
+/// (seed 000 §4.4.2): the point `p` with `cr[e, a, b, p] = χ`,
+/// `χ = −√X · √r`, `r = (√X)⁻¹ Y (√Z)⁻¹`, `X = cr[e, a, b, d]`, `Y = cr[e, a, b, f]`,
+/// `Z = cr[e, c, b, f]`.
+///
+/// Möbius-equivariant (all cross-ratios start at `e`), sphere preserving for six cospherical
+/// points (Lemma 4.2). `b = e` (within 1e-13 × the diameter of the six points) gives `b`.
+/// A negative-real `X`, `Z` or `r` takes the root `√|·| [0, n]` with `n` the normal of the
+/// plane through `a, b, e`, as F4 does. The real part of the solution, zero for cospherical
+/// points and observed to be zero otherwise (the paper has no proof), is dropped.
+///
+/// # Errors
+/// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when a cross-ratio is undefined
+/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity.
+pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
+    if ![a, b, c, d, e, f].iter().all(point_is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    let frame = Frame::of(&[a, b, c, d, e, f]);
+    if !frame.size.is_finite() {
+        return Err(Error::new(Status::NumericalFailure));
+    }
+    if frame.size == 0.0 || frame.coincide(b, e) {
+        return Ok(b);
+    }
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    let [la, lb, lc, ld, le, lf] = [a, b, c, d, e, f].map(|p| frame.to_local(p));
+    let n = plane_normal(la, lb, le);
+    let x = cross_ratio(le, la, lb, ld)?;
+    let y = cross_ratio(le, la, lb, lf)?;
+    let z = cross_ratio(le, lc, lb, lf)?;
+    let sx = sqrt_or_axis(x, n).ok_or(degenerate)?;
+    let sz = sqrt_or_axis(z, n).ok_or(degenerate)?;
+    let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
+    let sr = sqrt_or_axis(r, n).ok_or(degenerate)?;
+    let chi = -(sx * sr);
+    let p = solve_cross_ratio(la, lb, le, chi)?;
+    let out = frame.to_world(p);
+    if point_is_finite(&out) {
+        Ok(out)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dist(a: Point, b: Point) -> f64 {
+        norm(sub(a, b))
+    }
+
+    #[test]
+    fn f4_on_a_line_is_the_midpoint() {
+        let p = f4([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]).unwrap();
+        assert!(dist(p, [1.5, 0.0, 0.0]) < 1e-15, "{p:?}");
+    }
+
+    #[test]
+    fn f4_on_a_circle_stays_on_the_circle() {
+        let on = |t: f64| [2.0 * libm::cos(t), 2.0 * libm::sin(t), 0.0];
+        let p = f4(on(0.0), on(0.7), on(1.1), on(2.5)).unwrap();
+        assert!((norm(p) - 2.0).abs() < 1e-14);
+        // Between b and c.
+        let ang = libm::atan2(p[1], p[0]);
+        assert!(ang > 0.7 && ang < 1.1, "{ang}");
+        // Equally spaced: exactly the middle of the arc.
+        let q = f4(on(0.0), on(1.0), on(2.0), on(3.0)).unwrap();
+        assert!(dist(q, on(1.5)) < 1e-14);
+    }
+
+    #[test]
+    fn f4_coincident_rules() {
+        let (a, b, c, d) = ([0.0; 3], [1.0, 0.0, 0.0], [2.0, 1.0, 0.0], [3.0, 0.0, 1.0]);
+        assert_eq!(f4(a, b, b, d).unwrap(), b);
+        assert_eq!(f4(b, b, c, d).unwrap(), b);
+        assert_eq!(f4(a, b, c, c).unwrap(), c);
+        assert_eq!(f4(c, b, c, d).unwrap(), c); // a = c → c
+        assert_eq!(f4(a, b, c, b).unwrap(), b);
+        assert_eq!(f4(a, a, a, a).unwrap(), a);
+        assert_eq!(
+            f4([f64::NAN, 0.0, 0.0], b, c, d).unwrap_err().status,
+            Status::NonFiniteInput
+        );
+    }
+
+    #[test]
+    fn f4_negative_real_case_stays_in_the_plane() {
+        // (b, c) separates (a, d) on the unit circle: a, b, d, c in circular order.
+        let on = |t: f64| [libm::cos(t), libm::sin(t), 0.0];
+        let (a, b, c, d) = (on(0.0), on(1.0), on(3.0), on(2.0));
+        let rho = cross_ratio(c, a, b, d).unwrap();
+        assert!(is_negative_real(rho));
+        let p = f4(a, b, c, d).unwrap();
+        assert!(p[2].abs() < 1e-14 && point_is_finite(&p));
+    }
+
+    #[test]
+    fn f6_with_b_equal_e_returns_b() {
+        let b = [0.5, 0.5, 0.1];
+        let p = f6(
+            [0.0; 3],
+            b,
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            b,
+            [1.0, 1.0, 0.0],
+        )
+        .unwrap();
+        assert_eq!(p, b);
+    }
+
+    #[test]
+    fn f6_on_a_planar_regular_grid_gives_the_centre() {
+        // Kobbelt face point of a unit square cell of a regular grid: two chains through the
+        // edge points meet at the cell centre (seed 000 Fig. 14).
+        let p = f6(
+            [0.0, 0.5, 0.0],
+            [0.5, 0.5, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+        )
+        .unwrap();
+        assert_eq!(p, [0.5, 0.5, 0.0]);
+    }
+}

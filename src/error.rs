@@ -1,0 +1,254 @@
+//! Status codes and the error type of every fallible call.
+//!
+//! One enum serves the Rust API and the C ABI (`nls_status`): its discriminants are stable
+//! `u32` codes, never reused. Codes follow the bad-input catalogue of
+//! `reference/reliability-anchors.md` §2 so that a number seen in a C host's log can be looked
+//! up there.
+
+use core::fmt;
+
+/// Outcome of a call. `Ok` is 0; every other value names one class of failure.
+///
+/// The C ABI returns these as `uint32_t`-sized enum values (`NLS_STATUS_*`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Status {
+    /// Success. Out-parameters were written.
+    Ok = 0,
+    /// A pointer argument was NULL while its count was non-zero (C ABI only).
+    NullParameter = 1,
+    /// A pointer argument was not aligned for its element type (C ABI only).
+    MisalignedPointer = 2,
+    /// A size computation overflowed (`count * 3`, output sizes at high levels, `u32` indices).
+    SizeOverflow = 3,
+    /// Input and output (or scratch) buffers overlap; in-place calls are not supported.
+    AliasingBuffers = 4,
+    /// Face offsets are malformed: not starting at 0, not monotonic, or not ending at the
+    /// index count.
+    BadOffsets = 5,
+    /// A face has fewer than three vertices.
+    FaceTooSmall = 6,
+    /// A vertex index is not below the vertex count.
+    IndexOutOfRange = 7,
+    /// A face uses the same vertex twice.
+    RepeatedVertex = 8,
+    /// An edge is shared by more than two faces.
+    NonManifoldEdge = 9,
+    /// Two faces traverse their common edge in the same direction.
+    InconsistentOrientation = 10,
+    /// The faces around a vertex do not form one disk or one half-disk (bow-tie vertex).
+    NonManifoldVertex = 11,
+    /// The same face appears twice (same or opposite orientation).
+    DuplicateFace = 12,
+    /// An input coordinate is NaN or infinite.
+    NonFiniteInput = 14,
+    /// A computed value was not finite (overflow in an intermediate); nothing was reported as
+    /// success.
+    NumericalFailure = 15,
+    /// Coincident points or another degenerate configuration for which the rule is undefined.
+    DegenerateGeometry = 16,
+    /// A vertex has more neighbours than [`crate::MAX_VALENCE`], or a face more corners than
+    /// [`crate::MAX_FACE_SIZE`].
+    ValenceTooHigh = 18,
+    /// The scheme does not accept this face type (e.g. Loop on a quad).
+    UnsupportedFaceType = 19,
+    /// An output or scratch buffer is too small; the needed size is reported.
+    BufferTooSmall = 20,
+    /// The host's floating-point environment is not the IEEE default (flush-to-zero,
+    /// denormals-are-zero or a non-default rounding mode).
+    FpEnvironment = 24,
+    /// An iterative solve stopped at its iteration cap above its tolerance.
+    NotConverged = 25,
+    /// An argument is outside its domain (unknown scheme or flag value, zero count where one
+    /// is required, negative tolerance …).
+    InvalidArgument = 27,
+    /// Fewer points than the rule needs (e.g. a curve of one point).
+    TooFewPoints = 28,
+    /// The `strict` option was set and an element needed the documented linear fallback.
+    FallbackInStrictMode = 29,
+}
+
+impl Status {
+    /// Every status, in code order. Used by tests and by the C ABI's `nls_status_str`.
+    pub const ALL: [Status; 24] = [
+        Status::Ok,
+        Status::NullParameter,
+        Status::MisalignedPointer,
+        Status::SizeOverflow,
+        Status::AliasingBuffers,
+        Status::BadOffsets,
+        Status::FaceTooSmall,
+        Status::IndexOutOfRange,
+        Status::RepeatedVertex,
+        Status::NonManifoldEdge,
+        Status::InconsistentOrientation,
+        Status::NonManifoldVertex,
+        Status::DuplicateFace,
+        Status::NonFiniteInput,
+        Status::NumericalFailure,
+        Status::DegenerateGeometry,
+        Status::ValenceTooHigh,
+        Status::UnsupportedFaceType,
+        Status::BufferTooSmall,
+        Status::FpEnvironment,
+        Status::NotConverged,
+        Status::InvalidArgument,
+        Status::TooFewPoints,
+        Status::FallbackInStrictMode,
+    ];
+
+    /// The stable numeric code.
+    pub const fn code(self) -> u32 {
+        self as u32
+    }
+
+    /// The status for a numeric code, or `None` for a code that is not assigned.
+    pub fn from_code(code: u32) -> Option<Status> {
+        Status::ALL.iter().copied().find(|s| s.code() == code)
+    }
+
+    /// A static, human-readable description (the text of `nls_status_str`).
+    pub const fn message(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::NullParameter => "a pointer argument is NULL while its count is not zero",
+            Status::MisalignedPointer => "a pointer argument is not aligned for its element type",
+            Status::SizeOverflow => "a size computation overflowed",
+            Status::AliasingBuffers => "input and output buffers overlap",
+            Status::BadOffsets => {
+                "face offsets must start at 0, never decrease and end at the index count"
+            }
+            Status::FaceTooSmall => "a face has fewer than three vertices",
+            Status::IndexOutOfRange => "a vertex index is not below the vertex count",
+            Status::RepeatedVertex => "a face uses the same vertex twice",
+            Status::NonManifoldEdge => "an edge is shared by more than two faces",
+            Status::InconsistentOrientation => {
+                "two faces traverse their common edge in the same direction"
+            }
+            Status::NonManifoldVertex => {
+                "the faces around a vertex do not form one disk or one half-disk"
+            }
+            Status::DuplicateFace => "the same face appears twice",
+            Status::NonFiniteInput => "an input coordinate is NaN or infinite",
+            Status::NumericalFailure => "a computed value is not finite",
+            Status::DegenerateGeometry => {
+                "coincident points or another degenerate configuration where the rule is undefined"
+            }
+            Status::ValenceTooHigh => "a vertex valence or face size exceeds the fixed capacity",
+            Status::UnsupportedFaceType => "the scheme does not accept this face type",
+            Status::BufferTooSmall => "an output or scratch buffer is too small",
+            Status::FpEnvironment => {
+                "the floating-point environment is not the IEEE default (FTZ/DAZ or rounding mode)"
+            }
+            Status::NotConverged => "the iterative solver did not reach its tolerance",
+            Status::InvalidArgument => "an argument is outside its domain",
+            Status::TooFewPoints => "fewer points than the rule needs",
+            Status::FallbackInStrictMode => {
+                "an element needed the linear fallback and the strict option is set"
+            }
+        }
+    }
+}
+
+impl fmt::Display for Status {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.message())
+    }
+}
+
+/// Marker for "no element" in [`Error::element`].
+pub const NO_ELEMENT: u32 = u32::MAX;
+
+/// The error of a failed call: a [`Status`], the element at fault (a vertex, face, edge or
+/// point index, depending on the call; [`NO_ELEMENT`] when none applies) and, for
+/// [`Status::BufferTooSmall`], the size that is needed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Error {
+    /// What went wrong.
+    pub status: Status,
+    /// The index of the element at fault, or [`NO_ELEMENT`].
+    pub element: u32,
+    /// For [`Status::BufferTooSmall`]: the number of elements the buffer must hold. 0 otherwise.
+    pub needed: usize,
+}
+
+impl Error {
+    /// An error with no element attached.
+    pub const fn new(status: Status) -> Error {
+        Error {
+            status,
+            element: NO_ELEMENT,
+            needed: 0,
+        }
+    }
+
+    /// An error naming the element at fault.
+    pub const fn at(status: Status, element: u32) -> Error {
+        Error {
+            status,
+            element,
+            needed: 0,
+        }
+    }
+
+    /// [`Status::BufferTooSmall`] with the needed size.
+    pub const fn too_small(needed: usize) -> Error {
+        Error {
+            status: Status::BufferTooSmall,
+            element: NO_ELEMENT,
+            needed,
+        }
+    }
+
+    /// The same error, naming `element` if none was named yet.
+    pub const fn with_element(self, element: u32) -> Error {
+        if self.element == NO_ELEMENT {
+            Error { element, ..self }
+        } else {
+            self
+        }
+    }
+}
+
+impl From<Status> for Error {
+    fn from(status: Status) -> Error {
+        Error::new(status)
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.status.message())?;
+        if self.element != NO_ELEMENT {
+            write!(f, " (element {})", self.element)?;
+        }
+        if self.status == Status::BufferTooSmall {
+            write!(f, " (needed {})", self.needed)?;
+        }
+        Ok(())
+    }
+}
+
+impl core::error::Error for Error {}
+
+/// Result alias of the crate.
+pub type Result<T> = core::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_round_trip_and_are_unique() {
+        for (i, s) in Status::ALL.iter().enumerate() {
+            assert_eq!(Status::from_code(s.code()), Some(*s));
+            for t in &Status::ALL[i + 1..] {
+                assert_ne!(s.code(), t.code());
+            }
+            assert!(!s.message().is_empty());
+        }
+        assert_eq!(Status::Ok.code(), 0);
+        assert_eq!(Status::from_code(13), None);
+        assert_eq!(Status::from_code(9999), None);
+    }
+}

@@ -1,0 +1,167 @@
+//! Measures of vertex stars: the discrete Willmore energy (tangent-polygon planarity,
+//! seed 000 §3.3 and Fig. 9) and Möbius regularity (§3.3, Fig. 15).
+//!
+//! Both are Möbius invariants: the tangent polygons of Möbius-equivalent stars are similar
+//! (Lemma 3.2), and the cross-ratios `cr[v, u_{i−1}, u_i, u_{i+1}]` of one star are all
+//! conjugated by the same rotation under a Möbius map (§3.2).
+
+use arrayvec::ArrayVec;
+
+use crate::error::{Error, Result, Status};
+use crate::mobius::{norm, sub};
+use crate::quat::{cross_ratio, tangent_polygon_vertex, Point};
+use crate::MAX_VALENCE;
+
+/// Planarity of the quadrilateral `(p0, p1, p2, p3)`: the distance between the lines of its
+/// diagonals `p0p2` and `p1p3` divided by the mean diagonal length (seed 000 Fig. 9 caption,
+/// as a fraction rather than a percentage). 0 for a planar quad.
+pub fn quad_planarity(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
+    let d1 = sub(p2, p0);
+    let d2 = sub(p3, p1);
+    let mean = 0.5 * (norm(d1) + norm(d2));
+    if mean == 0.0 {
+        return 0.0;
+    }
+    let n = [
+        d1[1] * d2[2] - d1[2] * d2[1],
+        d1[2] * d2[0] - d1[0] * d2[2],
+        d1[0] * d2[1] - d1[1] * d2[0],
+    ];
+    let nl = norm(n);
+    if nl <= 1e-15 * norm(d1) * norm(d2) {
+        // Parallel diagonals lie in one plane.
+        return 0.0;
+    }
+    let w = sub(p1, p0);
+    let dist = (w[0] * n[0] + w[1] * n[1] + w[2] * n[2]).abs() / nl;
+    dist / mean
+}
+
+fn star_tangent_polygon(v: Point, ring: &[Point]) -> Result<ArrayVec<Point, MAX_VALENCE>> {
+    if ring.len() > MAX_VALENCE {
+        return Err(Error::new(Status::ValenceTooHigh));
+    }
+    let mut t = ArrayVec::new();
+    for (i, u) in ring.iter().enumerate() {
+        t.push(tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?);
+    }
+    Ok(t)
+}
+
+/// The discrete Willmore energy of the star `v ring…`: the root mean square of the planarity
+/// of every four consecutive vertices of its tangent polygon (seed 000 Fig. 9). 0 iff the star
+/// is cospherical. `closed` says whether the ring is cyclic (an interior vertex) or runs from
+/// one boundary neighbour to the other. Stars with fewer than four neighbours are always
+/// cospherical and give 0.
+///
+/// # Errors
+/// [`Status::DegenerateGeometry`] when a neighbour coincides with `v`; [`Status::NonFiniteInput`];
+/// [`Status::ValenceTooHigh`].
+pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
+    let t = star_tangent_polygon(v, ring)?;
+    let n = t.len();
+    if n < 4 {
+        return Ok(0.0);
+    }
+    let count = if closed { n } else { n - 3 };
+    let mut sum = 0.0;
+    for i in 0..count {
+        let q = |k: usize| t.get((i + k) % n).copied().unwrap_or_default();
+        let p = quad_planarity(q(0), q(1), q(2), q(3));
+        sum += p * p;
+    }
+    Ok(libm::sqrt(sum / count as f64))
+}
+
+/// The Möbius regularity defect of the star `v ring…`: the sum of squared differences of
+/// consecutive cross-ratios `cr_i = cr[v, u_{i−1}, u_i, u_{i+1}]` around the star
+/// (seed 000 Fig. 15, "MR"). By Eq. (2), `cr_i` is the quaternionic ratio of two consecutive
+/// edges of the tangent polygon, so the defect is 0 iff the tangent polygon is Euclidean
+/// regular, i.e. iff the star is Möbius regular. For a boundary star (`closed = false`) only
+/// the interior ratios are compared.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for fewer than 3 neighbours (closed) or 3 (open);
+/// [`Status::DegenerateGeometry`] when consecutive points coincide; [`Status::NonFiniteInput`].
+pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
+    let n = ring.len();
+    if n < 3 {
+        return Err(Error::new(Status::TooFewPoints));
+    }
+    if n > MAX_VALENCE {
+        return Err(Error::new(Status::ValenceTooHigh));
+    }
+    let at = |i: usize| ring.get(i % n).copied().unwrap_or_default();
+    let mut crs: ArrayVec<crate::quat::Quat, MAX_VALENCE> = ArrayVec::new();
+    let (first, last) = if closed { (0, n) } else { (1, n - 1) };
+    for i in first..last {
+        let cr = cross_ratio(v, at(i + n - 1), at(i), at(i + 1))
+            .map_err(|e| e.with_element(i as u32))?;
+        crs.push(cr);
+    }
+    let m = crs.len();
+    let pairs = if closed { m } else { m.saturating_sub(1) };
+    let mut sum = 0.0;
+    for i in 0..pairs {
+        let a = crs.get(i).copied().unwrap_or_default();
+        let b = crs.get((i + 1) % m).copied().unwrap_or_default();
+        sum += (b - a).norm_sq();
+    }
+    Ok(sum)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn regular_ring(n: usize, z: f64) -> ArrayVec<Point, 16> {
+        (0..n)
+            .map(|i| {
+                let t = 2.0 * core::f64::consts::PI * i as f64 / n as f64;
+                [libm::cos(t), libm::sin(t), z]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn planar_and_spherical_stars_have_zero_willmore_energy() {
+        let ring = regular_ring(6, 0.0);
+        assert!(willmore_energy([0.0; 3], &ring, true).unwrap() < 1e-15);
+        // A star on the unit sphere with uneven neighbours.
+        let s = |th: f64, ph: f64| {
+            [
+                libm::sin(th) * libm::cos(ph),
+                libm::sin(th) * libm::sin(ph),
+                libm::cos(th),
+            ]
+        };
+        let ring = [
+            s(0.5, 0.1),
+            s(0.4, 1.3),
+            s(0.7, 2.9),
+            s(0.3, 4.0),
+            s(0.6, 5.2),
+        ];
+        assert!(willmore_energy([0.0, 0.0, 1.0], &ring, true).unwrap() < 1e-12);
+        // A saddle is not.
+        let saddle = [
+            [1.0, 0.0, 0.3],
+            [0.0, 1.0, -0.3],
+            [-1.0, 0.0, 0.3],
+            [0.0, -1.0, -0.3],
+            [0.7, -0.7, 0.0],
+        ];
+        assert!(willmore_energy([0.0; 3], &saddle, true).unwrap() > 1e-3);
+    }
+
+    #[test]
+    fn regular_star_is_mobius_regular() {
+        for n in [3, 4, 5, 6, 8] {
+            let ring = regular_ring(n, 0.0);
+            assert!(mobius_regularity([0.0; 3], &ring, true).unwrap() < 1e-28);
+        }
+        let mut ring = regular_ring(6, 0.0);
+        ring[2][0] += 0.1;
+        assert!(mobius_regularity([0.0; 3], &ring, true).unwrap() > 1e-4);
+    }
+}

@@ -1,0 +1,524 @@
+//! Quaternions on H with points of R³ as imaginary quaternions (seed 000 §3.1).
+//!
+//! A point `(x, y, z)` is the quaternion `[0, (x, y, z)]`. The product is
+//! `[r, v]·[s, w] = [rs − ⟨v, w⟩, rw + sv + v × w]`, the conjugate `[r, −v]`, the inverse
+//! `q̄ / |q|²`. Every operation is written out in plain `f64` arithmetic: no fused
+//! multiply-add, transcendental functions from `libm`, so results are bit-identical on every
+//! run and platform (DESIGN.md, "Numerics and determinism").
+
+use core::ops::{Add, Mul, Neg, Sub};
+
+use glam::DVec3;
+
+use crate::error::{Error, Result, Status};
+
+/// A point of R³.
+pub type Point = [f64; 3];
+
+/// A quaternion `w + xi + yj + zk`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Quat {
+    /// Real part.
+    pub w: f64,
+    /// First imaginary component.
+    pub x: f64,
+    /// Second imaginary component.
+    pub y: f64,
+    /// Third imaginary component.
+    pub z: f64,
+}
+
+impl Quat {
+    /// Zero.
+    pub const ZERO: Quat = Quat::new(0.0, 0.0, 0.0, 0.0);
+    /// One.
+    pub const ONE: Quat = Quat::new(1.0, 0.0, 0.0, 0.0);
+
+    /// The quaternion `w + xi + yj + zk`.
+    pub const fn new(w: f64, x: f64, y: f64, z: f64) -> Quat {
+        Quat { w, x, y, z }
+    }
+
+    /// The real quaternion `s`.
+    pub const fn real(s: f64) -> Quat {
+        Quat::new(s, 0.0, 0.0, 0.0)
+    }
+
+    /// The imaginary quaternion `[0, p]` of a point of R³.
+    pub const fn from_point(p: Point) -> Quat {
+        Quat::new(0.0, p[0], p[1], p[2])
+    }
+
+    pub(crate) fn from_parts(w: f64, v: DVec3) -> Quat {
+        Quat::new(w, v.x, v.y, v.z)
+    }
+
+    /// The imaginary part as a point of R³ (the real part is dropped).
+    pub const fn to_point(self) -> Point {
+        [self.x, self.y, self.z]
+    }
+
+    /// `[w, x, y, z]`, the layout of the C ABI.
+    pub const fn to_array(self) -> [f64; 4] {
+        [self.w, self.x, self.y, self.z]
+    }
+
+    /// The quaternion of `[w, x, y, z]`.
+    pub const fn from_array(a: [f64; 4]) -> Quat {
+        Quat::new(a[0], a[1], a[2], a[3])
+    }
+
+    pub(crate) fn im(self) -> DVec3 {
+        DVec3::new(self.x, self.y, self.z)
+    }
+
+    /// Real part `Re q`.
+    pub const fn re(self) -> f64 {
+        self.w
+    }
+
+    /// Conjugate `q̄ = [w, −v]`.
+    pub fn conj(self) -> Quat {
+        Quat::new(self.w, -self.x, -self.y, -self.z)
+    }
+
+    /// `|q|²`.
+    pub fn norm_sq(self) -> f64 {
+        self.w * self.w + self.x * self.x + self.y * self.y + self.z * self.z
+    }
+
+    /// `|q|`, computed without overflow or underflow of the squares.
+    pub fn abs(self) -> f64 {
+        let m = self
+            .w
+            .abs()
+            .max(self.x.abs())
+            .max(self.y.abs())
+            .max(self.z.abs());
+        if m == 0.0 || !m.is_finite() {
+            return m;
+        }
+        // Divide (rather than multiply by 1/m, which overflows for subnormal m).
+        let s = Quat::new(self.w / m, self.x / m, self.y / m, self.z / m);
+        m * libm::sqrt(s.norm_sq())
+    }
+
+    /// `|Im q|`.
+    pub fn abs_im(self) -> f64 {
+        Quat::new(0.0, self.x, self.y, self.z).abs()
+    }
+
+    /// `s·q` for a real `s`.
+    pub fn scale(self, s: f64) -> Quat {
+        Quat::new(self.w * s, self.x * s, self.y * s, self.z * s)
+    }
+
+    /// Whether all four components are finite.
+    pub fn is_finite(self) -> bool {
+        self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// The inverse `q⁻¹ = q̄ / |q|²`, or `None` when `q` is zero, not finite, or so small or
+    /// large that the inverse is not a finite, non-zero quaternion.
+    pub fn inverse(self) -> Option<Quat> {
+        if !self.is_finite() {
+            return None;
+        }
+        let m = self
+            .w
+            .abs()
+            .max(self.x.abs())
+            .max(self.y.abs())
+            .max(self.z.abs());
+        if m == 0.0 {
+            return None;
+        }
+        // Scale to unit size first so that |q|² neither overflows nor underflows.
+        let s = Quat::new(self.w / m, self.x / m, self.y / m, self.z / m);
+        let k = s.norm_sq() * m;
+        let c = s.conj();
+        let inv = Quat::new(c.w / k, c.x / k, c.y / k, c.z / k);
+        (inv.is_finite() && inv != Quat::ZERO).then_some(inv)
+    }
+
+    /// Polar form `q = |q|·[cos θ, n sin θ]` with `θ ∈ [0, π]` and `|n| = 1`
+    /// (seed 000 §3.1). For a real `q` the axis is undefined and returned as `None`.
+    pub fn polar(self) -> (f64, f64, Option<Point>) {
+        let r = self.abs();
+        let vi = self.abs_im();
+        let theta = libm::atan2(vi, self.w);
+        if vi == 0.0 {
+            return (r, theta, None);
+        }
+        let n = self.im() / vi;
+        (r, theta, Some(n.to_array()))
+    }
+
+    /// The principal square root, `√q = √|q|·[cos θ/2, n sin θ/2]`, whose real part is never
+    /// negative (seed 000 §3.1, DESIGN.md "Quaternions and blends").
+    ///
+    /// Computed with half-angle formulas that stay accurate in both half spaces. Returns
+    /// `None` for a negative real `q` (the root is then any `√|q|·[0, n]`: callers choose `n`)
+    /// and for non-finite input.
+    pub fn sqrt(self) -> Option<Quat> {
+        if !self.is_finite() {
+            return None;
+        }
+        let r = self.abs();
+        let vi = self.abs_im();
+        if vi == 0.0 {
+            if self.w >= 0.0 {
+                return Some(Quat::real(libm::sqrt(self.w)));
+            }
+            return None;
+        }
+        let n = self.im() / vi;
+        if self.w >= 0.0 {
+            // Re √q = √((r + w)/2) is accurate; Im = v / (2 Re).
+            let s = libm::sqrt(0.5 * (r + self.w));
+            Some(Quat::from_parts(s, self.im() / (2.0 * s)))
+        } else {
+            // |Im √q| = √((r − w)/2) is accurate; Re = |v| / (2 |Im|).
+            let t = libm::sqrt(0.5 * (r - self.w));
+            Some(Quat::from_parts(vi / (2.0 * t), n * t))
+        }
+    }
+
+    /// `√q` with a caller-chosen axis for a negative real `q`: `√|q|·[0, axis]`
+    /// (`axis` must be a unit vector).
+    pub fn sqrt_with_axis(self, axis: Point) -> Option<Quat> {
+        match self.sqrt() {
+            Some(s) => Some(s),
+            None if self.is_finite() => {
+                let t = libm::sqrt(-self.w);
+                Some(Quat::new(0.0, axis[0] * t, axis[1] * t, axis[2] * t))
+            }
+            None => None,
+        }
+    }
+
+    /// The principal logarithm `log q = [ln |q|, n θ]`, or `None` for zero, a negative real
+    /// (axis undefined) or non-finite `q`.
+    pub fn log(self) -> Option<Quat> {
+        if !self.is_finite() || self == Quat::ZERO {
+            return None;
+        }
+        let (r, theta, n) = self.polar();
+        match n {
+            Some(n) => Some(Quat::new(
+                libm::log(r),
+                n[0] * theta,
+                n[1] * theta,
+                n[2] * theta,
+            )),
+            None if self.w > 0.0 => Some(Quat::real(libm::log(r))),
+            None => None,
+        }
+    }
+
+    /// The exponential `exp [w, v] = e^w [cos |v|, v/|v| sin |v|]`.
+    pub fn exp(self) -> Quat {
+        let e = libm::exp(self.w);
+        let vi = self.abs_im();
+        if vi == 0.0 {
+            return Quat::real(e);
+        }
+        let s = e * libm::sin(vi) / vi;
+        Quat::new(e * libm::cos(vi), self.x * s, self.y * s, self.z * s)
+    }
+}
+
+impl Add for Quat {
+    type Output = Quat;
+    fn add(self, o: Quat) -> Quat {
+        Quat::new(self.w + o.w, self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl Sub for Quat {
+    type Output = Quat;
+    fn sub(self, o: Quat) -> Quat {
+        Quat::new(self.w - o.w, self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl Neg for Quat {
+    type Output = Quat;
+    fn neg(self) -> Quat {
+        Quat::new(-self.w, -self.x, -self.y, -self.z)
+    }
+}
+
+impl Mul for Quat {
+    type Output = Quat;
+    /// The Hamilton product `[r, v]·[s, w] = [rs − ⟨v, w⟩, rw + sv + v × w]`.
+    fn mul(self, o: Quat) -> Quat {
+        Quat::new(
+            self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
+            self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
+            self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
+            self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+        )
+    }
+}
+
+/// Whether every coordinate of `p` is finite.
+pub fn point_is_finite(p: &Point) -> bool {
+    p.iter().all(|c| c.is_finite())
+}
+
+fn diff(a: Point, b: Point) -> Quat {
+    // q_ab = b − a, an imaginary quaternion.
+    Quat::new(0.0, b[0] - a[0], b[1] - a[1], b[2] - a[2])
+}
+
+/// The quaternionic cross-ratio `cr[qi, qj, qk, ql] = q_ij q_jk⁻¹ q_kl q_li⁻¹` with
+/// `q_ij = q_j − q_i` (seed 000 §3.2), exactly as printed.
+///
+/// It is real iff the four points are cocircular; `Re` and `|Im|` are Möbius invariants.
+///
+/// # Errors
+/// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`]
+/// when `qj = qk` or `ql = qi` (an inverse of zero) or the result is not finite.
+pub fn cross_ratio(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<Quat> {
+    if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    let inv_jk = diff(qj, qk)
+        .inverse()
+        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let inv_li = diff(ql, qi)
+        .inverse()
+        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let cr = diff(qi, qj) * inv_jk * diff(qk, ql) * inv_li;
+    if cr.is_finite() {
+        Ok(cr)
+    } else {
+        Err(Error::new(Status::DegenerateGeometry))
+    }
+}
+
+/// The corner tangent `t[qi, qj, qk] = q_ij⁻¹ + q_jk⁻¹` (seed 000 §3.3): tangent at `qj` to the
+/// circle through the three points.
+///
+/// # Errors
+/// [`Status::NonFiniteInput`], or [`Status::DegenerateGeometry`] when consecutive points
+/// coincide.
+pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
+    if ![qi, qj, qk].iter().all(point_is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    let a = diff(qi, qj)
+        .inverse()
+        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let b = diff(qj, qk)
+        .inverse()
+        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let t = (a + b).to_point();
+    if point_is_finite(&t) {
+        Ok(t)
+    } else {
+        Err(Error::new(Status::DegenerateGeometry))
+    }
+}
+
+/// The vertex `T_i = (u_i − v)⁻¹` of the tangent polygon of the star `v u_1 … u_n`
+/// (seed 000 §3.3). Consecutive differences are the corner tangents:
+/// `T_{i+1} − T_i = t[u_i, v, u_{i+1}]`.
+///
+/// # Errors
+/// [`Status::DegenerateGeometry`] when `u = v`; [`Status::NonFiniteInput`].
+pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
+    if !point_is_finite(&v) || !point_is_finite(&u) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    diff(v, u)
+        .inverse()
+        .map(Quat::to_point)
+        .ok_or(Error::new(Status::DegenerateGeometry))
+}
+
+/// Writes the tangent polygon `T_i = (u_i − v)⁻¹` of the star `v u_1 … u_n` into `out`
+/// (seed 000 §3.3, Lemma 3.1: it is Möbius equivalent to the boundary polygon `B_v`).
+///
+/// # Errors
+/// [`Status::BufferTooSmall`] if `out` is shorter than `ring`; [`Status::DegenerateGeometry`]
+/// (element = ring index) when a neighbour coincides with `v`; [`Status::NonFiniteInput`].
+pub fn tangent_polygon(v: Point, ring: &[Point], out: &mut [Point]) -> Result<()> {
+    if out.len() < ring.len() {
+        return Err(Error::too_small(ring.len()));
+    }
+    for (i, (u, t)) in ring.iter().zip(out.iter_mut()).enumerate() {
+        *t = tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Quat, b: Quat, tol: f64) -> bool {
+        (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
+    }
+
+    #[test]
+    fn hamilton_units() {
+        let i = Quat::new(0.0, 1.0, 0.0, 0.0);
+        let j = Quat::new(0.0, 0.0, 1.0, 0.0);
+        let k = Quat::new(0.0, 0.0, 0.0, 1.0);
+        assert_eq!(i * j, k);
+        assert_eq!(j * k, i);
+        assert_eq!(k * i, j);
+        assert_eq!(i * i, Quat::real(-1.0));
+        assert_eq!(i * j * k, Quat::real(-1.0));
+    }
+
+    #[test]
+    fn inverse_and_conjugate() {
+        let q = Quat::new(1.5, -2.0, 0.25, 3.0);
+        let qi = q.inverse().unwrap();
+        assert!(close(q * qi, Quat::ONE, 1e-15));
+        assert!(close(qi * q, Quat::ONE, 1e-15));
+        // conj(pq) = conj(q) conj(p)
+        let p = Quat::new(-0.5, 1.0, 2.0, -1.0);
+        assert!(close((p * q).conj(), q.conj() * p.conj(), 1e-15));
+        assert_eq!(Quat::ZERO.inverse(), None);
+        assert_eq!(Quat::new(f64::NAN, 0.0, 0.0, 0.0).inverse(), None);
+        // Tiny and huge quaternions invert without under/overflow of |q|².
+        let t = Quat::new(0.0, 1e-200, 0.0, 0.0).inverse().unwrap();
+        assert!((t.x + 1e200).abs() < 1e186);
+        let h = Quat::new(0.0, 1e200, 1e200, 0.0).inverse().unwrap();
+        assert!(h.is_finite() && h != Quat::ZERO);
+    }
+
+    #[test]
+    fn sqrt_is_principal_and_squares_back() {
+        let cases = [
+            Quat::new(1.0, 2.0, -3.0, 0.5),
+            Quat::new(-4.0, 1e-9, 0.0, 0.0),
+            Quat::new(-1.0, 0.0, 2.0, 0.0),
+            Quat::new(9.0, 0.0, 0.0, 0.0),
+            Quat::new(1e-300, 1e-300, 0.0, 0.0),
+        ];
+        for q in cases {
+            let s = q.sqrt().unwrap();
+            assert!(s.w >= 0.0, "{s:?}");
+            assert!(close(s * s, q, 1e-14), "{q:?} {s:?}");
+        }
+        assert_eq!(Quat::real(-4.0).sqrt(), None);
+        let s = Quat::real(-4.0).sqrt_with_axis([0.0, 0.0, 1.0]).unwrap();
+        assert_eq!(s, Quat::new(0.0, 0.0, 0.0, 2.0));
+        assert!(close(s * s, Quat::real(-4.0), 0.0));
+    }
+
+    #[test]
+    fn log_exp_round_trip() {
+        for q in [
+            Quat::new(1.0, 2.0, -3.0, 0.5),
+            Quat::new(-2.0, 0.1, 0.0, 0.0),
+            Quat::real(3.0),
+        ] {
+            let l = q.log().unwrap();
+            assert!(close(l.exp(), q, 1e-14), "{q:?}");
+        }
+        assert_eq!(Quat::real(-1.0).log(), None);
+        assert_eq!(Quat::ZERO.log(), None);
+    }
+
+    #[test]
+    fn polar_form() {
+        let q = Quat::new(1.0, 0.0, 1.0, 0.0);
+        let (r, th, n) = q.polar();
+        assert!((r - libm::sqrt(2.0)).abs() < 1e-15);
+        assert!((th - core::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        assert_eq!(n, Some([0.0, 1.0, 0.0]));
+    }
+
+    #[test]
+    fn cross_ratio_is_real_exactly_for_cocircular_points() {
+        let on_circle = |t: f64| [libm::cos(t), libm::sin(t), 0.0];
+        let cr = cross_ratio(
+            on_circle(0.1),
+            on_circle(1.0),
+            on_circle(2.5),
+            on_circle(4.0),
+        )
+        .unwrap();
+        assert!(cr.abs_im() < 1e-15 * cr.abs());
+        let cr2 = cross_ratio(
+            on_circle(0.1),
+            on_circle(1.0),
+            on_circle(2.5),
+            [0.0, 0.0, 1.0],
+        )
+        .unwrap();
+        assert!(cr2.abs_im() > 1e-3);
+        assert_eq!(
+            cross_ratio([0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
+                .unwrap_err()
+                .status,
+            Status::DegenerateGeometry
+        );
+        assert_eq!(
+            cross_ratio(
+                [f64::NAN, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [3.0; 3]
+            )
+            .unwrap_err()
+            .status,
+            Status::NonFiniteInput
+        );
+    }
+
+    #[test]
+    fn cross_ratio_equals_corner_tangent_form() {
+        // Eq. (2): cr[qi,qj,qk,ql] = t[qk,qi,qj]⁻¹ · t[qk,qi,ql].
+        let (a, b, c, d) = (
+            [0.3, -1.0, 2.0],
+            [1.5, 0.2, -0.7],
+            [-0.4, 2.2, 1.1],
+            [2.0, 1.0, 0.5],
+        );
+        let cr = cross_ratio(a, b, c, d).unwrap();
+        let t1 = Quat::from_point(corner_tangent(c, a, b).unwrap())
+            .inverse()
+            .unwrap();
+        let t2 = Quat::from_point(corner_tangent(c, a, d).unwrap());
+        assert!(close(cr, t1 * t2, 1e-13), "{cr:?} {:?}", t1 * t2);
+    }
+
+    #[test]
+    fn tangent_polygon_edges_are_corner_tangents() {
+        let v = [0.1, 0.2, 0.3];
+        let ring = [
+            [1.0, 0.0, 0.1],
+            [0.2, 1.1, 0.0],
+            [-1.0, 0.3, -0.2],
+            [0.0, -1.0, 0.4],
+        ];
+        let mut t = [[0.0; 3]; 4];
+        tangent_polygon(v, &ring, &mut t).unwrap();
+        for i in 0..4 {
+            let ct = corner_tangent(ring[i], v, ring[(i + 1) % 4]).unwrap();
+            let e = [
+                t[(i + 1) % 4][0] - t[i][0],
+                t[(i + 1) % 4][1] - t[i][1],
+                t[(i + 1) % 4][2] - t[i][2],
+            ];
+            for k in 0..3 {
+                assert!((ct[k] - e[k]).abs() < 1e-14);
+            }
+        }
+        let mut small = [[0.0; 3]; 3];
+        assert_eq!(
+            tangent_polygon(v, &ring, &mut small).unwrap_err(),
+            Error::too_small(4)
+        );
+        let bad = [v, [1.0, 0.0, 0.0]];
+        let e = tangent_polygon(v, &bad, &mut t).unwrap_err();
+        assert_eq!((e.status, e.element), (Status::DegenerateGeometry, 0));
+    }
+}
