@@ -291,7 +291,7 @@ impl CanonicalForm {
             return Ok(self.c);
         }
         let t = crate::quat::tangent_polygon_vertex(self.v, x)?;
-        Ok(invert_in_sphere(t, self.c, self.r)?)
+        invert_in_sphere(t, self.c, self.r)
     }
 
     /// Sends a point of the canonical form back to the star: `C ↦ v + T⁻¹` with
