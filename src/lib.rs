@@ -30,9 +30,12 @@
 
 pub mod blend;
 pub mod error;
+pub mod mesh;
 pub mod metrics;
 pub mod mobius;
 pub mod quat;
+pub mod scheme;
+pub mod stencil;
 
 pub use error::{Error, Result, Status, NO_ELEMENT};
 pub use quat::{Point, Quat};

@@ -1,0 +1,350 @@
+//! Refinement patterns: the connectivity of one subdivision step, its exact sizes, and the
+//! numbering of the new vertices. Positions are the schemes' business ([`crate::scheme`]).
+//!
+//! Notation: `V, E, F, H` vertices, edges, faces, half-edges (corners) of the input; `I`
+//! isolated vertices; `E_i` interior edges; `V_i` interior vertices; `Σ_i` the sum of the
+//! valences of the interior vertices. Edges are numbered in `(min, max)` key order
+//! ([`Topology`]). All faces keep the input orientation (counter-clockwise from outside).
+//!
+//! | pattern | vertices (in this order) | faces (in this order) |
+//! |---|---|---|
+//! | [`Split1To4`](Pattern::Split1To4) (triangles only) | `V` old, `E` edge points | triangle `f` → `4f..4f+4`: `(v0,e0,e2) (v1,e1,e0) (v2,e2,e1) (e0,e1,e2)`, `e_i` on corner `i`'s edge `(v_i, v_{i+1})` |
+//! | [`Quads`](Pattern::Quads) | `V` old, `E` edge points, `F` face points | corner `h` of face `f` → quad `h`: `(v_i, e_i, f, e_{i−1})` |
+//! | [`CornerCut`](Pattern::CornerCut) (Doo–Sabin) | `H` corner points (corner `h` → point `h`), then the `I` isolated vertices | `F` F-faces (corners in face order), `E_i` E-faces in edge order `(c(next h), c(h), c(next t), c(t))` with `h` the `min→max` half-edge and `t` its twin, `V_i` V-faces in vertex order (corners of the star, CCW) |
+//! | [`MidEdge`](Pattern::MidEdge) (Simplest) | `E` edge midpoints, then the `I` isolated vertices | `F` face-faces (the midpoints of the face's edges, in corner order), then a vertex-face per interior vertex and per boundary vertex with two or more faces, in vertex order (the midpoints of its spokes, CCW) |
+//! | [`Dual`](Pattern::Dual) | `F` face points, then the `I` isolated vertices | one face per interior vertex, in vertex order (the face points of its star, CCW) |
+//! | [`VertexInsertion`](Pattern::VertexInsertion) | `V` old, `F` face points | corner `h = (a → b)` of face `f` → triangle `h`: `(a, b, f)` |
+//! | [`DualTruncation`](Pattern::DualTruncation) | `V` old, `F` face points | per edge, in edge order: interior `h = (a → b)` in `f`, twin in `g`: `(a, g, f)` and `(b, f, g)`; boundary `(a → b)` in `f`: `(a, b, f)` |
+//!
+//! Boundaries: the dual patterns ([`CornerCut`](Pattern::CornerCut),
+//! [`Dual`](Pattern::Dual)) make faces only around interior edges and vertices (CGAL's
+//! `DQQ_1step`); [`MidEdge`](Pattern::MidEdge) closes boundary vertices with two or more
+//! faces, so its new boundary is the midpoint polygon of the old one (the mid-edge curve rule).
+
+use super::{cadd, cmul, get, idx, set, MeshSizes, Topology, NONE};
+use crate::error::{Error, Result, Status};
+use crate::MAX_VALENCE;
+
+/// A refinement pattern (connectivity of one step; see the module table).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pattern {
+    /// Triangle 1→4 split (Loop, Modified Butterfly).
+    Split1To4,
+    /// n-gon → n quads (Catmull–Clark, Kobbelt).
+    Quads,
+    /// Corner cutting with F-, E- and V-faces (Doo–Sabin).
+    CornerCut,
+    /// Mid-edge: face-faces and vertex-faces of edge midpoints (Peters–Reif Simplest).
+    MidEdge,
+    /// Dual mesh: face points joined around interior vertices (Akleman et al. 2005).
+    Dual,
+    /// Each n-gon → n triangles to a face point, old edges kept (Akleman et al. 2005).
+    VertexInsertion,
+    /// Truncation followed by the dual: a face point per face, each old edge replaced by the
+    /// edge between its two face points (the √3 connectivity; Akleman et al. 2005).
+    DualTruncation,
+}
+
+impl Pattern {
+    /// Whether the old vertices are kept at their indices (primal patterns).
+    pub fn keeps_old_vertices(self) -> bool {
+        matches!(
+            self,
+            Pattern::Split1To4
+                | Pattern::Quads
+                | Pattern::VertexInsertion
+                | Pattern::DualTruncation
+        )
+    }
+}
+
+/// Sum of valences and count of boundary vertices with at least two faces.
+fn boundary_faces_ge2(topo: &Topology<'_, '_>) -> Result<(usize, usize)> {
+    let mut count = 0usize;
+    let mut sum = 0usize;
+    for v in 0..topo.num_vertices() as u32 {
+        if topo.is_boundary_vertex(v)? && topo.valence(v)? >= 3 {
+            count += 1;
+            sum = cadd(sum, topo.valence(v)?)?;
+        }
+    }
+    Ok((count, sum))
+}
+
+/// The exact output sizes of `pattern` on `topo`, checked: [`Status::SizeOverflow`] when a
+/// count exceeds [`super::MAX_COUNT`], [`Status::UnsupportedFaceType`] (naming the face) for
+/// [`Pattern::Split1To4`] on a non-triangle, [`Status::ValenceTooHigh`] when a vertex of the
+/// output would exceed [`MAX_VALENCE`] (naming the old vertex, or for
+/// [`Pattern::DualTruncation`] face points, the face).
+pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSizes> {
+    let v = topo.num_vertices();
+    let e = topo.num_edges();
+    let f = topo.num_faces();
+    let h = topo.num_half_edges();
+    let iso = topo.num_isolated_vertices();
+    let sizes = match pattern {
+        Pattern::Split1To4 => {
+            for face in 0..f as u32 {
+                if topo.face_size(face)? != 3 {
+                    return Err(Error::at(Status::UnsupportedFaceType, face));
+                }
+            }
+            MeshSizes {
+                vertices: cadd(v, e)?,
+                faces: cmul(f, 4)?,
+                indices: cmul(f, 12)?,
+            }
+        }
+        Pattern::Quads => MeshSizes {
+            vertices: cadd(cadd(v, e)?, f)?,
+            faces: h,
+            indices: cmul(h, 4)?,
+        },
+        Pattern::CornerCut => MeshSizes {
+            vertices: cadd(h, iso)?,
+            faces: cadd(
+                cadd(f, topo.num_interior_edges())?,
+                topo.num_interior_vertices(),
+            )?,
+            indices: cadd(
+                cadd(h, cmul(topo.num_interior_edges(), 4)?)?,
+                topo.interior_valence_sum(),
+            )?,
+        },
+        Pattern::MidEdge => {
+            let (nb, sb) = boundary_faces_ge2(topo)?;
+            MeshSizes {
+                vertices: cadd(e, iso)?,
+                faces: cadd(cadd(f, topo.num_interior_vertices())?, nb)?,
+                indices: cadd(cadd(h, topo.interior_valence_sum())?, sb)?,
+            }
+        }
+        Pattern::Dual => MeshSizes {
+            vertices: cadd(f, iso)?,
+            faces: topo.num_interior_vertices(),
+            indices: topo.interior_valence_sum(),
+        },
+        Pattern::VertexInsertion => {
+            for vi in 0..v as u32 {
+                let n = topo.valence(vi)?;
+                let k = topo.vertex_face_count(vi)?;
+                if n + k > MAX_VALENCE {
+                    return Err(Error::at(Status::ValenceTooHigh, vi));
+                }
+            }
+            MeshSizes {
+                vertices: cadd(v, f)?,
+                faces: h,
+                indices: cmul(h, 3)?,
+            }
+        }
+        Pattern::DualTruncation => {
+            for vi in 0..v as u32 {
+                // Interior: its face points; boundary: face points and both boundary neighbours.
+                let k = topo.vertex_face_count(vi)?;
+                let n = if topo.is_boundary_vertex(vi)? {
+                    k + 2
+                } else {
+                    k
+                };
+                if n > MAX_VALENCE {
+                    return Err(Error::at(Status::ValenceTooHigh, vi));
+                }
+            }
+            for fi in 0..f as u32 {
+                let mut n = 0usize;
+                for he in topo.face_half_edges(fi)? {
+                    n += if topo.twin(he)? == NONE { 1 } else { 2 };
+                }
+                if n > MAX_VALENCE {
+                    return Err(Error::at(Status::ValenceTooHigh, fi));
+                }
+            }
+            let faces = cadd(
+                cmul(topo.num_interior_edges(), 2)?,
+                topo.num_boundary_edges(),
+            )?;
+            MeshSizes {
+                vertices: cadd(v, f)?,
+                faces,
+                indices: cmul(faces, 3)?,
+            }
+        }
+    };
+    sizes.check()
+}
+
+/// Writes one face into the CSR output and advances the cursors.
+struct FaceWriter<'a> {
+    offsets: &'a mut [u32],
+    indices: &'a mut [u32],
+    face: usize,
+    corner: usize,
+}
+
+impl<'a> FaceWriter<'a> {
+    fn new(offsets: &'a mut [u32], indices: &'a mut [u32]) -> Result<Self> {
+        set(offsets, 0, 0)?;
+        Ok(FaceWriter {
+            offsets,
+            indices,
+            face: 0,
+            corner: 0,
+        })
+    }
+
+    fn push(&mut self, v: u32) -> Result<()> {
+        set(self.indices, self.corner, v)?;
+        self.corner += 1;
+        Ok(())
+    }
+
+    fn end_face(&mut self) -> Result<()> {
+        self.face += 1;
+        set(self.offsets, self.face, idx(self.corner)?)
+    }
+
+    fn face(&mut self, vs: &[u32]) -> Result<()> {
+        for &v in vs {
+            self.push(v)?;
+        }
+        self.end_face()
+    }
+
+    fn finish(&self, sizes: &MeshSizes) -> Result<()> {
+        if self.face == sizes.faces && self.corner == sizes.indices {
+            Ok(())
+        } else {
+            Err(super::internal())
+        }
+    }
+}
+
+/// Writes the faces of `pattern` (see the module table) into `offsets` and `indices`, which
+/// must hold `sizes` from [`pattern_size`] (checked: [`Status::BufferTooSmall`]).
+pub fn write_pattern(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+) -> Result<MeshSizes> {
+    let sizes = pattern_size(pattern, topo)?;
+    if offsets.len() < sizes.offsets()? {
+        return Err(Error::too_small(sizes.offsets()?));
+    }
+    if indices.len() < sizes.indices {
+        return Err(Error::too_small(sizes.indices));
+    }
+    let nv = idx(topo.num_vertices())?;
+    let ne = idx(topo.num_edges())?;
+    let nf = topo.num_faces() as u32;
+    let mut w = FaceWriter::new(offsets, indices)?;
+    match pattern {
+        Pattern::Split1To4 => {
+            for f in 0..nf {
+                let r = topo.face_half_edges(f)?;
+                let (h0, h1, h2) = (r.start, r.start + 1, r.start + 2);
+                let (v0, v1, v2) = (topo.origin(h0)?, topo.origin(h1)?, topo.origin(h2)?);
+                let e0 = nv + topo.edge(h0)?;
+                let e1 = nv + topo.edge(h1)?;
+                let e2 = nv + topo.edge(h2)?;
+                w.face(&[v0, e0, e2])?;
+                w.face(&[v1, e1, e0])?;
+                w.face(&[v2, e2, e1])?;
+                w.face(&[e0, e1, e2])?;
+            }
+        }
+        Pattern::Quads => {
+            for f in 0..nf {
+                let fp = nv + ne + f;
+                for h in topo.face_half_edges(f)? {
+                    let p = topo.prev(h)?;
+                    w.face(&[topo.origin(h)?, nv + topo.edge(h)?, fp, nv + topo.edge(p)?])?;
+                }
+            }
+        }
+        Pattern::CornerCut => {
+            for f in 0..nf {
+                for h in topo.face_half_edges(f)? {
+                    w.push(h)?;
+                }
+                w.end_face()?;
+            }
+            for e in 0..ne {
+                let h = topo.edge_half_edge(e)?;
+                let t = topo.twin(h)?;
+                if t == NONE {
+                    continue;
+                }
+                w.face(&[topo.next(h)?, h, topo.next(t)?, t])?;
+            }
+            for v in 0..nv {
+                if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+                    continue;
+                }
+                for s in topo.star(v) {
+                    w.push(s.half_edge)?;
+                }
+                w.end_face()?;
+            }
+        }
+        Pattern::MidEdge => {
+            for f in 0..nf {
+                for h in topo.face_half_edges(f)? {
+                    w.push(topo.edge(h)?)?;
+                }
+                w.end_face()?;
+            }
+            for v in 0..nv {
+                if topo.is_isolated(v)? || (topo.is_boundary_vertex(v)? && topo.valence(v)? < 3) {
+                    continue;
+                }
+                for s in topo.star(v) {
+                    w.push(s.edge)?;
+                }
+                w.end_face()?;
+            }
+        }
+        Pattern::Dual => {
+            for v in 0..nv {
+                if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+                    continue;
+                }
+                for s in topo.star(v) {
+                    w.push(s.face)?;
+                }
+                w.end_face()?;
+            }
+        }
+        Pattern::VertexInsertion => {
+            for f in 0..nf {
+                for h in topo.face_half_edges(f)? {
+                    w.face(&[topo.origin(h)?, topo.dest(h)?, nv + f])?;
+                }
+            }
+        }
+        Pattern::DualTruncation => {
+            for e in 0..ne {
+                let h = topo.edge_half_edge(e)?;
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                let f = nv + topo.face(h)?;
+                let t = topo.twin(h)?;
+                if t == NONE {
+                    w.face(&[a, b, f])?;
+                } else {
+                    let g = nv + topo.face(t)?;
+                    w.face(&[a, g, f])?;
+                    w.face(&[b, f, g])?;
+                }
+            }
+        }
+    }
+    w.finish(&sizes)?;
+    // The output numbering must stay within the vertex count (checked, never trusted).
+    let used = indices.get(..sizes.indices).ok_or(super::internal())?;
+    if used.iter().any(|&i| i as usize >= sizes.vertices) {
+        return Err(super::internal());
+    }
+    let _ = get(offsets, sizes.faces)?;
+    Ok(sizes)
+}

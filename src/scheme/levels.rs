@@ -1,0 +1,434 @@
+//! Several levels in one call, with a plan of the exact sizes of every level computed before
+//! anything is written.
+//!
+//! [`plan`] validates the input, then follows a handful of counts from level to level
+//! (vertices, faces, corners, edges, boundary edges, isolated vertices, valence sums and
+//! maxima): for every pattern these counts of level `k + 1` are exact functions of the counts
+//! of level `k`, so no intermediate level has to be built to know its size. The plan's
+//! sizes are checked against what each step really writes.
+//!
+//! Limits: at most [`MAX_LEVELS`] levels. For [`Scheme::Dual`] and [`Scheme::Simplest`] on a
+//! mesh **with boundary**, the sizes beyond the first level depend on more than these counts
+//! (the dual loses its boundary ring; the mid-edge boundary erodes runs of one-face
+//! corners): a plan of more than one level for them is [`Status::InvalidArgument`]; run
+//! single steps with [`super::subdivide`] instead.
+
+use super::linear::subdivide_size;
+use super::{subdivide, Scheme};
+use crate::error::{Error, Result, Status};
+use crate::mesh::refine::Pattern;
+use crate::mesh::{
+    cadd, cmul, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
+};
+use crate::quat::Point;
+use crate::MAX_VALENCE;
+
+/// The largest number of levels of one [`subdivide_levels`] call.
+pub const MAX_LEVELS: usize = 16;
+
+/// Sizes of every level of a multi-level call and the scratch it needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LevelPlan {
+    /// Number of levels.
+    pub levels: usize,
+    /// `sizes[0]` is the input, `sizes[k]` level `k` (entries above `levels` are zero).
+    pub sizes: [MeshSizes; MAX_LEVELS + 1],
+    /// `u32` scratch of [`subdivide_levels`]: the topology of the largest input level plus
+    /// the offsets and indices of the intermediate levels (two alternating buffers).
+    pub scratch_u32: usize,
+    /// Point scratch of [`subdivide_levels`]: the positions of the intermediate levels (two
+    /// alternating buffers).
+    pub scratch_points: usize,
+}
+
+impl LevelPlan {
+    /// The sizes of the last level (what the caller's output buffers must hold).
+    pub fn output(&self) -> MeshSizes {
+        self.sizes.get(self.levels).copied().unwrap_or_default()
+    }
+}
+
+/// Counts that determine the next level's counts.
+#[derive(Clone, Copy, Debug)]
+struct Stats {
+    v: usize,
+    f: usize,
+    h: usize,
+    e: usize,
+    eb: usize,
+    iso: usize,
+    /// Σ valence of interior vertices.
+    si: usize,
+    /// Σ valence of boundary vertices.
+    sb: usize,
+    max_vi: usize,
+    max_vb: usize,
+    max_face: usize,
+    /// max over faces of (corners + interior edges): dual-truncation face-point valence.
+    max_dt: usize,
+}
+
+impl Stats {
+    fn of(topo: &Topology<'_, '_>) -> Result<Stats> {
+        let mut s = Stats {
+            v: topo.num_vertices(),
+            f: topo.num_faces(),
+            h: topo.num_half_edges(),
+            e: topo.num_edges(),
+            eb: topo.num_boundary_edges(),
+            iso: topo.num_isolated_vertices(),
+            si: topo.interior_valence_sum(),
+            sb: 0,
+            max_vi: 0,
+            max_vb: 0,
+            max_face: topo.max_face_size(),
+            max_dt: 0,
+        };
+        for v in 0..s.v as u32 {
+            let n = topo.valence(v)?;
+            if topo.is_boundary_vertex(v)? {
+                s.sb = cadd(s.sb, n)?;
+                s.max_vb = s.max_vb.max(n);
+            } else {
+                s.max_vi = s.max_vi.max(n);
+            }
+        }
+        for f in 0..s.f as u32 {
+            let mut n = 0usize;
+            for h in topo.face_half_edges(f)? {
+                n += if topo.twin(h)? == crate::mesh::NONE {
+                    1
+                } else {
+                    2
+                };
+            }
+            s.max_dt = s.max_dt.max(n);
+        }
+        Ok(s)
+    }
+
+    fn vi(&self) -> usize {
+        self.v.saturating_sub(self.eb).saturating_sub(self.iso)
+    }
+
+    fn ei(&self) -> usize {
+        self.e.saturating_sub(self.eb)
+    }
+
+    fn sizes(&self) -> MeshSizes {
+        MeshSizes {
+            vertices: self.v,
+            faces: self.f,
+            indices: self.h,
+        }
+    }
+
+    /// The counts of the next level (module docs; derivations in the comments).
+    fn next(&self, pattern: Pattern) -> Result<Stats> {
+        let s = *self;
+        let (ei, vi) = (s.ei(), s.vi());
+        let some = |c: bool, x: usize| if c { x } else { 0 };
+        let n = match pattern {
+            // Edge points: interior valence 6, boundary 4; old vertices keep theirs.
+            Pattern::Split1To4 => Stats {
+                v: cadd(s.v, s.e)?,
+                f: cmul(s.f, 4)?,
+                h: cmul(s.h, 4)?,
+                e: cadd(cmul(s.e, 2)?, cmul(s.f, 3)?)?,
+                eb: cmul(s.eb, 2)?,
+                iso: s.iso,
+                si: cadd(s.si, cmul(ei, 6)?)?,
+                sb: cadd(s.sb, cmul(s.eb, 4)?)?,
+                max_vi: s.max_vi.max(some(ei > 0, 6)),
+                max_vb: s.max_vb.max(some(s.eb > 0, 4)),
+                max_face: 3,
+                max_dt: 6,
+            },
+            // Edge points: interior valence 4, boundary 3; face points interior, valence n.
+            Pattern::Quads => Stats {
+                v: cadd(cadd(s.v, s.e)?, s.f)?,
+                f: s.h,
+                h: cmul(s.h, 4)?,
+                e: cadd(cmul(s.e, 2)?, s.h)?,
+                eb: cmul(s.eb, 2)?,
+                iso: s.iso,
+                si: cadd(cadd(s.si, cmul(ei, 4)?)?, s.h)?,
+                sb: cadd(s.sb, cmul(s.eb, 3)?)?,
+                max_vi: s.max_vi.max(some(ei > 0, 4)).max(s.max_face),
+                max_vb: s.max_vb.max(some(s.eb > 0, 3)),
+                max_face: 4,
+                max_dt: 8,
+            },
+            // Corner points at interior vertices: interior, valence 4. At a boundary vertex
+            // with k faces: valence 2 + (interior edges of the face at the vertex), which sums
+            // to 2k + 2(k − 1). New boundary edges: the old ones plus one per interior edge at
+            // a boundary vertex (Σ_b (valence − 2)).
+            Pattern::CornerCut => {
+                let sb4 = cmul(s.sb, 4)?;
+                let eb6 = cmul(s.eb, 6)?;
+                Stats {
+                    v: cadd(s.h, s.iso)?,
+                    f: cadd(cadd(s.f, ei)?, vi)?,
+                    h: cadd(cadd(s.h, cmul(ei, 4)?)?, s.si)?,
+                    e: cadd(s.h, cmul(ei, 2)?)?,
+                    eb: s.sb.checked_sub(s.eb).ok_or(internal())?,
+                    iso: s.iso,
+                    si: cmul(s.si, 4)?,
+                    sb: sb4.checked_sub(eb6).ok_or(internal())?,
+                    max_vi: some(s.si > 0, 4),
+                    max_vb: some(s.eb > 0, 4),
+                    max_face: s.max_face.max(some(ei > 0, 4)).max(some(vi > 0, s.max_vi)),
+                    max_dt: 0,
+                }
+            }
+            // Old interior vertices double their valence, boundary ones go to 2n − 1; face
+            // points are interior with valence n. Old edges stay, plus one per corner.
+            Pattern::VertexInsertion => Stats {
+                v: cadd(s.v, s.f)?,
+                f: s.h,
+                h: cmul(s.h, 3)?,
+                e: cadd(s.e, s.h)?,
+                eb: s.eb,
+                iso: s.iso,
+                si: cadd(cmul(s.si, 2)?, s.h)?,
+                sb: cmul(s.sb, 2)?.checked_sub(s.eb).ok_or(internal())?,
+                max_vi: cmul(s.max_vi, 2)?.max(s.max_face),
+                max_vb: cmul(s.max_vb, 2)?.saturating_sub(1),
+                max_face: 3,
+                max_dt: 6,
+            },
+            // Interior vertices keep their valence, boundary ones gain one; face points are
+            // interior with valence n + (interior edges of the face). Edges: one per corner,
+            // one per interior edge (between face points), the boundary edges.
+            Pattern::DualTruncation => Stats {
+                v: cadd(s.v, s.f)?,
+                f: cadd(cmul(ei, 2)?, s.eb)?,
+                h: cmul(cadd(cmul(ei, 2)?, s.eb)?, 3)?,
+                e: cadd(s.h, s.e)?,
+                eb: s.eb,
+                iso: s.iso,
+                si: cadd(cadd(s.si, s.h)?, cmul(ei, 2)?)?,
+                sb: cadd(s.sb, s.eb)?,
+                max_vi: s.max_vi.max(s.max_dt),
+                max_vb: s.max_vb + some(s.eb > 0, 1),
+                max_face: 3,
+                max_dt: 6,
+            },
+            // Closed meshes only (checked by the caller): faces ↔ vertices.
+            Pattern::Dual => Stats {
+                v: cadd(s.f, s.iso)?,
+                f: vi,
+                h: s.si,
+                e: s.e,
+                eb: 0,
+                iso: s.iso,
+                si: s.h,
+                sb: 0,
+                max_vi: s.max_face,
+                max_vb: 0,
+                max_face: s.max_vi,
+                max_dt: 0,
+            },
+            // Closed meshes only: midpoints are interior with valence 4.
+            Pattern::MidEdge => Stats {
+                v: cadd(s.e, s.iso)?,
+                f: cadd(s.f, vi)?,
+                h: cadd(s.h, s.si)?,
+                e: s.h,
+                eb: 0,
+                iso: s.iso,
+                si: cmul(s.e, 4)?,
+                sb: 0,
+                max_vi: some(s.e > 0, 4),
+                max_vb: 0,
+                max_face: s.max_face.max(s.max_vi),
+                max_dt: 0,
+            },
+        };
+        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_VALENCE {
+            return Err(Error::new(Status::ValenceTooHigh));
+        }
+        n.sizes().check()?;
+        Ok(n)
+    }
+}
+
+/// Validates `mesh` (topology in `scratch`, [`super::scratch_len`] entries) and plans
+/// `levels` steps of `scheme`: the exact sizes of every level and the scratch that
+/// [`subdivide_levels`] needs.
+///
+/// # Errors
+/// Validation errors; those of [`subdivide_size`] for the first level;
+/// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or a multi-level Dual or
+/// Simplest plan on a mesh with boundary; [`Status::SizeOverflow`];
+/// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`MAX_VALENCE`].
+pub fn plan(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch: &mut [u32],
+) -> Result<LevelPlan> {
+    if levels > MAX_LEVELS {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    let topo = Topology::build(mesh, scratch)?;
+    let mut stats = Stats::of(&topo)?;
+    let mut p = LevelPlan {
+        levels,
+        sizes: [MeshSizes::default(); MAX_LEVELS + 1],
+        scratch_u32: 0,
+        scratch_points: 0,
+    };
+    *p.sizes.get_mut(0).ok_or(internal())? = stats.sizes();
+    if levels == 0 {
+        return Ok(p);
+    }
+    let pattern = scheme.pattern();
+    if levels > 1 && matches!(pattern, Pattern::Dual | Pattern::MidEdge) && stats.eb > 0 {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    // Level 1 exactly as the single step computes it (face types, per-vertex valences).
+    let first = subdivide_size(scheme, &topo)?;
+    let mut topo_max = topology_scratch_len(stats.v, stats.h)?;
+    let (mut pts, mut u32s) = ([0usize; 2], [0usize; 2]);
+    for k in 1..=levels {
+        stats = stats.next(pattern)?;
+        let sz = stats.sizes();
+        if k == 1 && sz != first {
+            return Err(internal());
+        }
+        *p.sizes.get_mut(k).ok_or(internal())? = sz;
+        if k < levels {
+            // Intermediate level k lives in buffer k % 2 and is the input of step k + 1.
+            let slot = k % 2;
+            let buf_pts = pts.get_mut(slot).ok_or(internal())?;
+            *buf_pts = (*buf_pts).max(sz.vertices);
+            let buf_u = u32s.get_mut(slot).ok_or(internal())?;
+            *buf_u = (*buf_u).max(cadd(sz.offsets()?, sz.indices)?);
+            topo_max = topo_max.max(topology_scratch_len(sz.vertices, sz.indices)?);
+        }
+    }
+    p.scratch_points = cadd(pts[0], pts[1])?;
+    p.scratch_u32 = cadd(cadd(topo_max, u32s[0])?, u32s[1])?;
+    if p.scratch_u32 > MAX_COUNT.saturating_mul(8) {
+        return Err(Error::new(Status::SizeOverflow));
+    }
+    Ok(p)
+}
+
+/// The `u32` scratch that [`plan`] needs (the input topology).
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
+    super::scratch_len(mesh)
+}
+
+/// Runs `levels` steps of `scheme` on `mesh`, intermediate levels in caller scratch
+/// (`scratch_u32` ≥ [`LevelPlan::scratch_u32`], `scratch_points` ≥
+/// [`LevelPlan::scratch_points`]), the last level in `out` (≥ [`LevelPlan::output`]). Level 0
+/// copies the input. Returns the output sizes.
+///
+/// # Errors
+/// Those of [`plan`] and [`subdivide`]; [`Status::BufferTooSmall`] with the needed size.
+pub fn subdivide_levels(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch_u32: &mut [u32],
+    scratch_points: &mut [Point],
+    out: &mut MeshOut<'_>,
+) -> Result<MeshSizes> {
+    let need_plan = plan_scratch_len(&mesh)?;
+    if scratch_u32.len() < need_plan {
+        return Err(Error::too_small(need_plan));
+    }
+    let p = plan(scheme, mesh, levels, scratch_u32)?;
+    let final_sizes = p.output();
+    out.check(&final_sizes)?;
+    if scratch_u32.len() < p.scratch_u32 {
+        return Err(Error::too_small(p.scratch_u32));
+    }
+    if scratch_points.len() < p.scratch_points {
+        return Err(Error::too_small(p.scratch_points));
+    }
+    if levels == 0 {
+        copy_mesh(mesh, out)?;
+        return Ok(final_sizes);
+    }
+    // Buffer sizes per slot, as in `plan`.
+    let mut slot_pts = [0usize; 2];
+    let mut slot_u32 = [0usize; 2];
+    let mut topo_len = 0usize;
+    for k in 0..levels {
+        let sz = p.sizes.get(k).copied().ok_or(internal())?;
+        topo_len = topo_len.max(topology_scratch_len(sz.vertices, sz.indices)?);
+        if k >= 1 {
+            let slot = k % 2;
+            if let (Some(a), Some(b)) = (slot_pts.get_mut(slot), slot_u32.get_mut(slot)) {
+                *a = (*a).max(sz.vertices);
+                *b = (*b).max(cadd(sz.offsets()?, sz.indices)?);
+            }
+        }
+    }
+    let (topo_scratch, rest) = scratch_u32
+        .split_at_mut_checked(topo_len)
+        .ok_or(internal())?;
+    let (u_a, rest) = rest.split_at_mut_checked(slot_u32[0]).ok_or(internal())?;
+    let (u_b, _) = rest.split_at_mut_checked(slot_u32[1]).ok_or(internal())?;
+    let (p_a, rest) = scratch_points
+        .split_at_mut_checked(slot_pts[0])
+        .ok_or(internal())?;
+    let (p_b, _) = rest.split_at_mut_checked(slot_pts[1]).ok_or(internal())?;
+    // Slot 0 holds even levels, slot 1 odd levels.
+    let mut bufs_u: [&mut [u32]; 2] = [u_a, u_b];
+    let mut bufs_p: [&mut [Point]; 2] = [p_a, p_b];
+    for k in 0..levels {
+        let out_sizes = p.sizes.get(k + 1).copied().ok_or(internal())?;
+        let [ua, ub] = &mut bufs_u;
+        let [pa, pb] = &mut bufs_p;
+        // Input of step k: the mesh (k = 0) or level k in slot k % 2; output: level k + 1
+        // in the other slot, or `out` for the last step.
+        let (in_u, out_u, in_p, out_p): (&[u32], &mut [u32], &[Point], &mut [Point]) = if k % 2 == 0
+        {
+            (&**ua, &mut **ub, &**pa, &mut **pb)
+        } else {
+            (&**ub, &mut **ua, &**pb, &mut **pa)
+        };
+        let input = if k == 0 {
+            mesh
+        } else {
+            let sz = p.sizes.get(k).copied().ok_or(internal())?;
+            let no = sz.offsets()?;
+            let offs = in_u.get(..no).ok_or(internal())?;
+            let idx = in_u.get(no..no + sz.indices).ok_or(internal())?;
+            Mesh::new(in_p.get(..sz.vertices).ok_or(internal())?, offs, idx)
+        };
+        let topo = Topology::build(input, topo_scratch)?;
+        let written = if k + 1 == levels {
+            subdivide(scheme, &topo, out)?
+        } else {
+            let no = out_sizes.offsets()?;
+            let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
+            let mut step_out = MeshOut::new(out_p, o, rest);
+            subdivide(scheme, &topo, &mut step_out)?
+        };
+        if written != out_sizes {
+            return Err(internal());
+        }
+    }
+    Ok(final_sizes)
+}
+
+fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {
+    for (d, s) in out.positions.iter_mut().zip(mesh.positions) {
+        *d = *s;
+    }
+    for (d, s) in out.offsets.iter_mut().zip(mesh.offsets) {
+        *d = *s;
+    }
+    for (d, s) in out.indices.iter_mut().zip(mesh.indices) {
+        *d = *s;
+    }
+    Ok(())
+}

@@ -1,0 +1,412 @@
+//! The linear schemes: one level per call over caller buffers. Each driver walks the
+//! topology, gathers one neighbourhood at a time and evaluates the rule of
+//! [`crate::stencil`] on it (the Möbius schemes will evaluate the same rules on canonical
+//! forms). See each stencil module for the rule and its source.
+//!
+//! Order of evaluation, fixed for determinism: face points (face order), edge points
+//! (edge-id order), vertex points (vertex order); a rule that needs face or edge points reads
+//! them back from the output buffer.
+
+use arrayvec::ArrayVec;
+
+use super::Scheme;
+use crate::error::{Error, Result, Status};
+use crate::mesh::refine::{pattern_size, write_pattern};
+use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Topology, NONE};
+use crate::quat::{point_is_finite, Point};
+use crate::stencil::{
+    akleman, butterfly, catmull_clark, doo_sabin, kobbelt, loop_scheme, simplest,
+};
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+
+type Ring = ArrayVec<Point, MAX_VALENCE>;
+type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
+
+/// The exact output sizes of one step of `scheme` on `topo`, checked before anything is
+/// written.
+///
+/// # Errors
+/// [`Status::UnsupportedFaceType`] naming the first face the scheme does not accept (Loop and
+/// Modified Butterfly: non-triangles; Kobbelt: non-quads); [`Status::SizeOverflow`];
+/// [`Status::ValenceTooHigh`] for an output vertex above [`MAX_VALENCE`]
+/// ([`crate::mesh::refine::pattern_size`]).
+pub fn subdivide_size(scheme: Scheme, topo: &Topology<'_, '_>) -> Result<MeshSizes> {
+    if scheme == Scheme::Kobbelt {
+        for f in 0..topo.num_faces() as u32 {
+            if topo.face_size(f)? != 4 {
+                return Err(Error::at(Status::UnsupportedFaceType, f));
+            }
+        }
+    }
+    pattern_size(scheme.pattern(), topo)
+}
+
+/// Writes one step of `scheme` on `topo` into `out` and returns the sizes written.
+///
+/// # Errors
+/// Those of [`subdivide_size`]; [`Status::BufferTooSmall`] (with the needed size) when an
+/// output buffer is short, before any write; [`Status::NumericalFailure`] naming the first
+/// output vertex that is not finite (overflow on huge coordinates).
+pub fn subdivide(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+) -> Result<MeshSizes> {
+    let sizes = subdivide_size(scheme, topo)?;
+    out.check(&sizes)?;
+    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
+    match scheme {
+        Scheme::Loop => loop_positions(topo, pos)?,
+        Scheme::CatmullClark => catmull_clark_positions(topo, pos)?,
+        Scheme::ModifiedButterfly => butterfly_positions(topo, pos)?,
+        Scheme::Kobbelt => kobbelt_positions(topo, pos)?,
+        Scheme::DooSabin => doo_sabin_positions(topo, pos)?,
+        Scheme::Simplest => simplest_positions(topo, pos)?,
+        Scheme::Dual => dual_positions(topo, pos)?,
+        Scheme::VertexInsertion => vertex_insertion_positions(topo, pos)?,
+        Scheme::DualTruncation => dual_truncation_positions(topo, pos)?,
+    }
+    for (i, p) in pos.iter().enumerate() {
+        if !point_is_finite(p) {
+            return Err(Error::at(Status::NumericalFailure, i as u32));
+        }
+    }
+    Ok(sizes)
+}
+
+// ---- gathering neighbourhoods ----
+
+/// Positions of `v`'s neighbours, counter-clockwise.
+pub(crate) fn ring_points(topo: &Topology<'_, '_>, v: u32) -> Result<Ring> {
+    let mut r = Ring::new();
+    for s in topo.star(v) {
+        r.try_push(topo.position(s.neighbour)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+    }
+    Ok(r)
+}
+
+/// Positions of the corners of face `f`, in face order.
+pub(crate) fn face_points(topo: &Topology<'_, '_>, f: u32) -> Result<FacePts> {
+    let mut r = FacePts::new();
+    for &v in topo.face_vertices(f)? {
+        r.try_push(topo.position(v)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
+    }
+    Ok(r)
+}
+
+/// The other boundary neighbour of boundary vertex `v` (not `other`).
+fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
+    let (b0, b1) = topo.boundary_neighbours(v)?;
+    Ok(if b0 == other { b1 } else { b0 })
+}
+
+fn copy_old(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    for (v, p) in topo.mesh().positions.iter().enumerate() {
+        set(pos, v, *p)?;
+    }
+    Ok(())
+}
+
+/// Appends the isolated vertices, in index order, from `start` (dual schemes).
+fn append_isolated(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
+    let mut k = start;
+    for v in 0..topo.num_vertices() as u32 {
+        if topo.is_isolated(v)? {
+            set(pos, k, topo.position(v)?)?;
+            k += 1;
+        }
+    }
+    Ok(())
+}
+
+/// The third vertex of the triangle of half-edge `h` (the vertex after `dest(h)`).
+fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
+    topo.dest(topo.next(h)?)
+}
+
+// ---- Loop ----
+
+fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let nv = topo.num_vertices();
+    for v in 0..nv as u32 {
+        let p = topo.position(v)?;
+        let q = if topo.is_isolated(v)? {
+            p
+        } else if topo.is_boundary_vertex(v)? {
+            let (b0, b1) = topo.boundary_neighbours(v)?;
+            loop_scheme::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
+        } else {
+            loop_scheme::vertex_interior(p, &ring_points(topo, v)?)?
+        };
+        set(pos, v as usize, q)?;
+    }
+    for e in 0..topo.num_edges() as u32 {
+        let h = topo.edge_half_edge(e)?;
+        let a = topo.position(topo.origin(h)?)?;
+        let b = topo.position(topo.dest(h)?)?;
+        let t = topo.twin(h)?;
+        let q = if t == NONE {
+            loop_scheme::edge_boundary(a, b)
+        } else {
+            let c = topo.position(apex(topo, h)?)?;
+            let d = topo.position(apex(topo, t)?)?;
+            loop_scheme::edge_interior(a, b, c, d)
+        };
+        set(pos, nv + e as usize, q)?;
+    }
+    Ok(())
+}
+
+// ---- Catmull–Clark ----
+
+fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let nv = topo.num_vertices();
+    let fp0 = nv + topo.num_edges();
+    for f in 0..topo.num_faces() as u32 {
+        let c = catmull_clark::face_point(&face_points(topo, f)?)?;
+        set(pos, fp0 + f as usize, c)?;
+    }
+    for e in 0..topo.num_edges() as u32 {
+        let h = topo.edge_half_edge(e)?;
+        let a = topo.position(topo.origin(h)?)?;
+        let b = topo.position(topo.dest(h)?)?;
+        let t = topo.twin(h)?;
+        let q = if t == NONE {
+            catmull_clark::edge_boundary(a, b)
+        } else {
+            let f0 = get(pos, fp0 + topo.face(h)? as usize)?;
+            let f1 = get(pos, fp0 + topo.face(t)? as usize)?;
+            catmull_clark::edge_interior(a, b, f0, f1)
+        };
+        set(pos, nv + e as usize, q)?;
+    }
+    for v in 0..nv as u32 {
+        let p = topo.position(v)?;
+        let q = if topo.is_isolated(v)? {
+            p
+        } else if topo.is_boundary_vertex(v)? {
+            let (b0, b1) = topo.boundary_neighbours(v)?;
+            catmull_clark::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
+        } else {
+            let mut ring = Ring::new();
+            let mut faces = Ring::new();
+            for s in topo.star(v) {
+                ring.try_push(topo.position(s.neighbour)?)
+                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+                faces
+                    .try_push(get(pos, fp0 + s.face as usize)?)
+                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+            }
+            catmull_clark::vertex_interior(p, &ring, &faces)?
+        };
+        set(pos, v as usize, q)?;
+    }
+    Ok(())
+}
+
+// ---- Modified Butterfly ----
+
+/// The vertex across the outer edge `g` of a triangle whose third vertex is `z`, or the
+/// reflection `u + w − z` when `g` is a boundary edge (OpenMesh).
+fn butterfly_across(topo: &Topology<'_, '_>, g: u32, z: u32) -> Result<Point> {
+    let t = topo.twin(g)?;
+    if t == NONE {
+        Ok(butterfly::reflect(
+            topo.position(topo.origin(g)?)?,
+            topo.position(topo.dest(g)?)?,
+            topo.position(z)?,
+        ))
+    } else {
+        topo.position(apex(topo, t)?)
+    }
+}
+
+/// Zorin's stencil of interior vertex `v` for its edge to `other` (ring starts at `other`).
+fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
+    let spokes = topo.spokes(v)?;
+    let j = spokes
+        .iter()
+        .position(|s| s.neighbour == other)
+        .ok_or(internal())?;
+    let mut ring = Ring::new();
+    for k in 0..spokes.len() {
+        let s = spokes.get((j + k) % spokes.len()).ok_or(internal())?;
+        ring.try_push(topo.position(s.neighbour)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+    }
+    butterfly::zorin_stencil(topo.position(v)?, &ring).map_err(|e| e.with_element(v))
+}
+
+fn butterfly_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    copy_old(topo, pos)?;
+    let nv = topo.num_vertices();
+    for e in 0..topo.num_edges() as u32 {
+        let h = topo.edge_half_edge(e)?;
+        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+        let a0 = topo.position(i0)?;
+        let a1 = topo.position(i1)?;
+        let t = topo.twin(h)?;
+        let q = if t == NONE {
+            let p0 = topo.position(boundary_beyond(topo, i0, i1)?)?;
+            let p1 = topo.position(boundary_beyond(topo, i1, i0)?)?;
+            butterfly::edge_boundary(p0, a0, a1, p1)
+        } else {
+            // The valence of a boundary endpoint is never examined (OpenMesh).
+            let irr0 = !topo.is_boundary_vertex(i0)? && topo.valence(i0)? != 6;
+            let irr1 = !topo.is_boundary_vertex(i1)? && topo.valence(i1)? != 6;
+            match (irr0, irr1) {
+                (false, false) => {
+                    let b0 = topo.position(apex(topo, h)?)?;
+                    let b1 = topo.position(apex(topo, t)?)?;
+                    let (nh, ph) = (topo.next(h)?, topo.prev(h)?);
+                    let (nt, pt) = (topo.next(t)?, topo.prev(t)?);
+                    let c = [
+                        butterfly_across(topo, nh, i0)?,
+                        butterfly_across(topo, ph, i1)?,
+                        butterfly_across(topo, nt, i1)?,
+                        butterfly_across(topo, pt, i0)?,
+                    ];
+                    butterfly::edge_regular(a0, a1, b0, b1, c)
+                }
+                (true, false) => butterfly_zorin(topo, i0, i1)?,
+                (false, true) => butterfly_zorin(topo, i1, i0)?,
+                (true, true) => {
+                    let s0 = butterfly_zorin(topo, i0, i1)?;
+                    let s1 = butterfly_zorin(topo, i1, i0)?;
+                    crate::stencil::midpoint(s0, s1)
+                }
+            }
+        };
+        set(pos, nv + e as usize, q)?;
+    }
+    Ok(())
+}
+
+// ---- Kobbelt ----
+
+/// The point beyond `v` on the grid line from `toward` through `v` (seed 000 §4.3 "virtual
+/// points"; decisions in [`crate::stencil::kobbelt`]).
+fn kobbelt_beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Point> {
+    let pv = topo.position(v)?;
+    if topo.is_boundary_vertex(v)? {
+        return Ok(kobbelt::extrapolate(pv, topo.position(toward)?));
+    }
+    let spokes = topo.spokes(v)?;
+    let j = spokes
+        .iter()
+        .position(|s| s.neighbour == toward)
+        .ok_or(internal())?;
+    let mut q = Ring::new();
+    let mut d = Ring::new();
+    for s in &spokes {
+        q.try_push(topo.position(s.neighbour)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        d.try_push(topo.position(apex(topo, s.half_edge)?)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+    }
+    kobbelt::virtual_point(&q, &d, j).map_err(|e| e.with_element(v))
+}
+
+fn kobbelt_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    copy_old(topo, pos)?;
+    let nv = topo.num_vertices();
+    let ne = topo.num_edges();
+    for e in 0..ne as u32 {
+        let h = topo.edge_half_edge(e)?;
+        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+        let a0 = topo.position(i0)?;
+        let a1 = topo.position(i1)?;
+        let (r0, r1) = if topo.twin(h)? == NONE {
+            (
+                topo.position(boundary_beyond(topo, i0, i1)?)?,
+                topo.position(boundary_beyond(topo, i1, i0)?)?,
+            )
+        } else {
+            (kobbelt_beyond(topo, i0, i1)?, kobbelt_beyond(topo, i1, i0)?)
+        };
+        set(pos, nv + e as usize, kobbelt::four_point(r0, a0, a1, r1))?;
+    }
+    let ep = |pos: &[Point], h: u32| -> Result<Point> { get(pos, nv + topo.edge(h)? as usize) };
+    // The edge point beyond edge `hx` of a quad, away from its opposite edge `hy`.
+    let outer = |pos: &[Point], hx: u32, hy: u32| -> Result<Point> {
+        let t = topo.twin(hx)?;
+        if t == NONE {
+            Ok(kobbelt::extrapolate(ep(pos, hx)?, ep(pos, hy)?))
+        } else {
+            ep(pos, topo.next(topo.next(t)?)?)
+        }
+    };
+    for f in 0..topo.num_faces() as u32 {
+        let r = topo.face_half_edges(f)?;
+        let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
+        let fa = kobbelt::four_point(
+            outer(pos, h0, h2)?,
+            ep(pos, h0)?,
+            ep(pos, h2)?,
+            outer(pos, h2, h0)?,
+        );
+        let fb = kobbelt::four_point(
+            outer(pos, h1, h3)?,
+            ep(pos, h1)?,
+            ep(pos, h3)?,
+            outer(pos, h3, h1)?,
+        );
+        set(pos, nv + ne + f as usize, crate::stencil::midpoint(fa, fb))?;
+    }
+    Ok(())
+}
+
+// ---- Doo–Sabin, Simplest, Akleman ----
+
+fn doo_sabin_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    for f in 0..topo.num_faces() as u32 {
+        let pts = face_points(topo, f)?;
+        for (i, h) in topo.face_half_edges(f)?.enumerate() {
+            set(pos, h as usize, doo_sabin::corner_point(&pts, i)?)?;
+        }
+    }
+    append_isolated(topo, pos, topo.num_half_edges())
+}
+
+fn simplest_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    for e in 0..topo.num_edges() as u32 {
+        let (a, b) = topo.edge_vertices(e)?;
+        let m = simplest::edge_point(topo.position(a)?, topo.position(b)?);
+        set(pos, e as usize, m)?;
+    }
+    append_isolated(topo, pos, topo.num_edges())
+}
+
+fn face_centroids(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
+    for f in 0..topo.num_faces() as u32 {
+        let c = akleman::face_point(&face_points(topo, f)?)?;
+        set(pos, start + f as usize, c)?;
+    }
+    Ok(())
+}
+
+fn dual_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    face_centroids(topo, pos, 0)?;
+    append_isolated(topo, pos, topo.num_faces())
+}
+
+fn vertex_insertion_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    copy_old(topo, pos)?;
+    face_centroids(topo, pos, topo.num_vertices())
+}
+
+fn dual_truncation_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    for v in 0..topo.num_vertices() as u32 {
+        let p = topo.position(v)?;
+        let q = if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+            p
+        } else {
+            akleman::truncated_vertex(p, &ring_points(topo, v)?)?
+        };
+        set(pos, v as usize, q)?;
+    }
+    face_centroids(topo, pos, topo.num_vertices())
+}

@@ -1,0 +1,42 @@
+//! Akleman, Srinivasan and Mandal's remeshing operators (2005), cited in seed 000 §4.3 as
+//! 1-ring "subdivision-like operators", with their linear rules. The patterns are
+//! [`crate::mesh::refine::Pattern::Dual`], `VertexInsertion` and `DualTruncation`.
+//!
+//! Decisions (DESIGN.md: "decide, write it down"):
+//!
+//! * **Dual**: one vertex per face, its centroid; one face per interior vertex joining the
+//!   centroids of its faces counter-clockwise. Boundary vertices get no face.
+//! * **Vertex insertion**: one vertex per face, its centroid; each n-gon becomes n triangles
+//!   `(v_i, v_{i+1}, c)`; old vertices and old edges stay.
+//! * **Dual truncation**: truncation cuts every corner at `t = 1/3` of its edges (each vertex
+//!   of valence n becomes an n-gon, each n-gon a 2n-gon), then the dual is taken. The dual
+//!   vertex of an old interior vertex is the centroid of its truncation polygon,
+//!   `(1 − t) v + t · mean(q_i)` ([`truncated_vertex`]; `t = 1/3` equals √3's vertex rule at
+//!   valence 6); the dual vertex of a face is the centroid of its 2n-gon, which is the face
+//!   centroid for every `t`. The connectivity is √3's: every old interior edge is replaced by
+//!   the edge joining the centroids of its two faces. Boundary vertices stay where they are and
+//!   boundary edges are kept (their triangle `(a, b, c_f)`), so the boundary curve is
+//!   unchanged.
+
+use super::{centroid, lin2};
+use crate::error::Result;
+use crate::quat::Point;
+
+/// The truncation parameter `t = 1/3` of dual truncation.
+pub const TRUNCATION: f64 = 1.0 / 3.0;
+
+/// A face point of all three operators: the centroid of the face.
+///
+/// # Errors
+/// [`crate::Status::TooFewPoints`] for an empty face.
+pub fn face_point(face: &[Point]) -> Result<Point> {
+    centroid(face)
+}
+
+/// The dual-truncation point of an interior vertex, `(1 − t) v + t · mean(ring)`, `t = 1/3`.
+///
+/// # Errors
+/// [`crate::Status::TooFewPoints`] for an empty ring.
+pub fn truncated_vertex(v: Point, ring: &[Point]) -> Result<Point> {
+    Ok(lin2(1.0 - TRUNCATION, v, TRUNCATION, centroid(ring)?))
+}

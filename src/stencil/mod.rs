@@ -1,0 +1,89 @@
+//! Linear subdivision rules on one neighbourhood, given as slices of points (DESIGN.md "Two
+//! API tiers", tier 1). Nothing here knows a mesh: the drivers in [`crate::scheme`] gather
+//! the neighbourhoods, and the Möbius schemes evaluate the same rules on canonical forms of
+//! vertex stars (seed 000 §4.3).
+//!
+//! The weights are exactly those of the peer libraries (`reference/peer-rules.md`); each
+//! module cites its rule. Sums run in the documented order of their arguments, in plain
+//! `f64` arithmetic without fused multiply-add, so results are deterministic.
+//!
+//! Rings are counter-clockwise seen from outside and, unless a function says otherwise,
+//! may start anywhere.
+
+pub mod akleman;
+pub mod butterfly;
+pub mod catmull_clark;
+pub mod doo_sabin;
+pub mod kobbelt;
+pub mod loop_scheme;
+pub mod simplest;
+
+use crate::error::{Error, Result, Status};
+use crate::quat::Point;
+
+/// `a + b`.
+#[inline]
+pub fn add(a: Point, b: Point) -> Point {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// `a − b`.
+#[inline]
+pub fn sub(a: Point, b: Point) -> Point {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `s · a`.
+#[inline]
+pub fn scale(a: Point, s: f64) -> Point {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// `wa · a + wb · b`.
+#[inline]
+pub fn lin2(wa: f64, a: Point, wb: f64, b: Point) -> Point {
+    add(scale(a, wa), scale(b, wb))
+}
+
+/// The sum of `points`, left to right.
+pub fn sum(points: &[Point]) -> Point {
+    points.iter().fold([0.0; 3], |acc, &p| add(acc, p))
+}
+
+/// The average of `points`.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for an empty slice.
+pub fn centroid(points: &[Point]) -> Result<Point> {
+    if points.is_empty() {
+        return Err(Error::new(Status::TooFewPoints));
+    }
+    Ok(scale(sum(points), 1.0 / points.len() as f64))
+}
+
+/// The midpoint of `a` and `b`.
+#[inline]
+pub fn midpoint(a: Point, b: Point) -> Point {
+    scale(add(a, b), 0.5)
+}
+
+/// The crease (boundary) vertex rule of the cubic B-spline, `3/4 v + 1/8 (b0 + b1)`: the
+/// boundary rule of Loop and of Catmull–Clark as CGAL and OpenSubdiv (`EDGE_ONLY`) apply it,
+/// one-face corners included (peer-rules.md; DESIGN.md "Mesh boundaries").
+#[inline]
+pub fn crease_vertex(v: Point, b0: Point, b1: Point) -> Point {
+    lin2(0.75, v, 0.125, add(b0, b1))
+}
+
+/// `ring[(j + k) mod n]` for a signed offset `k`.
+#[inline]
+pub(crate) fn cyclic(ring: &[Point], j: usize, k: isize) -> Result<Point> {
+    let n = ring.len() as isize;
+    if n == 0 {
+        return Err(Error::new(Status::TooFewPoints));
+    }
+    let i = (j as isize + k).rem_euclid(n) as usize;
+    ring.get(i)
+        .copied()
+        .ok_or(Error::new(Status::InvalidArgument))
+}
