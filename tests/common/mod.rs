@@ -1,0 +1,392 @@
+//! Shared test support: mesh generators, a tiny OFF reader, owned meshes and helpers.
+// Test code: indexing and unwrap are fine here (clippy's in-test allowances do not reach
+// helper functions outside #[test]).
+#![allow(
+    dead_code,
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic
+)]
+
+use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, Topology};
+use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::{Point, Result};
+use std::path::{Path, PathBuf};
+
+/// A mesh owning its buffers.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OwnedMesh {
+    pub positions: Vec<Point>,
+    pub offsets: Vec<u32>,
+    pub indices: Vec<u32>,
+}
+
+impl OwnedMesh {
+    pub fn from_faces(positions: Vec<Point>, faces: &[Vec<u32>]) -> Self {
+        let mut offsets = vec![0u32];
+        let mut indices = Vec::new();
+        for f in faces {
+            indices.extend_from_slice(f);
+            offsets.push(indices.len() as u32);
+        }
+        OwnedMesh {
+            positions,
+            offsets,
+            indices,
+        }
+    }
+
+    pub fn view(&self) -> Mesh<'_> {
+        Mesh::new(&self.positions, &self.offsets, &self.indices)
+    }
+
+    pub fn faces(&self) -> Vec<Vec<u32>> {
+        self.offsets
+            .windows(2)
+            .map(|w| self.indices[w[0] as usize..w[1] as usize].to_vec())
+            .collect()
+    }
+
+    pub fn num_faces(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    pub fn map_positions(&self, mut f: impl FnMut(Point) -> Point) -> Self {
+        OwnedMesh {
+            positions: self.positions.iter().map(|&p| f(p)).collect(),
+            ..self.clone()
+        }
+    }
+}
+
+/// Builds the topology (owning its scratch) and runs `f` on it.
+pub fn with_topology<R>(m: &OwnedMesh, f: impl FnOnce(&Topology<'_, '_>) -> R) -> Result<R> {
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let topo = Topology::build(m.view(), &mut scratch)?;
+    Ok(f(&topo))
+}
+
+pub fn validate(m: &OwnedMesh) -> Result<()> {
+    with_topology(m, |_| ())
+}
+
+/// One step of `s`, with buffers sized by the size query.
+pub fn subdivide(s: Scheme, m: &OwnedMesh) -> Result<OwnedMesh> {
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let sizes = scheme::subdivide_mesh_size(s, m.view(), &mut scratch)?;
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; sizes.vertices],
+        offsets: vec![u32::MAX; sizes.faces + 1],
+        indices: vec![u32::MAX; sizes.indices],
+    };
+    let written = scheme::subdivide_mesh(
+        s,
+        m.view(),
+        &mut scratch,
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+    )?;
+    assert_eq!(written, sizes, "sizes written differ from the size query");
+    Ok(out)
+}
+
+pub fn subdivide_n(s: Scheme, m: &OwnedMesh, levels: usize) -> Result<OwnedMesh> {
+    let mut cur = m.clone();
+    for _ in 0..levels {
+        cur = subdivide(s, &cur)?;
+    }
+    Ok(cur)
+}
+
+pub fn sizes_of(m: &OwnedMesh) -> MeshSizes {
+    MeshSizes {
+        vertices: m.positions.len(),
+        faces: m.num_faces(),
+        indices: m.indices.len(),
+    }
+}
+
+/// FNV-1a over the bits of every output array.
+pub fn hash(m: &OwnedMesh) -> u64 {
+    let mut h = 0xcbf29ce484222325u64;
+    let mut eat = |x: u64| {
+        for b in x.to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x100000001b3);
+        }
+    };
+    for p in &m.positions {
+        for c in p {
+            eat(c.to_bits());
+        }
+    }
+    for &o in &m.offsets {
+        eat(o as u64);
+    }
+    for &i in &m.indices {
+        eat(i as u64);
+    }
+    h
+}
+
+// ---------------------------------------------------------------- generators
+
+pub fn tetrahedron() -> OwnedMesh {
+    OwnedMesh::from_faces(
+        vec![
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        ],
+        &[vec![0, 1, 2], vec![0, 3, 1], vec![0, 2, 3], vec![1, 3, 2]],
+    )
+}
+
+pub fn cube() -> OwnedMesh {
+    let mut p = Vec::new();
+    for i in 0..8 {
+        p.push([
+            (i & 1) as f64 * 2.0 - 1.0,
+            ((i >> 1) & 1) as f64 * 2.0 - 1.0,
+            ((i >> 2) & 1) as f64 * 2.0 - 1.0,
+        ]);
+    }
+    OwnedMesh::from_faces(
+        p,
+        &[
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+        ],
+    )
+}
+
+/// An `m × n` quad grid on the plane z = 0 with unit spacing (boundary).
+pub fn quad_grid(m: usize, n: usize) -> OwnedMesh {
+    let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+    let mut p = Vec::new();
+    for j in 0..=n {
+        for i in 0..=m {
+            p.push([i as f64, j as f64, 0.0]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..m {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    OwnedMesh::from_faces(p, &faces)
+}
+
+/// An `m × n` quad grid split into triangles (interior valence 6).
+pub fn tri_grid(m: usize, n: usize) -> OwnedMesh {
+    let q = quad_grid(m, n);
+    let mut faces = Vec::new();
+    for f in q.faces() {
+        faces.push(vec![f[0], f[1], f[2]]);
+        faces.push(vec![f[0], f[2], f[3]]);
+    }
+    OwnedMesh::from_faces(q.positions, &faces)
+}
+
+/// A quad torus with `m × n` faces (all valence 4, closed).
+pub fn quad_torus(m: usize, n: usize, big: f64, small: f64) -> OwnedMesh {
+    let id = |i: usize, j: usize| ((j % n) * m + (i % m)) as u32;
+    let mut p = Vec::new();
+    for j in 0..n {
+        for i in 0..m {
+            let u = 2.0 * std::f64::consts::PI * i as f64 / m as f64;
+            let v = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+            let r = big + small * v.cos();
+            p.push([r * u.cos(), r * u.sin(), small * v.sin()]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..m {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    OwnedMesh::from_faces(p, &faces)
+}
+
+pub fn tri_torus(m: usize, n: usize) -> OwnedMesh {
+    let q = quad_torus(m, n, 3.0, 1.0);
+    let mut faces = Vec::new();
+    for f in q.faces() {
+        faces.push(vec![f[0], f[1], f[2]]);
+        faces.push(vec![f[0], f[2], f[3]]);
+    }
+    OwnedMesh::from_faces(q.positions, &faces)
+}
+
+/// A disk: centre 0 with `n` triangles around it (centre interior of valence n).
+pub fn fan(n: usize) -> OwnedMesh {
+    let mut p = vec![[0.0, 0.0, 0.0]];
+    for i in 0..n {
+        let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+        p.push([t.cos(), t.sin(), 0.1 * (3.0 * t).sin()]);
+    }
+    let faces: Vec<Vec<u32>> = (0..n)
+        .map(|i| vec![0, 1 + i as u32, 1 + ((i + 1) % n) as u32])
+        .collect();
+    OwnedMesh::from_faces(p, &faces)
+}
+
+/// A closed bipyramid: poles 0 and 1 of valence n.
+pub fn bipyramid(n: usize) -> OwnedMesh {
+    let mut p = vec![[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+    for i in 0..n {
+        let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+        p.push([t.cos(), t.sin(), 0.0]);
+    }
+    let r = |i: usize| 2 + (i % n) as u32;
+    let mut faces = Vec::new();
+    for i in 0..n {
+        faces.push(vec![0, r(i), r(i + 1)]);
+        faces.push(vec![1, r(i + 1), r(i)]);
+    }
+    OwnedMesh::from_faces(p, &faces)
+}
+
+/// A closed prism with n-gon caps (quads on the side).
+pub fn prism(n: usize) -> OwnedMesh {
+    let mut p = Vec::new();
+    for k in 0..2 {
+        for i in 0..n {
+            let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+            p.push([t.cos(), t.sin(), k as f64]);
+        }
+    }
+    let b = |i: usize| (i % n) as u32;
+    let t = |i: usize| (n + i % n) as u32;
+    let mut faces = vec![
+        (0..n).rev().map(b).collect::<Vec<_>>(),
+        (0..n).map(t).collect(),
+    ];
+    for i in 0..n {
+        faces.push(vec![b(i), b(i + 1), t(i + 1), t(i)]);
+    }
+    OwnedMesh::from_faces(p, &faces)
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+}
+
+pub fn jitter(m: &OwnedMesh, amp: f64, seed: u64) -> OwnedMesh {
+    let mut r = Lcg(seed);
+    m.map_positions(|p| {
+        [
+            p[0] + amp * r.next(),
+            p[1] + amp * r.next(),
+            p[2] + amp * r.next(),
+        ]
+    })
+}
+
+// ---------------------------------------------------------------- OFF files
+
+pub fn shared_meshes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes")
+}
+
+/// The `.off` files of a folder, sorted; `None` (and a visible skip line) when it is absent.
+pub fn off_files(dir: &Path) -> Option<Vec<PathBuf>> {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        println!(
+            "SKIP: {} not found; shared-mesh tests skipped",
+            dir.display()
+        );
+        return None;
+    };
+    let mut v: Vec<PathBuf> = rd
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "off"))
+        .collect();
+    v.sort();
+    Some(v)
+}
+
+/// A tiny OFF reader: `OFF`/`COFF` header (counts may follow on the same line), `#`
+/// comments, extra tokens after a vertex's 3 coordinates or a face's indices (colours),
+/// faces wrapped over several lines. Negative indices wrap to large `u32` (so that the kernel
+/// sees them as out of range, as a C host casting them would).
+pub fn read_off(path: &Path) -> std::result::Result<OwnedMesh, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    // Tokens with their line numbers.
+    let mut toks: Vec<(usize, &str)> = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("");
+        for t in line.split_whitespace() {
+            toks.push((ln, t));
+        }
+    }
+    let mut it = toks.into_iter().peekable();
+    let head = it.next().ok_or("empty file")?.1;
+    if !head.ends_with("OFF") {
+        return Err(format!("bad header {head}"));
+    }
+    let mut num = || -> std::result::Result<(usize, &str), String> {
+        it.next()
+            .ok_or_else(|| "unexpected end of file".to_string())
+    };
+    let nv: usize = num()?.1.parse().map_err(|e| format!("{e}"))?;
+    let nf: usize = num()?.1.parse().map_err(|e| format!("{e}"))?;
+    let _ne = num()?;
+    let mut positions = Vec::with_capacity(nv);
+    // Re-collect the remaining tokens so that we can skip the rest of a line.
+    let rest: Vec<(usize, &str)> = std::iter::from_fn(|| num().ok()).collect();
+    let mut k = 0usize;
+    let tok = |k: &mut usize| -> std::result::Result<(usize, &str), String> {
+        let t = rest.get(*k).copied().ok_or("unexpected end of file")?;
+        *k += 1;
+        Ok(t)
+    };
+    for _ in 0..nv {
+        let (l0, x) = tok(&mut k)?;
+        let (_, y) = tok(&mut k)?;
+        let (_, z) = tok(&mut k)?;
+        let p = |s: &str| s.parse::<f64>().map_err(|e| format!("{s}: {e}"));
+        positions.push([p(x)?, p(y)?, p(z)?]);
+        while rest.get(k).is_some_and(|t| t.0 == l0) {
+            k += 1;
+        }
+    }
+    let mut offsets = vec![0u32];
+    let mut indices = Vec::new();
+    for _ in 0..nf {
+        let (_, n) = tok(&mut k)?;
+        let n: usize = n.parse().map_err(|e| format!("{e}"))?;
+        let mut line = 0;
+        for _ in 0..n {
+            let (l, s) = tok(&mut k)?;
+            let i: i64 = s.parse().map_err(|e| format!("{s}: {e}"))?;
+            indices.push(i as u32);
+            line = l;
+        }
+        while rest.get(k).is_some_and(|t| t.0 == line) {
+            k += 1;
+        }
+        offsets.push(indices.len() as u32);
+    }
+    Ok(OwnedMesh {
+        positions,
+        offsets,
+        indices,
+    })
+}
