@@ -303,6 +303,11 @@ static void test_canonical_forms(void) {
 
 static void test_fp_environment(void) {
 #if defined(__x86_64__)
+    if (getenv("NLS_TEST_UNDER_VALGRIND") != NULL) {
+        /* valgrind does not emulate MXCSR flush-to-zero or rounding control */
+        printf("SKIP test_fp_environment under valgrind\n");
+        return;
+    }
     double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {2, 0, 0}, d[3] = {3, 0, 0}, p[3];
     unsigned int saved = _mm_getcsr();
     _mm_setcsr(saved | 0x8040u); /* flush-to-zero + denormals-are-zero, as -ffast-math does */
