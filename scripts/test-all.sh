@@ -39,6 +39,37 @@ step "cargo test (debug)" cargo test --workspace --locked
 step "cargo test (release)" cargo test --workspace --locked --release
 step "cargo doc (no broken links)" env RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
 
+# --- determinism -----------------------------------------------------------------------
+determinism() {
+    local h1 h2 h3 h4 h5
+    h1=$(cargo run -q --locked --example det_hash) || return 1
+    h2=$(cargo run -q --locked --release --example det_hash) || return 1
+    h3=$(cargo run -q --locked --release --example det_hash) || return 1
+    h4=$(CARGO_PROFILE_RELEASE_OPT_LEVEL=1 cargo run -q --locked --release --example det_hash --target-dir target/det-o1) || return 1
+    h5=$(RUSTFLAGS="-C target-cpu=native" cargo run -q --locked --release --example det_hash --target-dir target/det-native) || return 1
+    printf 'debug            %s\nrelease          %s\nrelease again    %s\nopt-level=1      %s\ntarget-cpu=native %s\n' "$h1" "$h2" "$h3" "$h4" "$h5"
+    [ "$h1" = "$h2" ] && [ "$h2" = "$h3" ] && [ "$h3" = "$h4" ] && [ "$h4" = "$h5" ]
+}
+step "determinism: same bits in debug, release, opt-level 1, target-cpu=native" determinism
+reproducible() {
+    # Two clean builds of the staticlib in different directories are byte-identical.
+    local a="$OUT/repro-a" b="$OUT/repro-b"
+    rm -rf "$a" "$b"; mkdir -p "$a" "$b"
+    git ls-files -z | tar --null -T - -cf - | tar -xf - -C "$a"
+    git ls-files -z | tar --null -T - -cf - | tar -xf - -C "$b"
+    local flags="--remap-path-prefix=$a=/nlsubdiv --remap-path-prefix=$b=/nlsubdiv --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=/cargo"
+    (cd "$a" && RUSTFLAGS="$flags" cargo build -q --release --locked -p nlsubdiv-ffi) || return 1
+    (cd "$b" && RUSTFLAGS="$flags" cargo build -q --release --locked -p nlsubdiv-ffi) || return 1
+    sha256sum "$a/target/release/libnlsubdiv.a" "$b/target/release/libnlsubdiv.a" "$a/target/release/libnlsubdiv.so" "$b/target/release/libnlsubdiv.so"
+    cmp "$a/target/release/libnlsubdiv.a" "$b/target/release/libnlsubdiv.a" &&
+    cmp "$a/target/release/libnlsubdiv.so" "$b/target/release/libnlsubdiv.so" || return 1
+    local leaks
+    leaks=$(strings "$a/target/release/libnlsubdiv.a" | grep -c -e "$a" -e "${CARGO_HOME:-$HOME/.cargo}" || true)
+    echo "absolute build paths left in libnlsubdiv.a: $leaks"
+    [ "$leaks" -eq 0 ] && rm -rf "$a" "$b"
+}
+step "reproducible build: libnlsubdiv.a/.so byte-identical from two directories" reproducible
+
 # --- no_std proof -----------------------------------------------------------------------
 nostd_probe() {
     cargo build --release --locked -p nlsubdiv-nostd-probe || return 1
