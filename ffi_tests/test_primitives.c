@@ -133,6 +133,18 @@ static void test_f6(void) {
     CHECK(untouched(p, 3));
 }
 
+static void test_face_point(void) {
+    double sq[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    double cand[12] = {0.5, 0.5, 0, 0.5, 0.5, 0, 0.5, 0.5, 0, 0.5, 0.5, 0};
+    double p[3], centre[3] = {0.5, 0.5, 0};
+    CHECK_STATUS(nls_face_point(sq, cand, 4, p), NLS_STATUS_OK);
+    CHECK(nls_dist3(p, centre) == 0.0);
+    CHECK_STATUS(nls_face_point(sq, cand, 2, p), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(nls_face_point(sq, NULL, 4, p), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(nls_face_point(sq, cand, 4, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(nls_face_point(NULL, NULL, 0, p), NLS_STATUS_TOO_FEW_POINTS);
+}
+
 static void test_small_primitives(void) {
     double a[3], b[3], c[3], d[3], t[3], x;
     on_circle(0.0, 1.0, a);
@@ -332,6 +344,7 @@ int main(void) {
     test_f4();
     test_f6();
     test_small_primitives();
+    test_face_point();
     test_quaternions();
     test_tangent_polygon_and_metrics();
     test_mobius_maps();
