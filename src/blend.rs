@@ -288,9 +288,10 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         let mut j = order.len() - 1;
         while j > 0 {
-            match (order.get(j - 1).copied(), order.get(j).copied()) {
-                (Some(prev), Some(cur)) if prev.1 > cur.1 => {
-                    order.swap(j - 1, j);
+            // Swap through `get_mut` on the pair: `slice::swap` keeps a bounds-check panic.
+            match order.get_mut(j - 1..=j) {
+                Some([prev, cur]) if prev.1 > cur.1 => {
+                    core::mem::swap(prev, cur);
                     j -= 1;
                 }
                 _ => break,
