@@ -264,8 +264,8 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
     }
     let h = d / 2;
     let at = |s: &[Point], i: usize| {
-        s.get(i % d)
-            .copied()
+        i.checked_rem(d)
+            .and_then(|k| s.get(k).copied())
             .ok_or(Error::new(Status::InvalidArgument))
     };
     // (quadruplet start i, rounded key), sorted stably by key with an insertion sort (d is
