@@ -26,11 +26,19 @@ struct Frame {
 
 impl Frame {
     fn of(points: &[Point]) -> Frame {
+        let inv_n = 1.0 / points.len() as f64;
         let mut centre = [0.0; 3];
         for p in points {
             centre = add(centre, *p);
         }
-        centre = scale(centre, 1.0 / points.len() as f64);
+        centre = scale(centre, inv_n);
+        if !point_is_finite(&centre) {
+            // The sum overflowed (coordinates near f64::MAX): average the scaled points instead.
+            centre = [0.0; 3];
+            for p in points {
+                centre = add(centre, scale(*p, inv_n));
+            }
+        }
         let mut size: f64 = 0.0;
         for (i, p) in points.iter().enumerate() {
             for q in points.iter().skip(i + 1) {
@@ -40,7 +48,9 @@ impl Frame {
         Frame { centre, size }
     }
     fn to_local(self, p: Point) -> Point {
-        scale(sub(p, self.centre), 1.0 / self.size)
+        // Divide (rather than multiply by 1/size, which overflows for a subnormal size).
+        let d = sub(p, self.centre);
+        [d[0] / self.size, d[1] / self.size, d[2] / self.size]
     }
     fn to_world(self, p: Point) -> Point {
         add(self.centre, scale(p, self.size))
@@ -136,7 +146,8 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 ///
 /// # Errors
 /// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`] when
-/// the new point is at infinity.
+/// the new point is at infinity; [`Status::NumericalFailure`] when finite inputs overflow
+/// (points more than `f64::MAX` apart, or a result beyond it).
 pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
@@ -201,7 +212,9 @@ pub fn noncircularity(a: Point, b: Point, c: Point, d: Point) -> Result<f64> {
 ///
 /// # Errors
 /// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when a cross-ratio is undefined
-/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity.
+/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity;
+/// [`Status::NumericalFailure`] when finite inputs overflow (points more than `f64::MAX`
+/// apart, or a result beyond it).
 pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
     if ![a, b, c, d, e, f].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
@@ -284,6 +297,35 @@ mod tests {
         assert!(is_negative_real(rho));
         let p = f4(a, b, c, d).unwrap();
         assert!(p[2].abs() < 1e-14 && point_is_finite(&p));
+    }
+
+    #[test]
+    fn f4_at_the_ends_of_the_f64_range() {
+        // Subnormal coordinates: the frame size is subnormal and 1/size overflows; the inputs
+        // are finite, so the answer must not be NonFiniteInput.
+        let t = 5e-324;
+        let p = f4([0.0; 3], [0.0, t, 0.0], [t, 0.0, 0.0], [0.0, 0.0, t]).unwrap();
+        assert!(point_is_finite(&p));
+        // Coordinates near f64::MAX whose sum overflows but whose spread does not.
+        let m = f64::MAX;
+        let (a, b, c, d) = (
+            [0.9 * m, 0.0, 0.0],
+            [0.8 * m, 0.1 * m, 0.0],
+            [0.7 * m, 0.1 * m, 0.1 * m],
+            [0.6 * m, 0.0, 0.1 * m],
+        );
+        let p = f4(a, b, c, d).unwrap();
+        assert!(point_is_finite(&p));
+        let q = f6(
+            a,
+            b,
+            c,
+            d,
+            [0.8 * m, 0.05 * m, 0.0],
+            [0.75 * m, 0.0, 0.05 * m],
+        )
+        .unwrap();
+        assert!(point_is_finite(&q));
     }
 
     #[test]
