@@ -7,6 +7,11 @@
 //! its worst error and prints it (`cargo test --test primitives_props -- --nocapture`).
 //! The expected values come from geometry (a test-side Möbius map, circles and spheres built
 //! here), never from recorded output of the library.
+//!
+//! Near the negative real axis the square roots in F4 and F6 are ill conditioned (and on it
+//! the printed rule is a documented discontinuity), so errors there are measured separately
+//! by the distance `s` of the cross-ratio to that axis: see [`cut_distance`]. The F6 cases
+//! exactly on its negative-real rule are tested on their own, by construction.
 
 // Test code: a panic is a test failure, so the core's panic-freedom lints do not apply to the
 // helpers here (clippy.toml already allows them inside `#[test]` functions).
@@ -282,6 +287,8 @@ impl Tally {
 // (rotation, signed scaling, translation) followed by one or two inversions in spheres.
 
 struct TestMobius {
+    axis: Point,
+    angle: f64,
     rot: [[f64; 3]; 3],
     s: f64,
     t: Point,
@@ -298,6 +305,17 @@ impl TestMobius {
     fn invert(p: Point, (m, r): (Point, f64)) -> Point {
         let d = sub(p, m);
         add(m, scale(d, r * r / dot(d, d)))
+    }
+
+    /// The same map as a library [`MobiusMap`], composed from its elementary maps.
+    fn to_library(&self) -> MobiusMap {
+        let mut m = MobiusMap::translation(self.t)
+            .compose(&MobiusMap::scaling(self.s))
+            .compose(&MobiusMap::rotation(self.axis, self.angle));
+        for (c, r) in &self.inversions {
+            m = MobiusMap::inversion(*c, *r).compose(&m);
+        }
+        m
     }
 
     fn apply(&self, p: Point) -> Point {
@@ -334,6 +352,8 @@ fn random_mobius(rng: &mut Rng, avoid: &[Point]) -> TestMobius {
     let d0 = diameter(avoid).max(f64::MIN_POSITIVE);
     let t = scale(rng.cube(), 3.0 * d0 * s.abs());
     let mut m = TestMobius {
+        axis,
+        angle,
         rot: rotation_matrix(axis, angle),
         s,
         t,
@@ -361,7 +381,7 @@ fn random_mobius(rng: &mut Rng, avoid: &[Point]) -> TestMobius {
 // ---------------------------------------------------------------------------------------------
 // Input generators.
 
-/// Four points in general position: random in a cube, pairwise at least 5 % of the cube's
+/// `N` points in general position: random in a cube, pairwise at least 5 % of the cube's
 /// side apart, then scaled by 10^U(−3, 3) and moved by up to five times that size.
 fn general_points<const N: usize>(rng: &mut Rng) -> [Point; N] {
     let mut p = [[0.0; 3]; N];
@@ -386,7 +406,7 @@ fn place<const N: usize>(rng: &mut Rng, p: [Point; N]) -> [Point; N] {
 /// Four points near a random circle, in random order (so that about a third of them have a
 /// cross-ratio near the negative real axis), each moved off the circle by a random vector of
 /// length 10^U(−14, −1) × the radius.
-fn near_cocircular_points(rng: &mut Rng) -> ([Point; 4], f64) {
+fn near_cocircular_points(rng: &mut Rng) -> [Point; 4] {
     let (e1, e2, _) = rng.frame();
     let mut t = [0.0; 4];
     loop {
@@ -410,7 +430,7 @@ fn near_cocircular_points(rng: &mut Rng) -> ([Point; 4], f64) {
         let q = on_circle([0.0; 3], 1.0, e1, e2, x);
         add(q, scale(rng.unit_vector(), eps))
     });
-    (place(rng, p), eps)
+    place(rng, p)
 }
 
 /// Six points as F6 sees them in a face rule: two chains `a, b, c` and `d, e, f` crossing
@@ -459,11 +479,12 @@ fn f4_commutes_with_mobius_maps() {
     let mut rng = Rng::new(0x0F4_0001);
     let mut all = Tally::new("F4 ∘ M vs M ∘ F4, all");
     let mut near = Tally::new("F4 ∘ M vs M ∘ F4, near-circle subset");
+    let mut lib_worst: f64 = 0.0;
     for i in 0..12_000 {
         // Four in five cases in general position, one in five near a circle.
         let near_circle = i % 5 == 4;
         let [a, b, c, d] = if near_circle {
-            near_cocircular_points(&mut rng).0
+            near_cocircular_points(&mut rng)
         } else {
             general_points::<4>(&mut rng)
         };
@@ -481,12 +502,25 @@ fn f4_commutes_with_mobius_maps() {
         let q = f4(ma, mb, mc, md).unwrap();
         let err = dist(q, m.apply(p)) / diameter(&img);
         all.add(s, err);
+        // The library's own Möbius maps (compose, apply, inverse) agree with the test's.
+        let lib = m.to_library();
+        let lib_inv = lib.inverse().unwrap();
+        for (x, mx) in [a, b, c, d].iter().zip(img.iter()) {
+            let there = dist(lib.apply(*x).unwrap(), *mx) / diameter(&img);
+            let back = dist(lib_inv.apply(*mx).unwrap(), *x) / diameter(&[a, b, c, d]);
+            lib_worst = lib_worst.max(there).max(back);
+        }
         if near_circle {
             near.add(s, err);
         }
     }
     all.print();
     near.print();
+    println!(
+        "  library MobiusMap (compose/apply/inverse) vs the test's map: worst relative \
+         {lib_worst:.3e}"
+    );
+    assert!(lib_worst < 1e-9, "{lib_worst:e}");
     assert!(all.strict >= 10_000, "{}", all.strict);
     all.check(1e-9, 1e-12);
     assert!((all.skipped as f64) < 0.05 * all.total() as f64);
@@ -579,7 +613,7 @@ fn f4_is_symmetric() {
     for i in 0..12_000 {
         let near_circle = i % 4 == 3;
         let [a, b, c, d] = if near_circle {
-            near_cocircular_points(&mut rng).0
+            near_cocircular_points(&mut rng)
         } else {
             general_points::<4>(&mut rng)
         };
@@ -1047,7 +1081,7 @@ fn mobius_regular_stars_have_regular_canonical_forms() {
 
 /// Hostile coordinates and points: coincident, zero, NaN/Inf, huge, tiny, subnormal, collinear.
 fn hostile_points() -> Vec<Point> {
-    let mut v = vec![
+    vec![
         [0.0, 0.0, 0.0],
         [-0.0, 0.0, -0.0],
         [1.0, 0.0, 0.0],
@@ -1075,9 +1109,8 @@ fn hostile_points() -> Vec<Point> {
         [f64::NAN, 0.0, 0.0],
         [0.0, f64::INFINITY, 0.0],
         [0.0, 0.0, f64::NEG_INFINITY],
-    ];
-    v.push([0.5, 0.5, 0.5]);
-    v
+        [0.5, 0.5, 0.5],
+    ]
 }
 
 fn pick(rng: &mut Rng, pts: &[Point]) -> Point {
