@@ -5,6 +5,7 @@
 //! `reference/reliability-anchors.md` §2 so that a number seen in a C host's log can be looked
 //! up there.
 
+use core::ffi::CStr;
 use core::fmt;
 
 /// Outcome of a call. `Ok` is 0; every other value names one class of failure.
@@ -108,43 +109,48 @@ impl Status {
     }
 
     /// A static, human-readable description (the text of `nls_status_str`).
-    pub const fn message(self) -> &'static str {
+    pub fn message(self) -> &'static str {
+        self.c_message().to_str().unwrap_or("")
+    }
+
+    /// [`Status::message`] as a NUL-terminated C string, for the C ABI.
+    pub const fn c_message(self) -> &'static CStr {
         match self {
-            Status::Ok => "ok",
-            Status::NullParameter => "a pointer argument is NULL while its count is not zero",
-            Status::MisalignedPointer => "a pointer argument is not aligned for its element type",
-            Status::SizeOverflow => "a size computation overflowed",
-            Status::AliasingBuffers => "input and output buffers overlap",
+            Status::Ok => c"ok",
+            Status::NullParameter => c"a pointer argument is NULL while its count is not zero",
+            Status::MisalignedPointer => c"a pointer argument is not aligned for its element type",
+            Status::SizeOverflow => c"a size computation overflowed",
+            Status::AliasingBuffers => c"input and output buffers overlap",
             Status::BadOffsets => {
-                "face offsets must start at 0, never decrease and end at the index count"
+                c"face offsets must start at 0, never decrease and end at the index count"
             }
-            Status::FaceTooSmall => "a face has fewer than three vertices",
-            Status::IndexOutOfRange => "a vertex index is not below the vertex count",
-            Status::RepeatedVertex => "a face uses the same vertex twice",
-            Status::NonManifoldEdge => "an edge is shared by more than two faces",
+            Status::FaceTooSmall => c"a face has fewer than three vertices",
+            Status::IndexOutOfRange => c"a vertex index is not below the vertex count",
+            Status::RepeatedVertex => c"a face uses the same vertex twice",
+            Status::NonManifoldEdge => c"an edge is shared by more than two faces",
             Status::InconsistentOrientation => {
-                "two faces traverse their common edge in the same direction"
+                c"two faces traverse their common edge in the same direction"
             }
             Status::NonManifoldVertex => {
-                "the faces around a vertex do not form one disk or one half-disk"
+                c"the faces around a vertex do not form one disk or one half-disk"
             }
-            Status::DuplicateFace => "the same face appears twice",
-            Status::NonFiniteInput => "an input coordinate is NaN or infinite",
-            Status::NumericalFailure => "a computed value is not finite",
+            Status::DuplicateFace => c"the same face appears twice",
+            Status::NonFiniteInput => c"an input coordinate is NaN or infinite",
+            Status::NumericalFailure => c"a computed value is not finite",
             Status::DegenerateGeometry => {
-                "coincident points or another degenerate configuration where the rule is undefined"
+                c"coincident points or another degenerate configuration where the rule is undefined"
             }
-            Status::ValenceTooHigh => "a vertex valence or face size exceeds the fixed capacity",
-            Status::UnsupportedFaceType => "the scheme does not accept this face type",
-            Status::BufferTooSmall => "an output or scratch buffer is too small",
+            Status::ValenceTooHigh => c"a vertex valence or face size exceeds the fixed capacity",
+            Status::UnsupportedFaceType => c"the scheme does not accept this face type",
+            Status::BufferTooSmall => c"an output or scratch buffer is too small",
             Status::FpEnvironment => {
-                "the floating-point environment is not the IEEE default (FTZ/DAZ or rounding mode)"
+                c"the floating-point environment is not the IEEE default (FTZ/DAZ or rounding mode)"
             }
-            Status::NotConverged => "the iterative solver did not reach its tolerance",
-            Status::InvalidArgument => "an argument is outside its domain",
-            Status::TooFewPoints => "fewer points than the rule needs",
+            Status::NotConverged => c"the iterative solver did not reach its tolerance",
+            Status::InvalidArgument => c"an argument is outside its domain",
+            Status::TooFewPoints => c"fewer points than the rule needs",
             Status::FallbackInStrictMode => {
-                "an element needed the linear fallback and the strict option is set"
+                c"an element needed the linear fallback and the strict option is set"
             }
         }
     }

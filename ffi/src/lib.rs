@@ -1,1 +1,127 @@
-pub fn placeholder() {}
+//! The C ABI of nlsubdiv (`include/nlsubdiv.h`, prefix `nls_`).
+//!
+//! This crate is the only place with `unsafe` code. Every export follows one contract
+//! (DESIGN.md "C ABI conventions", reliability-anchors §6):
+//!
+//! 1. every fallible call returns `nls_status` (`NLS_STATUS_OK = 0`);
+//! 2. pointers are checked before use: NULL (with a non-zero count) gives
+//!    `NLS_STATUS_NULL_PARAMETER`, a misaligned pointer `NLS_STATUS_MISALIGNED_POINTER`, a byte
+//!    size above `isize::MAX` `NLS_STATUS_SIZE_OVERFLOW`;
+//! 3. a host running with flush-to-zero / denormals-are-zero or a non-default rounding mode
+//!    gets `NLS_STATUS_FP_ENVIRONMENT` (results would not be the documented bits);
+//! 4. results are written to the trailing out-parameters only on success;
+//! 5. no global state: every function is reentrant and thread-safe.
+//!
+//! Panics cannot cross the boundary: the core is written without panic paths, and the
+//! `panic-never` feature turns any panic path that survives optimisation into a link error.
+#![cfg_attr(not(any(test, feature = "std")), no_std)]
+#![allow(clippy::missing_safety_doc)] // every export documents its safety contract in prose
+
+mod guard;
+pub mod mobius;
+pub mod primitives;
+
+pub use nlsubdiv::Status;
+
+/// Major version of the library (also `NLS_VERSION_MAJOR` in the header).
+pub const NLS_VERSION_MAJOR: u32 = 0;
+/// Minor version of the library (also `NLS_VERSION_MINOR`).
+pub const NLS_VERSION_MINOR: u32 = 1;
+/// Patch version of the library (also `NLS_VERSION_PATCH`).
+pub const NLS_VERSION_PATCH: u32 = 0;
+
+/// The library version as `(major << 16) | (minor << 8) | patch`; compare with the
+/// `NLS_VERSION_*` macros of the header the program was compiled with.
+#[unsafe(no_mangle)]
+pub extern "C" fn nls_version() -> u32 {
+    (NLS_VERSION_MAJOR << 16) | (NLS_VERSION_MINOR << 8) | NLS_VERSION_PATCH
+}
+
+/// A static, NUL-terminated description of a status code. Unknown codes give
+/// `"unknown status"`. The pointer is valid for the life of the program; never free it.
+#[unsafe(no_mangle)]
+pub extern "C" fn nls_status_str(status: u32) -> *const core::ffi::c_char {
+    match Status::from_code(status) {
+        Some(s) => s.c_message().as_ptr(),
+        None => c"unknown status".as_ptr(),
+    }
+}
+
+#[cfg(not(any(test, feature = "std")))]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    #[cfg(feature = "panic-never")]
+    {
+        unsafe extern "C" {
+            // Deliberately undefined: linking fails if any panic path is reachable.
+            fn nls_error_panic_path_reachable() -> !;
+        }
+        // SAFETY: never executed; the symbol does not exist, so this only links when the
+        // optimiser removed every call to the panic handler.
+        unsafe { nls_error_panic_path_reachable() }
+    }
+    #[cfg(not(feature = "panic-never"))]
+    {
+        unsafe extern "C" {
+            fn abort() -> !;
+        }
+        // SAFETY: `abort` from the C library takes no arguments and never returns.
+        unsafe { abort() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn version_matches_cargo_toml() {
+        let v = env!("CARGO_PKG_VERSION");
+        let expected = format!("{NLS_VERSION_MAJOR}.{NLS_VERSION_MINOR}.{NLS_VERSION_PATCH}");
+        assert_eq!(v, expected);
+        assert_eq!(nlsubdiv::VERSION, v);
+        assert_eq!(
+            nls_version(),
+            (NLS_VERSION_MAJOR << 16) | (NLS_VERSION_MINOR << 8)
+        );
+    }
+
+    #[test]
+    fn header_matches_version_and_signatures() {
+        let header = include_str!("../../include/nlsubdiv.h");
+        for (name, value) in [
+            ("NLS_VERSION_MAJOR", NLS_VERSION_MAJOR),
+            ("NLS_VERSION_MINOR", NLS_VERSION_MINOR),
+            ("NLS_VERSION_PATCH", NLS_VERSION_PATCH),
+        ] {
+            assert!(
+                header.contains(&format!("#define {name} {value}")),
+                "{name} in the header differs from Cargo.toml"
+            );
+        }
+        assert!(header.contains(&format!(
+            "#define NLS_VERSION_STRING \"{}\"",
+            nlsubdiv::VERSION
+        )));
+        // The three signatures DESIGN.md fixes, exactly.
+        for sig in [
+            "nls_status nls_cross_ratio(const double a[3], const double b[3], const double c[3], const double d[3], double out_wxyz[4]);",
+            "nls_status nls_f4(const double a[3], const double b[3], const double c[3], const double d[3], double out[3]);",
+            "nls_status nls_f6(const double a[3], const double b[3], const double c[3], const double d[3], const double e[3], const double f[3], double out[3]);",
+        ] {
+            assert!(header.contains(sig), "missing exact signature:\n{sig}");
+        }
+    }
+
+    #[test]
+    fn status_strings() {
+        for s in Status::ALL {
+            let p = nls_status_str(s.code());
+            let c = unsafe { core::ffi::CStr::from_ptr(p) };
+            assert_eq!(c.to_str().unwrap(), s.message());
+        }
+        let p = nls_status_str(77_777);
+        let c = unsafe { core::ffi::CStr::from_ptr(p) };
+        assert_eq!(c.to_str().unwrap(), "unknown status");
+    }
+}
