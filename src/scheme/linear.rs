@@ -244,45 +244,48 @@ fn butterfly_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()>
     copy_old(topo, pos)?;
     let nv = topo.num_vertices();
     for e in 0..topo.num_edges() as u32 {
-        let h = topo.edge_half_edge(e)?;
-        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
-        let a0 = topo.position(i0)?;
-        let a1 = topo.position(i1)?;
-        let t = topo.twin(h)?;
-        let q = if t == NONE {
-            let p0 = topo.position(boundary_beyond(topo, i0, i1)?)?;
-            let p1 = topo.position(boundary_beyond(topo, i1, i0)?)?;
-            butterfly::edge_boundary(p0, a0, a1, p1)
-        } else {
-            // The valence of a boundary endpoint is never examined (OpenMesh).
-            let irr0 = !topo.is_boundary_vertex(i0)? && topo.valence(i0)? != 6;
-            let irr1 = !topo.is_boundary_vertex(i1)? && topo.valence(i1)? != 6;
-            match (irr0, irr1) {
-                (false, false) => {
-                    let b0 = topo.position(apex(topo, h)?)?;
-                    let b1 = topo.position(apex(topo, t)?)?;
-                    let (nh, ph) = (topo.next(h)?, topo.prev(h)?);
-                    let (nt, pt) = (topo.next(t)?, topo.prev(t)?);
-                    let c = [
-                        butterfly_across(topo, nh, i0)?,
-                        butterfly_across(topo, ph, i1)?,
-                        butterfly_across(topo, nt, i1)?,
-                        butterfly_across(topo, pt, i0)?,
-                    ];
-                    butterfly::edge_regular(a0, a1, b0, b1, c)
-                }
-                (true, false) => butterfly_zorin(topo, i0, i1)?,
-                (false, true) => butterfly_zorin(topo, i1, i0)?,
-                (true, true) => {
-                    let s0 = butterfly_zorin(topo, i0, i1)?;
-                    let s1 = butterfly_zorin(topo, i1, i0)?;
-                    crate::stencil::midpoint(s0, s1)
-                }
-            }
-        };
-        set(pos, nv + e as usize, q)?;
+        set(pos, nv + e as usize, butterfly_edge(topo, e)?)?;
     }
     Ok(())
+}
+
+/// The Modified Butterfly edge point of edge `e` (OpenMesh `ModifiedButterflyT`).
+pub(crate) fn butterfly_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
+    let h = topo.edge_half_edge(e)?;
+    let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+    let a0 = topo.position(i0)?;
+    let a1 = topo.position(i1)?;
+    let t = topo.twin(h)?;
+    if t == NONE {
+        let p0 = topo.position(boundary_beyond(topo, i0, i1)?)?;
+        let p1 = topo.position(boundary_beyond(topo, i1, i0)?)?;
+        return Ok(butterfly::edge_boundary(p0, a0, a1, p1));
+    }
+    // The valence of a boundary endpoint is never examined (OpenMesh).
+    let irr0 = !topo.is_boundary_vertex(i0)? && topo.valence(i0)? != 6;
+    let irr1 = !topo.is_boundary_vertex(i1)? && topo.valence(i1)? != 6;
+    Ok(match (irr0, irr1) {
+        (false, false) => {
+            let b0 = topo.position(apex(topo, h)?)?;
+            let b1 = topo.position(apex(topo, t)?)?;
+            let (nh, ph) = (topo.next(h)?, topo.prev(h)?);
+            let (nt, pt) = (topo.next(t)?, topo.prev(t)?);
+            let c = [
+                butterfly_across(topo, nh, i0)?,
+                butterfly_across(topo, ph, i1)?,
+                butterfly_across(topo, nt, i1)?,
+                butterfly_across(topo, pt, i0)?,
+            ];
+            butterfly::edge_regular(a0, a1, b0, b1, c)
+        }
+        (true, false) => butterfly_zorin(topo, i0, i1)?,
+        (false, true) => butterfly_zorin(topo, i1, i0)?,
+        (true, true) => {
+            let s0 = butterfly_zorin(topo, i0, i1)?;
+            let s1 = butterfly_zorin(topo, i1, i0)?;
+            crate::stencil::midpoint(s0, s1)
+        }
+    })
 }
 
 // ---- Kobbelt ----
@@ -310,24 +313,30 @@ fn kobbelt_beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Point>
     kobbelt::virtual_point(&q, &d, j).map_err(|e| e.with_element(v))
 }
 
+/// The Kobbelt edge point of edge `e`: the 4-point rule on the two endpoints and the points
+/// beyond them (virtual points at irregular vertices, boundary neighbours on the boundary).
+pub(crate) fn kobbelt_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
+    let h = topo.edge_half_edge(e)?;
+    let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+    let a0 = topo.position(i0)?;
+    let a1 = topo.position(i1)?;
+    let (r0, r1) = if topo.twin(h)? == NONE {
+        (
+            topo.position(boundary_beyond(topo, i0, i1)?)?,
+            topo.position(boundary_beyond(topo, i1, i0)?)?,
+        )
+    } else {
+        (kobbelt_beyond(topo, i0, i1)?, kobbelt_beyond(topo, i1, i0)?)
+    };
+    Ok(kobbelt::four_point(r0, a0, a1, r1))
+}
+
 fn kobbelt_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
     copy_old(topo, pos)?;
     let nv = topo.num_vertices();
     let ne = topo.num_edges();
     for e in 0..ne as u32 {
-        let h = topo.edge_half_edge(e)?;
-        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
-        let a0 = topo.position(i0)?;
-        let a1 = topo.position(i1)?;
-        let (r0, r1) = if topo.twin(h)? == NONE {
-            (
-                topo.position(boundary_beyond(topo, i0, i1)?)?,
-                topo.position(boundary_beyond(topo, i1, i0)?)?,
-            )
-        } else {
-            (kobbelt_beyond(topo, i0, i1)?, kobbelt_beyond(topo, i1, i0)?)
-        };
-        set(pos, nv + e as usize, kobbelt::four_point(r0, a0, a1, r1))?;
+        set(pos, nv + e as usize, kobbelt_edge(topo, e)?)?;
     }
     let ep = |pos: &[Point], h: u32| -> Result<Point> { get(pos, nv + topo.edge(h)? as usize) };
     // The edge point beyond edge `hx` of a quad, away from its opposite edge `hy`.

@@ -14,6 +14,7 @@
 
 mod levels;
 pub mod linear;
+pub mod mobius;
 
 pub use levels::{plan, plan_scratch_len, subdivide_levels, LevelPlan, MAX_LEVELS};
 pub use linear::{subdivide, subdivide_size};

@@ -1,0 +1,971 @@
+//! Canonical Möbius subdivision (seed 000 §4): the Möbius version of every linear scheme.
+//!
+//! Per vertex `v` (§4.1, Fig. 6):
+//! 1. the canonical form `C_v` of its star ([`CanonicalForm`], §4.2; interior stars use the
+//!    barycentre of the tangent polygon, boundary stars the mean of the two boundary
+//!    neighbours' images);
+//! 2. the linear stencils of [`crate::stencil`] evaluated on the 1-ring mapped into `C_v`;
+//! 3. the candidate points mapped back with `m_{C→B}`;
+//! 4. blends across stars: an edge point is `F4(v_j, e_j, e_k, v_k)` (§4.4.3), a face point the
+//!    sorted F4/F6 chain of [`blend::face_point`]; vertex points come from the vertex's own form.
+//!
+//! Boundary loops are curves and use the Möbius curve rules (§4.3 "Boundary curves", §4.4.1,
+//! DESIGN.md "Mesh boundaries"): the approximating rule for approximating schemes (odd
+//! `E_{i+½} = F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`, even
+//! `P'_i = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`), the interpolating rule (odd points only)
+//! for the others.
+//!
+//! **Ear vertices** (boundary vertices with one face) have no usable form for a quad: their
+//! canonical form sends the opposite corner to infinity (DESIGN.md). Anything an ear would
+//! contribute to its face (a face candidate, a Doo–Sabin corner point) is evaluated in the
+//! canonical form of the first non-ear vertex of the face at offset `h, h+1, h−1, h+2, …`
+//! (`h = ⌊d/2⌋`), which keeps the rule Möbius-invariant and exact on Möbius images of regular
+//! grids. A face of ears only takes its linear centroid, counted as a fallback.
+//!
+//! **Degenerate neighbourhoods** (coincident points, a star whose canonical form does not
+//! exist, a blend at infinity): the element takes its linear rule, evaluated on the original
+//! positions; it is counted in the [`MobiusReport`] (count and first output vertex), and with
+//! [`MobiusOptions::strict`] it is an error instead ([`Status::FallbackInStrictMode`]). No
+//! non-finite value reaches the output.
+
+use arrayvec::ArrayVec;
+
+use super::linear::{face_points, ring_points};
+use super::Scheme;
+use crate::blend::{self, f4};
+use crate::error::{Error, Result, Status, NO_ELEMENT};
+use crate::mesh::refine::write_pattern;
+use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Topology, NONE};
+use crate::mobius::{CanonicalForm, StarKind};
+use crate::quat::{point_is_finite, Point};
+use crate::stencil::{
+    akleman, butterfly, catmull_clark, centroid, doo_sabin, kobbelt, loop_scheme, midpoint,
+    simplest,
+};
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+
+/// Options of the Möbius schemes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MobiusOptions {
+    /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
+    /// vertex.
+    pub strict: bool,
+}
+
+/// What a Möbius subdivision step had to do besides the paper's rules.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MobiusReport {
+    /// Output vertices that took their linear rule (degenerate neighbourhood).
+    pub fallbacks: u32,
+    /// The first such output vertex, or [`NO_ELEMENT`].
+    pub first_fallback: u32,
+}
+
+impl Default for MobiusReport {
+    fn default() -> Self {
+        MobiusReport {
+            fallbacks: 0,
+            first_fallback: NO_ELEMENT,
+        }
+    }
+}
+
+/// Marker of a candidate that could not be computed.
+const MISSING: Point = [f64::NAN; 3];
+
+fn present(p: &Point) -> bool {
+    point_is_finite(p)
+}
+
+/// Scratch points [`subdivide`] needs: an edge candidate and a face candidate per half-edge.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn scratch_len(topo: &Topology<'_, '_>) -> Result<usize> {
+    topo.num_half_edges()
+        .checked_mul(2)
+        .ok_or(Error::new(Status::SizeOverflow))
+}
+
+/// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
+/// of at least [`scratch_len`] points. The connectivity and the output vertex order are those
+/// of the linear scheme ([`super::linear::subdivide`]).
+///
+/// # Errors
+/// Those of [`super::linear::subdivide_size`]; [`Status::BufferTooSmall`] for `out` or
+/// `scratch`; [`Status::FallbackInStrictMode`] (element = output vertex) with
+/// [`MobiusOptions::strict`]; [`Status::NumericalFailure`] naming an output vertex that is
+/// not finite.
+pub fn subdivide(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    scratch: &mut [Point],
+    opts: MobiusOptions,
+) -> Result<(MeshSizes, MobiusReport)> {
+    let sizes = super::linear::subdivide_size(scheme, topo)?;
+    out.check(&sizes)?;
+    let need = scratch_len(topo)?;
+    if scratch.len() < need {
+        return Err(Error::too_small(need));
+    }
+    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
+    let nh = topo.num_half_edges();
+    let (edge_c, rest) = scratch.split_at_mut(nh);
+    let face_c = rest.get_mut(..nh).ok_or(internal())?;
+    let mut d = Driver {
+        topo,
+        pos,
+        edge_c,
+        face_c,
+        report: MobiusReport::default(),
+        strict: opts.strict,
+    };
+    d.run(scheme)?;
+    for (i, p) in d.pos.iter().enumerate() {
+        if !point_is_finite(p) {
+            return Err(Error::at(Status::NumericalFailure, i as u32));
+        }
+    }
+    Ok((sizes, d.report))
+}
+
+/// A vertex's canonical form with a small cache of mapped 1-ring points.
+struct Local {
+    v: u32,
+    cf: CanonicalForm,
+    cache: ArrayVec<(u32, Point), { 4 * MAX_VALENCE }>,
+}
+
+impl Local {
+    /// The canonical form of `v`'s star: [`StarKind::Interior`] for a closed star,
+    /// [`StarKind::Boundary`] for an open one (ring from one boundary neighbour to the other).
+    fn new(topo: &Topology<'_, '_>, v: u32) -> Result<Local> {
+        let ring = ring_points(topo, v)?;
+        let kind = if topo.is_boundary_vertex(v)? {
+            StarKind::Boundary
+        } else {
+            StarKind::Interior
+        };
+        let cf = CanonicalForm::new(topo.position(v)?, &ring, kind)?;
+        Ok(Local {
+            v,
+            cf,
+            cache: ArrayVec::new(),
+        })
+    }
+
+    /// The image of vertex `u` in the canonical form (`v` itself goes to `c`).
+    fn canon(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
+        if u == self.v {
+            return Ok(self.cf.c);
+        }
+        if let Some(&(_, p)) = self.cache.iter().find(|(k, _)| *k == u) {
+            return Ok(p);
+        }
+        let p = self.cf.to_canonical(topo.position(u)?)?;
+        let _ = self.cache.try_push((u, p)); // a full cache only costs recomputation
+        Ok(p)
+    }
+
+    /// The canonical images of the corners of face `f`, in face order.
+    fn face(&mut self, topo: &Topology<'_, '_>, f: u32) -> Result<ArrayVec<Point, MAX_FACE_SIZE>> {
+        let mut pts = ArrayVec::new();
+        for &u in topo.face_vertices(f)? {
+            pts.try_push(self.canon(topo, u)?)
+                .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
+        }
+        Ok(pts)
+    }
+
+    fn back(&self, p: Point) -> Result<Point> {
+        self.cf.from_canonical(p)
+    }
+}
+
+struct Driver<'t, 'm, 's, 'o> {
+    topo: &'t Topology<'m, 's>,
+    pos: &'o mut [Point],
+    /// Per half-edge `h`: the candidate of `edge(h)` from the form of `origin(h)`.
+    edge_c: &'o mut [Point],
+    /// Per half-edge (corner) `h`: the candidate of `face(h)` from the form of `origin(h)`.
+    face_c: &'o mut [Point],
+    report: MobiusReport,
+    strict: bool,
+}
+
+impl Driver<'_, '_, '_, '_> {
+    fn run(&mut self, scheme: Scheme) -> Result<()> {
+        for c in self.edge_c.iter_mut().chain(self.face_c.iter_mut()) {
+            *c = MISSING;
+        }
+        match scheme {
+            Scheme::Loop => self.run_loop(),
+            Scheme::CatmullClark => self.run_catmull_clark(),
+            Scheme::ModifiedButterfly => self.run_butterfly(),
+            Scheme::Kobbelt => self.run_kobbelt(),
+            Scheme::DooSabin => self.run_doo_sabin(),
+            Scheme::Simplest => self.run_simplest(),
+            Scheme::Dual => self.run_face_scheme(0, false, false),
+            Scheme::VertexInsertion => {
+                let nv = self.topo.num_vertices();
+                self.copy_old()?;
+                self.run_face_scheme(nv, false, false)
+            }
+            Scheme::DualTruncation => {
+                let nv = self.topo.num_vertices();
+                self.run_face_scheme(nv, true, true)
+            }
+        }
+    }
+
+    /// Counts a fallback at output vertex `element`, or fails in strict mode.
+    fn fallback(&mut self, element: usize) -> Result<()> {
+        let e = element as u32;
+        if self.strict {
+            return Err(Error::at(Status::FallbackInStrictMode, e));
+        }
+        self.report.fallbacks = self.report.fallbacks.saturating_add(1);
+        if self.report.first_fallback == NO_ELEMENT || e < self.report.first_fallback {
+            self.report.first_fallback = e;
+        }
+        Ok(())
+    }
+
+    fn copy_old(&mut self) -> Result<()> {
+        for (v, p) in self.topo.mesh().positions.iter().enumerate() {
+            set(self.pos, v, *p)?;
+        }
+        Ok(())
+    }
+
+    fn is_ear(&self, v: u32) -> Result<bool> {
+        Ok(self.topo.is_boundary_vertex(v)? && self.topo.vertex_face_count(v)? == 1)
+    }
+
+    /// The canonical form of a non-ear, non-isolated vertex, or `None` when it does not exist
+    /// (degenerate star).
+    fn local(&self, v: u32) -> Result<Option<Local>> {
+        if self.topo.is_isolated(v)? || self.is_ear(v)? {
+            return Ok(None);
+        }
+        Ok(Local::new(self.topo, v).ok())
+    }
+
+    /// The vertex whose canonical form evaluates corner `i` of face `f`: the corner's own
+    /// vertex, or for an ear the first non-ear corner at offset `h, h+1, h−1, h+2, …`.
+    fn form_vertex(&self, f: u32, i: usize) -> Result<Option<u32>> {
+        let verts = self.topo.face_vertices(f)?;
+        let d = verts.len();
+        let own = get(verts, i)?;
+        if !self.is_ear(own)? {
+            return Ok(Some(own));
+        }
+        let h = d / 2;
+        for k in 0..d {
+            // offsets h, h+1, h−1, h+2, h−2, …
+            let step = k.div_ceil(2);
+            let off = if k % 2 == 1 { h + step } else { h + d - step };
+            let j = (i + off) % d.max(1);
+            let u = get(verts, j)?;
+            if !self.is_ear(u)? {
+                return Ok(Some(u));
+            }
+        }
+        Ok(None)
+    }
+
+    // ---- face points (Catmull–Clark, Akleman) ----
+
+    /// Face candidates of every corner (the face centroid in the corner's form, ears via
+    /// [`Self::form_vertex`]).
+    fn face_candidates(&mut self) -> Result<()> {
+        let topo = self.topo;
+        for v in 0..topo.num_vertices() as u32 {
+            let Some(mut l) = self.local(v)? else { continue };
+            for s in topo.star(v) {
+                if s.face == NONE {
+                    continue;
+                }
+                if let Ok(c) = l.face(topo, s.face).and_then(|p| centroid(&p)).and_then(|c| l.back(c)) {
+                    set(self.face_c, s.half_edge as usize, c)?;
+                }
+            }
+        }
+        // Ears: evaluate in the substitute vertex's form.
+        for f in 0..topo.num_faces() as u32 {
+            for (i, h) in topo.face_half_edges(f)?.enumerate() {
+                let v = topo.origin(h)?;
+                if !self.is_ear(v)? {
+                    continue;
+                }
+                let Some(u) = self.form_vertex(f, i)? else { continue };
+                let Some(mut l) = self.local(u)? else { continue };
+                if let Ok(c) = l.face(topo, f).and_then(|p| centroid(&p)).and_then(|c| l.back(c)) {
+                    set(self.face_c, h as usize, c)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Blends the face candidates into face points written at `start + f`.
+    fn blend_faces(&mut self, start: usize) -> Result<()> {
+        let topo = self.topo;
+        for f in 0..topo.num_faces() as u32 {
+            let verts = face_points(topo, f)?;
+            let mut cands: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            for h in topo.face_half_edges(f)? {
+                cands
+                    .try_push(get(self.face_c, h as usize)?)
+                    .map_err(|_| internal())?;
+            }
+            let k = start + f as usize;
+            let p = if cands.iter().all(present) {
+                blend::face_point(&verts, &cands).ok()
+            } else {
+                None
+            };
+            let p = match p {
+                Some(p) => p,
+                None => {
+                    self.fallback(k)?;
+                    centroid(&verts)?
+                }
+            };
+            set(self.pos, k, p)?;
+        }
+        Ok(())
+    }
+
+    /// Dual, vertex insertion, dual truncation: face points at `start`; with `truncate`, the
+    /// interior old vertices move by the truncation rule in their own forms; `keep_boundary`
+    /// keeps boundary vertices (as the linear driver does).
+    fn run_face_scheme(&mut self, start: usize, truncate: bool, keep_boundary: bool) -> Result<()> {
+        self.face_candidates()?;
+        self.blend_faces(start)?;
+        if truncate {
+            let topo = self.topo;
+            for v in 0..topo.num_vertices() as u32 {
+                let p = topo.position(v)?;
+                let q = if topo.is_isolated(v)? || (keep_boundary && topo.is_boundary_vertex(v)?) {
+                    p
+                } else {
+                    let m = self.local(v)?.and_then(|mut l| {
+                        let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                        for u in topo.ring(v).ok()? {
+                            ring.try_push(l.canon(topo, u).ok()?).ok()?;
+                        }
+                        let t = akleman::truncated_vertex(l.cf.c, &ring).ok()?;
+                        l.back(t).ok()
+                    });
+                    match m {
+                        Some(q) => q,
+                        None => {
+                            self.fallback(v as usize)?;
+                            akleman::truncated_vertex(p, &ring_points(topo, v)?)?
+                        }
+                    }
+                };
+                set(self.pos, v as usize, q)?;
+            }
+        } else if start == 0 {
+            // Dual: isolated vertices follow the face points.
+            let mut k = self.topo.num_faces();
+            for v in 0..self.topo.num_vertices() as u32 {
+                if self.topo.is_isolated(v)? {
+                    set(self.pos, k, self.topo.position(v)?)?;
+                    k += 1;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    // ---- edges ----
+
+    /// Blends the interior edges' candidates with `F4(v_j, e_j, e_k, v_k)` into `start + e`;
+    /// `linear(e)` is the fallback. With `one_ring_only`, an edge with a single candidate
+    /// takes it (Butterfly next to an irregular vertex); otherwise it falls back.
+    fn blend_interior_edges(
+        &mut self,
+        start: usize,
+        one_ring_only: bool,
+        linear: &dyn Fn(&Self, u32) -> Result<Point>,
+    ) -> Result<()> {
+        let topo = self.topo;
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e)?;
+            let t = topo.twin(h)?;
+            if t == NONE {
+                continue;
+            }
+            let (a, b) = (topo.position(topo.origin(h)?)?, topo.position(topo.dest(h)?)?);
+            let (ca, cb) = (get(self.edge_c, h as usize)?, get(self.edge_c, t as usize)?);
+            let k = start + e as usize;
+            let p = if present(&ca) && present(&cb) {
+                f4(a, ca, cb, b).ok()
+            } else if one_ring_only && present(&ca) {
+                Some(ca) // Butterfly: the stencil of the singular ring alone (§4.3)
+            } else if one_ring_only && present(&cb) {
+                Some(cb)
+            } else {
+                None
+            };
+            let p = match p {
+                Some(p) if point_is_finite(&p) => p,
+                _ => {
+                    self.fallback(k)?;
+                    linear(self, e)?
+                }
+            };
+            set(self.pos, k, p)?;
+        }
+        Ok(())
+    }
+
+    /// The boundary neighbours of boundary half-edge `h = (a → b)`: `(P_{i−1}, P_{i+2})`.
+    fn boundary_outer(&self, h: u32) -> Result<(u32, u32)> {
+        let topo = self.topo;
+        Ok((
+            topo.origin(topo.prev_boundary(h)?)?,
+            topo.dest(topo.next_boundary(h)?)?,
+        ))
+    }
+
+    /// Odd points of every boundary loop by the Möbius curve rule
+    /// `F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})` into `start + edge`; fallback `linear(p0, a, b, p1)`.
+    fn boundary_edges(
+        &mut self,
+        start: usize,
+        linear: fn(Point, Point, Point, Point) -> Point,
+    ) -> Result<()> {
+        let topo = self.topo;
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e)?;
+            if topo.twin(h)? != NONE {
+                continue;
+            }
+            let (i0, i3) = self.boundary_outer(h)?;
+            let p = [
+                topo.position(i0)?,
+                topo.position(topo.origin(h)?)?,
+                topo.position(topo.dest(h)?)?,
+                topo.position(i3)?,
+            ];
+            let k = start + e as usize;
+            let q = match f4(p[0], p[1], p[2], p[3]) {
+                Ok(q) => q,
+                Err(_) => {
+                    self.fallback(k)?;
+                    linear(p[0], p[1], p[2], p[3])
+                }
+            };
+            set(self.pos, k, q)?;
+        }
+        Ok(())
+    }
+
+    /// Even points of the boundary loops by the Möbius approximating rule
+    /// `P'_i = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`, reading the odd points from
+    /// `start + edge`; fallback `3/4 v + 1/8 (b0 + b1)`.
+    fn boundary_vertices_approximating(&mut self, start: usize) -> Result<()> {
+        let topo = self.topo;
+        for v in 0..topo.num_vertices() as u32 {
+            if !topo.is_boundary_vertex(v)? {
+                continue;
+            }
+            let out_h = topo.vertex_half_edge(v)?; // v → b0
+            let in_h = topo.prev_boundary(out_h)?; // b1 → v
+            let (b0, b1) = (topo.dest(out_h)?, topo.origin(in_h)?);
+            let e_out = get(self.pos, start + topo.edge(out_h)? as usize)?;
+            let e_in = get(self.pos, start + topo.edge(in_h)? as usize)?;
+            let (p0, p1) = (topo.position(b1)?, topo.position(b0)?);
+            let q = match f4(p0, e_in, e_out, p1) {
+                Ok(q) => q,
+                Err(_) => {
+                    self.fallback(v as usize)?;
+                    crate::stencil::crease_vertex(topo.position(v)?, p1, p0)
+                }
+            };
+            set(self.pos, v as usize, q)?;
+        }
+        Ok(())
+    }
+
+    // ---- Loop ----
+
+    fn run_loop(&mut self) -> Result<()> {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        for v in 0..nv as u32 {
+            let p = topo.position(v)?;
+            if topo.is_isolated(v)? {
+                set(self.pos, v as usize, p)?;
+                continue;
+            }
+            let local = self.local(v)?;
+            let boundary = topo.is_boundary_vertex(v)?;
+            let mut vertex = None;
+            if let Some(mut l) = local {
+                let spokes = topo.spokes(v)?;
+                let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                let mut ok = true;
+                for s in &spokes {
+                    match l.canon(topo, s.neighbour) {
+                        Ok(c) => ring.try_push(c).map_err(|_| internal())?,
+                        Err(_) => ok = false,
+                    }
+                }
+                if ok {
+                    if !boundary {
+                        vertex = loop_scheme::vertex_interior(l.cf.c, &ring)
+                            .and_then(|q| l.back(q))
+                            .ok();
+                    }
+                    for s in &spokes {
+                        if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+                            continue;
+                        }
+                        let h = s.half_edge;
+                        let cand = (|| -> Result<Point> {
+                            let b = l.canon(topo, s.neighbour)?;
+                            let c = l.canon(topo, apex(topo, h)?)?;
+                            let d = l.canon(topo, apex(topo, topo.twin(h)?)?)?;
+                            l.back(loop_scheme::edge_interior(l.cf.c, b, c, d))
+                        })();
+                        if let Ok(c) = cand {
+                            set(self.edge_c, h as usize, c)?;
+                        }
+                    }
+                }
+            }
+            if !boundary {
+                let q = match vertex {
+                    Some(q) if point_is_finite(&q) => q,
+                    _ => {
+                        self.fallback(v as usize)?;
+                        loop_scheme::vertex_interior(p, &ring_points(topo, v)?)?
+                    }
+                };
+                set(self.pos, v as usize, q)?;
+            }
+        }
+        let linear = |d: &Self, e: u32| -> Result<Point> {
+            let t = d.topo;
+            let h = t.edge_half_edge(e)?;
+            Ok(loop_scheme::edge_interior(
+                t.position(t.origin(h)?)?,
+                t.position(t.dest(h)?)?,
+                t.position(apex(t, h)?)?,
+                t.position(apex(t, t.twin(h)?)?)?,
+            ))
+        };
+        self.blend_interior_edges(nv, false, &linear)?;
+        self.boundary_edges(nv, |_, a, b, _| loop_scheme::edge_boundary(a, b))?;
+        self.boundary_vertices_approximating(nv)
+    }
+
+    // ---- Catmull–Clark ----
+
+    fn run_catmull_clark(&mut self) -> Result<()> {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        let fp0 = nv + topo.num_edges();
+        self.face_candidates()?;
+        for v in 0..nv as u32 {
+            let p = topo.position(v)?;
+            if topo.is_isolated(v)? {
+                set(self.pos, v as usize, p)?;
+                continue;
+            }
+            let boundary = topo.is_boundary_vertex(v)?;
+            let mut vertex = None;
+            if let Some(mut l) = self.local(v)? {
+                let spokes = topo.spokes(v)?;
+                // Canonical face points of the faces after each spoke.
+                let mut fc: ArrayVec<Option<Point>, MAX_VALENCE> = ArrayVec::new();
+                for s in &spokes {
+                    let c = if s.face == NONE {
+                        None
+                    } else {
+                        l.face(topo, s.face).and_then(|pts| centroid(&pts)).ok()
+                    };
+                    fc.try_push(c).map_err(|_| internal())?;
+                }
+                let n = spokes.len();
+                for (i, s) in spokes.iter().enumerate() {
+                    if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+                        continue;
+                    }
+                    let prev = fc.get((i + n - 1) % n).copied().flatten();
+                    let cur = fc.get(i).copied().flatten();
+                    let cand = match (l.canon(topo, s.neighbour), prev, cur) {
+                        (Ok(b), Some(f0), Some(f1)) => {
+                            l.back(catmull_clark::edge_interior(l.cf.c, b, f0, f1)).ok()
+                        }
+                        _ => None,
+                    };
+                    if let Some(c) = cand {
+                        set(self.edge_c, s.half_edge as usize, c)?;
+                    }
+                }
+                if !boundary {
+                    let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                    let mut faces: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                    let mut ok = true;
+                    for (s, f) in spokes.iter().zip(fc.iter()) {
+                        match (l.canon(topo, s.neighbour), f) {
+                            (Ok(c), Some(f)) => {
+                                ring.try_push(c).map_err(|_| internal())?;
+                                faces.try_push(*f).map_err(|_| internal())?;
+                            }
+                            _ => ok = false,
+                        }
+                    }
+                    if ok {
+                        vertex = catmull_clark::vertex_interior(l.cf.c, &ring, &faces)
+                            .and_then(|q| l.back(q))
+                            .ok();
+                    }
+                }
+            }
+            if !boundary {
+                let q = match vertex {
+                    Some(q) if point_is_finite(&q) => q,
+                    _ => {
+                        self.fallback(v as usize)?;
+                        let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                        let mut faces: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                        for s in topo.star(v) {
+                            ring.try_push(topo.position(s.neighbour)?)
+                                .map_err(|_| internal())?;
+                            faces
+                                .try_push(centroid(&face_points(topo, s.face)?)?)
+                                .map_err(|_| internal())?;
+                        }
+                        catmull_clark::vertex_interior(p, &ring, &faces)?
+                    }
+                };
+                set(self.pos, v as usize, q)?;
+            }
+        }
+        self.blend_faces(fp0)?;
+        let linear = |d: &Self, e: u32| -> Result<Point> {
+            let t = d.topo;
+            let h = t.edge_half_edge(e)?;
+            Ok(catmull_clark::edge_interior(
+                t.position(t.origin(h)?)?,
+                t.position(t.dest(h)?)?,
+                centroid(&face_points(t, t.face(h)?)?)?,
+                centroid(&face_points(t, t.face(t.twin(h)?)?)?)?,
+            ))
+        };
+        self.blend_interior_edges(nv, false, &linear)?;
+        self.boundary_edges(nv, |_, a, b, _| catmull_clark::edge_boundary(a, b))?;
+        self.boundary_vertices_approximating(nv)
+    }
+
+    // ---- Simplest ----
+
+    /// Edge midpoints: interior edges blend the midpoints taken in the two endpoints' forms;
+    /// boundary edges use the interpolating curve rule.
+    fn run_simplest(&mut self) -> Result<()> {
+        let topo = self.topo;
+        for v in 0..topo.num_vertices() as u32 {
+            let Some(mut l) = self.local(v)? else { continue };
+            for s in topo.star(v) {
+                if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+                    continue;
+                }
+                if let Ok(c) = l
+                    .canon(topo, s.neighbour)
+                    .and_then(|b| l.back(simplest::edge_point(l.cf.c, b)))
+                {
+                    set(self.edge_c, s.half_edge as usize, c)?;
+                }
+            }
+        }
+        let linear = |d: &Self, e: u32| -> Result<Point> {
+            let (a, b) = d.topo.edge_vertices(e)?;
+            Ok(simplest::edge_point(d.topo.position(a)?, d.topo.position(b)?))
+        };
+        self.blend_interior_edges(0, false, &linear)?;
+        self.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;
+        let mut k = topo.num_edges();
+        for v in 0..topo.num_vertices() as u32 {
+            if topo.is_isolated(v)? {
+                set(self.pos, k, topo.position(v)?)?;
+                k += 1;
+            }
+        }
+        Ok(())
+    }
+
+    // ---- Doo–Sabin ----
+
+    /// Each corner point in the canonical form of its vertex (ears: a substitute's form).
+    fn run_doo_sabin(&mut self) -> Result<()> {
+        let topo = self.topo;
+        for f in 0..topo.num_faces() as u32 {
+            let linear_pts = face_points(topo, f)?;
+            for (i, h) in topo.face_half_edges(f)?.enumerate() {
+                let q = self.form_vertex(f, i)?.and_then(|u| {
+                    let mut l = self.local(u).ok()??;
+                    let pts = l.face(topo, f).ok()?;
+                    let c = doo_sabin::corner_point(&pts, i).ok()?;
+                    l.back(c).ok()
+                });
+                let q = match q {
+                    Some(q) if point_is_finite(&q) => q,
+                    _ => {
+                        self.fallback(h as usize)?;
+                        doo_sabin::corner_point(&linear_pts, i)?
+                    }
+                };
+                set(self.pos, h as usize, q)?;
+            }
+        }
+        let mut k = topo.num_half_edges();
+        for v in 0..topo.num_vertices() as u32 {
+            if topo.is_isolated(v)? {
+                set(self.pos, k, topo.position(v)?)?;
+                k += 1;
+            }
+        }
+        Ok(())
+    }
+
+    // ---- Modified Butterfly (2-ring: partial candidates, §4.3, Fig. 11 right) ----
+
+    fn run_butterfly(&mut self) -> Result<()> {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        self.copy_old()?;
+        for v in 0..nv as u32 {
+            let Some(mut l) = self.local(v)? else { continue };
+            let boundary = topo.is_boundary_vertex(v)?;
+            let irregular = !boundary && topo.valence(v)? != 6;
+            let spokes = topo.spokes(v)?;
+            let n = spokes.len();
+            for (j, s) in spokes.iter().enumerate() {
+                let h = s.half_edge;
+                if h == NONE || topo.twin(h)? == NONE {
+                    continue;
+                }
+                let other = s.neighbour;
+                let other_irregular =
+                    !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
+                let cand = (|| -> Result<Option<Point>> {
+                    if irregular {
+                        // Zorin's stencil of v, ring starting at the other endpoint.
+                        let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                        for k in 0..n {
+                            let sk = spokes.get((j + k) % n).ok_or(internal())?;
+                            ring.try_push(l.canon(topo, sk.neighbour)?)
+                                .map_err(|_| internal())?;
+                        }
+                        let z = butterfly::zorin_stencil(l.cf.c, &ring)?;
+                        return Ok(Some(l.back(z)?));
+                    }
+                    if other_irregular {
+                        // Only the singular ring contributes (§4.3).
+                        return Ok(None);
+                    }
+                    // Regular–regular: v's half of the 8-point stencil, doubled:
+                    // a0, a1 ½; b0, b1 ⅛; v's two wings −⅛ (OpenMesh's reflection across a
+                    // boundary edge, evaluated in this form).
+                    let t = topo.twin(h)?;
+                    let a0 = l.cf.c;
+                    let a1 = l.canon(topo, other)?;
+                    let b0 = l.canon(topo, apex(topo, h)?)?;
+                    let b1 = l.canon(topo, apex(topo, t)?)?;
+                    // v's wings lie across the triangle edges at v: prev(h) and next(twin h).
+                    let c0 = self.across_in(&mut l, topo.prev(h)?)?;
+                    let c3 = self.across_in(&mut l, topo.next(t)?)?;
+                    let p = [
+                        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125 - (c0[0] + c3[0]) * 0.125,
+                        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125 - (c0[1] + c3[1]) * 0.125,
+                        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125 - (c0[2] + c3[2]) * 0.125,
+                    ];
+                    Ok(Some(l.back(p)?))
+                })();
+                if let Ok(Some(c)) = cand {
+                    set(self.edge_c, h as usize, c)?;
+                }
+            }
+        }
+        let linear = |d: &Self, e: u32| -> Result<Point> { butterfly_linear_edge(d.topo, e) };
+        self.blend_interior_edges(nv, true, &linear)?;
+        self.boundary_edges(nv, butterfly::edge_boundary)
+    }
+
+    /// The butterfly "wing" across the triangle edge `g`, in the form `l`: the apex beyond
+    /// `g`, or the reflection `u + w − z` (`z` the corner of `g`'s triangle opposite `g`) when
+    /// `g` is a boundary edge (OpenMesh).
+    fn across_in(&self, l: &mut Local, g: u32) -> Result<Point> {
+        let topo = self.topo;
+        let t = topo.twin(g)?;
+        if t == NONE {
+            let u = l.canon(topo, topo.origin(g)?)?;
+            let w = l.canon(topo, topo.dest(g)?)?;
+            let z = l.canon(topo, apex(topo, g)?)?;
+            Ok(butterfly::reflect(u, w, z))
+        } else {
+            l.canon(topo, apex(topo, t)?)
+        }
+    }
+
+    // ---- Kobbelt (2-ring: virtual points, F4 edges, F6 faces; §4.3, Fig. 11 left, Fig. 14) ----
+
+    fn run_kobbelt(&mut self) -> Result<()> {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        let ne = topo.num_edges();
+        self.copy_old()?;
+        // Virtual points: per half-edge h = (v → u), the point beyond v away from u, from
+        // v's canonical form (regular interior vertices give the actual grid neighbour).
+        for v in 0..nv as u32 {
+            if topo.is_isolated(v)? {
+                continue;
+            }
+            let Some(mut l) = self.local(v)? else { continue };
+            if topo.is_boundary_vertex(v)? {
+                // The linear boundary extrapolation 2v − u, evaluated in v's boundary form.
+                for s in topo.star(v) {
+                    if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+                        continue;
+                    }
+                    if let Ok(c) = l
+                        .canon(topo, s.neighbour)
+                        .and_then(|u| l.back(kobbelt::extrapolate(l.cf.c, u)))
+                    {
+                        set(self.edge_c, s.half_edge as usize, c)?;
+                    }
+                }
+                continue;
+            }
+            let spokes = topo.spokes(v)?;
+            let mut q: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            let mut dg: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            let mut ok = true;
+            for s in &spokes {
+                match (l.canon(topo, s.neighbour), apex(topo, s.half_edge).and_then(|a| l.canon(topo, a))) {
+                    (Ok(a), Ok(b)) => {
+                        q.try_push(a).map_err(|_| internal())?;
+                        dg.try_push(b).map_err(|_| internal())?;
+                    }
+                    _ => ok = false,
+                }
+            }
+            if !ok {
+                continue;
+            }
+            for (j, s) in spokes.iter().enumerate() {
+                if let Ok(c) = kobbelt::virtual_point(&q, &dg, j).and_then(|p| l.back(p)) {
+                    set(self.edge_c, s.half_edge as usize, c)?;
+                }
+            }
+        }
+        // Edge points F4(r0, a0, a1, r1).
+        for e in 0..ne as u32 {
+            let h = topo.edge_half_edge(e)?;
+            let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+            let (a0, a1) = (topo.position(i0)?, topo.position(i1)?);
+            let k = nv + e as usize;
+            let (r0, r1) = if topo.twin(h)? == NONE {
+                let (o0, o3) = self.boundary_outer(h)?;
+                (Some(topo.position(o0)?), Some(topo.position(o3)?))
+            } else {
+                (self.beyond(i0, h)?, self.beyond(i1, topo.twin(h)?)?)
+            };
+            let q = match (r0, r1) {
+                (Some(r0), Some(r1)) => f4(r0, a0, a1, r1).ok(),
+                _ => None,
+            };
+            let q = match q {
+                Some(q) => q,
+                None => {
+                    self.fallback(k)?;
+                    kobbelt_linear_edge(topo, e)?
+                }
+            };
+            set(self.pos, k, q)?;
+        }
+        // Face points: F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7) over the two grid lines
+        // of new edge points through the face (Fig. 14).
+        for f in 0..topo.num_faces() as u32 {
+            let r = topo.face_half_edges(f)?;
+            let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
+            let k = nv + ne + f as usize;
+            let line = |d: &Self, hx: u32, hy: u32| -> Result<[Point; 4]> {
+                Ok([
+                    d.outer_edge_point(hx, hy)?,
+                    d.edge_point(hx)?,
+                    d.edge_point(hy)?,
+                    d.outer_edge_point(hy, hx)?,
+                ])
+            };
+            let w = line(self, h0, h2)?;
+            let x = line(self, h1, h3)?;
+            let q = f4(w[0], w[1], w[2], w[3])
+                .and_then(|pa| {
+                    let pb = f4(x[0], x[1], x[2], x[3])?;
+                    blend::f6(w[1], pa, w[2], x[1], pb, x[2])
+                })
+                .ok();
+            let q = match q {
+                Some(q) => q,
+                None => {
+                    self.fallback(k)?;
+                    let fa = kobbelt::four_point(w[0], w[1], w[2], w[3]);
+                    let fb = kobbelt::four_point(x[0], x[1], x[2], x[3]);
+                    midpoint(fa, fb)
+                }
+            };
+            set(self.pos, k, q)?;
+        }
+        Ok(())
+    }
+
+    /// The virtual point beyond `v` on the line from the far end of half-edge `h` (which
+    /// starts at `v`), computed in `v`'s canonical form (interior: Kobbelt's virtual point;
+    /// boundary: the extrapolation `2v − u` of the linear driver); `None` when `v` has no form.
+    fn beyond(&self, _v: u32, h: u32) -> Result<Option<Point>> {
+        let c = get(self.edge_c, h as usize)?;
+        Ok(present(&c).then_some(c))
+    }
+
+    fn edge_point(&self, h: u32) -> Result<Point> {
+        get(self.pos, self.topo.num_vertices() + self.topo.edge(h)? as usize)
+    }
+
+    /// The new edge point beyond edge `hx` of a quad, away from its opposite edge `hy`: the
+    /// edge point of the neighbouring quad's opposite edge, or at the boundary the
+    /// extrapolation of the linear driver.
+    fn outer_edge_point(&self, hx: u32, hy: u32) -> Result<Point> {
+        let topo = self.topo;
+        let t = topo.twin(hx)?;
+        if t == NONE {
+            Ok(kobbelt::extrapolate(self.edge_point(hx)?, self.edge_point(hy)?))
+        } else {
+            self.edge_point(topo.next(topo.next(t)?)?)
+        }
+    }
+}
+
+/// The third vertex of the triangle of half-edge `h`.
+fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
+    topo.dest(topo.next(h)?)
+}
+
+/// The linear Modified Butterfly edge point (fallback), as the linear driver computes it.
+fn butterfly_linear_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
+    super::linear::butterfly_edge(topo, e)
+}
+
+/// The linear Kobbelt edge point (fallback), as the linear driver computes it.
+fn kobbelt_linear_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
+    super::linear::kobbelt_edge(topo, e)
+}
