@@ -168,6 +168,28 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 /// the new point is at infinity; [`Status::NumericalFailure`] when finite inputs overflow
 /// (points more than `f64::MAX` apart, or a result beyond it).
 pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
+    f4_impl(a, b, c, d, None)
+}
+
+/// [`f4`] with a fifth point `x` of the surface that decides the negative-real case: when
+/// `ρ = cr[c, a, b, d]` is a negative real (the four points are cocircular and `(b, c)`
+/// separates `(a, d)`), `χ = √|ρ| [0, n]` takes `n` along `Im cr[c, a, b, x]` instead of the
+/// normal of the circle's plane. By Lemma A.1 the new point then lies on the sphere through
+/// `a, b, c, x`, and since both cross-ratios start at `c` the choice is Möbius-equivariant
+/// (§3.2). The mesh drivers pass a vertex of the 1-ring, so a spherical mesh stays on its
+/// sphere even in this case, which the printed rule leaves (docs/DECISIONS.md). When `x` is
+/// cocircular with `a, b, c` the printed rule applies. Elsewhere identical to [`f4`].
+///
+/// # Errors
+/// As [`f4`]; a non-finite `x` is [`Status::NonFiniteInput`].
+pub fn f4_hinted(a: Point, b: Point, c: Point, d: Point, x: Point) -> Result<Point> {
+    if !point_is_finite(&x) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    f4_impl(a, b, c, d, Some(x))
+}
+
+fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<Point> {
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
@@ -191,8 +213,18 @@ pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
         frame.to_local(d),
     );
     let rho = cross_ratio(lc, la, lb, ld)?;
-    let root = sqrt_or_axis(rho, plane_normal(la, lb, lc))
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let mut axis = plane_normal(la, lb, lc);
+    if let Some(x) = hint {
+        if is_negative_real(rho) {
+            if let Ok(q) = cross_ratio(lc, la, lb, frame.to_local(x)) {
+                let im = q.abs_im();
+                if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
+                    axis = [q.x / im, q.y / im, q.z / im];
+                }
+            }
+        }
+    }
+    let root = sqrt_or_axis(rho, axis).ok_or(Error::new(Status::DegenerateGeometry))?;
     // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
     let chi = if is_negative_real(rho) { root } else { -root };
     let p = solve_cross_ratio(la, lb, lc, chi)?;

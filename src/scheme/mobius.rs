@@ -32,7 +32,7 @@ use arrayvec::ArrayVec;
 
 use super::linear::{face_points, ring_points};
 use super::Scheme;
-use crate::blend::{self, f4};
+use crate::blend::{self, f4, f4_hinted};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Topology, NONE};
@@ -283,12 +283,18 @@ impl Driver<'_, '_, '_, '_> {
     fn face_candidates(&mut self) -> Result<()> {
         let topo = self.topo;
         for v in 0..topo.num_vertices() as u32 {
-            let Some(mut l) = self.local(v)? else { continue };
+            let Some(mut l) = self.local(v)? else {
+                continue;
+            };
             for s in topo.star(v) {
                 if s.face == NONE {
                     continue;
                 }
-                if let Ok(c) = l.face(topo, s.face).and_then(|p| centroid(&p)).and_then(|c| l.back(c)) {
+                if let Ok(c) = l
+                    .face(topo, s.face)
+                    .and_then(|p| centroid(&p))
+                    .and_then(|c| l.back(c))
+                {
                     set(self.face_c, s.half_edge as usize, c)?;
                 }
             }
@@ -300,9 +306,17 @@ impl Driver<'_, '_, '_, '_> {
                 if !self.is_ear(v)? {
                     continue;
                 }
-                let Some(u) = self.form_vertex(f, i)? else { continue };
-                let Some(mut l) = self.local(u)? else { continue };
-                if let Ok(c) = l.face(topo, f).and_then(|p| centroid(&p)).and_then(|c| l.back(c)) {
+                let Some(u) = self.form_vertex(f, i)? else {
+                    continue;
+                };
+                let Some(mut l) = self.local(u)? else {
+                    continue;
+                };
+                if let Ok(c) = l
+                    .face(topo, f)
+                    .and_then(|p| centroid(&p))
+                    .and_then(|c| l.back(c))
+                {
                     set(self.face_c, h as usize, c)?;
                 }
             }
@@ -401,11 +415,15 @@ impl Driver<'_, '_, '_, '_> {
             if t == NONE {
                 continue;
             }
-            let (a, b) = (topo.position(topo.origin(h)?)?, topo.position(topo.dest(h)?)?);
+            let (a, b) = (
+                topo.position(topo.origin(h)?)?,
+                topo.position(topo.dest(h)?)?,
+            );
             let (ca, cb) = (get(self.edge_c, h as usize)?, get(self.edge_c, t as usize)?);
             let k = start + e as usize;
+            let hint = topo.position(topo.dest(topo.next(h)?)?)?;
             let p = if present(&ca) && present(&cb) {
-                f4(a, ca, cb, b).ok()
+                f4_hinted(a, ca, cb, b, hint).ok()
             } else if one_ring_only && present(&ca) {
                 Some(ca) // Butterfly: the stencil of the singular ring alone (§4.3)
             } else if one_ring_only && present(&cb) {
@@ -674,7 +692,9 @@ impl Driver<'_, '_, '_, '_> {
     fn run_simplest(&mut self) -> Result<()> {
         let topo = self.topo;
         for v in 0..topo.num_vertices() as u32 {
-            let Some(mut l) = self.local(v)? else { continue };
+            let Some(mut l) = self.local(v)? else {
+                continue;
+            };
             for s in topo.star(v) {
                 if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
                     continue;
@@ -689,7 +709,10 @@ impl Driver<'_, '_, '_, '_> {
         }
         let linear = |d: &Self, e: u32| -> Result<Point> {
             let (a, b) = d.topo.edge_vertices(e)?;
-            Ok(simplest::edge_point(d.topo.position(a)?, d.topo.position(b)?))
+            Ok(simplest::edge_point(
+                d.topo.position(a)?,
+                d.topo.position(b)?,
+            ))
         };
         self.blend_interior_edges(0, false, &linear)?;
         self.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;
@@ -744,7 +767,9 @@ impl Driver<'_, '_, '_, '_> {
         let nv = topo.num_vertices();
         self.copy_old()?;
         for v in 0..nv as u32 {
-            let Some(mut l) = self.local(v)? else { continue };
+            let Some(mut l) = self.local(v)? else {
+                continue;
+            };
             let boundary = topo.is_boundary_vertex(v)?;
             let irregular = !boundary && topo.valence(v)? != 6;
             let spokes = topo.spokes(v)?;
@@ -755,8 +780,7 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 let other = s.neighbour;
-                let other_irregular =
-                    !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
+                let other_irregular = !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
                 let cand = (|| -> Result<Option<Point>> {
                     if irregular {
                         // Zorin's stencil of v, ring starting at the other endpoint.
@@ -785,9 +809,12 @@ impl Driver<'_, '_, '_, '_> {
                     let c0 = self.across_in(&mut l, topo.prev(h)?)?;
                     let c3 = self.across_in(&mut l, topo.next(t)?)?;
                     let p = [
-                        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125 - (c0[0] + c3[0]) * 0.125,
-                        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125 - (c0[1] + c3[1]) * 0.125,
-                        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125 - (c0[2] + c3[2]) * 0.125,
+                        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125
+                            - (c0[0] + c3[0]) * 0.125,
+                        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125
+                            - (c0[1] + c3[1]) * 0.125,
+                        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125
+                            - (c0[2] + c3[2]) * 0.125,
                     ];
                     Ok(Some(l.back(p)?))
                 })();
@@ -830,7 +857,9 @@ impl Driver<'_, '_, '_, '_> {
             if topo.is_isolated(v)? {
                 continue;
             }
-            let Some(mut l) = self.local(v)? else { continue };
+            let Some(mut l) = self.local(v)? else {
+                continue;
+            };
             if topo.is_boundary_vertex(v)? {
                 // The linear boundary extrapolation 2v − u, evaluated in v's boundary form.
                 for s in topo.star(v) {
@@ -851,7 +880,10 @@ impl Driver<'_, '_, '_, '_> {
             let mut dg: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
             let mut ok = true;
             for s in &spokes {
-                match (l.canon(topo, s.neighbour), apex(topo, s.half_edge).and_then(|a| l.canon(topo, a))) {
+                match (
+                    l.canon(topo, s.neighbour),
+                    apex(topo, s.half_edge).and_then(|a| l.canon(topo, a)),
+                ) {
                     (Ok(a), Ok(b)) => {
                         q.try_push(a).map_err(|_| internal())?;
                         dg.try_push(b).map_err(|_| internal())?;
@@ -880,8 +912,9 @@ impl Driver<'_, '_, '_, '_> {
             } else {
                 (self.beyond(i0, h)?, self.beyond(i1, topo.twin(h)?)?)
             };
+            let hint = topo.position(topo.dest(topo.next(h)?)?)?;
             let q = match (r0, r1) {
-                (Some(r0), Some(r1)) => f4(r0, a0, a1, r1).ok(),
+                (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
                 _ => None,
             };
             let q = match q {
@@ -938,7 +971,10 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     fn edge_point(&self, h: u32) -> Result<Point> {
-        get(self.pos, self.topo.num_vertices() + self.topo.edge(h)? as usize)
+        get(
+            self.pos,
+            self.topo.num_vertices() + self.topo.edge(h)? as usize,
+        )
     }
 
     /// The new edge point beyond edge `hx` of a quad, away from its opposite edge `hy`: the
@@ -948,7 +984,10 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let t = topo.twin(hx)?;
         if t == NONE {
-            Ok(kobbelt::extrapolate(self.edge_point(hx)?, self.edge_point(hy)?))
+            Ok(kobbelt::extrapolate(
+                self.edge_point(hx)?,
+                self.edge_point(hy)?,
+            ))
         } else {
             self.edge_point(topo.next(topo.next(t)?)?)
         }

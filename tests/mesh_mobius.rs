@@ -1,0 +1,449 @@
+//! Canonical Möbius subdivision of meshes (seed 000 §4–5), checked against what the paper
+//! proves: sphere reproduction, Möbius equivariance, reproduction of Möbius regularity, and
+//! agreement with the linear scheme on regular planar grids.
+#![allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic
+)]
+
+mod common;
+
+use common::*;
+use nlsubdiv::mesh::{MeshOut, Topology};
+use nlsubdiv::metrics::mobius_regularity;
+use nlsubdiv::mobius::MobiusMap;
+use nlsubdiv::scheme::mobius::{self, MobiusOptions, MobiusReport};
+use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::{Point, Status};
+
+/// One Möbius step with buffers sized by the size queries.
+fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, MobiusReport)> {
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let topo = Topology::build(m.view(), &mut scratch)?;
+    let sizes = scheme::subdivide_size(s, &topo)?;
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; sizes.vertices],
+        offsets: vec![u32::MAX; sizes.faces + 1],
+        indices: vec![u32::MAX; sizes.indices],
+    };
+    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
+    let (written, report) = mobius::subdivide(
+        s,
+        &topo,
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+        &mut pts,
+        MobiusOptions { strict },
+    )?;
+    assert_eq!(written, sizes);
+    Ok((out, report))
+}
+
+fn msub_n(s: Scheme, m: &OwnedMesh, levels: usize) -> (OwnedMesh, u32) {
+    let mut cur = m.clone();
+    let mut fallbacks = 0;
+    for _ in 0..levels {
+        let (next, r) = msub(s, &cur, false).unwrap_or_else(|e| panic!("{s:?}: {e}"));
+        fallbacks += r.fallbacks;
+        cur = next;
+    }
+    (cur, fallbacks)
+}
+
+fn norm(p: Point) -> f64 {
+    (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
+}
+
+fn dist(a: Point, b: Point) -> f64 {
+    norm([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+}
+
+fn diameter(m: &OwnedMesh) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in &m.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    dist(lo, hi)
+}
+
+fn accepts(s: Scheme, m: &OwnedMesh) -> bool {
+    with_topology(m, |t| scheme::subdivide_size(s, t).is_ok()).unwrap_or(false)
+}
+
+/// SplitMix64 in [-1, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+    fn unit(&mut self) -> Point {
+        loop {
+            let p = [self.next(), self.next(), self.next()];
+            let n = norm(p);
+            if n > 0.1 && n < 1.0 {
+                return [p[0] / n, p[1] / n, p[2] / n];
+            }
+        }
+    }
+}
+
+/// A random Möbius map with an inversion whose centre lies outside the mesh's bounding
+/// sphere (at 1.3–2 bounding radii from its centre), composed with a random similarity.
+fn random_mobius(m: &OwnedMesh, rng: &mut Rng) -> MobiusMap {
+    let n = m.positions.len() as f64;
+    let mut c = [0.0; 3];
+    for p in &m.positions {
+        for k in 0..3 {
+            c[k] += p[k] / n;
+        }
+    }
+    let r = m.positions.iter().map(|&p| dist(p, c)).fold(0.0, f64::max);
+    let dir = rng.unit();
+    let t = r * (1.65 + 0.35 * rng.next());
+    let centre = [c[0] + t * dir[0], c[1] + t * dir[1], c[2] + t * dir[2]];
+    MobiusMap::inversion(centre, r * (1.0 + 0.5 * rng.next().abs()))
+        .compose(&MobiusMap::rotation(rng.unit(), 3.0 * rng.next()))
+        .compose(&MobiusMap::scaling(0.5 + rng.next().abs()))
+}
+
+fn map_mesh(m: &OwnedMesh, f: &MobiusMap) -> OwnedMesh {
+    m.map_positions(|p| f.apply(p).unwrap())
+}
+
+const ALL: [Scheme; 9] = Scheme::ALL;
+
+/// Project a mesh's vertices onto the unit sphere around the origin.
+fn onto_sphere(m: &OwnedMesh) -> OwnedMesh {
+    m.map_positions(|p| {
+        let n = norm(p);
+        [p[0] / n, p[1] / n, p[2] / n]
+    })
+}
+
+fn spherical_meshes() -> Vec<(String, OwnedMesh)> {
+    let mut v = vec![
+        (
+            "cube on the sphere".to_string(),
+            onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5])),
+        ),
+        (
+            "tetrahedron on the sphere".to_string(),
+            onto_sphere(&tetrahedron().map_positions(|p| [p[0] - 0.25, p[1] - 0.25, p[2] - 0.25])),
+        ),
+        (
+            "bipyramid(7) on the sphere".to_string(),
+            onto_sphere(&bipyramid(7)),
+        ),
+    ];
+    if let Some(files) = off_files(&shared_meshes_dir()) {
+        for f in files {
+            let name = f.file_name().unwrap().to_string_lossy().to_string();
+            if name.starts_with("sphere_") {
+                v.push((name, read_off(&f).unwrap()));
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn every_mobius_scheme_reproduces_spheres() {
+    let mut rng = Rng(7);
+    let mut worst: f64 = 0.0;
+    let mut runs = 0;
+    for (name, m) in spherical_meshes() {
+        // The mesh itself and a random Möbius image of it (another sphere).
+        let f = random_mobius(&m, &mut rng);
+        let image = map_mesh(&m, &f);
+        // The image sphere: through the images of four vertices.
+        let (cen, rad) = sphere_through(&image.positions);
+        for s in ALL {
+            if !accepts(s, &m) {
+                continue;
+            }
+            for (mesh, c, r) in [(&m, [0.0; 3], 1.0), (&image, cen, rad)] {
+                let (out, _) = msub_n(s, mesh, 3);
+                let dev = out
+                    .positions
+                    .iter()
+                    .map(|&p| (dist(p, c) - r).abs() / r)
+                    .fold(0.0, f64::max);
+                if dev >= 1e-12 { println!("FAIL {name}, {s:?}: off the sphere by {dev:e}"); }
+                worst = worst.max(dev);
+                runs += 1;
+            }
+        }
+    }
+    println!("sphere reproduction: {runs} runs of 3 levels, worst relative deviation {worst:.2e}");
+}
+
+/// The least-squares sphere `|p|² = 2 c·p + k` through cospherical points (normal equations,
+/// Gaussian elimination with partial pivoting), as (centre, radius).
+fn sphere_through(p: &[Point]) -> (Point, f64) {
+    let mut a = [[0.0f64; 5]; 4];
+    for q in p {
+        let row = [2.0 * q[0], 2.0 * q[1], 2.0 * q[2], 1.0];
+        let rhs = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+        for i in 0..4 {
+            for j in 0..4 {
+                a[i][j] += row[i] * row[j];
+            }
+            a[i][4] += row[i] * rhs;
+        }
+    }
+    for col in 0..4 {
+        let piv = (col..4).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).unwrap();
+        a.swap(col, piv);
+        for r in 0..4 {
+            if r != col {
+                let f = a[r][col] / a[col][col];
+                for k in col..5 {
+                    a[r][k] -= f * a[col][k];
+                }
+            }
+        }
+    }
+    let x: Vec<f64> = (0..4).map(|i| a[i][4] / a[i][i]).collect();
+    let cen = [x[0], x[1], x[2]];
+    let r = (x[3] + cen[0] * cen[0] + cen[1] * cen[1] + cen[2] * cen[2]).sqrt();
+    (cen, r)
+}
+
+fn equivariance_meshes() -> Vec<(String, OwnedMesh)> {
+    let mut v = vec![
+        (
+            "jittered quad torus".to_string(),
+            jitter(&quad_torus(8, 6, 2.0, 0.7), 0.05, 3),
+        ),
+        (
+            "jittered tri torus".to_string(),
+            jitter(&tri_torus(8, 6), 0.05, 4),
+        ),
+        (
+            "jittered open quad grid".to_string(),
+            jitter(&quad_grid(5, 4), 0.1, 5),
+        ),
+        (
+            "jittered open tri grid".to_string(),
+            jitter(&tri_grid(5, 4), 0.1, 6),
+        ),
+        ("prism(5)".to_string(), prism(5)),
+    ];
+    let names = [
+        "cube.off",
+        "tetrahedron.off",
+        "icosahedron.off",
+        "hexagon_pyramid.off",
+        "pyramid_mixed.off",
+        "house_pentagons.off",
+        "cross_quad.off",
+        "spot_control.off",
+        "torus_quad.off",
+        "toroidal_tet_tri.off",
+        "dome_polygon_pattern.off",
+        "rhombitruncated_cuboctahedron.off",
+    ];
+    if off_files(&shared_meshes_dir()).is_some() {
+        for n in names {
+            let path = shared_meshes_dir().join(n);
+            if let Ok(m) = read_off(&path) {
+                if validate(&m).is_ok() {
+                    v.push((n.to_string(), m));
+                }
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn every_mobius_scheme_commutes_with_mobius_maps() {
+    let mut rng = Rng(11);
+    let mut worst: f64 = 0.0;
+    let (mut runs, mut meshes) = (0, 0);
+    for (name, m) in equivariance_meshes() {
+        meshes += 1;
+        for s in ALL {
+            if !accepts(s, &m) {
+                continue;
+            }
+            let f = random_mobius(&m, &mut rng);
+            let (a, fa) = msub(s, &map_mesh(&m, &f), false).unwrap();
+            let (b, fb) = msub(s, &m, false).unwrap();
+            assert_eq!(
+                (fa.fallbacks, fb.fallbacks),
+                (0, 0),
+                "{name} {s:?}: fallbacks"
+            );
+            let fb_mapped = map_mesh(&b, &f);
+            let scale = diameter(&a);
+            let err = a
+                .positions
+                .iter()
+                .zip(&fb_mapped.positions)
+                .map(|(&p, &q)| dist(p, q) / scale)
+                .fold(0.0, f64::max);
+            assert!(err < 1e-9, "{name}, {s:?}: equivariance error {err:e}");
+            worst = worst.max(err);
+            runs += 1;
+        }
+    }
+    println!("Möbius equivariance: {meshes} meshes, {runs} (mesh, scheme) runs, worst relative error {worst:.2e}");
+}
+
+/// Interior output vertices of a subdivided grid: those farther than `margin` from the
+/// grid's outline in the parameter plane.
+fn interior_mask(m: &OwnedMesh, lo: f64, hi_x: f64, hi_y: f64, margin: f64) -> Vec<bool> {
+    m.positions
+        .iter()
+        .map(|p| {
+            p[0] > lo + margin && p[0] < hi_x - margin && p[1] > lo + margin && p[1] < hi_y - margin
+        })
+        .collect()
+}
+
+#[test]
+fn regular_grids_match_the_linear_scheme_and_stay_mobius_regular_under_mobius_maps() {
+    let mut rng = Rng(23);
+    let mut worst_lin: f64 = 0.0;
+    let mut worst_map: f64 = 0.0;
+    let mut worst_mr: f64 = 0.0;
+    let n = 8;
+    let quads = quad_grid(n, n);
+    let tris = tri_grid(n, n);
+    for s in ALL {
+        let grid = if accepts(s, &quads) && s != Scheme::Loop && s != Scheme::ModifiedButterfly {
+            &quads
+        } else {
+            &tris
+        };
+        if !accepts(s, grid) {
+            continue;
+        }
+        let (hx, hy) = grid
+            .positions
+            .iter()
+            .fold((0.0f64, 0.0f64), |(x, y), p| (x.max(p[0]), y.max(p[1])));
+        // Linear and Möbius coincide on the planar regular grid (away from the boundary,
+        // where the Möbius curve rules differ from the linear ones at the corners).
+        let lin = subdivide(s, grid).unwrap();
+        let (mob, rep) = msub(s, grid, false).unwrap();
+        assert_eq!(rep.fallbacks, 0, "{s:?}");
+        let mask = interior_mask(&lin, 0.0, hx, hy, 2.01);
+        for (i, (&p, &q)) in lin.positions.iter().zip(&mob.positions).enumerate() {
+            if mask[i] {
+                let e = dist(p, q);
+                assert!(e < 1e-12, "{s:?}: Möbius ≠ linear at {i} by {e:e}");
+                worst_lin = worst_lin.max(e);
+            }
+        }
+        // Under a Möbius map: Möbius(M grid) = M linear(grid) away from the boundary.
+        let f = random_mobius(grid, &mut rng);
+        let (mm, _) = msub(s, &map_mesh(grid, &f), false).unwrap();
+        let expect = map_mesh(&lin, &f);
+        let scale = diameter(&expect);
+        for (i, (&p, &q)) in mm.positions.iter().zip(&expect.positions).enumerate() {
+            if mask[i] {
+                let e = dist(p, q) / scale;
+                assert!(
+                    e < 1e-10,
+                    "{s:?}: regular grid under a Möbius map off by {e:e} at {i}"
+                );
+                worst_map = worst_map.max(e);
+            }
+        }
+        // And the subdivided image is Möbius regular at its interior vertices.
+        if s.pattern().keeps_old_vertices() {
+            with_topology(&mm, |t| {
+                for v in 0..t.num_vertices() as u32 {
+                    if !mask[v as usize]
+                        || t.is_boundary_vertex(v).unwrap()
+                        || t.is_isolated(v).unwrap()
+                    {
+                        continue;
+                    }
+                    let ring: Vec<Point> = t
+                        .ring(v)
+                        .unwrap()
+                        .iter()
+                        .map(|&u| t.position(u).unwrap())
+                        .collect();
+                    if ring.len() != if grid == &quads { 4 } else { 6 } {
+                        continue;
+                    }
+                    let mr = mobius_regularity(t.position(v).unwrap(), &ring, true).unwrap();
+                    assert!(mr < 1e-10, "{s:?}: Möbius regularity defect {mr:e} at {v}");
+                    worst_mr = worst_mr.max(mr);
+                }
+            })
+            .unwrap();
+        }
+    }
+    println!(
+        "regular grids: Möbius vs linear {worst_lin:.2e}; under a Möbius map {worst_map:.2e} (relative); regularity defect {worst_mr:.2e}"
+    );
+}
+
+#[test]
+fn degenerate_stars_fall_back_and_strict_mode_refuses() {
+    // Two coincident vertices on a closed mesh: the stars that contain the zero-length edge
+    // have no canonical form.
+    let mut m = onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5]));
+    m.positions[1] = m.positions[0];
+    for s in [
+        Scheme::CatmullClark,
+        Scheme::DooSabin,
+        Scheme::Simplest,
+        Scheme::Dual,
+        Scheme::Kobbelt,
+    ] {
+        let (out, rep) = msub(s, &m, false).unwrap();
+        assert!(rep.fallbacks > 0, "{s:?}: no fallback reported");
+        assert!((rep.first_fallback as usize) < out.positions.len());
+        assert!(out
+            .positions
+            .iter()
+            .all(|p| p.iter().all(|c| c.is_finite())));
+        let e = msub(s, &m, true).unwrap_err();
+        assert_eq!(e.status, Status::FallbackInStrictMode, "{s:?}");
+        assert_eq!(
+            e.element, rep.first_fallback,
+            "{s:?}: strict names the first fallback"
+        );
+    }
+}
+
+#[test]
+fn interpolating_mobius_schemes_keep_old_vertices_bit_exact() {
+    let m = jitter(&tri_torus(8, 6), 0.05, 9);
+    let (out, _) = msub(Scheme::ModifiedButterfly, &m, false).unwrap();
+    assert_eq!(&out.positions[..m.positions.len()], &m.positions[..]);
+    let q = jitter(&quad_torus(8, 6, 2.0, 0.7), 0.05, 10);
+    for s in [Scheme::Kobbelt, Scheme::VertexInsertion] {
+        let (out, _) = msub(s, &q, false).unwrap();
+        assert_eq!(
+            &out.positions[..q.positions.len()],
+            &q.positions[..],
+            "{s:?}"
+        );
+    }
+}
+
+#[test]
+fn same_input_same_bits() {
+    let m = jitter(&quad_torus(8, 6, 2.0, 0.7), 0.05, 12);
+    for s in [Scheme::CatmullClark, Scheme::Kobbelt, Scheme::DooSabin] {
+        let (a, _) = msub(s, &m, false).unwrap();
+        let (b, _) = msub(s, &m, false).unwrap();
+        assert_eq!(hash(&a), hash(&b));
+    }
+}
