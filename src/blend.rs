@@ -105,6 +105,28 @@ fn cross(a: Point, b: Point) -> Point {
 /// `√q` with the branch of the paper; for a negative real `q` the root `√|q| [0, n]` with
 /// the given plane normal `n` (the printed rule of seed 000 §4.4.1).
 fn sqrt_or_axis(q: Quat, n: Point) -> Option<Quat> {
+    sqrt_snapped(q, n, false)
+}
+
+/// [`sqrt_or_axis`] that first removes rounding noise from the direction of `Im q` when
+/// `snap` is set and `q` lies in the left half-plane: there `Im √q = n·t` divides by `|Im q|`,
+/// so noise of size `ε|q|` across the reference axis `n` turns a point that should lie on a
+/// sphere into one off it by `ε|q|/|Im q|` (seed 000 Lemma A.1: for cospherical points every
+/// cross-ratio starting at the same point has its imaginary part along one axis). A component
+/// across `n` below `1e-12 |q|` is dropped; larger ones are kept, so nothing changes for
+/// points that are not cospherical.
+fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
+    let q = if snap && q.w < 0.0 {
+        let along = q.x * n[0] + q.y * n[1] + q.z * n[2];
+        let across = [q.x - along * n[0], q.y - along * n[1], q.z - along * n[2]];
+        if norm(across) <= NEGATIVE_REAL_TOLERANCE * q.abs() {
+            Quat::new(q.w, along * n[0], along * n[1], along * n[2])
+        } else {
+            q
+        }
+    } else {
+        q
+    };
     if is_negative_real(q) {
         let t = libm::sqrt(q.abs());
         return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
@@ -214,17 +236,21 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     );
     let rho = cross_ratio(lc, la, lb, ld)?;
     let mut axis = plane_normal(la, lb, lc);
+    let mut snap = false;
     if let Some(x) = hint {
-        if is_negative_real(rho) {
+        if rho.w < 0.0 {
+            // The sphere's axis at c from the fifth point (Lemma A.1): decides the
+            // negative-real case and cleans the direction of Im ρ near it.
             if let Ok(q) = cross_ratio(lc, la, lb, frame.to_local(x)) {
                 let im = q.abs_im();
                 if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
                     axis = [q.x / im, q.y / im, q.z / im];
+                    snap = true;
                 }
             }
         }
     }
-    let root = sqrt_or_axis(rho, axis).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
     // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
     let chi = if is_negative_real(rho) { root } else { -root };
     let p = solve_cross_ratio(la, lb, lc, chi)?;
@@ -288,11 +314,13 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     let x = cross_ratio(le, la, lb, ld)?;
     let y = cross_ratio(le, la, lb, lf)?;
     let z = cross_ratio(le, lc, lb, lf)?;
-    let n = imaginary_axis(&[x, y, z]).unwrap_or_else(|| plane_normal(la, lb, le));
-    let sx = sqrt_or_axis(x, n).ok_or(degenerate)?;
-    let sz = sqrt_or_axis(z, n).ok_or(degenerate)?;
+    let axis = imaginary_axis(&[x, y, z]);
+    let snap = axis.is_some();
+    let n = axis.unwrap_or_else(|| plane_normal(la, lb, le));
+    let sx = sqrt_snapped(x, n, snap).ok_or(degenerate)?;
+    let sz = sqrt_snapped(z, n, snap).ok_or(degenerate)?;
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
-    let sr = sqrt_or_axis(r, n).ok_or(degenerate)?;
+    let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
     let chi = -(sx * sr);
     let p = solve_cross_ratio(la, lb, le, chi)?;
     let out = frame.to_world(p);

@@ -320,6 +320,64 @@ impl CanonicalForm {
         }
     }
 
+    /// The canonical form in its normalised frame, `z ↦ (z − c)/r` composed after
+    /// [`CanonicalForm::to_canonical`]: `x ↦ −r (T − c)⁻¹` with `T = (x − v)⁻¹`, and `v ↦ 0`.
+    ///
+    /// The similarity changes nothing for affine stencils (their weights sum to 1) but avoids
+    /// the cancellation in `c − r²(T − c)⁻¹` when `|c| ≫ |C − c|` (stars with very uneven
+    /// edges), so the drivers evaluate their stencils in this frame.
+    ///
+    /// # Errors
+    /// As [`CanonicalForm::to_canonical`].
+    pub fn to_normalised(&self, x: Point) -> Result<Point> {
+        if !point_is_finite(&x) {
+            return Err(Error::new(Status::NonFiniteInput));
+        }
+        if x == self.v {
+            return Ok([0.0; 3]);
+        }
+        let t = crate::quat::tangent_polygon_vertex(self.v, x)?;
+        let inv = Quat::from_point(sub(t, self.c))
+            .inverse()
+            .ok_or(Error::new(Status::DegenerateGeometry))?
+            .to_point();
+        let y = scale(inv, -self.r);
+        if point_is_finite(&y) {
+            Ok(y)
+        } else {
+            Err(Error::new(Status::DegenerateGeometry))
+        }
+    }
+
+    /// The inverse of [`CanonicalForm::to_normalised`]: `P ↦ v + T⁻¹` with `T = c − r P⁻¹`,
+    /// and `0 ↦ v`.
+    ///
+    /// # Errors
+    /// As [`CanonicalForm::from_canonical`].
+    pub fn from_normalised(&self, p: Point) -> Result<Point> {
+        if !point_is_finite(&p) {
+            return Err(Error::new(Status::NonFiniteInput));
+        }
+        if p == [0.0; 3] {
+            return Ok(self.v);
+        }
+        let pinv = Quat::from_point(p)
+            .inverse()
+            .ok_or(Error::new(Status::DegenerateGeometry))?
+            .to_point();
+        let t = sub(self.c, scale(pinv, self.r));
+        let back = Quat::from_point(t)
+            .inverse()
+            .ok_or(Error::new(Status::DegenerateGeometry))?
+            .to_point();
+        let x = add(self.v, back);
+        if point_is_finite(&x) {
+            Ok(x)
+        } else {
+            Err(Error::new(Status::DegenerateGeometry))
+        }
+    }
+
     /// Writes the canonical images of `ring` into `out` (`out[i] = to_canonical(ring[i])`).
     ///
     /// # Errors

@@ -70,6 +70,9 @@ impl Default for MobiusReport {
     }
 }
 
+/// The image of the centre vertex in the normalised canonical frame.
+const ORIGIN: Point = [0.0; 3];
+
 /// Marker of a candidate that could not be computed.
 const MISSING: Point = [f64::NAN; 3];
 
@@ -156,15 +159,16 @@ impl Local {
         })
     }
 
-    /// The image of vertex `u` in the canonical form (`v` itself goes to `c`).
+    /// The image of vertex `u` in the canonical form, in its normalised frame
+    /// ([`CanonicalForm::to_normalised`]: `v` itself goes to the origin).
     fn canon(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         if u == self.v {
-            return Ok(self.cf.c);
+            return Ok(ORIGIN);
         }
         if let Some(&(_, p)) = self.cache.iter().find(|(k, _)| *k == u) {
             return Ok(p);
         }
-        let p = self.cf.to_canonical(topo.position(u)?)?;
+        let p = self.cf.to_normalised(topo.position(u)?)?;
         let _ = self.cache.try_push((u, p)); // a full cache only costs recomputation
         Ok(p)
     }
@@ -180,7 +184,7 @@ impl Local {
     }
 
     fn back(&self, p: Point) -> Result<Point> {
-        self.cf.from_canonical(p)
+        self.cf.from_normalised(p)
     }
 }
 
@@ -371,7 +375,7 @@ impl Driver<'_, '_, '_, '_> {
                         for u in topo.ring(v).ok()? {
                             ring.try_push(l.canon(topo, u).ok()?).ok()?;
                         }
-                        let t = akleman::truncated_vertex(l.cf.c, &ring).ok()?;
+                        let t = akleman::truncated_vertex(ORIGIN, &ring).ok()?;
                         l.back(t).ok()
                     });
                     match m {
@@ -538,7 +542,7 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 if ok {
                     if !boundary {
-                        vertex = loop_scheme::vertex_interior(l.cf.c, &ring)
+                        vertex = loop_scheme::vertex_interior(ORIGIN, &ring)
                             .and_then(|q| l.back(q))
                             .ok();
                     }
@@ -551,7 +555,7 @@ impl Driver<'_, '_, '_, '_> {
                             let b = l.canon(topo, s.neighbour)?;
                             let c = l.canon(topo, apex(topo, h)?)?;
                             let d = l.canon(topo, apex(topo, topo.twin(h)?)?)?;
-                            l.back(loop_scheme::edge_interior(l.cf.c, b, c, d))
+                            l.back(loop_scheme::edge_interior(ORIGIN, b, c, d))
                         })();
                         if let Ok(c) = cand {
                             set(self.edge_c, h as usize, c)?;
@@ -621,7 +625,7 @@ impl Driver<'_, '_, '_, '_> {
                     let cur = fc.get(i).copied().flatten();
                     let cand = match (l.canon(topo, s.neighbour), prev, cur) {
                         (Ok(b), Some(f0), Some(f1)) => {
-                            l.back(catmull_clark::edge_interior(l.cf.c, b, f0, f1)).ok()
+                            l.back(catmull_clark::edge_interior(ORIGIN, b, f0, f1)).ok()
                         }
                         _ => None,
                     };
@@ -643,7 +647,7 @@ impl Driver<'_, '_, '_, '_> {
                         }
                     }
                     if ok {
-                        vertex = catmull_clark::vertex_interior(l.cf.c, &ring, &faces)
+                        vertex = catmull_clark::vertex_interior(ORIGIN, &ring, &faces)
                             .and_then(|q| l.back(q))
                             .ok();
                     }
@@ -701,7 +705,7 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 if let Ok(c) = l
                     .canon(topo, s.neighbour)
-                    .and_then(|b| l.back(simplest::edge_point(l.cf.c, b)))
+                    .and_then(|b| l.back(simplest::edge_point(ORIGIN, b)))
                 {
                     set(self.edge_c, s.half_edge as usize, c)?;
                 }
@@ -790,7 +794,7 @@ impl Driver<'_, '_, '_, '_> {
                             ring.try_push(l.canon(topo, sk.neighbour)?)
                                 .map_err(|_| internal())?;
                         }
-                        let z = butterfly::zorin_stencil(l.cf.c, &ring)?;
+                        let z = butterfly::zorin_stencil(ORIGIN, &ring)?;
                         return Ok(Some(l.back(z)?));
                     }
                     if other_irregular {
@@ -801,7 +805,7 @@ impl Driver<'_, '_, '_, '_> {
                     // a0, a1 ½; b0, b1 ⅛; v's two wings −⅛ (OpenMesh's reflection across a
                     // boundary edge, evaluated in this form).
                     let t = topo.twin(h)?;
-                    let a0 = l.cf.c;
+                    let a0 = ORIGIN;
                     let a1 = l.canon(topo, other)?;
                     let b0 = l.canon(topo, apex(topo, h)?)?;
                     let b1 = l.canon(topo, apex(topo, t)?)?;
@@ -868,7 +872,7 @@ impl Driver<'_, '_, '_, '_> {
                     }
                     if let Ok(c) = l
                         .canon(topo, s.neighbour)
-                        .and_then(|u| l.back(kobbelt::extrapolate(l.cf.c, u)))
+                        .and_then(|u| l.back(kobbelt::extrapolate(ORIGIN, u)))
                     {
                         set(self.edge_c, s.half_edge as usize, c)?;
                     }
