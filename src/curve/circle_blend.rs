@@ -77,10 +77,13 @@ pub fn circle_tangent_at_start(a: Point, b: Point, c: Point) -> Point {
 /// chord (the arc is a full circle: `S` at infinity); [`Status::NumericalFailure`] on
 /// overflow.
 pub fn arc_midpoint(p1: Point, p2: Point, t: Point) -> Result<Point> {
-    let degenerate = Error::new(Status::DegenerateGeometry);
     let c = sub(p2, p1);
-    let len = norm(c);
-    let tl = norm(t);
+    arc_midpoint_with(p1, p2, c, norm(c), t, norm(t))
+}
+
+/// [`arc_midpoint`] with the chord `c = p2 − p1`, its length and `|t|` already known.
+fn arc_midpoint_with(p1: Point, p2: Point, c: Point, len: f64, t: Point, tl: f64) -> Result<Point> {
+    let degenerate = Error::new(Status::DegenerateGeometry);
     if !(len > 0.0 && tl > 0.0) {
         return Err(degenerate);
     }
@@ -115,7 +118,17 @@ fn unit(t: Point) -> Result<Point> {
 }
 
 /// Whether any of the given pairs coincide within 1e-13 × the largest of their distances.
+/// Compares squared distances (no square roots) while they are safely representable.
 fn any_coincident<const N: usize>(pairs: [(Point, Point); N]) -> bool {
+    let sq = pairs.map(|(a, b)| {
+        let d = sub(a, b);
+        dot(d, d)
+    });
+    let max_sq = sq.iter().fold(0.0_f64, |m, x| m.max(*x));
+    if max_sq.is_finite() && max_sq >= 1e-250 {
+        let tol = COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq;
+        return sq.iter().any(|x| *x <= tol);
+    }
     let d = pairs.map(|(a, b)| norm(sub(a, b)));
     let tol = COINCIDENT_TOLERANCE * d.iter().fold(0.0_f64, |m, x| m.max(*x));
     d.iter().any(|x| *x <= tol)
@@ -138,17 +151,20 @@ pub fn blend_point(p0: Point, p1: Point, p2: Point, p3: Point) -> Result<Point> 
     }
     // Tangent directions only: scale the differences to the segment length first, so that
     // 1/|·|² neither overflows nor underflows.
-    let s = 1.0 / norm(sub(p2, p1));
+    let chord = sub(p2, p1);
+    let len = norm(chord);
+    let s = 1.0 / len;
     let local = |p: Point| scale(sub(p, p1), s);
-    let (q0, q2, q3) = (local(p0), local(p2), local(p3));
+    let (q0, q2, q3) = (local(p0), scale(chord, s), local(p3));
     let origin = [0.0; 3];
     let t1 = unit(circle_tangent(q0, origin, q2))?;
     let t2 = unit(circle_tangent_at_start(origin, q2, q3))?;
     let t = add(t1, t2);
-    if norm(t) <= BACKWARD_TOLERANCE {
+    let tl = norm(t);
+    if tl <= BACKWARD_TOLERANCE {
         return Err(Error::new(Status::DegenerateGeometry));
     }
-    arc_midpoint(p1, p2, t)
+    arc_midpoint_with(p1, p2, chord, len, t, tl)
 }
 
 /// The point of the first segment `p0 p1` of an open curve: the middle of the arc `p0 p1` of

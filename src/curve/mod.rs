@@ -483,9 +483,17 @@ pub(crate) fn dot(a: Point, b: Point) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// `|a|`: `√(a·a)` when the square neither overflows nor comes near underflow, else the
+/// scaled evaluation of [`crate::quat::Quat::abs`]. The branch depends only on `a`, so the
+/// result is deterministic.
 #[inline]
 pub(crate) fn norm(a: Point) -> f64 {
-    crate::mobius::norm(a)
+    let s = dot(a, a);
+    if s.is_finite() && s >= 1e-280 {
+        libm::sqrt(s)
+    } else {
+        crate::mobius::norm(a)
+    }
 }
 
 #[inline]
