@@ -149,39 +149,64 @@ pub fn reconstruct(
         c *= 0.25;
     }
     // Pass 1: S = Σ_{i=0}^{last} G_i with G_i = Σ_{j=1..i} g_j; for a closed curve the sum
-    // runs over all m differences, for an open one over the m − 1 segments.
+    // runs over all m differences, for an open one over the m − 1 segments. All running
+    // sums are compensated (Kahan), so that the result does not drift over a million points.
     let terms = if closed { m } else { m - 1 };
-    let mut g_sum = [0.0; 3];
-    let mut s = [0.0; 3];
+    let mut g_sum = Kahan::default();
+    let mut s = Kahan::default();
     for d in buf.iter().take(terms).skip(1) {
-        g_sum = add(g_sum, scale(*d, c));
-        s = add(s, g_sum);
+        g_sum.add(scale(*d, c));
+        s.add(g_sum.value());
     }
     let d0 = if closed {
-        scale(s, -1.0 / m as f64)
+        scale(s.value(), -1.0 / m as f64)
     } else {
-        scale(sub(sub(last, first), s), 1.0 / (m - 1) as f64)
+        scale(sub(sub(last, first), s.value()), 1.0 / (m - 1) as f64)
     };
-    // Pass 2: v_i = v_{i−1} + d_{i−1}, d_i = d_{i−1} + g_i, reading δ_i before overwriting it.
-    let mut v = first;
-    let mut d = d0;
+    // Pass 2: v_i = v_0 + Σ_{j<i} d_j, d_i = d_0 + G_i, reading δ_i before overwriting it.
+    let mut v = Kahan::default();
+    let mut g = Kahan::default();
     for (i, slot) in buf.iter_mut().enumerate() {
         if i == 0 {
             *slot = first;
             continue;
         }
         let delta_i = *slot;
-        v = add(v, d);
-        d = add(d, scale(delta_i, c));
-        *slot = finite(v, i)?;
+        v.add(add(d0, g.value()));
+        g.add(scale(delta_i, c));
+        *slot = finite(add(first, v.value()), i)?;
     }
     if !closed {
         if let Some(end) = buf.last_mut() {
             *end = last;
         }
     }
-    finite(d, 0)?;
+    finite(add(d0, g.value()), 0)?;
     Ok(())
+}
+
+/// A compensated (Kahan) running sum of points: plain IEEE operations in a fixed order, so
+/// deterministic.
+#[derive(Clone, Copy, Default)]
+struct Kahan {
+    sum: Point,
+    carry: Point,
+}
+
+impl Kahan {
+    #[inline]
+    fn add(&mut self, x: Point) {
+        for ((s, c), x) in self.sum.iter_mut().zip(self.carry.iter_mut()).zip(x) {
+            let y = x - *c;
+            let t = *s + y;
+            *c = (t - *s) - y;
+            *s = t;
+        }
+    }
+    #[inline]
+    fn value(&self) -> Point {
+        sub(self.sum, self.carry)
+    }
 }
 
 /// Differential-space subdivision of `points`, `levels` levels, into `out` with the
