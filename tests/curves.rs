@@ -1099,3 +1099,91 @@ fn differential_reconstruction_does_not_drift() {
     println!("Eq. (A.1) residual, 128k points at distance 100: {worst:.2e}");
     assert!(worst < 1e-15, "{worst:e}");
 }
+
+/// Solves the square system `a x = b` by Gaussian elimination with partial pivoting.
+fn dense_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for col in 0..n {
+        let piv = (col..n)
+            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
+            .unwrap();
+        a.swap(col, piv);
+        b.swap(col, piv);
+        for row in col + 1..n {
+            let f = a[row][col] / a[col][col];
+            for k in col..n {
+                a[row][k] -= f * a[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for row in (0..n).rev() {
+        let s: f64 = (row + 1..n).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - s) / a[row][row];
+    }
+    x
+}
+
+#[test]
+fn differential_reconstruction_matches_a_direct_least_squares_solve() {
+    // Seed 001 §3.5 step 4: the least-squares solution of [4ᵏ L; anchor rows] V = [Δᵏ; anchors]
+    // by the normal equations (AᵀA) V = Aᵀb, dense. Closed: every Laplacian row and v_0 = P_0;
+    // open (our boundary condition): the interior rows and v_0 = P_0, v_{m−1} = P_{n−1}.
+    let mut rng = Rng(0x501);
+    for (scheme, base) in [
+        (CurveScheme::DifferentialFourPoint, CurveScheme::FourPoint),
+        (CurveScheme::DifferentialBSpline, CurveScheme::BSpline),
+    ] {
+        for closed in [true, false] {
+            let n = 6;
+            let k = 2;
+            let p = space_curve(&mut rng, n, closed);
+            let v = run(scheme, &p, closed, k).unwrap();
+            let dk = run(base, &delta0(&p, closed), closed, k).unwrap();
+            let m = v.len();
+            let w = 4f64.powi(k as i32);
+            let mut rows: Vec<(Vec<f64>, Point)> = Vec::new();
+            for i in 0..m {
+                if !closed && (i == 0 || i == m - 1) {
+                    continue;
+                }
+                let mut r = vec![0.0; m];
+                r[i] += w;
+                r[(i + m - 1) % m] -= 0.5 * w;
+                r[(i + 1) % m] -= 0.5 * w;
+                rows.push((r, dk[i]));
+            }
+            let mut anchor = vec![0.0; m];
+            anchor[0] = 1.0;
+            rows.push((anchor, p[0]));
+            if !closed {
+                let mut anchor = vec![0.0; m];
+                anchor[m - 1] = 1.0;
+                rows.push((anchor, p[n - 1]));
+            }
+            let ata: Vec<Vec<f64>> = (0..m)
+                .map(|i| {
+                    (0..m)
+                        .map(|j| rows.iter().map(|(r, _)| r[i] * r[j]).sum())
+                        .collect()
+                })
+                .collect();
+            let s = diameter(&p);
+            for c in 0..3 {
+                let atb: Vec<f64> = (0..m)
+                    .map(|i| rows.iter().map(|(r, b)| r[i] * b[c]).sum())
+                    .collect();
+                let x = dense_solve(ata.clone(), atb);
+                for i in 0..m {
+                    assert!(
+                        (x[i] - v[i][c]).abs() < 1e-10 * s,
+                        "{scheme:?} closed={closed} i={i}: {} vs {}",
+                        x[i],
+                        v[i][c]
+                    );
+                }
+            }
+        }
+    }
+}
