@@ -233,6 +233,93 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     }
 }
 
+/// The face point of a `d`-gon from its vertices `v_i` and the candidates `v_{f,i}` computed
+/// in the canonical forms of the vertices' stars (seed 000 §4.4.3, "Blending face points"):
+///
+/// 1. quadruplets `(v_i, v_{f,i}, v_{f,i+h}, v_{i+h})`, `h = ⌊d/2⌋`, in face order;
+/// 2. a stable sort by ascending noncircularity `1 − |Re ρ|/|ρ|` (the `ρ` that F4 uses on the
+///    quadruplet; keys rounded to 12 decimals so that rounding noise cannot reorder ties);
+/// 3. `p_l = F4(a_l, b_l, c_l, d_l)`;
+/// 4. `v_f = p_1`, then `v_f := F6(a_{l−1}, v_f, d_{l−1}, a_l, p_l, d_l)` for `l = 2 … d`.
+///
+/// Step 4 chains the *opposite vertices* `a`, `d` of the quadruplets (DESIGN.md: the printed
+/// `c_{l−1}, c_l` are candidates, with which F6 is singular exactly in the Möbius-regular
+/// case). When all candidates agree (a Möbius-regular neighbourhood) every F4 and F6 returns
+/// that point, so `v_f` equals it.
+///
+/// # Errors
+/// [`Status::InvalidArgument`] when the slices differ in length; [`Status::TooFewPoints`] for
+/// fewer than 3 corners; [`Status::ValenceTooHigh`] above [`crate::MAX_FACE_SIZE`]; the errors
+/// of [`f4`] and [`f6`] (the caller's degenerate-neighbourhood policy decides what to do).
+pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
+    let d = vertices.len();
+    if candidates.len() != d {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    if d < 3 {
+        return Err(Error::new(Status::TooFewPoints));
+    }
+    if d > crate::MAX_FACE_SIZE {
+        return Err(Error::new(Status::ValenceTooHigh));
+    }
+    let h = d / 2;
+    let at = |s: &[Point], i: usize| {
+        i.checked_rem(d)
+            .and_then(|k| s.get(k).copied())
+            .ok_or(Error::new(Status::InvalidArgument))
+    };
+    // (quadruplet start i, rounded key), sorted stably by key with an insertion sort (d is
+    // small, and the sort must be stable and panic-free).
+    let mut order: arrayvec::ArrayVec<(usize, i64), { crate::MAX_FACE_SIZE }> =
+        arrayvec::ArrayVec::new();
+    for i in 0..d {
+        let (a, b, c, e) = (
+            at(vertices, i)?,
+            at(candidates, i)?,
+            at(candidates, i + h)?,
+            at(vertices, i + h)?,
+        );
+        // A quadruplet whose cross-ratio is undefined (coincident candidates) is as circular
+        // as it gets: F4 returns a defined point for it.
+        let key = noncircularity(a, b, c, e).unwrap_or(0.0);
+        let key = libm::round(key * 1e12) as i64;
+        order
+            .try_push((i, key))
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+        let mut j = order.len() - 1;
+        while j > 0 {
+            // Swap through `get_mut` on the pair: `slice::swap` keeps a bounds-check panic.
+            match order.get_mut(j - 1..=j) {
+                Some([prev, cur]) if prev.1 > cur.1 => {
+                    core::mem::swap(prev, cur);
+                    j -= 1;
+                }
+                _ => break,
+            }
+        }
+    }
+    let quad = |i: usize| -> Result<[Point; 4]> {
+        Ok([
+            at(vertices, i)?,
+            at(candidates, i)?,
+            at(candidates, i + h)?,
+            at(vertices, i + h)?,
+        ])
+    };
+    let mut it = order.iter();
+    let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
+    let [a0, b0, c0, d0] = quad(first)?;
+    let mut vf = f4(a0, b0, c0, d0)?;
+    let (mut a_prev, mut d_prev) = (a0, d0);
+    for &(i, _) in it {
+        let [a, b, c, e] = quad(i)?;
+        let p = f4(a, b, c, e)?;
+        vf = f6(a_prev, vf, d_prev, a, p, e)?;
+        (a_prev, d_prev) = (a, e);
+    }
+    Ok(vf)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,6 +371,57 @@ mod tests {
         assert!(is_negative_real(rho));
         let p = f4(a, b, c, d).unwrap();
         assert!(p[2].abs() < 1e-14 && point_is_finite(&p));
+    }
+
+    #[test]
+    fn face_point_of_equal_candidates_is_that_candidate() {
+        let square = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let c = [0.5, 0.5, 0.0];
+        assert_eq!(face_point(&square, &[c; 4]).unwrap(), c);
+        let tri = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let g = [1.0 / 3.0, 1.0 / 3.0, 0.0];
+        assert_eq!(face_point(&tri, &[g; 3]).unwrap(), g);
+        assert_eq!(
+            face_point(&tri, &[g; 2]).unwrap_err().status,
+            Status::InvalidArgument
+        );
+        assert_eq!(
+            face_point(&tri[..2], &[g; 2]).unwrap_err().status,
+            Status::TooFewPoints
+        );
+    }
+
+    #[test]
+    fn face_point_of_a_spherical_face_is_on_the_sphere() {
+        // A pentagon on the unit sphere with distinct candidates on the sphere.
+        let s = |th: f64, ph: f64| {
+            [
+                libm::sin(th) * libm::cos(ph),
+                libm::sin(th) * libm::sin(ph),
+                libm::cos(th),
+            ]
+        };
+        let verts = [
+            s(0.5, 0.0),
+            s(0.55, 1.3),
+            s(0.45, 2.5),
+            s(0.6, 3.8),
+            s(0.5, 5.0),
+        ];
+        let cands = [
+            s(0.1, 0.2),
+            s(0.12, 1.1),
+            s(0.09, 2.0),
+            s(0.11, 3.0),
+            s(0.1, 4.4),
+        ];
+        let p = face_point(&verts, &cands).unwrap();
+        assert!((norm(p) - 1.0).abs() < 1e-12, "{}", norm(p));
     }
 
     #[test]

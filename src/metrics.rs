@@ -43,7 +43,9 @@ fn star_tangent_polygon(v: Point, ring: &[Point]) -> Result<ArrayVec<Point, MAX_
     }
     let mut t = ArrayVec::new();
     for (i, u) in ring.iter().enumerate() {
-        t.push(tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?);
+        let ti = tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
+        t.try_push(ti)
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
     }
     Ok(t)
 }
@@ -97,7 +99,8 @@ pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> 
     for i in first..last {
         let cr = cross_ratio(v, at(i + n - 1), at(i), at(i + 1))
             .map_err(|e| e.with_element(i as u32))?;
-        crs.push(cr);
+        crs.try_push(cr)
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
     }
     let m = crs.len();
     let pairs = if closed { m } else { m.saturating_sub(1) };

@@ -234,7 +234,8 @@ impl CanonicalForm {
         for (i, u) in ring.iter().enumerate() {
             let ti =
                 crate::quat::tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
-            t.push(ti);
+            t.try_push(ti)
+                .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         }
         let c = match kind {
             StarKind::Interior => {

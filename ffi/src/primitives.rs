@@ -341,3 +341,31 @@ pub unsafe extern "C" fn nls_star_mobius_regularity(
         Ok(())
     })
 }
+
+/// The Möbius-invariant face point of a `count`-gon from its vertices and the candidate face
+/// points computed in the canonical forms of the vertices' stars (seed 000 §4.4.3): F4 on
+/// the quadruplets `(v_i, v_{f,i}, v_{f,i+h}, v_{i+h})` sorted by noncircularity, chained with
+/// F6. `vertices` and `candidates` hold `3*count` doubles each.
+///
+/// Errors: `NLS_STATUS_TOO_FEW_POINTS` (`count < 3`), `NLS_STATUS_VALENCE_TOO_HIGH`, and
+/// those of [`nls_f4`] and [`nls_f6`].
+///
+/// cbindgen:ptrs-as-arrays=[[out;3]]
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_face_point(
+    vertices: *const f64,
+    candidates: *const f64,
+    count: usize,
+    out: *mut f64,
+) -> Status {
+    run(|| {
+        // SAFETY: the caller passes NULL or readable memory of the documented sizes.
+        let (v, c) = unsafe { (points(vertices, count)?, points(candidates, count)?) };
+        check_out(out, 3)?;
+        check_fp_env()?;
+        let p = status_of(blend::face_point(v, c))?;
+        // SAFETY: checked above.
+        unsafe { write(out, p) };
+        Ok(())
+    })
+}
