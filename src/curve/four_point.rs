@@ -1,5 +1,5 @@
 //! The linear interpolating 4-point scheme of Dyn, Levin and Gregory (1987), `w = 1/16`
-//! (seed 003 §1 "[Dyn87]"; the linear rule that seed 000 §4.4.1 converts into the Möbius
+//! (seed 003 §1, reference Dyn87; the linear rule that seed 000 §4.4.1 converts into the Möbius
 //! interpolating rule).
 //!
 //! One level, output interleaved as in [`crate::curve`]:
