@@ -262,7 +262,9 @@ pub fn subdivide(
     check_finite(points)?;
     let out = out.get_mut(..total).ok_or(Error::too_small(total))?;
     if levels == 0 {
-        out.copy_from_slice(points);
+        for (o, p) in out.iter_mut().zip(points) {
+            *o = *p;
+        }
         return Ok(total);
     }
     match scheme {
