@@ -1188,3 +1188,34 @@ fn differential_reconstruction_matches_a_direct_least_squares_solve() {
         }
     }
 }
+
+#[test]
+fn circle_preserving_schemes_keep_lines() {
+    // A line is the circle through collinear points (reliability catalogue #17): unevenly
+    // spaced collinear points stay on their line, in order, with no division by ~0.
+    let mut rng = Rng(0x11AE);
+    for scheme in CurveScheme::ALL
+        .into_iter()
+        .filter(|s| s.is_circle_preserving())
+    {
+        let a = rng.point(3.0);
+        let dir = rng.unit_vector();
+        let mut t = 0.0;
+        let p: Vec<Point> = (0..8)
+            .map(|_| {
+                t += rng.range(0.2, 2.0);
+                add(a, scale(dir, t))
+            })
+            .collect();
+        let out = run(scheme, &p, false, 4).unwrap();
+        let mut last = f64::NEG_INFINITY;
+        for q in &out {
+            let d = sub(*q, a);
+            let along = dot(d, dir);
+            let off = norm(sub(d, scale(dir, along)));
+            assert!(off < 1e-13 * (1.0 + t), "{scheme:?}: {off:e}");
+            assert!(along > last, "{scheme:?}: order");
+            last = along;
+        }
+    }
+}
