@@ -17,6 +17,7 @@
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![allow(clippy::missing_safety_doc)] // every export documents its safety contract in prose
 
+pub mod curve;
 mod guard;
 pub mod mobius;
 pub mod primitives;
