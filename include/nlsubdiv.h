@@ -262,11 +262,6 @@ typedef struct nls_canonical_form {
 
 
 
-/**
- * Every status, in code order. Used by tests and by the C ABI's `nls_status_str`.
- */
-#define nls_status_ALL { nls_status_Ok, nls_status_NullParameter, nls_status_MisalignedPointer, nls_status_SizeOverflow, nls_status_AliasingBuffers, nls_status_BadOffsets, nls_status_FaceTooSmall, nls_status_IndexOutOfRange, nls_status_RepeatedVertex, nls_status_NonManifoldEdge, nls_status_InconsistentOrientation, nls_status_NonManifoldVertex, nls_status_DuplicateFace, nls_status_NonFiniteInput, nls_status_NumericalFailure, nls_status_DegenerateGeometry, nls_status_ValenceTooHigh, nls_status_UnsupportedFaceType, nls_status_BufferTooSmall, nls_status_FpEnvironment, nls_status_NotConverged, nls_status_InvalidArgument, nls_status_TooFewPoints, nls_status_FallbackInStrictMode, }
-
 
 
 #ifdef __cplusplus
