@@ -290,7 +290,8 @@ static void test_canonical_forms(void) {
     }
     CHECK_STATUS(nls_canonical_form_map(&cf, 1, &m), NLS_STATUS_OK);
     CHECK_STATUS(nls_canonical_form_map(&cf, 7, &m), NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_canonical_form_new(v, ring, 2, NLS_STAR_INTERIOR, &cf), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(nls_canonical_form_new(v, ring, 1, NLS_STAR_INTERIOR, &cf), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(nls_canonical_form_new(v, ring, 2, NLS_STAR_INTERIOR, &cf), NLS_STATUS_OK);
     CHECK_STATUS(nls_canonical_form_new(v, ring, 2, NLS_STAR_BOUNDARY, &cf), NLS_STATUS_OK);
     CHECK_STATUS(nls_canonical_form_new(v, ring, 3, NLS_STAR_EAR, &cf), NLS_STATUS_OK);
     CHECK_STATUS(nls_canonical_form_new(v, ring, 5, 9u, &cf), NLS_STATUS_INVALID_ARGUMENT);

@@ -102,14 +102,9 @@ fn cross(a: Point, b: Point) -> Point {
     ]
 }
 
-/// `√q` with the branch of the paper; for a negative real `q` the root `√|q| [0, n]` with
-/// the given plane normal `n` (the printed rule of seed 000 §4.4.1).
-fn sqrt_or_axis(q: Quat, n: Point) -> Option<Quat> {
-    sqrt_snapped(q, n, false)
-}
-
-/// [`sqrt_or_axis`] that first removes rounding noise from the direction of `Im q` when
-/// `snap` is set and `q` lies in the left half-plane: there `Im √q = n·t` divides by `|Im q|`,
+/// `√q` with the branch of the paper; for a negative real `q` the root `√|q| [0, n]` (the
+/// printed rule of seed 000 §4.4.1 with the axis `n`). With `snap` and `q` in the left
+/// half-plane it first removes rounding noise from the direction of `Im q`: there `Im √q = n·t` divides by `|Im q|`,
 /// so noise of size `ε|q|` across the reference axis `n` turns a point that should lie on a
 /// sphere into one off it by `ε|q|/|Im q|` (seed 000 Lemma A.1: for cospherical points every
 /// cross-ratio starting at the same point has its imaginary part along one axis). A component

@@ -210,8 +210,8 @@ pub struct CanonicalForm {
 impl CanonicalForm {
     /// The canonical form of the star `v ring[0] … ring[n−1]`.
     ///
-    /// For [`StarKind::Interior`] the ring is cyclic (n ≥ 3); for [`StarKind::Boundary`] and
-    /// [`StarKind::Ear`] it runs from one boundary neighbour to the other (n ≥ 2).
+    /// For [`StarKind::Interior`] the ring is cyclic; for [`StarKind::Boundary`] and
+    /// [`StarKind::Ear`] it runs from one boundary neighbour to the other; n ≥ 2 for all.
     ///
     /// # Errors
     /// [`Status::TooFewPoints`] for a ring too short for its kind; [`Status::ValenceTooHigh`]
@@ -220,8 +220,9 @@ impl CanonicalForm {
     /// radius about `c`.
     pub fn new(v: Point, ring: &[Point], kind: StarKind) -> Result<CanonicalForm> {
         let n = ring.len();
-        let min = if kind == StarKind::Interior { 3 } else { 2 };
-        if n < min {
+        // Two neighbours suffice for every kind: an interior valence-2 vertex (two faces
+        // glued along two edges) has a digon as tangent polygon, centred at its midpoint.
+        if n < 2 {
             return Err(Error::new(Status::TooFewPoints));
         }
         if n > MAX_VALENCE {
@@ -535,8 +536,7 @@ mod tests {
     #[test]
     fn degenerate_stars() {
         let v = [0.0; 3];
-        let e = CanonicalForm::new(v, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], StarKind::Interior)
-            .unwrap_err();
+        let e = CanonicalForm::new(v, &[[1.0, 0.0, 0.0]], StarKind::Interior).unwrap_err();
         assert_eq!(e.status, Status::TooFewPoints);
         let e = CanonicalForm::new(
             v,

@@ -177,7 +177,9 @@ fn every_mobius_scheme_reproduces_spheres() {
                     .iter()
                     .map(|&p| (dist(p, c) - r).abs() / r)
                     .fold(0.0, f64::max);
-                if dev >= 1e-12 { println!("FAIL {name}, {s:?}: off the sphere by {dev:e}"); }
+                if dev >= 1e-12 {
+                    println!("FAIL {name}, {s:?}: off the sphere by {dev:e}");
+                }
                 worst = worst.max(dev);
                 runs += 1;
             }
@@ -188,6 +190,7 @@ fn every_mobius_scheme_reproduces_spheres() {
 
 /// The least-squares sphere `|p|² = 2 c·p + k` through cospherical points (normal equations,
 /// Gaussian elimination with partial pivoting), as (centre, radius).
+#[allow(clippy::needless_range_loop)] // a 4×5 elimination reads best with indices
 fn sphere_through(p: &[Point]) -> (Point, f64) {
     let mut a = [[0.0f64; 5]; 4];
     for q in p {
@@ -201,7 +204,9 @@ fn sphere_through(p: &[Point]) -> (Point, f64) {
         }
     }
     for col in 0..4 {
-        let piv = (col..4).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).unwrap();
+        let piv = (col..4)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap();
         a.swap(col, piv);
         for r in 0..4 {
             if r != col {
@@ -319,7 +324,11 @@ fn regular_grids_match_the_linear_scheme_and_stay_mobius_regular_under_mobius_ma
     let mut worst_mr: f64 = 0.0;
     let n = 8;
     let quads = quad_grid(n, n);
-    let tris = tri_grid(n, n);
+    // An equilateral lattice (tri_grid's diagonals run from (i, j) to (i + 1, j + 1)); the
+    // interior mask below uses the unsheared parameter positions, which index the same vertices.
+    let s3 = 3f64.sqrt() / 2.0;
+    let tris_param = tri_grid(n, n);
+    let tris = tris_param.map_positions(|p| [p[0] - 0.5 * p[1], s3 * p[1], 0.0]);
     for s in ALL {
         let grid = if accepts(s, &quads) && s != Scheme::Loop && s != Scheme::ModifiedButterfly {
             &quads
@@ -329,7 +338,8 @@ fn regular_grids_match_the_linear_scheme_and_stay_mobius_regular_under_mobius_ma
         if !accepts(s, grid) {
             continue;
         }
-        let (hx, hy) = grid
+        let param = if grid == &quads { &quads } else { &tris_param };
+        let (hx, hy) = param
             .positions
             .iter()
             .fold((0.0f64, 0.0f64), |(x, y), p| (x.max(p[0]), y.max(p[1])));
@@ -338,7 +348,7 @@ fn regular_grids_match_the_linear_scheme_and_stay_mobius_regular_under_mobius_ma
         let lin = subdivide(s, grid).unwrap();
         let (mob, rep) = msub(s, grid, false).unwrap();
         assert_eq!(rep.fallbacks, 0, "{s:?}");
-        let mask = interior_mask(&lin, 0.0, hx, hy, 2.01);
+        let mask = interior_mask(&subdivide(s, param).unwrap(), 0.0, hx, hy, 2.01);
         for (i, (&p, &q)) in lin.positions.iter().zip(&mob.positions).enumerate() {
             if mask[i] {
                 let e = dist(p, q);

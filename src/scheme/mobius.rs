@@ -404,12 +404,11 @@ impl Driver<'_, '_, '_, '_> {
     // ---- edges ----
 
     /// Blends the interior edges' candidates with `F4(v_j, e_j, e_k, v_k)` into `start + e`;
-    /// `linear(e)` is the fallback. With `one_ring_only`, an edge with a single candidate
-    /// takes it (Butterfly next to an irregular vertex); otherwise it falls back.
+    /// an edge with a single candidate takes it; `linear(e)` is the fallback when neither star
+    /// gives one.
     fn blend_interior_edges(
         &mut self,
         start: usize,
-        one_ring_only: bool,
         linear: &dyn Fn(&Self, u32) -> Result<Point>,
     ) -> Result<()> {
         let topo = self.topo;
@@ -428,9 +427,12 @@ impl Driver<'_, '_, '_, '_> {
             let hint = topo.position(topo.dest(topo.next(h)?)?)?;
             let p = if present(&ca) && present(&cb) {
                 f4_hinted(a, ca, cb, b, hint).ok()
-            } else if one_ring_only && present(&ca) {
-                Some(ca) // Butterfly: the stencil of the singular ring alone (§4.3)
-            } else if one_ring_only && present(&cb) {
+            } else if present(&ca) {
+                // One star gave no candidate (Butterfly next to an irregular vertex, §4.3; or
+                // a star whose form sends a needed vertex to infinity, like a square corner):
+                // the other star's candidate, Möbius-invariant like the ear rule.
+                Some(ca)
+            } else if present(&cb) {
                 Some(cb)
             } else {
                 None
@@ -584,7 +586,7 @@ impl Driver<'_, '_, '_, '_> {
                 t.position(apex(t, t.twin(h)?)?)?,
             ))
         };
-        self.blend_interior_edges(nv, false, &linear)?;
+        self.blend_interior_edges(nv, &linear)?;
         self.boundary_edges(nv, |_, a, b, _| loop_scheme::edge_boundary(a, b))?;
         self.boundary_vertices_approximating(nv)
     }
@@ -684,7 +686,7 @@ impl Driver<'_, '_, '_, '_> {
                 centroid(&face_points(t, t.face(t.twin(h)?)?)?)?,
             ))
         };
-        self.blend_interior_edges(nv, false, &linear)?;
+        self.blend_interior_edges(nv, &linear)?;
         self.boundary_edges(nv, |_, a, b, _| catmull_clark::edge_boundary(a, b))?;
         self.boundary_vertices_approximating(nv)
     }
@@ -718,7 +720,7 @@ impl Driver<'_, '_, '_, '_> {
                 d.topo.position(b)?,
             ))
         };
-        self.blend_interior_edges(0, false, &linear)?;
+        self.blend_interior_edges(0, &linear)?;
         self.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;
         let mut k = topo.num_edges();
         for v in 0..topo.num_vertices() as u32 {
@@ -828,7 +830,7 @@ impl Driver<'_, '_, '_, '_> {
             }
         }
         let linear = |d: &Self, e: u32| -> Result<Point> { butterfly_linear_edge(d.topo, e) };
-        self.blend_interior_edges(nv, true, &linear)?;
+        self.blend_interior_edges(nv, &linear)?;
         self.boundary_edges(nv, butterfly::edge_boundary)
     }
 
@@ -987,14 +989,21 @@ impl Driver<'_, '_, '_, '_> {
     fn outer_edge_point(&self, hx: u32, hy: u32) -> Result<Point> {
         let topo = self.topo;
         let t = topo.twin(hx)?;
-        if t == NONE {
-            Ok(kobbelt::extrapolate(
-                self.edge_point(hx)?,
-                self.edge_point(hy)?,
-            ))
-        } else {
-            self.edge_point(topo.next(topo.next(t)?)?)
+        if t != NONE {
+            return self.edge_point(topo.next(topo.next(t)?)?);
         }
+        // The Möbius-invariant open-end extrapolation of the curve rules (DESIGN.md "Open
+        // ends", cr[P_2, P_1, P_0, P_−1] = −1/3) along the face's grid line; a strip one face
+        // wide has no third point and takes the linear `2e − e'`.
+        let (e0, e1) = (self.edge_point(hx)?, self.edge_point(hy)?);
+        let ty = topo.twin(hy)?;
+        if ty != NONE {
+            let e2 = self.edge_point(topo.next(topo.next(ty)?)?)?;
+            if let Ok(p) = crate::curve::mobius::virtual_end_point(e0, e1, e2) {
+                return Ok(p);
+            }
+        }
+        Ok(kobbelt::extrapolate(e0, e1))
     }
 }
 
