@@ -456,3 +456,28 @@ fn tetrahedron_of_format_files() -> OwnedMesh {
         &[vec![0, 1, 2], vec![0, 3, 1], vec![0, 2, 3], vec![1, 3, 2]],
     )
 }
+
+#[test]
+fn dual_patterns_reject_interior_valence_two() {
+    // A cube with a vertex inserted on edge (0, 1): an interior vertex of valence 2 whose
+    // dual face would be a 2-gon.
+    let mut c = cube();
+    c.positions.push([0.0, -1.0, -1.0]);
+    let mut faces = c.faces();
+    faces[0] = vec![0, 2, 3, 1, 8];
+    faces[2] = vec![0, 8, 1, 5, 4];
+    let m = OwnedMesh::from_faces(c.positions, &faces);
+    assert!(check(&m).is_ok());
+    for s in [
+        Scheme::DooSabin,
+        Scheme::Simplest,
+        Scheme::Dual,
+        Scheme::DualTruncation,
+    ] {
+        let e = subdivide(s, &m).unwrap_err();
+        assert_eq!((e.status, e.element), (Status::FaceTooSmall, 8), "{s:?}");
+    }
+    for s in [Scheme::CatmullClark, Scheme::VertexInsertion] {
+        assert!(subdivide(s, &m).is_ok(), "{s:?}");
+    }
+}

@@ -52,7 +52,7 @@ use crate::quat::{point_is_finite, Point};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// Scratch (`u32` entries) that [`Topology::build`] needs for a mesh with `num_vertices`
-/// vertices and `num_corners` corners: `4·corners + 2·vertices`.
+/// vertices and `num_corners` corners: `4·corners + 3·vertices`.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`] when the size does not fit `usize`.
@@ -61,7 +61,7 @@ pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<u
         .checked_mul(4)
         .ok_or(Error::new(Status::SizeOverflow))?;
     let b = num_vertices
-        .checked_mul(2)
+        .checked_mul(3)
         .ok_or(Error::new(Status::SizeOverflow))?;
     a.checked_add(b).ok_or(Error::new(Status::SizeOverflow))
 }
@@ -80,10 +80,12 @@ pub struct Topology<'m, 's> {
     edge_he: &'s [u32],
     vert_he: &'s [u32],
     valence: &'s [u32],
+    bnd_rank: &'s [u32],
     n_boundary_edges: usize,
     n_boundary_vertices: usize,
     n_isolated: usize,
     interior_spokes: usize,
+    boundary_spokes: usize,
     max_face: usize,
     min_face: usize,
 }
@@ -258,7 +260,8 @@ impl<'m, 's> Topology<'m, 's> {
         let (edge_of, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
         let (edge_he, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
         let (vert_he, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-        let (valence, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+        let (valence, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+        let (bnd_rank, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
 
         let offsets = mesh.offsets;
         let indices = mesh.indices;
@@ -436,15 +439,19 @@ impl<'m, 's> Topology<'m, 's> {
         let mut n_boundary_vertices = 0usize;
         let mut n_isolated = 0usize;
         let mut interior_spokes = 0usize;
+        let mut boundary_spokes = 0usize;
         for v in 0..nv {
             let start = get(vert_he, v)?;
             let out = get(valence, v)?;
+            set(bnd_rank, v, NONE)?;
             if start == NONE {
                 n_isolated += 1;
                 continue;
             }
             let val = if get(twin, start as usize)? == NONE {
+                set(bnd_rank, v, n_boundary_vertices as u32)?;
                 n_boundary_vertices += 1;
+                boundary_spokes += out as usize + 1;
                 out + 1
             } else {
                 interior_spokes += out as usize;
@@ -471,10 +478,12 @@ impl<'m, 's> Topology<'m, 's> {
             edge_he: edge_he.get(..n_edges).ok_or(internal())?,
             vert_he,
             valence,
+            bnd_rank,
             n_boundary_edges,
             n_boundary_vertices,
             n_isolated,
             interior_spokes,
+            boundary_spokes,
             max_face,
             min_face,
         })
@@ -533,6 +542,11 @@ impl<'m, 's> Topology<'m, 's> {
     /// Sum of the valences of all interior vertices.
     pub fn interior_valence_sum(&self) -> usize {
         self.interior_spokes
+    }
+
+    /// Sum of the valences of all boundary vertices.
+    pub fn boundary_valence_sum(&self) -> usize {
+        self.boundary_spokes
     }
 
     /// Largest face size (0 for a mesh without faces).
@@ -649,6 +663,13 @@ impl<'m, 's> Topology<'m, 's> {
     pub fn is_boundary_vertex(&self, v: u32) -> Result<bool> {
         let h = self.vertex_half_edge(v)?;
         Ok(h != NONE && self.twin(h)? == NONE)
+    }
+
+    /// The rank of boundary vertex `v` among the boundary vertices in index order (`0..`
+    /// [`num_boundary_vertices`](Self::num_boundary_vertices)), [`NONE`] for other vertices.
+    /// Dual patterns number their boundary points with it.
+    pub fn boundary_vertex_rank(&self, v: u32) -> Result<u32> {
+        get(self.bnd_rank, v as usize)
     }
 
     /// Whether `v` is referenced by no face.
