@@ -823,3 +823,91 @@ fn shared_meshes_one_level() {
         }
     }
 }
+
+/// The output point set of a mesh symmetric under x ↦ −x is symmetric too (catches stencils
+/// indexed asymmetrically around a vertex, e.g. Kobbelt's virtual points at valence 3).
+#[test]
+fn symmetric_meshes_give_symmetric_outputs() {
+    // A cube stretched along y keeps only the x and z mirror symmetries.
+    let stretched = cube().map_positions(|p| [p[0], 2.0 * p[1] + 0.3, p[2]]);
+    for m in [cube(), octahedron(), prism(6), stretched] {
+        for s in Scheme::ALL {
+            if !accepts(s, &m) {
+                continue;
+            }
+            let out = subdivide_n(s, &m, 2).unwrap();
+            for p in &out.positions {
+                let q = [-p[0], p[1], p[2]];
+                let d = out
+                    .positions
+                    .iter()
+                    .map(|r| (0..3).map(|k| (r[k] - q[k]).abs()).fold(0.0, f64::max))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(d < 1e-12, "{s:?}: mirror image of {p:?} missing ({d})");
+            }
+        }
+    }
+}
+
+#[test]
+fn schemes_at_the_valence_capacity() {
+    for n in [nlsubdiv::MAX_VALENCE - 1, nlsubdiv::MAX_VALENCE] {
+        for m in [fan(n), bipyramid(n), quad_fan(n)] {
+            for s in Scheme::ALL {
+                if !accepts(s, &m) {
+                    continue;
+                }
+                match subdivide(s, &m) {
+                    Ok(out) => assert_eq!(euler(&out), euler(&m), "{s:?} n = {n}"),
+                    Err(e) => {
+                        // Only the output capacity may stop a scheme: vertex insertion doubles
+                        // valences; dual faces of boundary vertices grow by one or two corners.
+                        assert_eq!(e.status, Status::ValenceTooHigh, "{s:?} n = {n}: {e}");
+                        assert!(
+                            matches!(
+                                s,
+                                Scheme::VertexInsertion
+                                    | Scheme::DualTruncation
+                                    | Scheme::Dual
+                                    | Scheme::Simplest
+                            ),
+                            "{s:?} n = {n}: {e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A disk of `n` quads around vertex 0 (interior valence n).
+fn quad_fan(n: usize) -> OwnedMesh {
+    let mut p = vec![[0.0, 0.0, 0.0]];
+    for i in 0..n {
+        let t = 2.0 * PI * i as f64 / n as f64;
+        let u = t + PI / n as f64;
+        p.push([t.cos(), t.sin(), 0.0]);
+        p.push([1.5 * u.cos(), 1.5 * u.sin(), 0.2]);
+    }
+    let r = |i: usize| 1 + 2 * (i % n) as u32;
+    let faces: Vec<Vec<u32>> = (0..n).map(|i| vec![0, r(i), r(i) + 1, r(i + 1)]).collect();
+    OwnedMesh::from_faces(p, &faces)
+}
+
+/// The path a peer comparison takes: read OFF, one level through the slice entry point,
+/// write OFF, read it back.
+#[test]
+fn off_read_subdivide_write_round_trip() {
+    let dir = std::env::temp_dir().join(format!("nlsubdiv-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("in.off");
+    write_off(&input, &jitter(&cube(), 0.1, 40)).unwrap();
+    let m = read_off(&input).unwrap();
+    for s in [Scheme::CatmullClark, Scheme::DooSabin, Scheme::Kobbelt] {
+        let out = subdivide(s, &m).unwrap();
+        let path = dir.join(format!("{}.off", s.name()));
+        write_off(&path, &out).unwrap();
+        assert_eq!(read_off(&path).unwrap(), out, "{s:?}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
