@@ -911,3 +911,42 @@ fn off_read_subdivide_write_round_trip() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Strided input positions (other attributes interleaved, even NaN ones) give the same bits
+/// as packed ones.
+#[test]
+fn strided_positions_read_in_place() {
+    use nlsubdiv::mesh::Mesh;
+    let m = jitter(&quad_torus(5, 4, 3.0, 1.0), 0.1, 50);
+    let stride = 5;
+    let mut coords = Vec::new();
+    for p in &m.positions {
+        coords.extend_from_slice(p);
+        coords.extend_from_slice(&[f64::NAN, -1.0]);
+    }
+    coords.truncate(coords.len() - 2); // the last vertex needs only its 3 coordinates
+    let view =
+        Mesh::with_stride(&coords, stride, m.positions.len(), &m.offsets, &m.indices).unwrap();
+    for s in [Scheme::CatmullClark, Scheme::Kobbelt, Scheme::Dual] {
+        let want = subdivide(s, &m).unwrap();
+        let mut scratch = vec![0u32; scheme::scratch_len(&view).unwrap()];
+        let mut got = want.clone();
+        scheme::subdivide_mesh(
+            s,
+            view,
+            &mut scratch,
+            &mut MeshOut::new(&mut got.positions, &mut got.offsets, &mut got.indices),
+        )
+        .unwrap();
+        assert_eq!(hash(&got), hash(&want), "{s:?}");
+    }
+    let short = &coords[..coords.len() - 1];
+    let e =
+        Mesh::with_stride(short, stride, m.positions.len(), &m.offsets, &m.indices).unwrap_err();
+    assert_eq!(e, nlsubdiv::Error::too_small(coords.len()));
+    let e = Mesh::with_stride(&coords, 2, 3, &m.offsets, &m.indices).unwrap_err();
+    assert_eq!(e.status, Status::InvalidArgument);
+    let e = Mesh::with_stride(&coords, usize::MAX, 3, &m.offsets, &m.indices).unwrap_err();
+    assert_eq!(e.status, Status::SizeOverflow);
+    assert!(Mesh::with_stride(&[], 7, 0, &[0], &[]).is_ok());
+}

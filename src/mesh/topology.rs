@@ -495,8 +495,8 @@ impl<'m, 's> Topology<'m, 's> {
             set(valence, v, val)?;
         }
 
-        for (v, p) in mesh.positions.iter().enumerate() {
-            if !point_is_finite(p) {
+        for (v, p) in mesh.positions().enumerate() {
+            if !point_is_finite(&p) {
                 return Err(Error::at(Status::NonFiniteInput, v as u32));
             }
         }
@@ -616,7 +616,7 @@ impl<'m, 's> Topology<'m, 's> {
 
     /// Position of vertex `v`.
     pub fn position(&self, v: u32) -> Result<Point> {
-        get(self.mesh.positions, v as usize)
+        self.mesh.position(v).ok_or(internal())
     }
 
     /// Start vertex of half-edge `h`.

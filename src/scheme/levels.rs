@@ -416,8 +416,8 @@ pub fn subdivide_levels(
 }
 
 fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {
-    for (d, s) in out.positions.iter_mut().zip(mesh.positions) {
-        *d = *s;
+    for (d, s) in out.positions.iter_mut().zip(mesh.positions()) {
+        *d = s;
     }
     for (d, s) in out.offsets.iter_mut().zip(mesh.offsets) {
         *d = *s;

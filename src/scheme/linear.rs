@@ -104,8 +104,8 @@ fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
 }
 
 fn copy_old(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    for (v, p) in topo.mesh().positions.iter().enumerate() {
-        set(pos, v, *p)?;
+    for (v, p) in topo.mesh().positions().enumerate() {
+        set(pos, v, p)?;
     }
     Ok(())
 }
