@@ -18,12 +18,12 @@
 //!
 //! * **Empty mesh** (no faces, any number of vertices, `offsets = [0]`) is valid: every scheme
 //!   returns it with its vertices carried through and no faces. `offsets = []` is
-//!   [`Status::BadOffsets`](crate::Status::BadOffsets) (the CSR needs `F + 1 ≥ 1` entries).
+//!   [`Status::BadOffsets`] (the CSR needs `F + 1 ≥ 1` entries).
 //! * **Isolated (unreferenced) vertices** are valid and carried through unchanged: primal
 //!   schemes keep every old vertex at its index; dual schemes append the isolated vertices, in
 //!   index order, after their own points.
 //! * **Duplicate faces**: two faces with the same vertex set are
-//!   [`Status::DuplicateFace`](crate::Status::DuplicateFace), whatever their orientation. The
+//!   [`Status::DuplicateFace`], whatever their orientation. The
 //!   *pillow* (a face and its reverse, a closed two-face component that passes the edge test)
 //!   is rejected too: it has no interior, and its vertices are valence-2 spikes for every rule.
 //! * The kernel never repairs: the first error found is returned, naming its element.
