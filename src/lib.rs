@@ -15,7 +15,27 @@
 //!
 //! Layers depend one way, top to bottom: [`quat`] (quaternions, cross-ratio, corner
 //! tangents) → [`mobius`] (Möbius maps, canonical forms) → [`blend`] (F4, F6) →
-//! [`metrics`], [`curve`] (curve subdivision: linear, Möbius, circle blend, differential).
+//! [`metrics`], [`curve`] (curve subdivision: linear, Möbius, circle blend, differential);
+//! [`stencil`] (linear rules on one neighbourhood) → [`mesh`] (caller-buffer
+//! meshes, validation, half-edge topology in scratch, refinement patterns) → [`scheme`]
+//! (drivers: one level per call, multi-level plans; [`scheme::mobius`] the canonical Möbius
+//! version of every scheme, seed 000 §4).
+//!
+//! ```
+//! use nlsubdiv::mesh::{Mesh, MeshOut};
+//! use nlsubdiv::scheme::{self, Scheme};
+//! // One quad, one Catmull–Clark step into caller buffers.
+//! let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+//! let mesh = Mesh::new(&p, &[0, 4], &[0, 1, 2, 3]);
+//! let mut scratch = [0u32; 64];
+//! assert!(scheme::scratch_len(&mesh).unwrap() <= scratch.len());
+//! let sizes = scheme::subdivide_mesh_size(Scheme::CatmullClark, mesh, &mut scratch).unwrap();
+//! let (mut pos, mut offs, mut idx) = ([[0.0; 3]; 9], [0u32; 5], [0u32; 16]);
+//! let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
+//! let written = scheme::subdivide_mesh(Scheme::CatmullClark, mesh, &mut scratch, &mut out).unwrap();
+//! assert_eq!((written, sizes.vertices, sizes.faces), (sizes, 9, 4));
+//! assert_eq!(pos[8], [0.5, 0.5, 0.0]); // the face point
+//! ```
 //!
 //! ```
 //! use nlsubdiv::blend::f4;

@@ -456,3 +456,94 @@ fn tetrahedron_of_format_files() -> OwnedMesh {
         &[vec![0, 1, 2], vec![0, 3, 1], vec![0, 2, 3], vec![1, 3, 2]],
     )
 }
+
+#[test]
+fn dual_patterns_reject_interior_valence_two() {
+    // A cube with a vertex inserted on edge (0, 1): an interior vertex of valence 2 whose
+    // dual face would be a 2-gon.
+    let mut c = cube();
+    c.positions.push([0.0, -1.0, -1.0]);
+    let mut faces = c.faces();
+    faces[0] = vec![0, 2, 3, 1, 8];
+    faces[2] = vec![0, 8, 1, 5, 4];
+    let m = OwnedMesh::from_faces(c.positions, &faces);
+    assert!(check(&m).is_ok());
+    for s in [
+        Scheme::DooSabin,
+        Scheme::Simplest,
+        Scheme::Dual,
+        Scheme::DualTruncation,
+    ] {
+        let e = subdivide(s, &m).unwrap_err();
+        assert_eq!((e.status, e.element), (Status::FaceTooSmall, 8), "{s:?}");
+    }
+    for s in [Scheme::CatmullClark, Scheme::VertexInsertion] {
+        assert!(subdivide(s, &m).is_ok(), "{s:?}");
+    }
+}
+
+/// Small hostile meshes from a fixed-seed generator: random face sizes (0–5), indices up to
+/// one past the vertex count, occasional NaN, shuffled duplicates of valid faces. Nothing may
+/// panic; an accepted mesh gives, for every scheme, an error or a valid output with the same
+/// Euler characteristic.
+#[test]
+fn random_small_meshes_never_panic() {
+    let mut r = Lcg(0x5eed);
+    let mut accepted = 0;
+    let mut outputs = 0;
+    for case in 0..4000 {
+        let mut u = |n: usize| ((r.next() + 1.0) * 0.5 * n as f64) as usize % n.max(1);
+        let nv = u(9);
+        let nf = u(7);
+        let mut faces = Vec::new();
+        for _ in 0..nf {
+            let k = u(6);
+            faces.push((0..k).map(|_| u(nv + 1) as u32).collect::<Vec<u32>>());
+        }
+        // Sometimes start from a valid mesh and break it a little.
+        let mut m = if case % 3 == 0 {
+            let base = [tetrahedron(), cube(), quad_grid(2, 1), fan(4), prism(3)][u(5)].clone();
+            let mut f = base.faces();
+            match u(4) {
+                0 => {
+                    let i = u(f.len());
+                    f[i].reverse();
+                }
+                1 => {
+                    let i = u(f.len());
+                    f.remove(i);
+                }
+                2 => {
+                    let i = u(f.len());
+                    let g = f[i].clone();
+                    f.push(g);
+                }
+                _ => {}
+            }
+            OwnedMesh::from_faces(base.positions, &f)
+        } else {
+            let p = (0..nv)
+                .map(|i| [i as f64, (i * i) as f64 * 0.1, 1.0 / (1.0 + i as f64)])
+                .collect();
+            OwnedMesh::from_faces(p, &faces)
+        };
+        if case % 17 == 0 && !m.positions.is_empty() {
+            let i = u(m.positions.len());
+            m.positions[i][u(3)] = f64::NAN;
+        }
+        if validate(&m).is_err() {
+            continue;
+        }
+        accepted += 1;
+        let chi = with_topology(&m, |t| t.euler_characteristic()).unwrap();
+        for s in Scheme::ALL {
+            if let Ok(out) = subdivide(s, &m) {
+                outputs += 1;
+                let chi2 = with_topology(&out, |t| t.euler_characteristic())
+                    .unwrap_or_else(|e| panic!("case {case} {s:?}: invalid output {e}"));
+                assert_eq!(chi2, chi, "case {case} {s:?}");
+            }
+        }
+    }
+    assert!(accepted > 300 && outputs > 1500, "{accepted} {outputs}");
+}

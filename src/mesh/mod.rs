@@ -3,9 +3,10 @@
 //!
 //! # Buffers
 //!
-//! * **Positions**: `&[[f64; 3]]`, one point per vertex. The C ABI's `double[3*V]` has exactly
-//!   this layout (`[f64; 3]` has the alignment of `f64`), so the FFI layer reinterprets the
-//!   pointer; strided host arrays are gathered by the FFI layer, not here.
+//! * **Positions**: `&[[f64; 3]]`, one point per vertex ([`Mesh::new`]); the C ABI's
+//!   `double[3*V]` has exactly this layout (`[f64; 3]` has the alignment of `f64`). Strided
+//!   host arrays (`x y z` followed by other attributes) are read in place with
+//!   [`Mesh::with_stride`], without copying. Output positions are always packed.
 //! * **Faces** in CSR form: `offsets[F + 1]` (`offsets[0] = 0`, non-decreasing,
 //!   `offsets[F] = indices.len()`) and `indices[offsets[F]]`; face `f` is
 //!   `indices[offsets[f]..offsets[f + 1]]`, counter-clockwise seen from outside.
@@ -17,12 +18,12 @@
 //!
 //! * **Empty mesh** (no faces, any number of vertices, `offsets = [0]`) is valid: every scheme
 //!   returns it with its vertices carried through and no faces. `offsets = []` is
-//!   [`Status::BadOffsets`](crate::Status::BadOffsets) (the CSR needs `F + 1 ≥ 1` entries).
+//!   [`Status::BadOffsets`] (the CSR needs `F + 1 ≥ 1` entries).
 //! * **Isolated (unreferenced) vertices** are valid and carried through unchanged: primal
 //!   schemes keep every old vertex at its index; dual schemes append the isolated vertices, in
 //!   index order, after their own points.
 //! * **Duplicate faces**: two faces with the same vertex set are
-//!   [`Status::DuplicateFace`](crate::Status::DuplicateFace), whatever their orientation. The
+//!   [`Status::DuplicateFace`], whatever their orientation. The
 //!   *pillow* (a face and its reverse, a closed two-face component that passes the edge test)
 //!   is rejected too: it has no interior, and its vertices are valence-2 spikes for every rule.
 //! * The kernel never repairs: the first error found is returned, naming its element.
@@ -48,8 +49,9 @@ pub const MAX_COUNT: usize = (u32::MAX - 1) as usize;
 /// A polygon mesh over caller slices (not validated; see [`Topology::build`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Mesh<'a> {
-    /// Vertex positions.
-    pub positions: &'a [Point],
+    coords: &'a [f64],
+    stride: usize,
+    num_vertices: usize,
     /// Face offsets into `indices`, `F + 1` entries.
     pub offsets: &'a [u32],
     /// Vertex indices of all faces, face after face.
@@ -57,18 +59,52 @@ pub struct Mesh<'a> {
 }
 
 impl<'a> Mesh<'a> {
-    /// A view of the three slices; nothing is checked here.
-    pub const fn new(positions: &'a [Point], offsets: &'a [u32], indices: &'a [u32]) -> Self {
+    /// A view of packed positions and the CSR faces; nothing is checked here.
+    pub fn new(positions: &'a [Point], offsets: &'a [u32], indices: &'a [u32]) -> Self {
         Mesh {
-            positions,
+            coords: positions.as_flattened(),
+            stride: 3,
+            num_vertices: positions.len(),
             offsets,
             indices,
         }
     }
 
+    /// A view of `num_vertices` positions stored with `stride` `f64`s between consecutive
+    /// vertices (`x, y, z` first): vertex `v` is `coords[v·stride .. v·stride + 3]`.
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for `stride < 3`; [`Status::SizeOverflow`] when the extent
+    /// overflows; [`Status::BufferTooSmall`] (with the needed length) when `coords` is shorter
+    /// than `(num_vertices − 1)·stride + 3`.
+    pub fn with_stride(
+        coords: &'a [f64],
+        stride: usize,
+        num_vertices: usize,
+        offsets: &'a [u32],
+        indices: &'a [u32],
+    ) -> Result<Self> {
+        if stride < 3 {
+            return Err(Error::new(Status::InvalidArgument));
+        }
+        if num_vertices > 0 {
+            let need = cadd(cmul(num_vertices - 1, stride)?, 3)?;
+            if coords.len() < need {
+                return Err(Error::too_small(need));
+            }
+        }
+        Ok(Mesh {
+            coords,
+            stride,
+            num_vertices,
+            offsets,
+            indices,
+        })
+    }
+
     /// The number of vertices (referenced or not).
     pub const fn num_vertices(&self) -> usize {
-        self.positions.len()
+        self.num_vertices
     }
 
     /// The number of faces, `offsets.len() − 1` (0 for an empty offsets slice).
@@ -90,7 +126,19 @@ impl<'a> Mesh<'a> {
 
     /// The position of vertex `v`.
     pub fn position(&self, v: u32) -> Option<Point> {
-        self.positions.get(v as usize).copied()
+        let v = v as usize;
+        if v >= self.num_vertices {
+            return None;
+        }
+        let a = v.checked_mul(self.stride)?;
+        let c = self.coords.get(a..a.checked_add(3)?)?;
+        Some([*c.first()?, *c.get(1)?, *c.get(2)?])
+    }
+
+    /// The positions of all vertices, in order.
+    pub fn positions(&self) -> impl Iterator<Item = Point> + 'a {
+        let m = *self;
+        (0..self.num_vertices as u32).map(move |v| m.position(v).unwrap_or([f64::NAN; 3]))
     }
 }
 

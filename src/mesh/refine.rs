@@ -11,19 +11,31 @@
 //! | [`Split1To4`](Pattern::Split1To4) (triangles only) | `V` old, `E` edge points | triangle `f` → `4f..4f+4`: `(v0,e0,e2) (v1,e1,e0) (v2,e2,e1) (e0,e1,e2)`, `e_i` on corner `i`'s edge `(v_i, v_{i+1})` |
 //! | [`Quads`](Pattern::Quads) | `V` old, `E` edge points, `F` face points | corner `h` of face `f` → quad `h`: `(v_i, e_i, f, e_{i−1})` |
 //! | [`CornerCut`](Pattern::CornerCut) (Doo–Sabin) | `H` corner points (corner `h` → point `h`), then the `I` isolated vertices | `F` F-faces (corners in face order), `E_i` E-faces in edge order `(c(next h), c(h), c(next t), c(t))` with `h` the `min→max` half-edge and `t` its twin, `V_i` V-faces in vertex order (corners of the star, CCW) |
-//! | [`MidEdge`](Pattern::MidEdge) (Simplest) | `E` edge midpoints, then the `I` isolated vertices | `F` face-faces (the midpoints of the face's edges, in corner order), then a vertex-face per interior vertex and per boundary vertex with two or more faces, in vertex order (the midpoints of its spokes, CCW) |
-//! | [`Dual`](Pattern::Dual) | `F` face points, then the `I` isolated vertices | one face per interior vertex, in vertex order (the face points of its star, CCW) |
+//! | [`MidEdge`](Pattern::MidEdge) (Simplest) | `E` edge midpoints, then the `V_b` boundary vertices (in index order), then the `I` isolated vertices | `F` face-faces (the midpoints of the face's edges, in corner order), then one vertex-face per referenced vertex, in vertex order: the midpoints of its spokes (CCW), closed on the boundary by the vertex itself |
+//! | [`Dual`](Pattern::Dual) | `F` face points, then the midpoints of the `V_b` outgoing boundary edges of the boundary vertices, then the `V_b` boundary vertices (both in vertex index order), then the `I` isolated vertices | one face per referenced vertex, in vertex order: the face points of its star (CCW); on the boundary `(m(v→b0), c_0, …, c_{k−1}, m(b1→v), v)` |
 //! | [`VertexInsertion`](Pattern::VertexInsertion) | `V` old, `F` face points | corner `h = (a → b)` of face `f` → triangle `h`: `(a, b, f)` |
 //! | [`DualTruncation`](Pattern::DualTruncation) | `V` old, `F` face points | per edge, in edge order: interior `h = (a → b)` in `f`, twin in `g`: `(a, g, f)` and `(b, f, g)`; boundary `(a → b)` in `f`: `(a, b, f)` |
 //!
-//! Boundaries: the dual patterns ([`CornerCut`](Pattern::CornerCut),
-//! [`Dual`](Pattern::Dual)) make faces only around interior edges and vertices (CGAL's
-//! `DQQ_1step`); [`MidEdge`](Pattern::MidEdge) closes boundary vertices with two or more
-//! faces, so its new boundary is the midpoint polygon of the old one (the mid-edge curve rule).
+//! Boundaries: [`CornerCut`](Pattern::CornerCut) makes faces only around interior edges and
+//! vertices (CGAL's `DQQ_1step`), so its new boundary runs through the corner points of the
+//! boundary faces. [`MidEdge`](Pattern::MidEdge) and [`Dual`](Pattern::Dual) close the face of
+//! every boundary vertex with the vertex itself (and, for the dual, the midpoints of its two
+//! boundary edges): the new boundary is the old boundary polygon refined at its edge
+//! midpoints, every vertex has a face, and the Euler characteristic is preserved. (Without
+//! this, the mid-edge boundary would never be refined and the dual would drop its boundary
+//! ring and leave stray face points.)
+//!
+//! The dual patterns ([`CornerCut`](Pattern::CornerCut), [`MidEdge`](Pattern::MidEdge),
+//! [`Dual`](Pattern::Dual), and [`DualTruncation`](Pattern::DualTruncation), whose truncation
+//! polygons are dual faces) need every interior vertex to have valence ≥ 3 (its face would be
+//! a 2-gon): an interior vertex of valence 2 is [`Status::FaceTooSmall`] naming the vertex.
+//! [`Dual`](Pattern::Dual) and [`DualTruncation`](Pattern::DualTruncation) join the face points
+//! of neighbouring faces; two faces that share two edges would give a double edge, so such a
+//! face is [`Status::UnsupportedFaceType`] naming the later face.
 
 use super::{cadd, cmul, get, idx, set, MeshSizes, Topology, NONE};
 use crate::error::{Error, Result, Status};
-use crate::MAX_VALENCE;
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// A refinement pattern (connectivity of one step; see the module table).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,17 +70,45 @@ impl Pattern {
     }
 }
 
-/// Sum of valences and count of boundary vertices with at least two faces.
-fn boundary_faces_ge2(topo: &Topology<'_, '_>) -> Result<(usize, usize)> {
-    let mut count = 0usize;
-    let mut sum = 0usize;
-    for v in 0..topo.num_vertices() as u32 {
-        if topo.is_boundary_vertex(v)? && topo.valence(v)? >= 3 {
-            count += 1;
-            sum = cadd(sum, topo.valence(v)?)?;
+/// [`Status::UnsupportedFaceType`] for the first face sharing two edges with one neighbour.
+fn no_double_neighbours(topo: &Topology<'_, '_>) -> Result<()> {
+    for f in 0..topo.num_faces() as u32 {
+        let r = topo.face_half_edges(f)?;
+        for h in r.clone() {
+            let t = topo.twin(h)?;
+            if t == NONE {
+                continue;
+            }
+            let g = topo.face(t)?;
+            for h2 in r.start..h {
+                let t2 = topo.twin(h2)?;
+                if t2 != NONE && topo.face(t2)? == g {
+                    return Err(Error::at(Status::UnsupportedFaceType, f.max(g)));
+                }
+            }
         }
     }
-    Ok((count, sum))
+    Ok(())
+}
+
+/// Checks the vertex faces of a dual pattern: interior vertices need valence ≥ 3
+/// ([`Status::FaceTooSmall`]); a boundary vertex's face has `valence + extra` corners, at most
+/// [`MAX_FACE_SIZE`] ([`Status::ValenceTooHigh`]). Both name the vertex.
+fn dual_face_sizes(topo: &Topology<'_, '_>, extra: usize) -> Result<()> {
+    for v in 0..topo.num_vertices() as u32 {
+        let n = topo.valence(v)?;
+        if n == 0 {
+            continue;
+        }
+        if topo.is_boundary_vertex(v)? {
+            if n + extra > MAX_FACE_SIZE {
+                return Err(Error::at(Status::ValenceTooHigh, v));
+            }
+        } else if n < 3 {
+            return Err(Error::at(Status::FaceTooSmall, v));
+        }
+    }
+    Ok(())
 }
 
 /// The exact output sizes of `pattern` on `topo`, checked: [`Status::SizeOverflow`] when a
@@ -100,30 +140,45 @@ pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSiz
             faces: h,
             indices: cmul(h, 4)?,
         },
-        Pattern::CornerCut => MeshSizes {
-            vertices: cadd(h, iso)?,
-            faces: cadd(
-                cadd(f, topo.num_interior_edges())?,
-                topo.num_interior_vertices(),
-            )?,
-            indices: cadd(
-                cadd(h, cmul(topo.num_interior_edges(), 4)?)?,
-                topo.interior_valence_sum(),
-            )?,
-        },
-        Pattern::MidEdge => {
-            let (nb, sb) = boundary_faces_ge2(topo)?;
+        Pattern::CornerCut => {
+            dual_face_sizes(topo, 0)?;
             MeshSizes {
-                vertices: cadd(e, iso)?,
-                faces: cadd(cadd(f, topo.num_interior_vertices())?, nb)?,
-                indices: cadd(cadd(h, topo.interior_valence_sum())?, sb)?,
+                vertices: cadd(h, iso)?,
+                faces: cadd(
+                    cadd(f, topo.num_interior_edges())?,
+                    topo.num_interior_vertices(),
+                )?,
+                indices: cadd(
+                    cadd(h, cmul(topo.num_interior_edges(), 4)?)?,
+                    topo.interior_valence_sum(),
+                )?,
             }
         }
-        Pattern::Dual => MeshSizes {
-            vertices: cadd(f, iso)?,
-            faces: topo.num_interior_vertices(),
-            indices: topo.interior_valence_sum(),
-        },
+        Pattern::MidEdge => {
+            dual_face_sizes(topo, 1)?;
+            let vb = topo.num_boundary_vertices();
+            MeshSizes {
+                vertices: cadd(cadd(e, vb)?, iso)?,
+                faces: cadd(cadd(f, topo.num_interior_vertices())?, vb)?,
+                indices: cadd(
+                    cadd(h, topo.interior_valence_sum())?,
+                    cadd(topo.boundary_valence_sum(), vb)?,
+                )?,
+            }
+        }
+        Pattern::Dual => {
+            dual_face_sizes(topo, 2)?;
+            no_double_neighbours(topo)?;
+            let vb = topo.num_boundary_vertices();
+            MeshSizes {
+                vertices: cadd(cadd(f, cmul(vb, 2)?)?, iso)?,
+                faces: cadd(topo.num_interior_vertices(), vb)?,
+                indices: cadd(
+                    topo.interior_valence_sum(),
+                    cadd(topo.boundary_valence_sum(), cmul(vb, 2)?)?,
+                )?,
+            }
+        }
         Pattern::VertexInsertion => {
             for vi in 0..v as u32 {
                 let n = topo.valence(vi)?;
@@ -139,6 +194,8 @@ pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSiz
             }
         }
         Pattern::DualTruncation => {
+            dual_face_sizes(topo, 0)?;
+            no_double_neighbours(topo)?;
             for vi in 0..v as u32 {
                 // Interior: its face points; boundary: face points and both boundary neighbours.
                 let k = topo.vertex_face_count(vi)?;
@@ -296,22 +353,42 @@ pub fn write_pattern(
                 w.end_face()?;
             }
             for v in 0..nv {
-                if topo.is_isolated(v)? || (topo.is_boundary_vertex(v)? && topo.valence(v)? < 3) {
+                if topo.is_isolated(v)? {
                     continue;
                 }
                 for s in topo.star(v) {
                     w.push(s.edge)?;
                 }
+                let r = topo.boundary_vertex_rank(v)?;
+                if r != NONE {
+                    w.push(ne + r)?;
+                }
                 w.end_face()?;
             }
         }
         Pattern::Dual => {
+            let vb = idx(topo.num_boundary_vertices())?;
             for v in 0..nv {
-                if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+                if topo.is_isolated(v)? {
                     continue;
                 }
-                for s in topo.star(v) {
-                    w.push(s.face)?;
+                let r = topo.boundary_vertex_rank(v)?;
+                if r == NONE {
+                    for s in topo.star(v) {
+                        w.push(s.face)?;
+                    }
+                } else {
+                    w.push(nf + r)?;
+                    let mut b1 = NONE;
+                    for s in topo.star(v) {
+                        if s.face == NONE {
+                            b1 = s.neighbour;
+                        } else {
+                            w.push(s.face)?;
+                        }
+                    }
+                    w.push(nf + topo.boundary_vertex_rank(b1)?)?;
+                    w.push(nf + vb + r)?;
                 }
                 w.end_face()?;
             }

@@ -5,9 +5,9 @@
 //! * Half-edge `h` **is corner `h`**: it starts at `indices[h]` and ends at the next corner of
 //!   its face. `next`, `prev` and `face` follow from the CSR offsets; `twin` is stored.
 //! * **Edges** are numbered in ascending `(min, max)` vertex-key order: the directed-edge table
-//!   is sorted with a hand-written heapsort on `(key, half-edge)` (reliability-anchors.md
-//!   §3.1: no hashing, no `sort_unstable`), so numbering never depends on input order beyond
-//!   the vertex indices. Each edge's representative half-edge runs from `min` to `max` when
+//!   is sorted by `(min, max, half-edge)` — a counting sort on `min`, then a hand-written
+//!   heapsort of each bucket (reliability-anchors.md §3.1: no hashing, no `sort_unstable`) —
+//!   so numbering never depends on input order beyond the vertex indices. Each edge's representative half-edge runs from `min` to `max` when
 //!   that direction exists (always, for interior edges), else it is the only half-edge.
 //! * **Stars** ([`Topology::star`]) are walked counter-clockwise (faces are CCW seen from
 //!   outside): `h → twin(prev(h))`. An interior vertex's star starts at its lowest-numbered
@@ -52,7 +52,7 @@ use crate::quat::{point_is_finite, Point};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// Scratch (`u32` entries) that [`Topology::build`] needs for a mesh with `num_vertices`
-/// vertices and `num_corners` corners: `4·corners + 2·vertices`.
+/// vertices and `num_corners` corners: `4·corners + 3·vertices`.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`] when the size does not fit `usize`.
@@ -61,7 +61,7 @@ pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<u
         .checked_mul(4)
         .ok_or(Error::new(Status::SizeOverflow))?;
     let b = num_vertices
-        .checked_mul(2)
+        .checked_mul(3)
         .ok_or(Error::new(Status::SizeOverflow))?;
     a.checked_add(b).ok_or(Error::new(Status::SizeOverflow))
 }
@@ -80,10 +80,12 @@ pub struct Topology<'m, 's> {
     edge_he: &'s [u32],
     vert_he: &'s [u32],
     valence: &'s [u32],
+    bnd_rank: &'s [u32],
     n_boundary_edges: usize,
     n_boundary_vertices: usize,
     n_isolated: usize,
     interior_spokes: usize,
+    boundary_spokes: usize,
     max_face: usize,
     min_face: usize,
 }
@@ -258,7 +260,8 @@ impl<'m, 's> Topology<'m, 's> {
         let (edge_of, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
         let (edge_he, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
         let (vert_he, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-        let (valence, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+        let (valence, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+        let (bnd_rank, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
 
         let offsets = mesh.offsets;
         let indices = mesh.indices;
@@ -274,10 +277,10 @@ impl<'m, 's> Topology<'m, 's> {
             }
         }
 
-        // Directed-edge table: half-edge ids sorted by undirected key, in the edge_he region.
-        for (i, slot) in edge_he.iter_mut().enumerate() {
-            *slot = i as u32;
-        }
+        // Directed-edge table: half-edge ids sorted by (min, max, half-edge), in the edge_he
+        // region. Counting sort by the smaller endpoint (bucket offsets and cursors in the
+        // still unused vertex regions), then a heapsort of each bucket by (max, half-edge):
+        // the same total order as one global sort, at a fraction of the cost.
         let face_of_ro: &[u32] = face_of;
         let ends = |h: u32| -> (u32, u32) {
             let a = indices.get(h as usize).copied().unwrap_or(NONE);
@@ -291,7 +294,39 @@ impl<'m, 's> Topology<'m, 's> {
             let (a, b) = ends(h);
             ((a.min(b) as u64) << 32) | b.max(a) as u64
         };
-        heapsort_by_key(edge_he, key);
+        for c in vert_he.iter_mut() {
+            *c = 0;
+        }
+        for h in 0..nh as u32 {
+            let (a, b) = ends(h);
+            let m = a.min(b) as usize;
+            set(vert_he, m, get(vert_he, m)? + 1)?;
+        }
+        let mut acc = 0u32;
+        for v in 0..nv {
+            let c = get(vert_he, v)?;
+            set(vert_he, v, acc)?;
+            set(valence, v, acc)?;
+            acc += c;
+        }
+        for h in 0..nh as u32 {
+            let (a, b) = ends(h);
+            let m = a.min(b) as usize;
+            let at = get(valence, m)?;
+            set(edge_he, at as usize, h)?;
+            set(valence, m, at + 1)?;
+        }
+        for v in 0..nv {
+            // Bucket v spans [start, cursor) after the placement.
+            let (a, b) = (get(vert_he, v)? as usize, get(valence, v)? as usize);
+            let bucket = edge_he.get_mut(a..b).ok_or(internal())?;
+            if bucket.len() > 1 {
+                heapsort_by_key(bucket, |h| {
+                    let (x, y) = ends(h);
+                    x.max(y) as u64
+                });
+            }
+        }
 
         let mut n_edges = 0usize;
         let mut n_boundary_edges = 0usize;
@@ -436,15 +471,19 @@ impl<'m, 's> Topology<'m, 's> {
         let mut n_boundary_vertices = 0usize;
         let mut n_isolated = 0usize;
         let mut interior_spokes = 0usize;
+        let mut boundary_spokes = 0usize;
         for v in 0..nv {
             let start = get(vert_he, v)?;
             let out = get(valence, v)?;
+            set(bnd_rank, v, NONE)?;
             if start == NONE {
                 n_isolated += 1;
                 continue;
             }
             let val = if get(twin, start as usize)? == NONE {
+                set(bnd_rank, v, n_boundary_vertices as u32)?;
                 n_boundary_vertices += 1;
+                boundary_spokes += out as usize + 1;
                 out + 1
             } else {
                 interior_spokes += out as usize;
@@ -456,8 +495,8 @@ impl<'m, 's> Topology<'m, 's> {
             set(valence, v, val)?;
         }
 
-        for (v, p) in mesh.positions.iter().enumerate() {
-            if !point_is_finite(p) {
+        for (v, p) in mesh.positions().enumerate() {
+            if !point_is_finite(&p) {
                 return Err(Error::at(Status::NonFiniteInput, v as u32));
             }
         }
@@ -471,10 +510,12 @@ impl<'m, 's> Topology<'m, 's> {
             edge_he: edge_he.get(..n_edges).ok_or(internal())?,
             vert_he,
             valence,
+            bnd_rank,
             n_boundary_edges,
             n_boundary_vertices,
             n_isolated,
             interior_spokes,
+            boundary_spokes,
             max_face,
             min_face,
         })
@@ -535,6 +576,11 @@ impl<'m, 's> Topology<'m, 's> {
         self.interior_spokes
     }
 
+    /// Sum of the valences of all boundary vertices.
+    pub fn boundary_valence_sum(&self) -> usize {
+        self.boundary_spokes
+    }
+
     /// Largest face size (0 for a mesh without faces).
     pub fn max_face_size(&self) -> usize {
         self.max_face
@@ -570,7 +616,7 @@ impl<'m, 's> Topology<'m, 's> {
 
     /// Position of vertex `v`.
     pub fn position(&self, v: u32) -> Result<Point> {
-        get(self.mesh.positions, v as usize)
+        self.mesh.position(v).ok_or(internal())
     }
 
     /// Start vertex of half-edge `h`.
@@ -649,6 +695,13 @@ impl<'m, 's> Topology<'m, 's> {
     pub fn is_boundary_vertex(&self, v: u32) -> Result<bool> {
         let h = self.vertex_half_edge(v)?;
         Ok(h != NONE && self.twin(h)? == NONE)
+    }
+
+    /// The rank of boundary vertex `v` among the boundary vertices in index order (`0..`
+    /// [`num_boundary_vertices`](Self::num_boundary_vertices)), [`NONE`] for other vertices.
+    /// Dual patterns number their boundary points with it.
+    pub fn boundary_vertex_rank(&self, v: u32) -> Result<u32> {
+        get(self.bnd_rank, v as usize)
     }
 
     /// Whether `v` is referenced by no face.

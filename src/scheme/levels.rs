@@ -7,11 +7,8 @@
 //! of level `k`, so no intermediate level has to be built to know its size. The plan's
 //! sizes are checked against what each step really writes.
 //!
-//! Limits: at most [`MAX_LEVELS`] levels. For [`Scheme::Dual`] and [`Scheme::Simplest`] on a
-//! mesh **with boundary**, the sizes beyond the first level depend on more than these counts
-//! (the dual loses its boundary ring; the mid-edge boundary erodes runs of one-face
-//! corners): a plan of more than one level for them is [`Status::InvalidArgument`]; run
-//! single steps with [`super::subdivide`] instead.
+//! Limits: at most [`MAX_LEVELS`] levels; a later level whose valence or face size would
+//! exceed the capacity is [`Status::ValenceTooHigh`] (no element: it does not exist yet).
 
 use super::linear::subdivide_size;
 use super::{subdivide, Scheme};
@@ -21,7 +18,7 @@ use crate::mesh::{
     cadd, cmul, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
 };
 use crate::quat::Point;
-use crate::MAX_VALENCE;
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// The largest number of levels of one [`subdivide_levels`] call.
 pub const MAX_LEVELS: usize = 16;
@@ -214,38 +211,40 @@ impl Stats {
                 max_face: 3,
                 max_dt: 6,
             },
-            // Closed meshes only (checked by the caller): faces ↔ vertices.
+            // Face points are interior with valence n. Boundary: edge midpoints (valence 3)
+            // and the old boundary vertices (valence 2).
             Pattern::Dual => Stats {
-                v: cadd(s.f, s.iso)?,
-                f: vi,
-                h: s.si,
-                e: s.e,
-                eb: 0,
+                v: cadd(cadd(s.f, cmul(s.eb, 2)?)?, s.iso)?,
+                f: cadd(vi, s.eb)?,
+                h: cadd(cadd(s.si, s.sb)?, cmul(s.eb, 2)?)?,
+                e: cadd(ei, cmul(s.eb, 3)?)?,
+                eb: cmul(s.eb, 2)?,
                 iso: s.iso,
                 si: s.h,
-                sb: 0,
+                sb: cmul(s.eb, 5)?,
                 max_vi: s.max_face,
-                max_vb: 0,
-                max_face: s.max_vi,
+                max_vb: some(s.eb > 0, 3),
+                max_face: s.max_vi.max(some(s.eb > 0, s.max_vb + 2)),
                 max_dt: 0,
             },
-            // Closed meshes only: midpoints are interior with valence 4.
+            // Interior edge midpoints: interior, valence 4; boundary edge midpoints: valence 4;
+            // old boundary vertices: valence 2.
             Pattern::MidEdge => Stats {
-                v: cadd(s.e, s.iso)?,
-                f: cadd(s.f, vi)?,
-                h: cadd(s.h, s.si)?,
-                e: s.h,
-                eb: 0,
+                v: cadd(cadd(s.e, s.eb)?, s.iso)?,
+                f: cadd(cadd(s.f, vi)?, s.eb)?,
+                h: cadd(cadd(s.h, s.si)?, cadd(s.sb, s.eb)?)?,
+                e: cadd(s.h, cmul(s.eb, 2)?)?,
+                eb: cmul(s.eb, 2)?,
                 iso: s.iso,
-                si: cmul(s.e, 4)?,
-                sb: 0,
-                max_vi: some(s.e > 0, 4),
-                max_vb: 0,
-                max_face: s.max_face.max(s.max_vi),
+                si: cmul(ei, 4)?,
+                sb: cmul(s.eb, 6)?,
+                max_vi: some(ei > 0, 4),
+                max_vb: some(s.eb > 0, 4),
+                max_face: s.max_face.max(s.max_vi).max(some(s.eb > 0, s.max_vb + 1)),
                 max_dt: 0,
             },
         };
-        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_VALENCE {
+        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_FACE_SIZE {
             return Err(Error::new(Status::ValenceTooHigh));
         }
         n.sizes().check()?;
@@ -259,8 +258,7 @@ impl Stats {
 ///
 /// # Errors
 /// Validation errors; those of [`subdivide_size`] for the first level;
-/// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or a multi-level Dual or
-/// Simplest plan on a mesh with boundary; [`Status::SizeOverflow`];
+/// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels; [`Status::SizeOverflow`];
 /// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`MAX_VALENCE`].
 pub fn plan(
     scheme: Scheme,
@@ -284,9 +282,6 @@ pub fn plan(
         return Ok(p);
     }
     let pattern = scheme.pattern();
-    if levels > 1 && matches!(pattern, Pattern::Dual | Pattern::MidEdge) && stats.eb > 0 {
-        return Err(Error::new(Status::InvalidArgument));
-    }
     // Level 1 exactly as the single step computes it (face types, per-vertex valences).
     let first = subdivide_size(scheme, &topo)?;
     let mut topo_max = topology_scratch_len(stats.v, stats.h)?;
@@ -421,8 +416,8 @@ pub fn subdivide_levels(
 }
 
 fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {
-    for (d, s) in out.positions.iter_mut().zip(mesh.positions) {
-        *d = *s;
+    for (d, s) in out.positions.iter_mut().zip(mesh.positions()) {
+        *d = s;
     }
     for (d, s) in out.offsets.iter_mut().zip(mesh.offsets) {
         *d = *s;

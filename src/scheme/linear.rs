@@ -104,14 +104,18 @@ fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
 }
 
 fn copy_old(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    for (v, p) in topo.mesh().positions.iter().enumerate() {
-        set(pos, v, *p)?;
+    for (v, p) in topo.mesh().positions().enumerate() {
+        set(pos, v, p)?;
     }
     Ok(())
 }
 
 /// Appends the isolated vertices, in index order, from `start` (dual schemes).
-fn append_isolated(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
+pub(crate) fn append_isolated(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    start: usize,
+) -> Result<()> {
     let mut k = start;
     for v in 0..topo.num_vertices() as u32 {
         if topo.is_isolated(v)? {
@@ -380,13 +384,30 @@ fn doo_sabin_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()>
     append_isolated(topo, pos, topo.num_half_edges())
 }
 
+/// Writes every boundary vertex at `start + rank` (boundary points of the dual patterns).
+pub(crate) fn boundary_vertices(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    start: usize,
+) -> Result<()> {
+    for v in 0..topo.num_vertices() as u32 {
+        let r = topo.boundary_vertex_rank(v)?;
+        if r != NONE {
+            set(pos, start + r as usize, topo.position(v)?)?;
+        }
+    }
+    Ok(())
+}
+
 fn simplest_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    for e in 0..topo.num_edges() as u32 {
+    let ne = topo.num_edges();
+    for e in 0..ne as u32 {
         let (a, b) = topo.edge_vertices(e)?;
         let m = simplest::edge_point(topo.position(a)?, topo.position(b)?);
         set(pos, e as usize, m)?;
     }
-    append_isolated(topo, pos, topo.num_edges())
+    boundary_vertices(topo, pos, ne)?;
+    append_isolated(topo, pos, ne + topo.num_boundary_vertices())
 }
 
 fn face_centroids(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
@@ -398,8 +419,19 @@ fn face_centroids(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> R
 }
 
 fn dual_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let nf = topo.num_faces();
+    let vb = topo.num_boundary_vertices();
     face_centroids(topo, pos, 0)?;
-    append_isolated(topo, pos, topo.num_faces())
+    for v in 0..topo.num_vertices() as u32 {
+        let r = topo.boundary_vertex_rank(v)?;
+        if r != NONE {
+            let (b0, _) = topo.boundary_neighbours(v)?;
+            let m = akleman::boundary_edge_point(topo.position(v)?, topo.position(b0)?);
+            set(pos, nf + r as usize, m)?;
+        }
+    }
+    boundary_vertices(topo, pos, nf + vb)?;
+    append_isolated(topo, pos, nf + 2 * vb)
 }
 
 fn vertex_insertion_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {

@@ -238,8 +238,8 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     fn copy_old(&mut self) -> Result<()> {
-        for (v, p) in self.topo.mesh().positions.iter().enumerate() {
-            set(self.pos, v, *p)?;
+        for (v, p) in self.topo.mesh().positions().enumerate() {
+            set(self.pos, v, p)?;
         }
         Ok(())
     }
@@ -389,14 +389,31 @@ impl Driver<'_, '_, '_, '_> {
                 set(self.pos, v as usize, q)?;
             }
         } else if start == 0 {
-            // Dual: isolated vertices follow the face points.
-            let mut k = self.topo.num_faces();
-            for v in 0..self.topo.num_vertices() as u32 {
-                if self.topo.is_isolated(v)? {
-                    set(self.pos, k, self.topo.position(v)?)?;
-                    k += 1;
+            // Dual: face points, then a point on each boundary vertex's outgoing boundary edge
+            // (the linear midpoint becomes the Möbius interpolating curve rule), then the
+            // boundary vertices themselves, then the isolated vertices (the linear layout).
+            let topo = self.topo;
+            let (nf, vb) = (topo.num_faces(), topo.num_boundary_vertices());
+            for v in 0..topo.num_vertices() as u32 {
+                let r = topo.boundary_vertex_rank(v)?;
+                if r == NONE {
+                    continue;
                 }
+                let h = topo.vertex_half_edge(v)?;
+                let (i0, i3) = self.boundary_outer(h)?;
+                let (a, b) = (topo.position(v)?, topo.position(topo.dest(h)?)?);
+                let k = nf + r as usize;
+                let q = match f4(topo.position(i0)?, a, b, topo.position(i3)?) {
+                    Ok(q) => q,
+                    Err(_) => {
+                        self.fallback(k)?;
+                        akleman::boundary_edge_point(a, b)
+                    }
+                };
+                set(self.pos, k, q)?;
             }
+            super::linear::boundary_vertices(topo, self.pos, nf + vb)?;
+            super::linear::append_isolated(topo, self.pos, nf + 2 * vb)?;
         }
         Ok(())
     }
@@ -722,14 +739,10 @@ impl Driver<'_, '_, '_, '_> {
         };
         self.blend_interior_edges(0, &linear)?;
         self.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;
-        let mut k = topo.num_edges();
-        for v in 0..topo.num_vertices() as u32 {
-            if topo.is_isolated(v)? {
-                set(self.pos, k, topo.position(v)?)?;
-                k += 1;
-            }
-        }
-        Ok(())
+        // Then the boundary vertices and the isolated vertices, as the linear layout.
+        let ne = topo.num_edges();
+        super::linear::boundary_vertices(topo, self.pos, ne)?;
+        super::linear::append_isolated(topo, self.pos, ne + topo.num_boundary_vertices())
     }
 
     // ---- Doo–Sabin ----

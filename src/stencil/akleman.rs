@@ -5,7 +5,10 @@
 //! Decisions (DESIGN.md: "decide, write it down"):
 //!
 //! * **Dual**: one vertex per face, its centroid; one face per interior vertex joining the
-//!   centroids of its faces counter-clockwise. Boundary vertices get no face.
+//!   centroids of its faces counter-clockwise. A boundary vertex keeps its position and gets
+//!   the face `(m0, c_0, …, c_{k−1}, m1, v)` with `m0`, `m1` the midpoints of its boundary
+//!   edges ([`boundary_edge_point`]): the boundary polygon is kept, refined at its midpoints
+//!   (the linear interpolating curve rule), and the Euler characteristic is preserved.
 //! * **Vertex insertion**: one vertex per face, its centroid; each n-gon becomes n triangles
 //!   `(v_i, v_{i+1}, c)`; old vertices and old edges stay.
 //! * **Dual truncation**: truncation cuts every corner at `t = 1/3` of its edges (each vertex
@@ -18,7 +21,7 @@
 //!   boundary edges are kept (their triangle `(a, b, c_f)`), so the boundary curve is
 //!   unchanged.
 
-use super::{centroid, lin2};
+use super::{centroid, lin2, midpoint};
 use crate::error::Result;
 use crate::quat::Point;
 
@@ -39,4 +42,9 @@ pub fn face_point(face: &[Point]) -> Result<Point> {
 /// [`crate::Status::TooFewPoints`] for an empty ring.
 pub fn truncated_vertex(v: Point, ring: &[Point]) -> Result<Point> {
     Ok(lin2(1.0 - TRUNCATION, v, TRUNCATION, centroid(ring)?))
+}
+
+/// The dual's point on a boundary edge `(a, b)`: its midpoint.
+pub fn boundary_edge_point(a: Point, b: Point) -> Point {
+    midpoint(a, b)
 }

@@ -16,8 +16,14 @@
 //!   `q_i` and `q_{i+1}`): the virtual point opposite `q_j` is [`virtual_point`],
 //!   `r_j = 4/n Σ q_i − (q_{j−1} + q_j + q_{j+1}) + ŵ (d_{j−2} + d_{j−1} + d_j + d_{j+1})
 //!   − 4ŵ/n Σ d_i` with `ŵ = w / (4 + w)`: the regular relation `q_{j+2} = Σ q − q_{j−1} − q_j
-//!   − q_{j+1}` with sums over the ring rescaled to four terms, and the diagonal correction of
-//!   Kobbelt's construction. It equals `q_{j+2}` for `n = 4`.
+//!   − q_{j+1}` with the ring sums rescaled to four terms, plus a diagonal correction that
+//!   vanishes on regular rings. It equals `q_{j+2}` for `n = 4`, is affine (weights sum to 1),
+//!   symmetric about `q_j`, and `mean_j r_j = mean_i q_i`. **Provenance**: Kobbelt 1996 was not
+//!   at hand; this form is the one of a public implementation of the scheme, and the sign of
+//!   the diagonal term was kept because it made the two directional face points (below) agree
+//!   better at valences 3, 6, 7 in a numerical experiment. Check it against the paper before
+//!   relying on bit-compatibility with another Kobbelt implementation at extraordinary
+//!   vertices; regular regions are exact either way.
 //! * Boundary vertex (any valence): the line through `(v, x)` ends at `v`; the virtual point
 //!   is the 4-point curve's end extrapolation `2v − x` (DESIGN.md, "Open ends": `P_−1 = 2P_0 −
 //!   P_1`).

@@ -2,7 +2,9 @@
 //! vertex is the midpoint of an old edge; the new faces are the face-faces and vertex-faces
 //! of [`crate::mesh::refine::Pattern::MidEdge`].
 //!
-//! On the boundary the new boundary is the polygon of the boundary-edge midpoints, the
-//! mid-edge (corner cutting at 1/2) curve rule.
+//! On the boundary, each boundary vertex keeps its position and closes its vertex-face, so the
+//! new boundary is the old boundary polygon refined at its edge midpoints (the linear
+//! interpolating curve rule; the mid-edge polygon alone would never refine a boundary loop,
+//! it has as many points as edges).
 
 pub use super::midpoint as edge_point;

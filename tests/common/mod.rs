@@ -390,3 +390,45 @@ pub fn read_off(path: &Path) -> std::result::Result<OwnedMesh, String> {
         indices,
     })
 }
+
+/// Writes an ASCII OFF file (positions with Rust's shortest round-trip formatting).
+pub fn write_off(path: &Path, m: &OwnedMesh) -> std::io::Result<()> {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let _ = writeln!(s, "OFF\n{} {} 0", m.positions.len(), m.num_faces());
+    for p in &m.positions {
+        let _ = writeln!(s, "{:?} {:?} {:?}", p[0], p[1], p[2]);
+    }
+    for f in m.faces() {
+        let _ = write!(s, "{}", f.len());
+        for i in f {
+            let _ = write!(s, " {i}");
+        }
+        s.push('\n');
+    }
+    std::fs::write(path, s)
+}
+
+/// An octahedron (all vertices valence 4), symmetric under every coordinate reflection.
+pub fn octahedron() -> OwnedMesh {
+    OwnedMesh::from_faces(
+        vec![
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ],
+        &[
+            vec![0, 2, 4],
+            vec![2, 1, 4],
+            vec![1, 3, 4],
+            vec![3, 0, 4],
+            vec![2, 0, 5],
+            vec![1, 2, 5],
+            vec![3, 1, 5],
+            vec![0, 3, 5],
+        ],
+    )
+}
