@@ -117,7 +117,7 @@ fn check_loaded(mesh: &Mesh, src: &Source) -> CliResult<()> {
                 let axis = ["x", "y", "z"][k];
                 let what = if c.is_nan() { "NaN" } else { "infinite" };
                 return Err(CliError::bad_input(format!(
-                    "{}: coordinate {axis} is {what} ({c})",
+                    "{}: coordinate {axis} is {what}",
                     src.at_vertex(v)
                 )));
             }
@@ -298,7 +298,7 @@ mod tests {
             2.0f64.sqrt(),
             1e-7,
             -1.40201e-05,
-            123456789.123456789,
+            123_456_789.123_456_78,
             1e300,
             -1e-300,
             f64::MIN_POSITIVE,

@@ -267,17 +267,17 @@ impl Topology {
         self.edge_uses[e] == 1
     }
 
-    /// Number of boundary loops: cycles of half-edges without a twin on edges used once.
-    pub fn boundary_loops(&self) -> usize {
+    /// The first half-edge of every boundary loop (cycles of half-edges on edges used once).
+    pub fn boundary_loop_starts(&self) -> Vec<u32> {
         let nc = self.indices.len();
         let is_b = |h: u32| self.edge_uses[self.edge_of[h as usize] as usize] == 1;
         let mut seen = vec![false; nc];
-        let mut loops = 0;
+        let mut loops = Vec::new();
         for h0 in 0..nc as u32 {
             if seen[h0 as usize] || !is_b(h0) {
                 continue;
             }
-            loops += 1;
+            loops.push(h0);
             let mut h = h0;
             loop {
                 seen[h as usize] = true;
@@ -354,6 +354,7 @@ impl Topology {
                     kind,
                     count,
                     examples,
+                    hint: None,
                 });
             }
         }
@@ -457,7 +458,7 @@ impl Topology {
                     d.same_direction.len(),
                 );
                 if let Some(last) = out.last_mut() {
-                    last.examples.push(format!(
+                    last.hint = Some(format!(
                         "reversing {} face(s) would orient the mesh consistently (first: {})",
                         flips.len(),
                         list(&flips[..flips.len().min(8)])
@@ -472,7 +473,7 @@ impl Topology {
                     d.same_direction.len(),
                 );
                 if let Some(last) = out.last_mut() {
-                    last.examples.push(
+                    last.hint = Some(
                         "no choice of face orientations is consistent: the surface is \
                          non-orientable (like a Möbius strip)"
                             .to_string(),
@@ -739,8 +740,10 @@ pub struct Finding {
     pub kind: &'static str,
     /// How many elements have it.
     pub count: usize,
-    /// Messages naming the first elements (file, line, element), and hints.
+    /// Messages naming the first elements (file, line, element).
     pub examples: Vec<String>,
+    /// What would fix it, where that is known.
+    pub hint: Option<String>,
 }
 
 impl Finding {
@@ -784,7 +787,7 @@ mod tests {
         assert!(kinds(&m).is_empty());
         let t = Topology::build(&m);
         assert_eq!(t.edges.len(), 12);
-        assert_eq!(t.boundary_loops(), 0);
+        assert_eq!(t.boundary_loop_starts().len(), 0);
         let (ring, closed) = t.star(0).unwrap();
         assert!(closed);
         assert_eq!(ring.len(), 3);
@@ -802,7 +805,7 @@ mod tests {
             .collect();
         let m = Mesh::from_faces(p, &[[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]]);
         let t = Topology::build(&m);
-        assert_eq!(t.boundary_loops(), 1);
+        assert_eq!(t.boundary_loop_starts().len(), 1);
         // Interior: from the lowest corner, counter-clockwise seen from +z.
         assert_eq!(t.star(4).unwrap(), (vec![3, 1, 5, 7], true));
         // Boundary: from the end of 1's outgoing boundary half-edge (1 → 2) to the start of
