@@ -33,6 +33,8 @@ struct Tokens<'a> {
     bytes: &'a [u8],
     pos: usize,
     line: u32,
+    /// The line of the last token returned (for messages at the end of the file).
+    last: u32,
     peeked: Option<Option<Tok<'a>>>,
 }
 
@@ -42,6 +44,7 @@ impl<'a> Tokens<'a> {
             bytes,
             pos: 0,
             line: 1,
+            last: 1,
             peeked: None,
         }
     }
@@ -88,10 +91,14 @@ impl<'a> Tokens<'a> {
     }
 
     fn next(&mut self) -> Option<Tok<'a>> {
-        match self.peeked.take() {
+        let t = match self.peeked.take() {
             Some(t) => t,
             None => self.scan(),
+        };
+        if let Some(t) = t {
+            self.last = t.line;
         }
+        t
     }
 
     fn peek(&mut self) -> Option<Tok<'a>> {
@@ -109,9 +116,9 @@ impl<'a> Tokens<'a> {
         }
     }
 
-    /// The current line (for messages at the end of the file).
+    /// The line of the last token read (for messages at the end of the file).
     fn line(&self) -> u32 {
-        self.line
+        self.last
     }
 }
 
@@ -468,7 +475,7 @@ mod tests {
     #[test]
     fn errors_name_line_and_element() {
         let e = err("OFF\n4 4 6\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n");
-        assert!(e.contains("t.off:10") && e.contains("face 3 of 4"), "{e}");
+        assert!(e.contains("t.off:9") && e.contains("face 3 of 4"), "{e}");
         let e = err(
             "OFF\n4 4 6\n1 1 1\n1 -1 x\n-1 1 -1\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n",
         );

@@ -121,48 +121,64 @@ impl PropertyAccess for Skip {
     }
 }
 
-fn parse_error(path: &Path, binary: bool, e: &ParseError) -> CliError {
-    let msg = format!("{e}");
-    // The crate prefixes "Line N: " and nests "Error: " parts; keep the innermost.
-    let msg = match (e.line(), msg.split_once(": ")) {
-        (Some(_), Some((_, rest))) if msg.starts_with("Line ") => rest.to_string(),
-        _ => msg,
-    };
-    let inner = msg.rsplit("Error: ").next().unwrap_or(&msg).trim();
-    let msg = if inner.is_empty() { msg.trim() } else { inner }.replace("\n\t", "; ");
-    match e.line() {
-        Some(l) if !binary => CliError::bad_input(format!("{}:{l}: {msg}", path.display())),
-        _ => CliError::bad_input(format!("{}: {msg}", path.display())),
-    }
-}
+/// An element span of an ASCII payload: name, first line, count.
+type Span = (String, usize, usize);
 
-/// Names the element on `line` of an ASCII file and quotes the line, for parse errors.
-fn with_element(err: CliError, bytes: &[u8], spans: &[(String, usize, usize)]) -> CliError {
-    let Some((file, rest)) = err.message.split_once(':') else {
-        return err;
+/// A message for an error of the crate: `path:line: element i: cannot read 'text': why` for
+/// ASCII element lines, `path: what: why` otherwise. The crate nests its messages as
+/// `Line N: outer\n\tString: …\n\tError: inner`; the outer and innermost parts are kept.
+fn parse_error(
+    path: &Path,
+    binary: bool,
+    e: &ParseError,
+    bytes: &[u8],
+    spans: &[Span],
+) -> CliError {
+    let full = format!("{e}");
+    let full = match e.line() {
+        Some(l) => full
+            .strip_prefix(&format!("Line {l}: "))
+            .unwrap_or(&full)
+            .to_string(),
+        None => full,
     };
-    let Some((num, msg)) = rest.split_once(':') else {
-        return err;
+    let outer = full.split("\n\t").next().unwrap_or("").trim().to_string();
+    let inner = full
+        .rsplit("Error: ")
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string();
+    let why = if inner.is_empty() || inner == outer {
+        outer.clone()
+    } else if binary || e.line().is_none() {
+        format!("{outer}: {inner}")
+    } else {
+        inner.clone()
     };
-    let Ok(line) = num.parse::<usize>() else {
-        return err;
-    };
-    let Some((name, first, count)) = spans
-        .iter()
-        .find(|(_, first, count)| (*first..first + count).contains(&line))
-    else {
-        return err;
-    };
-    let text = bytes
-        .split(|&b| b == b'\n')
-        .nth(line - 1)
-        .map(|l| String::from_utf8_lossy(l).trim().to_string())
-        .unwrap_or_default();
-    let _ = count;
-    CliError::bad_input(format!(
-        "{file}:{line}: {name} {}: cannot read '{text}':{msg}",
-        line - first
-    ))
+    let p = path.display();
+    match e.line() {
+        Some(line) if !binary => {
+            let span = spans
+                .iter()
+                .find(|(_, first, count)| (*first..first.saturating_add(*count)).contains(&line));
+            match span {
+                Some((name, first, _)) => {
+                    let text = bytes
+                        .split(|&b| b == b'\n')
+                        .nth(line.saturating_sub(1))
+                        .map(|l| String::from_utf8_lossy(l).trim().to_string())
+                        .unwrap_or_default();
+                    CliError::bad_input(format!(
+                        "{p}:{line}: {name} {}: cannot read '{text}': {why}",
+                        line - first
+                    ))
+                }
+                None => CliError::bad_input(format!("{p}:{line}: {why}")),
+            }
+        }
+        _ => CliError::bad_input(format!("{p}: {why}")),
+    }
 }
 
 fn is_coordinate_type(t: &PropertyType) -> bool {
@@ -177,7 +193,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let mut reader = Reader::new(BufReader::new(bytes));
     let header = Parser::<Skip>::new()
         .read_header(&mut reader)
-        .map_err(|e| parse_error(path, false, &e))?;
+        .map_err(|e| parse_error(path, false, &e, bytes, &[]))?;
     let binary = header.encoding != Encoding::Ascii;
     let Some(vdef) = header.elements.get("vertex") else {
         return Err(CliError::bad_input(format!(
@@ -223,13 +239,6 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
         line = line.saturating_add(def.count);
     }
     line = first_payload_line;
-    let fix = |e: CliError| {
-        if binary {
-            e
-        } else {
-            with_element(e, bytes, &spans)
-        }
-    };
     let mut verts: Vec<VertexRow> = Vec::new();
     let mut faces: Vec<FaceRow> = Vec::new();
     for (name, def) in &header.elements {
@@ -245,18 +254,18 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
                 vline = line;
                 verts = Parser::<VertexRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| fix(parse_error(path, binary, &e)))?;
+                    .map_err(|e| parse_error(path, binary, &e, bytes, &spans))?;
             }
             "face" => {
                 fline = line;
                 faces = Parser::<FaceRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| fix(parse_error(path, binary, &e)))?;
+                    .map_err(|e| parse_error(path, binary, &e, bytes, &spans))?;
             }
             _ => {
                 Parser::<Skip>::new()
                     .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| fix(parse_error(path, binary, &e)))?;
+                    .map_err(|e| parse_error(path, binary, &e, bytes, &spans))?;
             }
         }
         line = line.saturating_add(def.count);
