@@ -156,15 +156,15 @@ fn generated_bad_files_name_file_line_and_element() {
     let tet_v = "1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n";
     let ply_head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
     let cases: Vec<(&str, String, &str)> = vec![
-        ("nan.off", format!("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 nan\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n"), "nan.off:5: vertex 2: coordinate z is NaN"),
-        ("word.off", format!("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 one\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n"), "word.off:5: vertex 2: coordinate z is not a number: 'one'"),
+        ("nan.off", "OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 nan\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n".to_string(), "nan.off:5: vertex 2: coordinate z is NaN"),
+        ("word.off", "OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 one\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n".to_string(), "word.off:5: vertex 2: coordinate z is not a number: 'one'"),
         ("neg.off", format!("OFF\n4 4 0\n{tet_v}3 0 1 2\n3 0 -3 1\n3 0 2 3\n3 1 3 2\n"), "neg.off:8: face 1: negative index -3"),
         ("range.off", format!("OFF\n4 4 0\n{tet_v}3 0 1 2\n3 0 3 1\n3 0 2 7\n3 1 3 2\n"), "range.off:9: face 2: index 7 is out of range"),
         ("onebased.off", format!("OFF\n4 4 0\n{tet_v}3 1 2 3\n3 1 4 2\n3 1 3 4\n3 2 4 3\n"), "one-based"),
         ("short.off", format!("OFF\n4 4 0\n{tet_v}3 0 1 2\n3 0 3 1\n"), "short.off:8: the file ends in face 2 of 4"),
         ("extra.off", format!("OFF\n4 4 0\n{tet_v}3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n3 0 1 3\n"), "extra.off:11: unexpected '3' after the last face"),
         ("binary.off", "OFF BINARY\n".to_string(), "binary OFF is not supported"),
-        ("nm.off", format!("OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"), "nm.off:10: face 2: edge (0, 1) is shared by 3 faces"),
+        ("nm.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n".to_string(), "nm.off:10: face 2: edge (0, 1) is shared by 3 faces"),
         ("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n".to_string(), "zero.obj:4: face 0: index 0 is invalid"),
         ("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -9\n".to_string(), "rel.obj:5: face 1: relative index -9"),
         ("inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n".to_string(), "inf.obj:2: vertex 1: coordinate y is infinite"),

@@ -117,7 +117,7 @@ impl<'a> Tokens<'a> {
     }
 
     /// The line of the last token read (for messages at the end of the file).
-    fn line(&self) -> u32 {
+    fn last_line(&self) -> u32 {
         self.last
     }
 }
@@ -227,7 +227,7 @@ fn skip(ctx: &Ctx<'_>, toks: &mut Tokens<'_>, v: u64, n: usize, what: &str) -> C
     for _ in 0..n {
         let t = toks.next().ok_or_else(|| {
             ctx.err(
-                toks.line(),
+                toks.last_line(),
                 format_args!("the file ends in the {what} of vertex {v}"),
             )
         })?;
@@ -249,9 +249,9 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let ctx = Ctx { path };
     let mut toks = Tokens::new(bytes);
     let extras = keyword(&ctx, &mut toks)?;
-    let nv = parse_count(&ctx, toks.next(), "vertex count", toks.line())?;
+    let nv = parse_count(&ctx, toks.next(), "vertex count", toks.last_line())?;
     let t_nf = toks.next();
-    let nf = parse_count(&ctx, t_nf, "face count", toks.line())?;
+    let nf = parse_count(&ctx, t_nf, "face count", toks.last_line())?;
     if let Some(t) = t_nf {
         // The edge count, when it is on the line of the face count.
         if let Some(e) = toks.next_on_line(t.line) {
@@ -285,7 +285,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
         for (k, c) in p.iter_mut().enumerate() {
             let t = toks.next().ok_or_else(|| {
                 ctx.err(
-                    toks.line(),
+                    toks.last_line(),
                     format_args!(
                         "the file ends in vertex {v} of {nv} (truncated, or the header's \
                          vertex count is wrong)"
@@ -329,7 +329,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     for f in 0..nf {
         let eof = |toks: &Tokens<'_>| {
             ctx.err(
-                toks.line(),
+                toks.last_line(),
                 format_args!(
                     "the file ends in face {f} of {nf} (truncated, or the header's face count \
                      is wrong)"

@@ -142,7 +142,13 @@ fn parse_error(
             .to_string(),
         None => full,
     };
-    let outer = full.split("\n\t").next().unwrap_or("").trim().to_string();
+    let outer = full
+        .split("\n\t")
+        .next()
+        .unwrap_or("")
+        .trim()
+        .trim_end_matches('.')
+        .to_string();
     let inner = full
         .rsplit("Error: ")
         .next()
@@ -157,23 +163,42 @@ fn parse_error(
         inner.clone()
     };
     let p = path.display();
+    let line_text = |line: usize| {
+        bytes
+            .split(|&b| b == b'\n')
+            .nth(line.saturating_sub(1))
+            .map(|l| String::from_utf8_lossy(l).trim().to_string())
+            .unwrap_or_default()
+    };
+    // The grammar's "error at 1:COL: expected one of …" says which column is malformed.
+    let why = match why.strip_prefix("error at 1:") {
+        Some(rest) => {
+            let col = rest.split(':').next().unwrap_or("?");
+            format!("malformed or missing value at column {col}")
+        }
+        None => why,
+    };
+    let why = why.trim_end_matches('.').to_string();
+    if e.kind() == std::io::ErrorKind::UnexpectedEof {
+        return CliError::bad_input(format!(
+            "{p}: the file ends early (truncated, or the header's counts are wrong): {why}"
+        ));
+    }
     match e.line() {
         Some(line) if !binary => {
             let span = spans
                 .iter()
                 .find(|(_, first, count)| (*first..first.saturating_add(*count)).contains(&line));
             match span {
-                Some((name, first, _)) => {
-                    let text = bytes
-                        .split(|&b| b == b'\n')
-                        .nth(line.saturating_sub(1))
-                        .map(|l| String::from_utf8_lossy(l).trim().to_string())
-                        .unwrap_or_default();
-                    CliError::bad_input(format!(
-                        "{p}:{line}: {name} {}: cannot read '{text}': {why}",
-                        line - first
-                    ))
-                }
+                Some((name, first, _)) => CliError::bad_input(format!(
+                    "{p}:{line}: {name} {}: cannot read '{}': {why}",
+                    line - first,
+                    line_text(line)
+                )),
+                None if spans.is_empty() => CliError::bad_input(format!(
+                    "{p}:{line}: invalid PLY header line '{}'",
+                    line_text(line)
+                )),
                 None => CliError::bad_input(format!("{p}:{line}: {why}")),
             }
         }
