@@ -1,6 +1,8 @@
 //! Progress bars that appear only on runs longer than about a second, only on a terminal,
 //! and never with `--quiet`.
 
+use std::sync::mpsc;
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -65,6 +67,59 @@ impl Progress {
     pub fn finish(self) {
         if let Some(bar) = self.bar {
             bar.finish_and_clear();
+        }
+    }
+}
+
+/// A spinner for steps that cannot count their progress (reading a file, building the
+/// topology): shown by a helper thread only once the command has run for about a second.
+#[derive(Debug)]
+pub struct Spinner {
+    stop: Option<mpsc::Sender<()>>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Spinner {
+    /// Starts the spinner's thread (nothing at all when `enabled` is false).
+    pub fn start(enabled: bool, started: Instant, message: &'static str) -> Spinner {
+        if !enabled {
+            return Spinner {
+                stop: None,
+                thread: None,
+            };
+        }
+        let (tx, rx) = mpsc::channel::<()>();
+        let wait = DELAY.saturating_sub(started.elapsed());
+        let thread = std::thread::Builder::new()
+            .name("spinner".into())
+            .spawn(move || {
+                if rx.recv_timeout(wait) != Err(mpsc::RecvTimeoutError::Timeout) {
+                    return; // stopped in time
+                }
+                let bar = ProgressBar::new_spinner();
+                if let Ok(style) = ProgressStyle::with_template("{msg:>12} {spinner} {elapsed}") {
+                    bar.set_style(style);
+                }
+                bar.set_message(message);
+                bar.enable_steady_tick(Duration::from_millis(120));
+                let _ = rx.recv();
+                bar.finish_and_clear();
+            })
+            .ok();
+        Spinner {
+            stop: Some(tx),
+            thread,
+        }
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        if let Some(tx) = self.stop.take() {
+            let _ = tx.send(());
+        }
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
         }
     }
 }

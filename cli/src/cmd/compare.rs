@@ -112,14 +112,16 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             args.tol
         )));
     }
+    let spinner = ctx.spinner("reading");
     let (a, _) = read_mesh(&args.a)?;
     let (b, _) = read_mesh(&args.b)?;
+    let grid = Grid::new(&b.positions);
+    drop(spinner);
     let same_counts = a.num_vertices() == b.num_vertices()
         && a.num_faces() == b.num_faces()
         && a.indices.len() == b.indices.len();
 
     // Match every vertex of A to its nearest in B.
-    let grid = Grid::new(&b.positions);
     let mut used = vec![false; b.num_vertices()];
     let mut map = vec![u32::MAX; a.num_vertices()];
     let mut max_d2: f64 = 0.0;

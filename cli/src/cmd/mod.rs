@@ -13,7 +13,7 @@ use std::time::Instant;
 use crate::error::{CliError, CliResult};
 use crate::io::read_mesh;
 use crate::mesh::Mesh;
-use crate::progress::Progress;
+use crate::progress::{Progress, Spinner};
 use crate::topology::{Finding, Severity, Topology};
 
 /// What every command gets from the command line's global options.
@@ -26,6 +26,11 @@ pub struct Ctx {
 }
 
 impl Ctx {
+    /// A spinner for a step without a count (dropped: gone).
+    pub fn spinner(&self, message: &'static str) -> Spinner {
+        Spinner::start(!self.quiet, self.started, message)
+    }
+
     /// A progress bar over `total` steps.
     pub fn progress(&self, total: usize, message: &'static str) -> Progress {
         Progress::new(!self.quiet, self.started, total as u64, message)
@@ -93,9 +98,11 @@ pub struct Loaded {
 /// # Errors
 /// Those of [`read_mesh`]; exit 2 when the policy refuses the mesh.
 pub fn load(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
+    let spinner = ctx.spinner("reading");
     let (mesh, source) = read_mesh(path)?;
     let topo = Topology::build(&mesh);
     let findings = topo.findings(&mesh, &source);
+    drop(spinner);
     let refused = |f: &Finding| match policy {
         Policy::Strict => true,
         Policy::Default => f.severity == Severity::Error,
