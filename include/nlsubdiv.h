@@ -35,6 +35,51 @@
 #define NLS_VERSION_PATCH 0
 
 /**
+ * Curve scheme: the linear interpolating 4-point scheme (Dyn–Levin–Gregory, `w = 1/16`).
+ */
+#define NLS_CURVE_FOUR_POINT 0
+
+/**
+ * Curve scheme: the cubic B-spline scheme (mask `(1, 6, 1)/8`, midpoints); open curves keep
+ * their end points.
+ */
+#define NLS_CURVE_BSPLINE 1
+
+/**
+ * Curve scheme: Möbius interpolating, edge points `F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`
+ * (seed 000 §4.4.1). Circle and sphere preserving, Möbius-equivariant.
+ */
+#define NLS_CURVE_MOBIUS_INTERPOLATING 2
+
+/**
+ * Curve scheme: Möbius approximating, edge points as above, vertex points
+ * `F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})` (seed 000 §4.4.1).
+ */
+#define NLS_CURVE_MOBIUS_APPROXIMATING 3
+
+/**
+ * Curve scheme: the circle blend of seed 003 §2 (interpolating, circle preserving).
+ */
+#define NLS_CURVE_CIRCLE_BLEND 4
+
+/**
+ * Curve scheme: differential-space subdivision (seed 001 §3.5) with the 4-point scheme on
+ * the differential polygon.
+ */
+#define NLS_CURVE_DIFFERENTIAL_FOUR_POINT 5
+
+/**
+ * Curve scheme: differential-space subdivision (seed 001 §3.5) with the cubic B-spline
+ * scheme on the differential polygon.
+ */
+#define NLS_CURVE_DIFFERENTIAL_BSPLINE 6
+
+/**
+ * "No element" in `out_element` of [`nls_curve_subdivide`].
+ */
+#define NLS_NO_ELEMENT 4294967295
+
+/**
  * Star kind: interior vertex, cyclic ring (seed 000 §4.2).
  */
 #define NLS_STAR_INTERIOR 0
@@ -215,10 +260,7 @@ typedef struct nls_canonical_form {
     uint32_t kind;
 } nls_canonical_form;
 
-/**
- * Every status, in code order. Used by tests and by the C ABI's `nls_status_str`.
- */
-#define nls_status_ALL { nls_status_Ok, nls_status_NullParameter, nls_status_MisalignedPointer, nls_status_SizeOverflow, nls_status_AliasingBuffers, nls_status_BadOffsets, nls_status_FaceTooSmall, nls_status_IndexOutOfRange, nls_status_RepeatedVertex, nls_status_NonManifoldEdge, nls_status_InconsistentOrientation, nls_status_NonManifoldVertex, nls_status_DuplicateFace, nls_status_NonFiniteInput, nls_status_NumericalFailure, nls_status_DegenerateGeometry, nls_status_ValenceTooHigh, nls_status_UnsupportedFaceType, nls_status_BufferTooSmall, nls_status_FpEnvironment, nls_status_NotConverged, nls_status_InvalidArgument, nls_status_TooFewPoints, nls_status_FallbackInStrictMode, }
+
 
 
 
@@ -237,6 +279,68 @@ uint32_t nls_version(void);
  * `"unknown status"`. The pointer is valid for the life of the program; never free it.
  */
 const char *nls_status_str(uint32_t status);
+
+/**
+ * The exact number of points after `levels` levels of any curve scheme:
+ * `count·2^levels` (closed) or `(count − 1)·2^levels + 1` (open). `closed` is 0 or 1.
+ *
+ * Errors: `NLS_STATUS_TOO_FEW_POINTS` (fewer than 3 points closed, 2 open),
+ * `NLS_STATUS_SIZE_OVERFLOW`, `NLS_STATUS_INVALID_ARGUMENT` (`closed` not 0 or 1),
+ * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`.
+ */
+nls_status nls_curve_refined_len(size_t count, uint32_t closed, uint32_t levels, size_t *out_len);
+
+/**
+ * The number of scratch points [`nls_curve_subdivide`] needs: the size of level
+ * `levels − 1` when `levels ≥ 2` (0 below) for the local schemes, and already for
+ * `levels = 1` for the differential schemes (their differential polygon needs a buffer).
+ *
+ * Errors: as [`nls_curve_refined_len`]; `NLS_STATUS_INVALID_ARGUMENT` for an unknown scheme.
+ */
+nls_status nls_curve_scratch_len(uint32_t scheme, size_t count, uint32_t closed, uint32_t levels, size_t *out_len);
+
+/**
+ * Subdivides the curve `points[0..count]` (packed `x, y, z`) `levels` times with `scheme`
+ * (`NLS_CURVE_*`), closed (`closed = 1`) or open (`closed = 0`).
+ *
+ * The final level is written to `out`, which holds `out_capacity` points
+ * (`3*out_capacity` doubles, at least [`nls_curve_refined_len`]); intermediate levels
+ * ping-pong between `out` and `scratch` (`scratch_capacity` points, at least
+ * [`nls_curve_scratch_len`]; NULL with capacity 0 when that is 0). No buffer may overlap
+ * another: in-place calls are not supported. `levels = 0` copies the input.
+ *
+ * On success `*out_count` is the number of points written. On `NLS_STATUS_BUFFER_TOO_SMALL`
+ * `*out_count` is the size needed by the first buffer that is too small (`out` is checked
+ * before `scratch`). Otherwise `*out_count` is not written. The contents of `out` and
+ * `scratch` are unspecified after an error.
+ *
+ * `out_element` may be NULL. Otherwise it receives, on failure only (the one exception to
+ * "written only on success"), the element at fault or `NLS_NO_ELEMENT`: for
+ * `NLS_STATUS_NON_FINITE_INPUT` the index of the point; for `NLS_STATUS_DEGENERATE_GEOMETRY`
+ * and `NLS_STATUS_NUMERICAL_FAILURE` the input point that starts the input segment in which
+ * the failure arose.
+ *
+ * Repeated consecutive points: the linear and differential schemes accept them, the Möbius
+ * schemes reproduce them (F4's coincident rules), the circle blend returns
+ * `NLS_STATUS_DEGENERATE_GEOMETRY`.
+ *
+ * Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `closed` not 0 or 1),
+ * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
+ * `NLS_STATUS_TOO_FEW_POINTS`, `NLS_STATUS_BUFFER_TOO_SMALL`, `NLS_STATUS_ALIASING_BUFFERS`,
+ * `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,
+ * `NLS_STATUS_DEGENERATE_GEOMETRY`, `NLS_STATUS_NUMERICAL_FAILURE`.
+ */
+nls_status nls_curve_subdivide(uint32_t scheme,
+                               const double *points_xyz,
+                               size_t count,
+                               uint32_t closed,
+                               uint32_t levels,
+                               double *out,
+                               size_t out_capacity,
+                               double *scratch,
+                               size_t scratch_capacity,
+                               size_t *out_count,
+                               uint32_t *out_element);
 
 /**
  * The identity map.

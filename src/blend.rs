@@ -26,11 +26,19 @@ struct Frame {
 
 impl Frame {
     fn of(points: &[Point]) -> Frame {
+        let inv_n = 1.0 / points.len() as f64;
         let mut centre = [0.0; 3];
         for p in points {
             centre = add(centre, *p);
         }
-        centre = scale(centre, 1.0 / points.len() as f64);
+        centre = scale(centre, inv_n);
+        if !point_is_finite(&centre) {
+            // The sum overflowed (coordinates near f64::MAX): average the scaled points instead.
+            centre = [0.0; 3];
+            for p in points {
+                centre = add(centre, scale(*p, inv_n));
+            }
+        }
         let mut size: f64 = 0.0;
         for (i, p) in points.iter().enumerate() {
             for q in points.iter().skip(i + 1) {
@@ -40,7 +48,9 @@ impl Frame {
         Frame { centre, size }
     }
     fn to_local(self, p: Point) -> Point {
-        scale(sub(p, self.centre), 1.0 / self.size)
+        // Divide (rather than multiply by 1/size, which overflows for a subnormal size).
+        let d = sub(p, self.centre);
+        [d[0] / self.size, d[1] / self.size, d[2] / self.size]
     }
     fn to_world(self, p: Point) -> Point {
         add(self.centre, scale(p, self.size))
@@ -102,6 +112,25 @@ fn sqrt_or_axis(q: Quat, n: Point) -> Option<Quat> {
     q.sqrt()
 }
 
+/// The unit imaginary part of the quaternion of `qs` farthest from real (largest
+/// `|Im q| / |q|`, the first on ties), or `None` when all are real.
+fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
+    let mut best: Option<(f64, Quat)> = None;
+    for q in qs {
+        let (im, abs) = (q.abs_im(), q.abs());
+        if !(im > 0.0 && abs.is_finite()) {
+            continue;
+        }
+        let ratio = im / abs;
+        if best.is_none_or(|(r, _)| ratio > r) {
+            best = Some((ratio, *q));
+        }
+    }
+    let (_, q) = best?;
+    let im = q.abs_im();
+    Some([q.x / im, q.y / im, q.z / im])
+}
+
 /// Solves `cr[e, a, b, p] = χ` for `p` (local frame).
 fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
@@ -136,7 +165,8 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 ///
 /// # Errors
 /// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`] when
-/// the new point is at infinity.
+/// the new point is at infinity; [`Status::NumericalFailure`] when finite inputs overflow
+/// (points more than `f64::MAX` apart, or a result beyond it).
 pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
@@ -195,13 +225,21 @@ pub fn noncircularity(a: Point, b: Point, c: Point, d: Point) -> Result<f64> {
 ///
 /// Möbius-equivariant (all cross-ratios start at `e`), sphere preserving for six cospherical
 /// points (Lemma 4.2). `b = e` (within 1e-13 × the diameter of the six points) gives `b`.
-/// A negative-real `X`, `Z` or `r` takes the root `√|·| [0, n]` with `n` the normal of the
-/// plane through `a, b, e`, as F4 does. The real part of the solution, zero for cospherical
+/// A negative-real `X`, `Z` or `r` takes the root `√|·| [0, n]` with `n` the unit imaginary
+/// part of whichever of `X`, `Y`, `Z` is farthest from real (largest `|Im|/|·|`, first in
+/// that order on ties). All three start at `e`, so a Möbius map turns their imaginary parts
+/// by one and the same rotation (seed 000 §3.2), and for cospherical points they all point
+/// along the sphere's normal at `e` (Appendix A, Lemma A.1): this keeps F6 Möbius-equivariant
+/// and sphere preserving there. Only when all three are real (the six points cocircular in
+/// pairs of four) is `n` the normal of the plane through `a, b, e`, as F4 does, with the
+/// same documented discontinuity. The real part of the solution, zero for cospherical
 /// points and observed to be zero otherwise (the paper has no proof), is dropped.
 ///
 /// # Errors
 /// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when a cross-ratio is undefined
-/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity.
+/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity;
+/// [`Status::NumericalFailure`] when finite inputs overflow (points more than `f64::MAX`
+/// apart, or a result beyond it).
 pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
     if ![a, b, c, d, e, f].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
@@ -215,10 +253,10 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     }
     let degenerate = Error::new(Status::DegenerateGeometry);
     let [la, lb, lc, ld, le, lf] = [a, b, c, d, e, f].map(|p| frame.to_local(p));
-    let n = plane_normal(la, lb, le);
     let x = cross_ratio(le, la, lb, ld)?;
     let y = cross_ratio(le, la, lb, lf)?;
     let z = cross_ratio(le, lc, lb, lf)?;
+    let n = imaginary_axis(&[x, y, z]).unwrap_or_else(|| plane_normal(la, lb, le));
     let sx = sqrt_or_axis(x, n).ok_or(degenerate)?;
     let sz = sqrt_or_axis(z, n).ok_or(degenerate)?;
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
@@ -422,6 +460,66 @@ mod tests {
         ];
         let p = face_point(&verts, &cands).unwrap();
         assert!((norm(p) - 1.0).abs() < 1e-12, "{}", norm(p));
+    }
+
+    #[test]
+    fn f4_at_the_ends_of_the_f64_range() {
+        // Subnormal coordinates: the frame size is subnormal and 1/size overflows; the inputs
+        // are finite, so the answer must not be NonFiniteInput.
+        let t = 5e-324;
+        let p = f4([0.0; 3], [0.0, t, 0.0], [t, 0.0, 0.0], [0.0, 0.0, t]).unwrap();
+        assert!(point_is_finite(&p));
+        // Coordinates near f64::MAX whose sum overflows but whose spread does not.
+        let m = f64::MAX;
+        let (a, b, c, d) = (
+            [0.9 * m, 0.0, 0.0],
+            [0.8 * m, 0.1 * m, 0.0],
+            [0.7 * m, 0.1 * m, 0.1 * m],
+            [0.6 * m, 0.0, 0.1 * m],
+        );
+        let p = f4(a, b, c, d).unwrap();
+        assert!(point_is_finite(&p));
+        let q = f6(
+            a,
+            b,
+            c,
+            d,
+            [0.8 * m, 0.05 * m, 0.0],
+            [0.75 * m, 0.0, 0.05 * m],
+        )
+        .unwrap();
+        assert!(point_is_finite(&q));
+    }
+
+    #[test]
+    fn f6_with_a_negative_real_r_stays_on_the_sphere_and_commutes() {
+        // Six coplanar points with r = (√X)⁻¹ Y (√Z)⁻¹ = −1 exactly: d is solved from
+        // √X = −Y (√Z)⁻¹ (real part > 0 for these points).
+        let (a, b, c) = ([-1.0, 0.1, 0.0], [0.0; 3], [1.0, -0.05, 0.0]);
+        let (e, f) = ([-1.987, 0.7, 0.0], [-2.0, -2.0, 0.0]);
+        let y = cross_ratio(e, a, b, f).unwrap();
+        let sz = cross_ratio(e, c, b, f).unwrap().sqrt().unwrap();
+        let sx = -(y * sz.inverse().unwrap());
+        assert!(sx.w > 0.1);
+        let d = solve_cross_ratio(a, b, e, sx * sx).unwrap();
+        let x = cross_ratio(e, a, b, d).unwrap();
+        let r = x.sqrt().unwrap().inverse().unwrap() * y * sz.inverse().unwrap();
+        assert!(is_negative_real(r), "{r:?}");
+        let p = f6(a, b, c, d, e, f).unwrap();
+        assert!(p[2].abs() < 1e-15, "{p:?}");
+        // An inversion maps the plane z = 0 to a sphere through its centre m; r stays a
+        // negative real, and the new point must stay on that sphere and commute with the map.
+        let (m, rad) = ([0.3, -0.2, 0.7], 0.9);
+        let inv = crate::mobius::MobiusMap::inversion(m, rad);
+        let im = [a, b, c, d, e, f].map(|q| inv.apply(q).unwrap());
+        let q = f6(im[0], im[1], im[2], im[3], im[4], im[5]).unwrap();
+        let big_r = rad * rad / (2.0 * m[2]);
+        let centre = [m[0], m[1], m[2] - big_r];
+        assert!(
+            (dist(q, centre) - big_r).abs() < 1e-13,
+            "{q:?} off the sphere"
+        );
+        assert!(dist(q, inv.apply(p).unwrap()) < 1e-13, "{q:?}");
     }
 
     #[test]

@@ -70,8 +70,8 @@ pub enum Status {
 }
 
 impl Status {
-    /// Every status, in code order. Used by tests and by the C ABI's `nls_status_str`.
-    pub const ALL: [Status; 24] = [
+    /// Every status, in code order (private so that cbindgen does not export it).
+    const LIST: [Status; 24] = [
         Status::Ok,
         Status::NullParameter,
         Status::MisalignedPointer,
@@ -98,6 +98,11 @@ impl Status {
         Status::FallbackInStrictMode,
     ];
 
+    /// Every status, in code order.
+    pub const fn all() -> &'static [Status] {
+        &Status::LIST
+    }
+
     /// The stable numeric code.
     pub const fn code(self) -> u32 {
         self as u32
@@ -105,7 +110,7 @@ impl Status {
 
     /// The status for a numeric code, or `None` for a code that is not assigned.
     pub fn from_code(code: u32) -> Option<Status> {
-        Status::ALL.iter().copied().find(|s| s.code() == code)
+        Status::all().iter().copied().find(|s| s.code() == code)
     }
 
     /// A static, human-readable description (the text of `nls_status_str`).
@@ -246,9 +251,9 @@ mod tests {
 
     #[test]
     fn codes_round_trip_and_are_unique() {
-        for (i, s) in Status::ALL.iter().enumerate() {
+        for (i, s) in Status::all().iter().enumerate() {
             assert_eq!(Status::from_code(s.code()), Some(*s));
-            for t in &Status::ALL[i + 1..] {
+            for t in &Status::all()[i + 1..] {
                 assert_ne!(s.code(), t.code());
             }
             assert!(!s.message().is_empty());

@@ -15,7 +15,7 @@
 //!
 //! Layers depend one way, top to bottom: [`quat`] (quaternions, cross-ratio, corner
 //! tangents) → [`mobius`] (Möbius maps, canonical forms) → [`blend`] (F4, F6) →
-//! [`metrics`].
+//! [`metrics`], [`curve`] (curve subdivision: linear, Möbius, circle blend, differential).
 //!
 //! ```
 //! use nlsubdiv::blend::f4;
@@ -29,6 +29,7 @@
 #![warn(missing_docs)]
 
 pub mod blend;
+pub mod curve;
 pub mod error;
 pub mod metrics;
 pub mod mobius;

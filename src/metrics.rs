@@ -16,6 +16,18 @@ use crate::MAX_VALENCE;
 /// diagonals `p0p2` and `p1p3` divided by the mean diagonal length (seed 000 Fig. 9 caption,
 /// as a fraction rather than a percentage). 0 for a planar quad.
 pub fn quad_planarity(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
+    // The measure is scale invariant: divide by the largest coordinate first, so that the
+    // cross product below neither overflows (tangent polygons of stars with a neighbour very
+    // close to the centre reach 1e300) nor underflows.
+    let m = [p0, p1, p2, p3]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, c| m.max(c.abs()));
+    let [p0, p1, p2, p3] = if m > 0.0 && m.is_finite() {
+        [p0, p1, p2, p3].map(|p| [p[0] / m, p[1] / m, p[2] / m])
+    } else {
+        [p0, p1, p2, p3]
+    };
     let d1 = sub(p2, p0);
     let d2 = sub(p3, p1);
     let mean = 0.5 * (norm(d1) + norm(d2));
@@ -58,7 +70,8 @@ fn star_tangent_polygon(v: Point, ring: &[Point]) -> Result<ArrayVec<Point, MAX_
 ///
 /// # Errors
 /// [`Status::DegenerateGeometry`] when a neighbour coincides with `v`; [`Status::NonFiniteInput`];
-/// [`Status::ValenceTooHigh`].
+/// [`Status::ValenceTooHigh`]; [`Status::NumericalFailure`] when the energy overflows
+/// (neighbours at wildly different scales).
 pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
     let t = star_tangent_polygon(v, ring)?;
     let n = t.len();
@@ -72,7 +85,12 @@ pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
         let p = quad_planarity(q(0), q(1), q(2), q(3));
         sum += p * p;
     }
-    Ok(libm::sqrt(sum / count as f64))
+    let energy = libm::sqrt(sum / count as f64);
+    if energy.is_finite() {
+        Ok(energy)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
 }
 
 /// The Möbius regularity defect of the star `v ring…`: the sum of squared differences of
@@ -84,7 +102,10 @@ pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
 ///
 /// # Errors
 /// [`Status::TooFewPoints`] for fewer than 3 neighbours (closed) or 3 (open);
-/// [`Status::DegenerateGeometry`] when consecutive points coincide; [`Status::NonFiniteInput`].
+/// [`Status::ValenceTooHigh`] above [`MAX_VALENCE`]; [`Status::DegenerateGeometry`] when
+/// consecutive points coincide; [`Status::NonFiniteInput`]; [`Status::NumericalFailure`] when
+/// the defect overflows (cross-ratios beyond about 1e154, from neighbours at wildly different
+/// scales).
 pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
     let n = ring.len();
     if n < 3 {
@@ -110,7 +131,11 @@ pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> 
         let b = crs.get((i + 1) % m).copied().unwrap_or_default();
         sum += (b - a).norm_sq();
     }
-    Ok(sum)
+    if sum.is_finite() {
+        Ok(sum)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
 }
 
 #[cfg(test)]
@@ -155,6 +180,46 @@ mod tests {
             [0.7, -0.7, 0.0],
         ];
         assert!(willmore_energy([0.0; 3], &saddle, true).unwrap() > 1e-3);
+    }
+
+    #[test]
+    fn stars_at_the_ends_of_the_f64_range_give_no_nan() {
+        // A neighbour 5e-324 from the centre puts a tangent-polygon vertex near 1e300: the
+        // planarity products must not overflow into NaN, and an overflowing sum is an error.
+        let v = [0.0, 1e-300, 1e-300];
+        let ring = [
+            [1.0, 1.0, 1.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [5e-324, 0.0, 0.0],
+            [0.0, 1.0, 0.5],
+        ];
+        match willmore_energy(v, &ring, true) {
+            Ok(w) => assert!(w.is_finite(), "{w}"),
+            Err(e) => assert_eq!(e.status, Status::NumericalFailure),
+        }
+        let ring = [
+            [1e300, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [f64::MIN_POSITIVE, 0.0, 0.0],
+            [-1e300, 1e300, 0.0],
+            [1e-310, 2e-310, -3e-310],
+        ];
+        match mobius_regularity([1e-300, 0.0, 0.0], &ring, true) {
+            Ok(m) => assert!(m.is_finite(), "{m}"),
+            Err(e) => assert_eq!(e.status, Status::NumericalFailure),
+        }
+        // Scaling does not change planarity.
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.1],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.2],
+        ];
+        let p1 = quad_planarity(q[0], q[1], q[2], q[3]);
+        let big = q.map(|p| [p[0] * 1e300, p[1] * 1e300, p[2] * 1e300]);
+        let p2 = quad_planarity(big[0], big[1], big[2], big[3]);
+        assert!(p1 > 0.01 && (p1 - p2).abs() < 1e-15 * p1, "{p1} {p2}");
     }
 
     #[test]

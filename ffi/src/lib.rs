@@ -17,6 +17,7 @@
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![allow(clippy::missing_safety_doc)] // every export documents its safety contract in prose
 
+pub mod curve;
 mod guard;
 pub mod mobius;
 pub mod primitives;
@@ -115,7 +116,7 @@ mod tests {
 
     #[test]
     fn status_strings() {
-        for s in Status::ALL {
+        for &s in Status::all() {
             let p = nls_status_str(s.code());
             let c = unsafe { core::ffi::CStr::from_ptr(p) };
             assert_eq!(c.to_str().unwrap(), s.message());
