@@ -1,0 +1,406 @@
+//! Mesh files: OFF, OBJ and PLY (ASCII and binary), read into [`Mesh`] and written from it.
+//!
+//! * **Readers** keep the file's vertex order, face order and corner order exactly
+//!   (unreferenced vertices included), so indices mean the same in the file and in the
+//!   core's buffers. Every reader rejects, naming the file, the line (where the format has
+//!   lines) and the element: text that is not a number, NaN or infinite coordinates,
+//!   negative, out-of-range or (for OFF and PLY) one-based indices, faces with fewer than
+//!   three corners, a file that ends early, data after the last element, and a mesh with
+//!   no faces.
+//! * **Writers** print every coordinate as the shortest decimal string that parses back to
+//!   the same `f64` (Rust's float formatting), so positions survive a round trip through
+//!   any text format bit for bit; binary PLY stores the doubles themselves. Files are
+//!   written to a temporary file in the target's directory and renamed into place only
+//!   when complete: an error never leaves a partial output behind.
+//!
+//! OFF ([`off`]) and OBJ ([`obj`]) are read by hand-written readers: the OBJ crates on
+//! crates.io (`tobj`) re-index vertices by first use, which drops unreferenced vertices and
+//! changes the order the core's output contract relies on, and none reports line numbers.
+//! PLY goes through the `ply-rs-bw` crate ([`ply`]).
+
+pub mod obj;
+pub mod off;
+pub mod ply;
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::error::{CliError, CliResult};
+use crate::mesh::{Mesh, Source};
+
+/// A mesh file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Object File Format (`.off`).
+    Off,
+    /// Wavefront OBJ (`.obj`).
+    Obj,
+    /// Stanford PLY (`.ply`), ASCII or binary.
+    Ply,
+}
+
+impl Format {
+    /// The format of a file name's extension (case-insensitive).
+    pub fn from_path(path: &Path) -> CliResult<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("off") => Ok(Format::Off),
+            Some("obj") => Ok(Format::Obj),
+            Some("ply") => Ok(Format::Ply),
+            _ => Err(CliError::usage(format!(
+                "{}: unknown mesh format (use a file name ending in .off, .obj or .ply)",
+                path.display()
+            ))),
+        }
+    }
+
+    /// The format of a file to read: by extension, else by its first bytes.
+    fn sniff(path: &Path, bytes: &[u8]) -> CliResult<Format> {
+        if let Ok(f) = Format::from_path(path) {
+            return Ok(f);
+        }
+        let head: Vec<u8> = bytes
+            .iter()
+            .skip_while(|b| b.is_ascii_whitespace())
+            .take(8)
+            .copied()
+            .collect();
+        if head.starts_with(b"ply") {
+            Ok(Format::Ply)
+        } else if head.windows(3).any(|w| w == b"OFF") {
+            Ok(Format::Off)
+        } else {
+            Format::from_path(path)
+        }
+    }
+}
+
+/// How to write a mesh.
+#[derive(Clone, Debug, Default)]
+pub struct WriteOptions {
+    /// PLY only: ASCII instead of binary little-endian.
+    pub ply_ascii: bool,
+    /// Per-vertex colours (OFF writes COFF, OBJ writes `v x y z r g b`, PLY `red green blue`).
+    pub colors: Option<Vec<[u8; 3]>>,
+    /// PLY only: a per-vertex scalar written as a `float` property of this name (MeshLab
+    /// reads `quality`).
+    pub scalar: Option<(String, Vec<f64>)>,
+}
+
+/// Reads a mesh file in the format of its extension (or content, for other extensions).
+///
+/// # Errors
+/// Exit 3 when the file cannot be read, exit 2 for anything wrong in it (see the module
+/// docs), exit 4 for an unknown format.
+pub fn read_mesh(path: &Path) -> CliResult<(Mesh, Source)> {
+    let bytes = fs::read(path).map_err(|e| CliError::io(path, "read", &e))?;
+    let format = Format::sniff(path, &bytes)?;
+    let (mesh, source) = match format {
+        Format::Off => off::read(path, &bytes)?,
+        Format::Obj => obj::read(path, &bytes)?,
+        Format::Ply => ply::read(path, &bytes)?,
+    };
+    check_loaded(&mesh, &source)?;
+    Ok((mesh, source))
+}
+
+/// Checks every reader makes on its result: finite coordinates, at least one face, counts
+/// that fit the core's `u32` indices. Index ranges and face sizes are the readers' own.
+fn check_loaded(mesh: &Mesh, src: &Source) -> CliResult<()> {
+    for (v, p) in mesh.positions.iter().enumerate() {
+        for (k, c) in p.iter().enumerate() {
+            if !c.is_finite() {
+                let axis = ["x", "y", "z"][k];
+                let what = if c.is_nan() { "NaN" } else { "infinite" };
+                return Err(CliError::bad_input(format!(
+                    "{}: coordinate {axis} is {what}",
+                    src.at_vertex(v)
+                )));
+            }
+        }
+    }
+    if mesh.num_faces() == 0 {
+        return Err(CliError::bad_input(format!(
+            "{}: the mesh has no faces ({} vertices)",
+            src.path.display(),
+            mesh.num_vertices()
+        )));
+    }
+    Ok(())
+}
+
+/// Writes `mesh` to `path` in the format of its extension, atomically (a temporary file in
+/// the same directory, renamed on success).
+///
+/// # Errors
+/// Exit 4 for an unknown extension or options the format cannot carry, exit 3 on I/O errors.
+pub fn write_mesh(path: &Path, mesh: &Mesh, opts: &WriteOptions) -> CliResult<()> {
+    let format = Format::from_path(path)?;
+    if opts.scalar.is_some() && format != Format::Ply {
+        return Err(CliError::usage(format!(
+            "{}: a per-vertex scalar needs a .ply output",
+            path.display()
+        )));
+    }
+    let mut file = AtomicFile::create(path)?;
+    let result = match format {
+        Format::Off => off::write(file.writer(), mesh, opts),
+        Format::Obj => obj::write(file.writer(), mesh, opts),
+        Format::Ply => ply::write(file.writer(), mesh, opts),
+    };
+    result.map_err(|e| CliError::io(path, "write", &e))?;
+    file.commit()
+}
+
+/// Shortest decimal string that parses back to the same `f64` (exponent form for very
+/// large and small magnitudes): Rust's `Debug` formatting of floats.
+pub fn fmt_f64(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// A file written under a temporary name in the target's directory and renamed to the
+/// target by [`AtomicFile::commit`]. Dropped without commit, it removes the temporary file,
+/// so an error leaves nothing behind.
+#[derive(Debug)]
+pub struct AtomicFile {
+    target: PathBuf,
+    temp: PathBuf,
+    out: Option<BufWriter<File>>,
+    sink: std::io::Sink,
+}
+
+impl AtomicFile {
+    /// Creates the temporary file beside `target`.
+    ///
+    /// # Errors
+    /// Exit 3 when it cannot be created.
+    pub fn create(target: &Path) -> CliResult<AtomicFile> {
+        let dir = match target.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "out".to_string());
+        let mut last_err = None;
+        for attempt in 0..100u32 {
+            let temp = dir.join(format!(
+                ".{name}.nlsubdiv-{}-{attempt}.tmp",
+                std::process::id()
+            ));
+            match OpenOptions::new().write(true).create_new(true).open(&temp) {
+                Ok(f) => {
+                    return Ok(AtomicFile {
+                        target: target.to_path_buf(),
+                        temp,
+                        out: Some(BufWriter::with_capacity(1 << 16, f)),
+                        sink: std::io::sink(),
+                    })
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last_err = Some(e),
+                Err(e) => return Err(CliError::io(target, "create", &e)),
+            }
+        }
+        let e = last_err.unwrap_or_else(|| std::io::Error::other("no free temporary name"));
+        Err(CliError::io(target, "create a temporary file for", &e))
+    }
+
+    /// The buffered writer of the temporary file.
+    pub fn writer(&mut self) -> &mut dyn Write {
+        match self.out.as_mut() {
+            Some(w) => w,
+            None => &mut self.sink,
+        }
+    }
+
+    /// Flushes the temporary file and renames it to the target.
+    ///
+    /// # Errors
+    /// Exit 3 when flushing or renaming fails (the temporary file is removed).
+    pub fn commit(mut self) -> CliResult<()> {
+        let Some(w) = self.out.take() else {
+            return Err(CliError::internal("AtomicFile committed twice"));
+        };
+        let file = w
+            .into_inner()
+            .map_err(|e| CliError::io(&self.target, "write", e.error()))?;
+        file.sync_all()
+            .map_err(|e| CliError::io(&self.target, "write", &e))?;
+        drop(file);
+        fs::rename(&self.temp, &self.target)
+            .map_err(|e| CliError::io(&self.target, "rename the temporary file to", &e))?;
+        // Renamed: nothing left to clean up.
+        self.temp = PathBuf::new();
+        Ok(())
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        self.out = None;
+        if !self.temp.as_os_str().is_empty() {
+            let _ = fs::remove_file(&self.temp);
+        }
+    }
+}
+
+/// Checks that every index of `mesh` is below the vertex count, naming the first face that
+/// is not; recognises a one-based file (index `V` used, index 0 never) where `one_based`
+/// detection applies (OFF, PLY: zero-based formats).
+pub(crate) fn check_indices(mesh: &Mesh, src: &Source, detect_one_based: bool) -> CliResult<()> {
+    let nv = mesh.num_vertices();
+    let mut first_bad: Option<(usize, u32)> = None;
+    let mut min = u32::MAX;
+    let mut max = 0u32;
+    for (f, face) in mesh.faces().enumerate() {
+        for &i in face {
+            min = min.min(i);
+            max = max.max(i);
+            if i as usize >= nv && first_bad.is_none() {
+                first_bad = Some((f, i));
+            }
+        }
+    }
+    let Some((f, i)) = first_bad else {
+        return Ok(());
+    };
+    if detect_one_based && min >= 1 && max as usize == nv {
+        return Err(CliError::bad_input(format!(
+            "{}: index {i} is out of range (the file has {nv} vertices); the indices look \
+             one-based (index {nv} is used, index 0 never): OFF and PLY indices start at 0",
+            src.at_face(f)
+        )));
+    }
+    Err(CliError::bad_input(format!(
+        "{}: index {i} is out of range (the file has {nv} vertices, indices 0 to {})",
+        src.at_face(f),
+        nv.saturating_sub(1)
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn nasty_values() -> Vec<f64> {
+        vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            0.1,
+            1.0 / 3.0,
+            2.0f64.sqrt(),
+            1e-7,
+            -1.40201e-05,
+            123_456_789.123_456_78,
+            1e300,
+            -1e-300,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::EPSILON,
+            std::f64::consts::PI * 1e10,
+        ]
+    }
+
+    fn nasty_mesh() -> Mesh {
+        let v = nasty_values();
+        let n = v.len();
+        let positions: Vec<[f64; 3]> = (0..n)
+            .map(|i| [v[i], v[(i + 5) % n], v[(i + 11) % n]])
+            .collect();
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        for i in 0..n as u32 - 3 {
+            if i % 3 == 0 {
+                faces.push(vec![i, i + 1, i + 2, i + 3]);
+            } else {
+                faces.push(vec![i, i + 2, i + 1]);
+            }
+        }
+        faces.push((0..n as u32).rev().collect());
+        Mesh::from_faces(positions, &faces)
+    }
+
+    #[test]
+    fn float_formatting_round_trips() {
+        for x in nasty_values() {
+            let s = fmt_f64(x);
+            let y: f64 = s.parse().unwrap();
+            assert_eq!(x.to_bits(), y.to_bits(), "{x} -> {s}");
+        }
+        assert_eq!(fmt_f64(1.0), "1.0");
+        assert_eq!(fmt_f64(1e-7), "1e-7");
+    }
+
+    #[test]
+    fn every_format_round_trips_bit_exactly() {
+        let m = nasty_mesh();
+        let dir = std::env::temp_dir().join(format!("nlsubdiv-io-test-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        for (name, ascii) in [
+            ("a.off", false),
+            ("a.obj", false),
+            ("a.ply", false),
+            ("b.ply", true),
+        ] {
+            let p = dir.join(name);
+            let opts = WriteOptions {
+                ply_ascii: ascii,
+                ..WriteOptions::default()
+            };
+            write_mesh(&p, &m, &opts).unwrap();
+            let (back, _) = read_mesh(&p).unwrap();
+            assert_eq!(back.offsets, m.offsets, "{name}");
+            assert_eq!(back.indices, m.indices, "{name}");
+            for (a, b) in m.positions.iter().zip(&back.positions) {
+                for k in 0..3 {
+                    assert_eq!(
+                        a[k].to_bits(),
+                        b[k].to_bits(),
+                        "{name}: {} vs {}",
+                        a[k],
+                        b[k]
+                    );
+                }
+            }
+            // Colours and a scalar do not disturb the geometry.
+            let opts = WriteOptions {
+                ply_ascii: ascii,
+                colors: Some(vec![[1, 2, 3]; m.num_vertices()]),
+                scalar: name
+                    .ends_with(".ply")
+                    .then(|| ("quality".to_string(), vec![0.5; m.num_vertices()])),
+            };
+            write_mesh(&p, &m, &opts).unwrap();
+            let (back2, _) = read_mesh(&p).unwrap();
+            assert_eq!(back2, back, "{name} with colours");
+        }
+        let leftovers: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+            .collect();
+        assert!(leftovers.is_empty());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn atomic_file_leaves_nothing_when_dropped() {
+        let dir = std::env::temp_dir().join(format!("nlsubdiv-atomic-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let target = dir.join("x.off");
+        {
+            let mut f = AtomicFile::create(&target).unwrap();
+            f.writer().write_all(b"partial").unwrap();
+        }
+        assert_eq!(fs::read_dir(&dir).unwrap().count(), 0);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+}

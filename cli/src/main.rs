@@ -1,0 +1,99 @@
+//! `nlsubdiv`: the command-line face of the nlsubdiv kernel.
+//!
+//! Every subcommand is one module of [`cmd`] with an `Args` struct and a
+//! `run` function; adding one is writing the module and adding its line to [`Command`] and
+//! to [`dispatch`]. See cli/README.md for the commands, the defect policy and exit statuses.
+#![forbid(unsafe_code)]
+
+mod cmd;
+mod error;
+mod fields;
+mod grid;
+mod io;
+mod mesh;
+mod progress;
+mod sphere;
+mod topology;
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+
+use cmd::Ctx;
+use error::{CliResult, Exit};
+
+const EXIT_HELP: &str = "\
+Exit status:
+  0  success
+  1  the answer is no: `compare` found a difference, `check` found warnings
+  2  bad input: not a valid mesh file, or a mesh with defects the command refuses
+  3  I/O error: a file cannot be read or written
+  4  bad command line
+  5  internal error (a bug: please report it with the input)
+
+Meshes are read from and written to OFF, OBJ and PLY by file extension. Outputs are written
+to a temporary file and renamed into place: a failed command leaves no output behind.";
+
+/// Nonlinear subdivision of curves and polygon meshes: tools around the nlsubdiv kernel.
+#[derive(Parser, Debug)]
+#[command(name = "nlsubdiv", version, after_help = EXIT_HELP, propagate_version = true)]
+struct Cli {
+    /// No progress bars, warnings or summary lines on stderr.
+    #[arg(short, long, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Check a mesh: every defect, with the file, line and element of the first ones.
+    Check(cmd::check::Args),
+    /// Convert a mesh between OFF, OBJ and PLY, bit-exact, keeping the order of everything.
+    Convert(cmd::convert::Args),
+    /// Compare two meshes independently of vertex and face order.
+    Compare(cmd::compare::Args),
+    /// Measure a mesh: counts, edge lengths, Willmore energy, Möbius regularity, sphere fit.
+    Metrics(cmd::metrics::Args),
+    /// Draw a picture of a mesh into a PNG file.
+    Render(cmd::render::Args),
+}
+
+fn dispatch(command: &Command, ctx: &Ctx) -> CliResult<Exit> {
+    match command {
+        Command::Check(a) => cmd::check::run(a, ctx),
+        Command::Convert(a) => cmd::convert::run(a, ctx),
+        Command::Compare(a) => cmd::compare::run(a, ctx),
+        Command::Metrics(a) => cmd::metrics::run(a, ctx),
+        Command::Render(a) => cmd::render::run(a, ctx),
+    }
+}
+
+fn main() -> ExitCode {
+    let started = Instant::now();
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() {
+                Exit::Usage as u8
+            } else {
+                Exit::Ok as u8
+            });
+        }
+    };
+    let ctx = Ctx {
+        quiet: cli.quiet,
+        started,
+    };
+    match dispatch(&cli.command, &ctx) {
+        Ok(code) => ExitCode::from(code as u8),
+        Err(e) => {
+            for line in e.message.lines() {
+                eprintln!("nlsubdiv: error: {line}");
+            }
+            ExitCode::from(e.exit as u8)
+        }
+    }
+}

@@ -1,0 +1,242 @@
+//! The mesh as the command holds it: the layout of the core's mesh API (positions, faces as
+//! CSR offsets and indices), plus where each element came from, for messages.
+
+use std::path::{Path, PathBuf};
+
+/// A point or vector.
+pub type P3 = [f64; 3];
+
+/// A polygon mesh in the layout of the core's mesh API: `positions[V]`, `offsets[F + 1]`
+/// (`offsets[0] = 0`), `indices[offsets[F]]`; face `f` is `indices[offsets[f]..offsets[f+1]]`,
+/// counter-clockwise seen from outside.
+///
+/// Every mesh the readers return has `offsets` well formed and every index below `V`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<P3>,
+    /// Face offsets, `F + 1` entries.
+    pub offsets: Vec<u32>,
+    /// Corner vertex indices, face after face.
+    pub indices: Vec<u32>,
+}
+
+impl Default for Mesh {
+    fn default() -> Self {
+        Mesh {
+            positions: Vec::new(),
+            offsets: vec![0],
+            indices: Vec::new(),
+        }
+    }
+}
+
+impl Mesh {
+    /// A mesh from positions and a list of faces.
+    #[cfg(test)]
+    pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<P3>, faces: &[F]) -> Mesh {
+        let mut m = Mesh {
+            positions,
+            ..Mesh::default()
+        };
+        for f in faces {
+            m.indices.extend_from_slice(f.as_ref());
+            m.offsets.push(m.indices.len() as u32);
+        }
+        m
+    }
+
+    /// Number of vertices (referenced or not).
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn num_faces(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// The vertex indices of face `f` (`f < num_faces()`).
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.indices[self.offsets[f] as usize..self.offsets[f + 1] as usize]
+    }
+
+    /// All faces in order.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.offsets
+            .windows(2)
+            .map(|w| &self.indices[w[0] as usize..w[1] as usize])
+    }
+
+    /// Position of vertex `v`.
+    pub fn pos(&self, v: u32) -> P3 {
+        self.positions[v as usize]
+    }
+
+    /// Axis-aligned bounding box of all vertices, `None` without vertices.
+    pub fn bbox(&self) -> Option<(P3, P3)> {
+        bbox(&self.positions)
+    }
+
+    /// Length of the bounding box diagonal (0 without vertices).
+    pub fn diagonal(&self) -> f64 {
+        self.bbox().map_or(0.0, |(lo, hi)| norm(sub(hi, lo)))
+    }
+}
+
+/// Axis-aligned bounding box of points, `None` for none.
+pub fn bbox(points: &[P3]) -> Option<(P3, P3)> {
+    let first = *points.first()?;
+    let mut lo = first;
+    let mut hi = first;
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    Some((lo, hi))
+}
+
+/// `a − b`.
+pub fn sub(a: P3, b: P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `a + b`.
+pub fn add(a: P3, b: P3) -> P3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// `s a`.
+pub fn scale(a: P3, s: f64) -> P3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// `a · b`.
+pub fn dot(a: P3, b: P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `a × b`.
+pub fn cross(a: P3, b: P3) -> P3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Euclidean length.
+pub fn norm(a: P3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `a / |a|`, or zero for a zero vector.
+pub fn normalize(a: P3) -> P3 {
+    let n = norm(a);
+    if n > 0.0 {
+        scale(a, 1.0 / n)
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The area vector of a polygon (Newell's method): its length is the area of a planar
+/// polygon, its direction the normal (counter-clockwise orientation).
+pub fn area_vector(m: &Mesh, face: &[u32]) -> P3 {
+    let n = face.len();
+    let mut s = [0.0; 3];
+    if n < 3 {
+        return s;
+    }
+    // Relative to the first corner, for accuracy far from the origin.
+    let o = m.pos(face[0]);
+    for i in 1..n - 1 {
+        let a = sub(m.pos(face[i]), o);
+        let b = sub(m.pos(face[i + 1]), o);
+        s = add(s, cross(a, b));
+    }
+    scale(s, 0.5)
+}
+
+/// Where a mesh came from: the file, its format, and the line of each element where the
+/// format has lines. Used to name the line and element at fault in messages.
+#[derive(Clone, Debug)]
+pub struct Source {
+    /// The file read.
+    pub path: PathBuf,
+    lines: Lines,
+}
+
+#[derive(Clone, Debug)]
+enum Lines {
+    /// No line numbers (binary PLY, generated meshes).
+    None,
+    /// The line where each vertex and face starts (OFF, OBJ).
+    PerElement { vertex: Vec<u32>, face: Vec<u32> },
+    /// One element per line from the given lines on (ASCII PLY).
+    Consecutive { vertex: u32, face: u32 },
+}
+
+impl Source {
+    /// A source without line information.
+    pub fn new(path: &Path) -> Source {
+        Source {
+            path: path.to_path_buf(),
+            lines: Lines::None,
+        }
+    }
+
+    /// A source with the starting line of every vertex and face.
+    pub fn with_lines(path: &Path, vertex: Vec<u32>, face: Vec<u32>) -> Source {
+        Source {
+            path: path.to_path_buf(),
+            lines: Lines::PerElement { vertex, face },
+        }
+    }
+
+    /// A source whose vertices start at line `vertex` and faces at line `face`, one per line.
+    pub fn with_consecutive_lines(path: &Path, vertex: u32, face: u32) -> Source {
+        Source {
+            path: path.to_path_buf(),
+            lines: Lines::Consecutive { vertex, face },
+        }
+    }
+
+    /// The line of vertex `v`, when known.
+    pub fn vertex_line(&self, v: usize) -> Option<u32> {
+        match &self.lines {
+            Lines::None => None,
+            Lines::PerElement { vertex, .. } => vertex.get(v).copied(),
+            Lines::Consecutive { vertex, .. } => u32::try_from(v).ok()?.checked_add(*vertex),
+        }
+    }
+
+    /// The line of face `f`, when known.
+    pub fn face_line(&self, f: usize) -> Option<u32> {
+        match &self.lines {
+            Lines::None => None,
+            Lines::PerElement { face, .. } => face.get(f).copied(),
+            Lines::Consecutive { face, .. } => u32::try_from(f).ok()?.checked_add(*face),
+        }
+    }
+
+    /// `path:line: vertex v` (or `path: vertex v` without a line).
+    pub fn at_vertex(&self, v: usize) -> String {
+        self.at(self.vertex_line(v), &format!("vertex {v}"))
+    }
+
+    /// `path:line: face f` (or `path: face f` without a line).
+    pub fn at_face(&self, f: usize) -> String {
+        self.at(self.face_line(f), &format!("face {f}"))
+    }
+
+    /// `path:line: what`.
+    pub fn at(&self, line: Option<u32>, what: &str) -> String {
+        match line {
+            Some(l) => format!("{}:{l}: {what}", self.path.display()),
+            None => format!("{}: {what}", self.path.display()),
+        }
+    }
+}
