@@ -264,6 +264,8 @@ typedef struct nls_canonical_form {
 
 
 
+
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -381,8 +383,8 @@ nls_status nls_mobius_apply(const struct nls_mobius *m, const double p[3], doubl
 
 /**
  * The canonical form of the vertex star `v ring[0..ring_len]` (seed 000 §4.2). `kind` is
- * `NLS_STAR_INTERIOR` (cyclic ring, ≥ 3 neighbours), `NLS_STAR_BOUNDARY` or `NLS_STAR_EAR`
- * (ring from one boundary neighbour to the other, ≥ 2).
+ * `NLS_STAR_INTERIOR` (cyclic ring), `NLS_STAR_BOUNDARY` or `NLS_STAR_EAR` (ring from one
+ * boundary neighbour to the other); at least 2 neighbours.
  *
  * Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown kind), `NLS_STATUS_TOO_FEW_POINTS`,
  * `NLS_STATUS_VALENCE_TOO_HIGH`, `NLS_STATUS_NON_FINITE_INPUT`,
