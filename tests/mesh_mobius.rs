@@ -457,3 +457,81 @@ fn same_input_same_bits() {
         assert_eq!(hash(&a), hash(&b));
     }
 }
+
+fn max_edge(m: &OwnedMesh) -> f64 {
+    let mut best: f64 = 0.0;
+    for f in m.faces() {
+        for i in 0..f.len() {
+            let (a, b) = (
+                m.positions[f[i] as usize],
+                m.positions[f[(i + 1) % f.len()] as usize],
+            );
+            best = best.max(dist(a, b));
+        }
+    }
+    best
+}
+
+fn mean_willmore(m: &OwnedMesh) -> f64 {
+    with_topology(m, |t| {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for v in 0..t.num_vertices() as u32 {
+            if t.is_isolated(v).unwrap() || t.is_boundary_vertex(v).unwrap() {
+                continue;
+            }
+            let ring: Vec<Point> = t
+                .ring(v)
+                .unwrap()
+                .iter()
+                .map(|&u| t.position(u).unwrap())
+                .collect();
+            if ring.len() >= 4 {
+                sum += nlsubdiv::metrics::willmore_energy(t.position(v).unwrap(), &ring, true)
+                    .unwrap();
+                n += 1;
+            }
+        }
+        sum / n.max(1) as f64
+    })
+    .unwrap()
+}
+
+/// Seed 000 Table 2 and Fig. 9 on tori (no boundary): the maximal edge length shrinks by a
+/// rate `10^(−s)` close to 2 (the paper measures 1.79–1.87), and the mean tangent-polygon
+/// Willmore energy falls at every level.
+#[test]
+fn mobius_schemes_contract_and_lower_the_willmore_energy() {
+    let quads = jitter(&quad_torus(10, 8, 2.0, 0.8), 0.03, 31);
+    let tris = jitter(&tri_torus(10, 8), 0.03, 32);
+    for (s, m) in [
+        (Scheme::CatmullClark, &quads),
+        (Scheme::Kobbelt, &quads),
+        (Scheme::Loop, &tris),
+        (Scheme::ModifiedButterfly, &tris),
+    ] {
+        let mut cur = m.clone();
+        let (mut len, mut wil) = (vec![max_edge(&cur)], vec![mean_willmore(&cur)]);
+        for _ in 0..3 {
+            cur = msub(s, &cur, false).unwrap().0;
+            len.push(max_edge(&cur));
+            wil.push(mean_willmore(&cur));
+        }
+        let n = len.len() as f64;
+        let ys: Vec<f64> = len.iter().map(|l| l.log10()).collect();
+        let mx = (n - 1.0) / 2.0;
+        let my = ys.iter().sum::<f64>() / n;
+        let slope = ys
+            .iter()
+            .enumerate()
+            .map(|(i, y)| (i as f64 - mx) * (y - my))
+            .sum::<f64>()
+            / (0..len.len()).map(|i| (i as f64 - mx).powi(2)).sum::<f64>();
+        let rate = 10f64.powf(-slope);
+        println!("{s:?}: max edge {len:.3?}, rate {rate:.3}, mean Willmore {wil:.3?}");
+        assert!((1.6..2.2).contains(&rate), "{s:?}: rate {rate}");
+        assert!(
+            wil.windows(2).all(|w| w[1] < w[0]),
+            "{s:?}: Willmore {wil:?}"
+        );
+    }
+}
