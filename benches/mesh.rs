@@ -3,7 +3,12 @@
 //!
 //! `cargo bench --bench mesh` (reads `../shared/data/meshes`; prints SKIP rows otherwise).
 //! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench-peers.sh`.
-#![allow(clippy::expect_used, clippy::unwrap_used, clippy::indexing_slicing, dead_code)]
+#![allow(
+    clippy::expect_used,
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    dead_code
+)]
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -38,7 +43,6 @@ fn mobius_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
             Default::default(),
         )
         .unwrap();
-        drop(topo);
         cur = out;
     }
     cur
@@ -70,11 +74,19 @@ fn main() {
     println!("|---|---|---|---|---|---|---|");
     for (name, s, levels) in rows {
         let Ok(m) = read_off(&dir.join(name)) else {
-            println!("| {name} | {} | {levels} | SKIP: {} not found | | | |", s.name(), dir.display());
+            println!(
+                "| {name} | {} | {levels} | SKIP: {} not found | | | |",
+                s.name(),
+                dir.display()
+            );
             continue;
         };
         let (lin, faces) = best_ms(3, || linear_levels(s, &m, levels).num_faces());
         let (mob, _) = best_ms(3, || mobius_levels(s, &m, levels).num_faces());
-        println!("| {name} | {} | {levels} | {faces} | {lin:.1} | {mob:.1} | {:.2} |", s.name(), mob / lin);
+        println!(
+            "| {name} | {} | {levels} | {faces} | {lin:.1} | {mob:.1} | {:.2} |",
+            s.name(),
+            mob / lin
+        );
     }
 }

@@ -15,6 +15,12 @@ use crate::error::{Error, Result, Status};
 /// A point of R³.
 pub type Point = [f64; 3];
 
+/// Below this sum of squares the fast paths of [`Quat::abs`] and [`Quat::inverse`] give way to
+/// scaled evaluation (far above the subnormal range, so no precision is lost).
+const SAFE_MIN: f64 = 1e-250;
+/// Above this sum of squares [`Quat::inverse`] scales first (its result would be tiny).
+const SAFE_MAX: f64 = 1e250;
+
 /// A quaternion `w + xi + yj + zk`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Quat {
@@ -89,6 +95,12 @@ impl Quat {
 
     /// `|q|`, computed without overflow or underflow of the squares.
     pub fn abs(self) -> f64 {
+        // Fast path: the plain sum of squares is exact enough whenever it neither overflows
+        // nor enters the subnormal range; otherwise scale by the largest component first.
+        let n = self.norm_sq();
+        if n.is_finite() && n > SAFE_MIN {
+            return libm::sqrt(n);
+        }
         let m = self
             .w
             .abs()
@@ -123,6 +135,11 @@ impl Quat {
     pub fn inverse(self) -> Option<Quat> {
         if !self.is_finite() {
             return None;
+        }
+        let n = self.norm_sq();
+        if n.is_finite() && n > SAFE_MIN && n < SAFE_MAX {
+            // Fast path: q̄ / |q|² with a result far from overflow and underflow.
+            return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
         }
         let m = self
             .w

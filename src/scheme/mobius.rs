@@ -284,9 +284,12 @@ impl Driver<'_, '_, '_, '_> {
 
     /// Face candidates of every corner (the face centroid in the corner's form, ears via
     /// [`Self::form_vertex`]).
-    fn face_candidates(&mut self) -> Result<()> {
+    fn face_candidates(&mut self, non_ears: bool) -> Result<()> {
         let topo = self.topo;
         for v in 0..topo.num_vertices() as u32 {
+            if !non_ears {
+                break;
+            }
             let Some(mut l) = self.local(v)? else {
                 continue;
             };
@@ -361,7 +364,7 @@ impl Driver<'_, '_, '_, '_> {
     /// interior old vertices move by the truncation rule in their own forms; `keep_boundary`
     /// keeps boundary vertices (as the linear driver does).
     fn run_face_scheme(&mut self, start: usize, truncate: bool, keep_boundary: bool) -> Result<()> {
-        self.face_candidates()?;
+        self.face_candidates(true)?;
         self.blend_faces(start)?;
         if truncate {
             let topo = self.topo;
@@ -614,7 +617,9 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let nv = topo.num_vertices();
         let fp0 = nv + topo.num_edges();
-        self.face_candidates()?;
+        // Ears first (substitute forms); every other corner's candidate comes from the
+        // vertex pass below, which maps each face into the corner's form once.
+        self.face_candidates(false)?;
         for v in 0..nv as u32 {
             let p = topo.position(v)?;
             if topo.is_isolated(v)? {
@@ -633,6 +638,9 @@ impl Driver<'_, '_, '_, '_> {
                     } else {
                         l.face(topo, s.face).and_then(|pts| centroid(&pts)).ok()
                     };
+                    if let Some(b) = c.and_then(|c| l.back(c).ok()) {
+                        set(self.face_c, s.half_edge as usize, b)?;
+                    }
                     fc.try_push(c).map_err(|_| internal())?;
                 }
                 let n = spokes.len();
@@ -750,15 +758,46 @@ impl Driver<'_, '_, '_, '_> {
     /// Each corner point in the canonical form of its vertex (ears: a substitute's form).
     fn run_doo_sabin(&mut self) -> Result<()> {
         let topo = self.topo;
+        let nh = topo.num_half_edges();
+        for p in self.pos.iter_mut().take(nh) {
+            *p = MISSING;
+        }
+        // One canonical form per vertex: all its corners.
+        for v in 0..topo.num_vertices() as u32 {
+            let Some(mut l) = self.local(v)? else {
+                continue;
+            };
+            for s in topo.star(v) {
+                if s.face == NONE {
+                    continue;
+                }
+                let i = (s.half_edge - topo.face_half_edges(s.face)?.start) as usize;
+                let q = l
+                    .face(topo, s.face)
+                    .and_then(|pts| doo_sabin::corner_point(&pts, i))
+                    .and_then(|c| l.back(c));
+                if let Ok(q) = q {
+                    set(self.pos, s.half_edge as usize, q)?;
+                }
+            }
+        }
+        // Ears in a substitute's form; anything still missing takes the linear rule.
         for f in 0..topo.num_faces() as u32 {
             let linear_pts = face_points(topo, f)?;
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
-                let q = self.form_vertex(f, i)?.and_then(|u| {
-                    let mut l = self.local(u).ok()??;
-                    let pts = l.face(topo, f).ok()?;
-                    let c = doo_sabin::corner_point(&pts, i).ok()?;
-                    l.back(c).ok()
-                });
+                if present(&get(self.pos, h as usize)?) {
+                    continue;
+                }
+                let q = if self.is_ear(topo.origin(h)?)? {
+                    self.form_vertex(f, i)?.and_then(|u| {
+                        let mut l = self.local(u).ok()??;
+                        let pts = l.face(topo, f).ok()?;
+                        let c = doo_sabin::corner_point(&pts, i).ok()?;
+                        l.back(c).ok()
+                    })
+                } else {
+                    None
+                };
                 let q = match q {
                     Some(q) if point_is_finite(&q) => q,
                     _ => {
@@ -769,14 +808,7 @@ impl Driver<'_, '_, '_, '_> {
                 set(self.pos, h as usize, q)?;
             }
         }
-        let mut k = topo.num_half_edges();
-        for v in 0..topo.num_vertices() as u32 {
-            if topo.is_isolated(v)? {
-                set(self.pos, k, topo.position(v)?)?;
-                k += 1;
-            }
-        }
-        Ok(())
+        super::linear::append_isolated(topo, self.pos, nh)
     }
 
     // ---- Modified Butterfly (2-ring: partial candidates, §4.3, Fig. 11 right) ----
