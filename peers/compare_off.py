@@ -35,11 +35,29 @@ As a module::
 several meshes against the same B is cheaper.
 """
 
+import functools
+import gc
 import math
 import sys
 from collections import Counter
 
 __all__ = ["Mesh", "OffError", "read_off", "compare_meshes", "compare_files", "Comparison", "main"]
+
+
+def _no_gc(fn):
+    """Runs fn with the cyclic garbage collector paused: these functions build
+    millions of small tuples and lists (no cycles), and gc passes over them
+    would double the run time."""
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        was = gc.isenabled()
+        gc.disable()
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            if was:
+                gc.enable()
+    return wrapper
 
 
 class OffError(Exception):
@@ -93,6 +111,7 @@ class Mesh:
 _HEADERS = {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "STCOFF", "STNOFF", "STCNOFF"}
 
 
+@_no_gc
 def read_off(path):
     """Reads an ASCII OFF file tolerantly: '#' comments, blank lines, CRLF, counts on
     the header line, COFF/NOFF extras after x y z (ignored), wrapped records."""
@@ -101,6 +120,9 @@ def read_off(path):
             data = fh.read()
     except OSError as e:
         raise OffError(f"cannot read {path}: {e}") from None
+    m = _read_off_tokens(path, data)
+    if m is not None:
+        return m
     text = data.decode("utf-8", errors="replace")
     if text.startswith("\ufeff"):
         text = text[1:]
@@ -158,6 +180,58 @@ def read_off(path):
     return Mesh(xs, ys, zs, faces, path)
 
 
+def _read_off_tokens(path, data):
+    """Fast path for plain 'OFF' files without comments or extras: the whole file
+    as one token stream, accepted only if it is consumed exactly."""
+    if b"#" in data[:1 << 20] and b"#" in data:
+        return None
+    head = data[:512].split(b"\n", 2)
+    first = head[0].split()
+    if first == [b"OFF"]:
+        if len(head) < 2 or len(head[1].split()) != 3:
+            return None
+    elif not (len(first) == 4 and first[0] == b"OFF"):
+        return None
+    toks = data.split()
+    try:
+        nv, nf = int(toks[1]), int(toks[2])
+        if nv < 0 or nf < 0 or 4 + 3 * nv > len(toks):
+            return None
+        vals = list(map(float, toks[4:4 + 3 * nv]))
+        ints = list(map(int, toks[4 + 3 * nv:]))
+    except ValueError:
+        return None
+    faces = cols = None
+    n_ints = len(ints)
+    for n in (3, 4):  # uniform triangle / quad meshes: slice instead of looping
+        if n_ints == (n + 1) * nf and ints[0::n + 1].count(n) == nf:
+            cols = [ints[k::n + 1] for k in range(1, n + 1)]
+            faces = list(zip(*cols))
+            break
+    if faces is None:
+        faces = []
+        append = faces.append
+        p = 0
+        for _ in range(nf):
+            if p >= n_ints:
+                return None
+            n = ints[p]
+            if n < 0:
+                return None
+            append(tuple(ints[p + 1:p + 1 + n]))
+            p += n + 1
+        if p != n_ints:
+            return None  # extras (face colours) or garbage: use the line-based reader
+    if ints and (min(ints) < 0 or max(ints) >= nv):
+        for f in faces:
+            if f and (min(f) < 0 or max(f) >= nv):
+                raise OffError(f"{path}: face index out of range [0, {nv})")
+    mesh = Mesh(vals[0::3], vals[1::3], vals[2::3], faces, path)
+    if cols is not None:
+        mesh._cache["cols"] = cols
+    return mesh
+
+
 def _gather(path, lines, pos, toks, need):
     out = list(toks[:need])
     while len(out) < need:
@@ -199,19 +273,31 @@ def _read_faces_slow(path, lines, pos, nf):
 
 # --------------------------------------------------------------------------- nearest
 
-def _cells(b, h, origin):
-    """Hash grid of b's vertices: cell (floor((p - origin) / h)) -> list of indices."""
+def _keys(xs, ys, zs, h, origin):
+    """Cell coordinates of every point: the scaled coordinates (p - origin) / h
+    per axis, their floors per axis, and the (kx, ky, kz) keys."""
     ox, oy, oz = origin
     inv = 1.0 / h
     floor = math.floor
-    g = {}
-    for i, (x, y, z) in enumerate(zip(b.xs, b.ys, b.zs)):
-        k = (floor((x - ox) * inv), floor((y - oy) * inv), floor((z - oz) * inv))
-        c = g.get(k)
-        if c is None:
-            g[k] = [i]
-        else:
-            c.append(i)
+    fx = [(x - ox) * inv for x in xs]
+    fy = [(y - oy) * inv for y in ys]
+    fz = [(z - oz) * inv for z in zs]
+    kx, ky, kz = list(map(floor, fx)), list(map(floor, fy)), list(map(floor, fz))
+    return (fx, fy, fz), (kx, ky, kz), list(zip(kx, ky, kz))
+
+
+def _cells(b, h, origin):
+    """Hash grid of b's vertices: cell key -> vertex index (int), or a list of
+    indices for cells holding several vertices."""
+    keys = _keys(b.xs, b.ys, b.zs, h, origin)[2]
+    g = dict(zip(keys, range(len(keys))))
+    if len(g) < len(keys):
+        multi = {k: [] for k, c in Counter(keys).items() if c > 1}
+        for i, k in enumerate(keys):
+            lst = multi.get(k)
+            if lst is not None:
+                lst.append(i)
+        g.update(multi)
     return g
 
 
@@ -223,57 +309,107 @@ def _fine_grid(b, h, origin):
     return g
 
 
-def _coarse_grids(b, h0, top, origin):
-    """Grids of cell size h0 * 3^k, up to the first one >= top."""
-    key = ("coarse", h0, top, origin)
-    gs = b._cache.get(key)
-    if gs is None:
-        gs = []
+class _CoarseGrids:
+    """Grids of cell size h0 * 3^k up to the first one >= top, built on demand."""
+
+    def __init__(self, b, h0, top, origin):
+        self.b, self.origin, self.sizes, self.grids = b, origin, [], {}
         h = h0
         while True:
-            gs.append((h, _cells(b, h, origin)))
+            self.sizes.append(h)
             if h >= top:
                 break
             h *= 3.0
-        b._cache[key] = gs
+
+    def grid(self, k):
+        g = self.grids.get(k)
+        if g is None:
+            g = self.grids[k] = _cells(self.b, self.sizes[k], self.origin)
+        return g
+
+
+def _coarse_grids(b, h0, top, origin):
+    key = ("coarse", h0, top, origin)
+    gs = b._cache.get(key)
+    if gs is None:
+        gs = b._cache[key] = _CoarseGrids(b, h0, top, origin)
     return gs
+
+
+_OFFS = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
+
+
+def _block_search(g, kx, ky, kz, x, y, z, bx, by, bz):
+    best, bj = math.inf, -1
+    get = g.get
+    for ex, ey, ez in _OFFS:
+        cand = get((kx + ex, ky + ey, kz + ez))
+        if cand is None:
+            continue
+        for j in ((cand,) if cand.__class__ is int else cand):
+            dx = bx[j] - x; dy = by[j] - y; dz = bz[j] - z
+            d = dx * dx + dy * dy + dz * dz
+            if d < best:
+                best, bj = d, j
+    return best, bj
 
 
 def _nearest(a, b, scale):
     """For each vertex of a: (index of the nearest vertex of b, squared distance)."""
     bx, by, bz = b.xs, b.ys, b.zs
+    ax, ay, az = a.xs, a.ys, a.zs
     nb = len(bx)
-    na = len(a.xs)
-    match = [0] * na
-    d2s = [0.0] * na
     if nb == 0:
         return None, None
-    floor = math.floor
     h = scale * 2.0 ** -20 if scale > 0 else 1.0
-    inv = 1.0 / h
     origin = b.bbox()[0]
-    ox, oy, oz = origin
     grid = _fine_grid(b, h, origin)
+    (fxs, fys, fzs), (kxs, kys, kzs), keys = _keys(ax, ay, az, h, origin)
+    cands = list(map(grid.get, keys))
+    # Fast path, vectorised: cells holding exactly one vertex of b, accepted
+    # when that vertex is closer than half the distance to the cell's walls
+    # (nothing outside the cell can then be closer).
+    single = [c if c.__class__ is int else 0 for c in cands]
+    dx = [bx[c] - x for c, x in zip(single, ax)]
+    dy = [by[c] - y for c, y in zip(single, ay)]
+    dz = [bz[c] - z for c, z in zip(single, az)]
+    d2 = [u * u + v * v + w * w for u, v, w in zip(dx, dy, dz)]
+    ux = [f - k for f, k in zip(fxs, kxs)]
+    uy = [f - k for f, k in zip(fys, kys)]
+    uz = [f - k for f, k in zip(fzs, kzs)]
+    wall = list(map(min, ux, uy, uz, [1.0 - u for u in ux], [1.0 - u for u in uy],
+                    [1.0 - u for u in uz]))
+    wmin = 1e-6
+    h2 = h * h
+    q = 0.25 * h2
+    accept = [c.__class__ is int and w > wmin and d < q * w * w
+              for c, w, d in zip(cands, wall, d2)]
+    match = single
+    d2s = d2
     rest = []
-    get = grid.get
-    wmin = 1e-6 * h
-    for i, (x, y, z) in enumerate(zip(a.xs, a.ys, a.zs)):
-        fx, fy, fz = (x - ox) * inv, (y - oy) * inv, (z - oz) * inv
-        kx, ky, kz = floor(fx), floor(fy), floor(fz)
-        cand = get((kx, ky, kz))
-        if cand is not None:
+    for i in [i for i, ok in enumerate(accept) if not ok]:
+        x, y, z = ax[i], ay[i], az[i]
+        c = cands[i]
+        if c is not None and c.__class__ is not int:
             best, bj = math.inf, -1
-            for j in cand:
-                dx = bx[j] - x; dy = by[j] - y; dz = bz[j] - z
-                d = dx * dx + dy * dy + dz * dz
+            for j in c:
+                ex = bx[j] - x; ey = by[j] - y; ez = bz[j] - z
+                d = ex * ex + ey * ey + ez * ez
                 if d < best:
                     best, bj = d, j
-            # distance (in cells) from the point to the nearest wall of its cell
-            w = min(fx - kx, kx + 1 - fx, fy - ky, ky + 1 - fy, fz - kz, kz + 1 - fz) * h
-            if w > wmin and best < 0.25 * w * w:  # best distance < w/2: nothing outside can win
+            w = wall[i]
+            if w > wmin and best < q * w * w:
                 match[i] = bj
                 d2s[i] = best
                 continue
+        # second chance on the same grid: the 3x3x3 block around the cell
+        # answers when the best distance is at most one cell
+        kx, ky, kz = keys[i]
+        best, bj = _block_search(grid, kx, ky, kz, x, y, z, bx, by, bz)
+        if bj >= 0 and best <= h2 * (1.0 - 1e-6):
+            match[i] = bj
+            d2s[i] = best
+            continue
         rest.append(i)
     if rest:
         _nearest_coarse(a, b, rest, match, d2s, scale)
@@ -293,27 +429,17 @@ def _nearest_coarse(a, b, idx, match, d2s, scale):
     ox, oy, oz = origin
     grids = _coarse_grids(b, h0, 2.0 * ext, origin)
     floor = math.floor
-    offs = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
     for i in idx:
         x, y, z = a.xs[i], a.ys[i], a.zs[i]
         done = False
         best, bj = math.inf, -1
-        for h, g in grids:
+        for k, h in enumerate(grids.sizes):
             inv = 1.0 / h
             kx, ky, kz = floor((x - ox) * inv), floor((y - oy) * inv), floor((z - oz) * inv)
-            best, bj = math.inf, -1
-            for ex, ey, ez in offs:
-                cand = g.get((kx + ex, ky + ey, kz + ez))
-                if cand is None:
-                    continue
-                for j in cand:
-                    dx = bx[j] - x; dy = by[j] - y; dz = bz[j] - z
-                    d = dx * dx + dy * dy + dz * dz
-                    if d < best:
-                        best, bj = d, j
+            best, bj = _block_search(grids.grid(k), kx, ky, kz, x, y, z, bx, by, bz)
             # the point lies in the central cell: everything outside the 3x3x3
             # block is at least h away
-            if bj >= 0 and best <= h * h * (1.0 - 1e-9):
+            if bj >= 0 and best <= h * h * (1.0 - 1e-6):
                 done = True
                 break
         if not done:  # cannot happen (the last grid covers everything); be exact anyway
@@ -336,6 +462,45 @@ def _canon(f):
         i = f.index(m)
         return f[i:] + f[:i]
     return min(f[i:] + f[:i] for i in range(len(f)))
+
+
+def _canon_all(faces):
+    """_canon of every face, fast: rotations start at the first smallest index
+    (faces with a repeated index may then differ by rotation; compare_meshes
+    retries with _canon when the fast forms disagree)."""
+    return [f[i:] + f[:i] for f in faces for i in (f.index(min(f)),)]
+
+
+def _face_keys(mesh, m, n_code):
+    """Sorted canonical keys of mesh's faces with vertex v renamed m[v] (m may be
+    None). Uniform triangle/quad meshes use integer keys (base n_code), others
+    tuples."""
+    faces = mesh.faces
+    sizes = set(map(len, faces))
+    if len(sizes) == 1 and sizes <= {3, 4}:
+        k = next(iter(sizes))
+        cols = mesh._cache.get("cols")
+        if cols is None:
+            cols = mesh._cache["cols"] = [[f[i] for f in faces] for i in range(k)]
+        if m is not None:
+            cols = [list(map(m.__getitem__, c)) for c in cols]
+        N = n_code
+        if k == 3:
+            keys = [(p * N + q) * N + r if (p < q and p < r) else
+                    ((q * N + r) * N + p if q < r else (r * N + p) * N + q)
+                    for p, q, r in zip(*cols)]
+        else:
+            keys = [((p * N + q) * N + r) * N + s if mn == p else
+                    (((q * N + r) * N + s) * N + p if mn == q else
+                     (((r * N + s) * N + p) * N + q if mn == r else
+                      ((s * N + p) * N + q) * N + r))
+                    for p, q, r, s in zip(*cols) for mn in (min(p, q, r, s),)]
+    else:
+        if m is not None:
+            faces = [tuple([m[v] for v in f]) for f in faces]
+        keys = _canon_all(faces)
+    keys.sort()
+    return keys
 
 
 def _adjacency(mesh):
@@ -403,6 +568,14 @@ def _resolve_ties(a, b, match, d2s):
     return fixed
 
 
+def _all_finite(m):
+    for c in (m.xs, m.ys, m.zs):
+        if not math.isfinite(sum(c)):  # fast; overflow of the sum: check one by one
+            if not all(map(math.isfinite, c)):
+                return False
+    return True
+
+
 class Comparison:
     """Result of compare_meshes."""
 
@@ -427,6 +600,7 @@ class Comparison:
         return "<Comparison %s ok=%s>" % (self.summary(), self.ok)
 
 
+@_no_gc
 def compare_meshes(a, b, tol=1e-12):
     """Compares Mesh a against Mesh b; see the module docstring."""
     r = Comparison()
@@ -434,8 +608,7 @@ def compare_meshes(a, b, tol=1e-12):
     r.counts_equal = (a.nv == b.nv and a.nf == b.nf)
     if not r.counts_equal:
         r.details.append(f"counts differ: A has V={a.nv} F={a.nf}, B has V={b.nv} F={b.nf}")
-    finite = all(map(math.isfinite, a.xs + a.ys + a.zs)) and all(map(math.isfinite, b.xs + b.ys + b.zs))
-    if not finite:
+    if not (_all_finite(a) and _all_finite(b)):
         r.details.append("non-finite coordinates")
         return r
     if a.nv == 0 or b.nv == 0:
@@ -465,16 +638,23 @@ def compare_meshes(a, b, tol=1e-12):
             r.details.append(f"B->A distance {back:.3e} exceeds A->B")
             r.max_rel_dist = back
     if r.counts_equal:
-        fa = Counter(_canon(tuple(match[v] for v in f)) for f in a.faces)
-        fb = b._cache.get("faces")
+        n_code = max(a.nv, b.nv, 1)
+        fa = _face_keys(a, match, n_code)
+        ck = ("facekeys", n_code)
+        fb = b._cache.get(ck)
         if fb is None:
-            fb = Counter(_canon(f) for f in b.faces)
-            b._cache["faces"] = fb
+            fb = b._cache[ck] = _face_keys(b, None, n_code)
         r.faces_identical = fa == fb
         if not r.faces_identical:
-            only_a = sum((fa - fb).values())
-            only_b = sum((fb - fa).values())
-            r.details.append(f"faces: {only_a} of A (mapped) not in B, {only_b} of B not in A")
+            # exact canonical forms (the fast ones are not canonical for faces
+            # with a repeated index), and a count of the differences
+            ca = Counter(_canon(tuple([match[v] for v in f])) for f in a.faces)
+            cb = Counter(map(_canon, b.faces))
+            r.faces_identical = dict.__eq__(ca, cb)
+            if not r.faces_identical:
+                only_a = sum((ca - cb).values())
+                only_b = sum((cb - ca).values())
+                r.details.append(f"faces: {only_a} of A (mapped) not in B, {only_b} of B not in A")
     d_abs = math.sqrt(d2s[worst])
     r.details.append(
         f"A: V={a.nv} F={a.nf} diag={diag:.6g}; B: V={b.nv} F={b.nf}; worst A vertex {worst} "

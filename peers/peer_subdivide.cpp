@@ -251,6 +251,37 @@ bool validate_basic(const Mesh& m, std::string& err) {
   return true;
 }
 
+// Library output: finite coordinates, indices in range, no repeated index in a
+// face. Faces of 2 vertices are kept: CGAL's Doo-Sabin turns a valence-2
+// vertex into a two-sided vertex face, which is its legitimate result.
+bool validate_output(const Mesh& m, std::string& err) {
+  for (std::size_t v = 0; v < m.nv(); ++v)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(m.xyz[3 * v + k])) {
+        err = "vertex " + std::to_string(v) + " has a non-finite coordinate";
+        return false;
+      }
+  std::size_t s = 0;
+  for (std::size_t f = 0; f < m.nf(); ++f) {
+    int n = m.fsize[f];
+    if (n < 2) { err = "face " + std::to_string(f) + " has < 2 vertices"; return false; }
+    for (int i = 0; i < n; ++i) {
+      int a = m.fidx[s + i];
+      if (a < 0 || std::size_t(a) >= m.nv()) {
+        err = "face " + std::to_string(f) + " has index " + std::to_string(a) + " out of range";
+        return false;
+      }
+      for (int j = i + 1; j < n; ++j)
+        if (a == m.fidx[s + j]) {
+          err = "face " + std::to_string(f) + " repeats vertex " + std::to_string(a);
+          return false;
+        }
+    }
+    s += std::size_t(n);
+  }
+  return true;
+}
+
 bool all_triangles(const Mesh& m) {
   return std::all_of(m.fsize.begin(), m.fsize.end(), [](int n) { return n == 3; });
 }
@@ -474,11 +505,15 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "peer_subdivide: rejected: %s\n", o.msg.c_str());
     return o.status;
   }
-  if (!validate_basic(out, err)) {  // a peer result we cannot trust
+  if (!validate_output(out, err)) {  // a peer result we cannot trust
     std::fprintf(stderr, "peer_subdivide: rejected: %s produced an invalid mesh: %s\n",
                  lib.c_str(), err.c_str());
     return EXIT_REJECTED;
   }
+  if (std::size_t d = std::count(out.fsize.begin(), out.fsize.end(), 2))
+    std::fprintf(stderr,
+                 "peer_subdivide: note: output has %zu two-vertex faces (Doo-Sabin vertex faces "
+                 "of valence-2 vertices)\n", d);
   if (!write_off(out_path, out, err)) {
     std::fprintf(stderr, "peer_subdivide: %s\n", err.c_str());
     return EXIT_USAGE;
