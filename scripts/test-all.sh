@@ -25,7 +25,7 @@ step() { # step NAME COMMAND...
         failed=$((failed+1)); failures+=("$name"); echo "FAIL  $name ($((SECONDS-t0)) s) — last lines of $log:"
         tail -n 25 "$log" | sed 's/^/      /'
     fi
-    grep -hE "^[^ ]+: [0-9]+ passed, [0-9]+ failed|^test result:" "$log" | sed 's/^/      /' | tail -n 12
+    grep -hE "^[^ ]+: [0-9]+ passed, [0-9]+ failed|^test result:|^\| [a-z-]+ \| [a-z]+ \| [0-9.e+-]+ \|$" "$log" | sed 's/^/      /' | tail -n 12
 }
 skip() { skipped=$((skipped+1)); echo "SKIP  $1 — $2"; }
 
@@ -164,6 +164,20 @@ if rustup toolchain list 2>/dev/null | grep -q nightly; then
     step "C tests against an ASan-instrumented Rust staticlib (nightly)" c_asan_rust
 else
     skip "ASan-instrumented Rust staticlib" "no nightly toolchain"
+fi
+
+# --- peers: OpenMesh, CGAL, OpenSubdiv (Debian packages) ------------------------------------
+if [ -f /usr/include/OpenMesh/Core/Mesh/PolyMeshT.hh ] && [ -d /usr/include/CGAL ] && [ -d /usr/include/opensubdiv ]; then
+    peers_selftest() { python3 peers/test_compare_off.py; }
+    step "peer tools: compare_off unit tests" peers_selftest
+    peer_compare() {
+        peers/build.sh "$OUT/peers" || return 1
+        cargo build -q --release --locked --example subdivide_off || return 1
+        python3 scripts/peer_compare.py "$OUT/peers/peer_subdivide" target/release/examples/subdivide_off "$OUT/peer-compare"
+    }
+    step "linear schemes equal OpenMesh / CGAL / OpenSubdiv (<= 1e-12)" peer_compare
+else
+    skip "peer comparison" "libopenmesh-dev, libcgal-dev or libosd-dev not installed (scripts/setup.sh installs them)"
 fi
 
 # --- C examples -------------------------------------------------------------------------------

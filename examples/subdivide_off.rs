@@ -1,0 +1,61 @@
+//! Our linear (or Möbius) subdivision of an OFF file, for the peer comparison script:
+//! `subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius]`. Exit 2 when the kernel rejects
+//! the mesh (the status is printed on stderr).
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::indexing_slicing, dead_code)]
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use std::path::Path;
+
+use common::*;
+use nlsubdiv::mesh::{MeshOut, Topology};
+use nlsubdiv::scheme::{self, mobius, Scheme};
+
+fn step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> nlsubdiv::Result<OwnedMesh> {
+    if !mobius_on {
+        return subdivide(s, m);
+    }
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let topo = Topology::build(m.view(), &mut scratch)?;
+    let sizes = scheme::subdivide_size(s, &topo)?;
+    let mut out = OwnedMesh {
+        positions: vec![[0.0; 3]; sizes.vertices],
+        offsets: vec![0; sizes.faces + 1],
+        indices: vec![0; sizes.indices],
+    };
+    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
+    mobius::subdivide(
+        s,
+        &topo,
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+        &mut pts,
+        Default::default(),
+    )?;
+    Ok(out)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() < 5 {
+        eprintln!("usage: subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius]");
+        std::process::exit(1);
+    }
+    let s = Scheme::from_name(&args[1]).unwrap_or_else(|| {
+        eprintln!("unknown scheme {}", args[1]);
+        std::process::exit(1)
+    });
+    let levels: usize = args[2].parse().expect("levels");
+    let mobius_on = args.get(5).is_some_and(|a| a == "--mobius");
+    let mut m = read_off(Path::new(&args[3])).unwrap_or_else(|e| {
+        eprintln!("{}: {e}", args[3]);
+        std::process::exit(1)
+    });
+    for _ in 0..levels {
+        m = step(s, &m, mobius_on).unwrap_or_else(|e| {
+            eprintln!("{}: rejected: {e}", args[3]);
+            std::process::exit(2)
+        });
+    }
+    write_off(Path::new(&args[4]), &m).expect("write");
+}
