@@ -16,6 +16,7 @@
 #include "peer_common.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -489,10 +490,16 @@ int run(int argc, char** argv) {
 
   Mesh out;
   Outcome o;
+  // Wall time of the library's part (building its mesh, subdividing, reading the result
+  // back), printed for scripts/bench_peers.py; file I/O is not included.
+  const auto t0 = std::chrono::steady_clock::now();
   try {
     if (lib == "openmesh") o = run_openmesh(sn->s, int(levels), in, out);
     else if (lib == "cgal") o = run_cgal(sn->s, int(levels), in, out);
     else o = run_osd(sn->s, int(levels), in, out);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "peer_subdivide: time_ms=%.3f\n", ms);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "peer_subdivide: out of memory in %s\n", lib.c_str());
     return EXIT_USAGE;
