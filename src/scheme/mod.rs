@@ -16,7 +16,10 @@ mod levels;
 pub mod linear;
 pub mod mobius;
 
-pub use levels::{plan, plan_scratch_len, subdivide_levels, LevelPlan, MAX_LEVELS};
+pub use levels::{
+    plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
+    MAX_LEVELS,
+};
 pub use linear::{subdivide, subdivide_size};
 
 use crate::error::Result;
