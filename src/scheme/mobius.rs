@@ -279,14 +279,14 @@ pub fn catmull_clark_star(
 ) -> Result<Option<Point>> {
     let n = ring.len();
     let nf = if closed { n } else { n.saturating_sub(1) };
+    if face_offsets.len() != nf + 1 {
+        return Err(Error::new(Status::InvalidArgument));
+    }
     if edge_candidates.len() < n {
         return Err(Error::too_small(n));
     }
     if face_candidates.len() < nf {
         return Err(Error::too_small(nf));
-    }
-    if face_offsets.len() != nf + 1 {
-        return Err(Error::new(Status::InvalidArgument));
     }
     let first = face_offsets.first().copied();
     let last = face_offsets.last().map(|&o| o as usize);
