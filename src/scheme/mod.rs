@@ -5,7 +5,8 @@
 //! before the call, [`subdivide`] writes one level. [`subdivide_mesh`] and
 //! [`subdivide_mesh_size`] take the raw mesh slices and a scratch buffer
 //! ([`scratch_len`]) for callers that do not keep a [`Topology`]; [`plan`] and
-//! [`subdivide_levels`] run several levels.
+//! [`subdivide_levels`] run several levels, [`subdivide_levels_mobius`] several levels of the
+//! Möbius version ([`mobius`]), through the same level loop.
 //!
 //! Output vertex order (DESIGN.md): primal schemes write the old vertices first at the same
 //! indices, then edge points in edge-id order (edges sorted by `(min, max)` vertex key), then
