@@ -80,6 +80,96 @@
 #define NLS_NO_ELEMENT 4294967295
 
 /**
+ * Mesh scheme: Loop (triangles only; 1→4; approximating).
+ */
+#define NLS_SCHEME_LOOP 0
+
+/**
+ * Mesh scheme: Catmull–Clark (any polygons → quads; approximating; boundary = cubic
+ * B-spline crease rule).
+ */
+#define NLS_SCHEME_CATMULL_CLARK 1
+
+/**
+ * Mesh scheme: Modified Butterfly (triangles only; 1→4; interpolating).
+ */
+#define NLS_SCHEME_MODIFIED_BUTTERFLY 2
+
+/**
+ * Mesh scheme: Kobbelt's interpolatory quad scheme (quads only; interpolating).
+ */
+#define NLS_SCHEME_KOBBELT 3
+
+/**
+ * Mesh scheme: Doo–Sabin (any polygons; dual, corner cutting).
+ */
+#define NLS_SCHEME_DOO_SABIN 4
+
+/**
+ * Mesh scheme: Peters–Reif simplest (mid-edge) scheme (any polygons).
+ */
+#define NLS_SCHEME_SIMPLEST 5
+
+/**
+ * Mesh scheme: Akleman's dual (any polygons).
+ */
+#define NLS_SCHEME_DUAL 6
+
+/**
+ * Mesh scheme: Akleman's vertex insertion (any polygons → triangles; interpolating).
+ */
+#define NLS_SCHEME_VERTEX_INSERTION 7
+
+/**
+ * Mesh scheme: Akleman's dual truncation (any polygons → triangles, √3 connectivity).
+ */
+#define NLS_SCHEME_DUAL_TRUNCATION 8
+
+/**
+ * Subdivision flag: the canonical Möbius version of the scheme (seed 000 §4): every vertex
+ * star is evaluated in its canonical form, candidates are blended with F4/F6. Möbius
+ * equivariant; cospherical meshes stay on their sphere.
+ */
+#define NLS_SUBDIVIDE_MOBIUS (1u << 0)
+
+/**
+ * Subdivision flag: an element that needs the documented linear fallback (degenerate
+ * neighbourhood) is an error, `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, instead of a count in the
+ * report. The linear schemes never fall back.
+ */
+#define NLS_SUBDIVIDE_STRICT (1u << 1)
+
+/**
+ * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the `uint32_t` scratch is short.
+ */
+#define NLS_MESH_BUFFER_SCRATCH_U32 0
+
+/**
+ * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the point scratch is short.
+ */
+#define NLS_MESH_BUFFER_SCRATCH_POINTS 1
+
+/**
+ * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_positions` is short.
+ */
+#define NLS_MESH_BUFFER_POSITIONS 2
+
+/**
+ * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_offsets` is short.
+ */
+#define NLS_MESH_BUFFER_OFFSETS 3
+
+/**
+ * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_indices` is short.
+ */
+#define NLS_MESH_BUFFER_INDICES 4
+
+/**
+ * The largest number of levels of one [`nls_mesh_subdivide_levels`] call.
+ */
+#define NLS_MAX_LEVELS 16
+
+/**
  * Star kind: interior vertex, cyclic ring (seed 000 §4.2).
  */
 #define NLS_STAR_INTERIOR 0
@@ -215,6 +305,28 @@ typedef uint32_t nls_status;
 #endif // __cplusplus
 
 /**
+ * What a subdivision call had to do besides the rules of the scheme: the elements that took
+ * the documented linear fallback (Möbius schemes on degenerate neighbourhoods: coincident
+ * points, a star without canonical form, a blend at infinity). Plain old data.
+ */
+typedef struct nls_subdivide_report {
+    /**
+     * Output vertices that took their linear rule (all levels of a multi-level call).
+     */
+    uint32_t fallbacks;
+    /**
+     * The first such output vertex (of level `first_fallback_level`), or `UINT32_MAX`
+     * (`NLS_NO_ELEMENT`) when there was none.
+     */
+    uint32_t first_fallback;
+    /**
+     * The level of `first_fallback`, counted from 1 (always 1 for a one-level call), or 0
+     * when there was no fallback.
+     */
+    uint32_t first_fallback_level;
+} nls_subdivide_report;
+
+/**
  * A Möbius map `q ↦ (aq + b)(cq + d)⁻¹` of R³ ∪ {∞} (seed 000 Eq. (1)); quaternions as
  * `w, x, y, z`. Build one with the `nls_mobius_*` constructors.
  */
@@ -345,6 +457,207 @@ nls_status nls_curve_subdivide(uint32_t scheme,
                                uint32_t *out_element);
 
 /**
+ * The scratch that [`nls_mesh_subdivide_size`] and [`nls_mesh_subdivide`] need for a mesh of
+ * `vertex_count` vertices and `index_count` corners (the length of its `indices`):
+ * `*out_scratch_u32` `uint32_t` entries (its half-edge topology, `4·index_count +
+ * 3·vertex_count`) and `*out_scratch_points` points, i.e. `3*` that many doubles (two
+ * candidates per corner with `NLS_SUBDIVIDE_MOBIUS`, else 0). Depends on the counts only.
+ *
+ * Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits),
+ * `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_NULL_PARAMETER`,
+ * `NLS_STATUS_MISALIGNED_POINTER`.
+ */
+nls_status nls_mesh_scratch_size(uint32_t scheme, uint32_t flags, size_t vertex_count, size_t index_count, size_t *out_scratch_u32, size_t *out_scratch_points);
+
+/**
+ * Validates a mesh and gives the exact sizes of one level of `scheme` (`NLS_SCHEME_*`) with
+ * `flags` (`NLS_SUBDIVIDE_*`; the Möbius version has the same sizes): `*out_vertex_count`
+ * points, `*out_face_count` faces (the offsets buffer holds one more entry) and
+ * `*out_index_count` corners.
+ *
+ * The mesh: `positions[3*vertex_count]` (`x, y, z` per vertex), `offsets[face_count + 1]`
+ * (`offsets[0] = 0`, non-decreasing, `offsets[face_count] = index_count`; never NULL, an
+ * empty mesh is `{0}`) and `indices[index_count]`, faces counter-clockwise seen from outside.
+ * `scratch_u32` holds `scratch_u32_capacity` entries, at least `*out_scratch_u32` of
+ * [`nls_mesh_scratch_size`]; it must not overlap the mesh. Its contents are unspecified
+ * afterwards.
+ *
+ * Validation, topology first and before anything else is computed (the first failure wins):
+ * `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_BAD_OFFSETS`,
+ * `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face above 128 corners),
+ * `NLS_STATUS_INDEX_OUT_OF_RANGE`, `NLS_STATUS_REPEATED_VERTEX` (each naming the face),
+ * `NLS_STATUS_DUPLICATE_FACE`, `NLS_STATUS_INCONSISTENT_ORIENTATION`,
+ * `NLS_STATUS_NON_MANIFOLD_EDGE` (naming the later face on the edge),
+ * `NLS_STATUS_NON_MANIFOLD_VERTEX` (bow-tie), `NLS_STATUS_VALENCE_TOO_HIGH` (a vertex above
+ * 128 neighbours), `NLS_STATUS_NON_FINITE_INPUT` (each naming the vertex), then the scheme's
+ * own: `NLS_STATUS_UNSUPPORTED_FACE_TYPE` (Loop and Modified Butterfly accept triangles,
+ * Kobbelt quads; naming the face), `NLS_STATUS_FACE_TOO_SMALL` naming an interior valence-2
+ * vertex (dual schemes), `NLS_STATUS_VALENCE_TOO_HIGH` (an output vertex or face above the
+ * capacity).
+ *
+ * `out_element` may be NULL. Otherwise it receives, on failure only, the element named
+ * above, the short buffer (`NLS_MESH_BUFFER_SCRATCH_U32`) on `NLS_STATUS_BUFFER_TOO_SMALL`,
+ * or `NLS_NO_ELEMENT`. The counts are written on success only.
+ *
+ * Other errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits),
+ * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
+ * `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`.
+ */
+nls_status nls_mesh_subdivide_size(uint32_t scheme,
+                                   uint32_t flags,
+                                   const double *positions,
+                                   size_t vertex_count,
+                                   const uint32_t *offsets,
+                                   size_t face_count,
+                                   const uint32_t *indices,
+                                   size_t index_count,
+                                   uint32_t *scratch_u32,
+                                   size_t scratch_u32_capacity,
+                                   size_t *out_vertex_count,
+                                   size_t *out_face_count,
+                                   size_t *out_index_count,
+                                   uint32_t *out_element);
+
+/**
+ * One level of `scheme` (`NLS_SCHEME_*`) with `flags` (`NLS_SUBDIVIDE_*`) on the mesh
+ * (buffers as in [`nls_mesh_subdivide_size`]), written to `out_positions` (room for
+ * `out_vertex_capacity` points, `3*` that many doubles), `out_offsets`
+ * (`out_face_capacity + 1` entries) and `out_indices` (`out_index_capacity` entries).
+ *
+ * Scratch: `scratch_u32` (`scratch_u32_capacity` entries) and `scratch_points`
+ * (`scratch_point_capacity` points), at least what [`nls_mesh_scratch_size`] gives (NULL with
+ * capacity 0 when that is 0). No buffer may overlap another one or the input
+ * (`NLS_STATUS_ALIASING_BUFFERS`, checked before anything is read): in-place calls are not
+ * supported.
+ *
+ * Output order (DESIGN.md): primal schemes write the old vertices first at the same
+ * indices, then the edge points in edge order (edges sorted by their `(min, max)` vertex
+ * pair), then the face points in face order; the dual schemes as documented in
+ * `docs/mesh-and-linear-schemes.md`. The Möbius version has the connectivity and order of the
+ * linear one. Interpolating schemes keep the old vertices bit for bit.
+ *
+ * On success the three counts receive the sizes written and `*out_report` (may be NULL) the
+ * fallbacks. On `NLS_STATUS_BUFFER_TOO_SMALL` nothing is written to the output buffers,
+ * `*out_element` names the first short buffer (`NLS_MESH_BUFFER_*`, checked in the order
+ * scratch_u32, scratch_points, positions, offsets, indices) and, when it is an output buffer,
+ * the three counts receive the exact sizes needed (a scratch buffer is checked before the
+ * mesh is validated, against the sizes of [`nls_mesh_scratch_size`]: the counts are not
+ * written then). After any other error the contents of the output and scratch buffers are
+ * unspecified and the counts and report are not written.
+ *
+ * `out_element` may be NULL. Otherwise it receives, on failure only: the element of a
+ * validation error (see [`nls_mesh_subdivide_size`]), the output vertex for
+ * `NLS_STATUS_FALLBACK_IN_STRICT_MODE` and `NLS_STATUS_NUMERICAL_FAILURE`, the buffer for
+ * `NLS_STATUS_BUFFER_TOO_SMALL`, else `NLS_NO_ELEMENT`.
+ *
+ * Errors: those of [`nls_mesh_subdivide_size`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
+ * `NLS_STATUS_FALLBACK_IN_STRICT_MODE` (`NLS_SUBDIVIDE_STRICT`); `NLS_STATUS_NUMERICAL_FAILURE`
+ * (an output vertex would not be finite: coordinates near the ends of the double range).
+ */
+nls_status nls_mesh_subdivide(uint32_t scheme,
+                              uint32_t flags,
+                              const double *positions,
+                              size_t vertex_count,
+                              const uint32_t *offsets,
+                              size_t face_count,
+                              const uint32_t *indices,
+                              size_t index_count,
+                              uint32_t *scratch_u32,
+                              size_t scratch_u32_capacity,
+                              double *scratch_points,
+                              size_t scratch_point_capacity,
+                              double *out_positions,
+                              size_t out_vertex_capacity,
+                              uint32_t *out_offsets,
+                              size_t out_face_capacity,
+                              uint32_t *out_indices,
+                              size_t out_index_capacity,
+                              size_t *out_vertex_count,
+                              size_t *out_face_count,
+                              size_t *out_index_count,
+                              struct nls_subdivide_report *out_report,
+                              uint32_t *out_element);
+
+/**
+ * Validates the mesh and plans `levels` levels (at most `NLS_MAX_LEVELS`; 0 copies the
+ * mesh) of [`nls_mesh_subdivide_levels`]: the exact sizes of the last level
+ * (`*out_vertex_count`, `*out_face_count`, `*out_index_count`) and the scratch the call needs,
+ * `*out_scratch_u32` entries and `*out_scratch_points` points (the intermediate levels, their
+ * topology and, with `NLS_SUBDIVIDE_MOBIUS`, the candidates of the largest step). The sizes
+ * of every level are exact functions of a few counts of the input, so nothing is subdivided
+ * here.
+ *
+ * `scratch_u32` is needed for the validation itself: at least `*out_scratch_u32` of
+ * [`nls_mesh_scratch_size`].
+ *
+ * Errors: those of [`nls_mesh_subdivide_size`] for the first level;
+ * `NLS_STATUS_INVALID_ARGUMENT` for more than `NLS_MAX_LEVELS` levels;
+ * `NLS_STATUS_SIZE_OVERFLOW` when a level has more than `UINT32_MAX − 1` vertices, faces or
+ * corners; `NLS_STATUS_VALENCE_TOO_HIGH` (no element) when a later level would exceed the
+ * valence or face-size capacity. `out_element` as for [`nls_mesh_subdivide_size`].
+ */
+nls_status nls_mesh_subdivide_levels_size(uint32_t scheme,
+                                          uint32_t flags,
+                                          const double *positions,
+                                          size_t vertex_count,
+                                          const uint32_t *offsets,
+                                          size_t face_count,
+                                          const uint32_t *indices,
+                                          size_t index_count,
+                                          uint32_t levels,
+                                          uint32_t *scratch_u32,
+                                          size_t scratch_u32_capacity,
+                                          size_t *out_vertex_count,
+                                          size_t *out_face_count,
+                                          size_t *out_index_count,
+                                          size_t *out_scratch_u32,
+                                          size_t *out_scratch_points,
+                                          uint32_t *out_element);
+
+/**
+ * `levels` levels (at most `NLS_MAX_LEVELS`; 0 copies the mesh) of `scheme` with `flags` in
+ * one call: the intermediate levels live in the scratch, the last one is written to the
+ * output buffers. Buffers as for [`nls_mesh_subdivide`]; the scratch and output sizes come
+ * from [`nls_mesh_subdivide_levels_size`]. The result equals `levels` calls of
+ * [`nls_mesh_subdivide`], bit for bit.
+ *
+ * The report sums the fallbacks of all levels; its `first_fallback` is a vertex of level
+ * `first_fallback_level`. With `NLS_SUBDIVIDE_STRICT`, `*out_element` receives the output
+ * vertex of the level being computed.
+ *
+ * `NLS_STATUS_BUFFER_TOO_SMALL` as for [`nls_mesh_subdivide`]: `scratch_u32` below the
+ * input's topology (checked before validation); then, after planning, `scratch_u32`,
+ * `scratch_points`, the output buffers in this order (the counts receive the exact sizes
+ * when an output buffer is short).
+ *
+ * Errors: those of [`nls_mesh_subdivide_levels_size`] and [`nls_mesh_subdivide`].
+ */
+nls_status nls_mesh_subdivide_levels(uint32_t scheme,
+                                     uint32_t flags,
+                                     const double *positions,
+                                     size_t vertex_count,
+                                     const uint32_t *offsets,
+                                     size_t face_count,
+                                     const uint32_t *indices,
+                                     size_t index_count,
+                                     uint32_t levels,
+                                     uint32_t *scratch_u32,
+                                     size_t scratch_u32_capacity,
+                                     double *scratch_points,
+                                     size_t scratch_point_capacity,
+                                     double *out_positions,
+                                     size_t out_vertex_capacity,
+                                     uint32_t *out_offsets,
+                                     size_t out_face_capacity,
+                                     uint32_t *out_indices,
+                                     size_t out_index_capacity,
+                                     size_t *out_vertex_count,
+                                     size_t *out_face_count,
+                                     size_t *out_index_count,
+                                     struct nls_subdivide_report *out_report,
+                                     uint32_t *out_element);
+
+/**
  * The identity map.
  */
 nls_status nls_mobius_identity(struct nls_mobius *out);
@@ -439,6 +752,24 @@ nls_status nls_cross_ratio(const double a[3], const double b[3], const double c[
  *
  */
 nls_status nls_f4(const double a[3], const double b[3], const double c[3], const double d[3], double out[3]);
+
+/**
+ * [`nls_f4`] with a fifth point `x` that decides the one case where F4 is not
+ * Möbius-equivariant: when `ρ = cr[c, a, b, d]` is a negative real (the four points are
+ * cocircular and `(b, c)` separates `(a, d)`), the new point is taken on the sphere through
+ * `a, b, c, x` instead of in the plane of the circle. Elsewhere identical to [`nls_f4`].
+ *
+ * This is the edge blend of the Möbius mesh schemes: the edge point of an interior edge
+ * `a → b` (the half-edge from the smaller to the larger vertex index) is
+ * `F4(a, e_a, e_b, b)` with `e_a`, `e_b` the edge candidates of the two end points' stars
+ * (`nls_mobius_loop_star`, `nls_mobius_catmull_clark_star`) and `x` the corner after `b` in
+ * the face on the left of `a → b` (the third vertex of a triangle), so a spherical mesh
+ * stays on its sphere in the cocircular case too.
+ *
+ * Errors: as [`nls_f4`]; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
+ *
+ */
+nls_status nls_f4_hinted(const double a[3], const double b[3], const double c[3], const double d[3], const double x[3], double out[3]);
 
 /**
  * The six-point blend `F6(a, b, c, d, e, f)` of the chains `a, b, c` and `d, e, f`
@@ -538,6 +869,101 @@ nls_status nls_star_mobius_regularity(const double v[3], const double *ring, siz
  *
  */
 nls_status nls_face_point(const double *vertices, const double *candidates, size_t count, double out[3]);
+
+/**
+ * The canonical Möbius Loop rules at the vertex star `v ring[0..ring_len]` (packed `x, y, z`),
+ * exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_LOOP` with
+ * `NLS_SUBDIVIDE_MOBIUS`: the star's canonical form (seed 000 §4.2), Loop's stencils on the
+ * mapped 1-ring, the results mapped back.
+ *
+ * `closed = 1`: an interior vertex, `ring` its neighbours counter-clockwise (seen from
+ * outside) as a cycle. `closed = 0`: a boundary vertex, `ring` from one boundary neighbour
+ * counter-clockwise to the other. The faces are triangles: face `j` is `(v, ring[j],
+ * ring[j+1])`.
+ *
+ * Writes `out_vertex_point` (the Möbius vertex point; NaN for a boundary vertex, whose
+ * vertex point is the boundary curve rule, and when it does not exist) and
+ * `out_edge_candidates[3j..3j+3]`, the candidate of the edge to `ring[j]` in this star's form
+ * (NaN for the two boundary edges of a boundary star, and when it does not exist); the
+ * outputs hold 3 and `3*ring_len` doubles and must not overlap `ring`. Edge points: see
+ * `nls_f4_hinted` (the hint `x` of edge `a → b` is the third vertex
+ * of the triangle on its left).
+ *
+ * Bit-identical to the driver when `ring` starts at the spoke the driver starts at (the
+ * vertex's outgoing half-edge with the lowest corner index); otherwise equal up to rounding.
+ *
+ * One level of a Möbius scheme from the star rules (seed 000 §4.1), as the driver does it:
+ * 1. every non-isolated vertex: its star rule (vertex point, edge candidates, and for
+ *    Catmull–Clark face candidates);
+ * 2. every interior edge `a → b` (`a` the smaller index): `nls_f4_hinted(a, e_a, e_b, b, x)`
+ *    of the candidates of both end points; the one candidate when the other is NaN;
+ * 3. every face (Catmull–Clark, Akleman schemes): `nls_face_point` of its corners and their
+ *    stars' face candidates; a boundary vertex with a single face (an *ear*) lends the
+ *    candidate of the first non-ear corner at offset `h, h+1, h−1, …` (`h = ⌊d/2⌋`);
+ * 4. boundary loops as closed curves: edge points `nls_f4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`,
+ *    vertex points (approximating schemes) `nls_f4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`;
+ * 5. whatever has no value (an error status here, a NaN vertex point of an interior vertex,
+ *    an edge without candidates) takes the linear rule: what `nls_mesh_subdivide` counts as
+ *    a fallback.
+ *
+ * Errors: `NLS_STATUS_TOO_FEW_POINTS` (fewer than 2 neighbours),
+ * `NLS_STATUS_VALENCE_TOO_HIGH` (more than 128), `NLS_STATUS_NON_FINITE_INPUT`,
+ * `NLS_STATUS_DEGENERATE_GEOMETRY` (the star has no canonical form: a neighbour coincides
+ * with `v`, or the form sends a neighbour to infinity; the driver then takes the linear rule
+ * for everything this star gives), `NLS_STATUS_INVALID_ARGUMENT` (`closed` not 0 or 1),
+ * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
+ * `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
+ *
+ */
+nls_status nls_mobius_loop_star(const double v[3],
+                                const double *ring,
+                                size_t ring_len,
+                                uint32_t closed,
+                                double out_vertex_point[3],
+                                double *out_edge_candidates);
+
+/**
+ * The canonical Möbius Catmull–Clark rules at the vertex star `v ring[0..ring_len]`, exactly
+ * as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_CATMULL_CLARK` with
+ * `NLS_SUBDIVIDE_MOBIUS`. `ring` and `closed` as for [`nls_mobius_loop_star`].
+ *
+ * The faces of the star: face `j` lies between the edges to `ring[j]` and `ring[j+1]`
+ * (counter-clockwise); `face_count` is `ring_len` for a closed star, `ring_len − 1` for an
+ * open one. Face `j` is `face_corners[3*face_offsets[j] .. 3*face_offsets[j+1]]`: the
+ * positions of all its corners in face order, `v` included (anywhere in the cycle);
+ * `face_offsets` holds `face_count + 1` entries, from 0 to `corner_count`.
+ *
+ * Writes `out_vertex_point` (NaN as for [`nls_mobius_loop_star`]),
+ * `out_edge_candidates[3j..3j+3]` (the candidate of the edge to `ring[j]`; NaN for boundary
+ * edges and when it does not exist) and `out_face_candidates[3j..3j+3]` (the centroid of
+ * face `j` taken in this star's canonical form; NaN when it does not exist); they hold 3,
+ * `3*ring_len` and `3*face_count` doubles and must not overlap the inputs. Face points are
+ * `nls_face_point` of a face's corners and the face candidates of the corners' stars (the
+ * Akleman schemes use the same face candidates); edge points as in
+ * `nls_f4_hinted` (hint: the corner after `b` in the face on the left
+ * of `a → b`).
+ *
+ * Bit-identical to the driver when `ring` starts at the driver's first spoke and each face
+ * lists its corners from its first corner in the mesh; otherwise equal up to rounding.
+ *
+ * Errors: those of [`nls_mobius_loop_star`], except that a neighbour sent to infinity only
+ * removes the rules that use it (NaN), as in the driver; `NLS_STATUS_INVALID_ARGUMENT`
+ * (`face_count` does not fit `ring_len` and `closed`, or a face does not contain `v`),
+ * `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
+ * above 128 corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+ *
+ */
+nls_status nls_mobius_catmull_clark_star(const double v[3],
+                                         const double *ring,
+                                         size_t ring_len,
+                                         uint32_t closed,
+                                         const uint32_t *face_offsets,
+                                         size_t face_count,
+                                         const double *face_corners,
+                                         size_t corner_count,
+                                         double out_vertex_point[3],
+                                         double *out_edge_candidates,
+                                         double *out_face_candidates);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -535,3 +535,245 @@ fn mobius_schemes_contract_and_lower_the_willmore_energy() {
         );
     }
 }
+
+#[test]
+fn mobius_levels_equal_repeated_steps() {
+    let meshes = [
+        jitter(&quad_torus(6, 5, 2.0, 0.7), 0.05, 21),
+        jitter(&tri_grid(4, 3), 0.05, 22),
+        jitter(&quad_grid(3, 3), 0.05, 23),
+        onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5])),
+    ];
+    let mut runs = 0;
+    for m in &meshes {
+        for s in Scheme::ALL {
+            if !accepts(s, m) {
+                continue;
+            }
+            for levels in 0..=3usize {
+                let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
+                let Ok(p) = scheme::plan(s, m.view(), levels, &mut su) else {
+                    continue; // a later level above the valence capacity
+                };
+                let sizes = p.output();
+                su.resize(p.scratch_u32.max(su.len()), 0);
+                let mut sp = vec![[0.0; 3]; p.mobius_scratch_points().unwrap()];
+                let mut out = OwnedMesh {
+                    positions: vec![[f64::NAN; 3]; sizes.vertices],
+                    offsets: vec![u32::MAX; sizes.faces + 1],
+                    indices: vec![u32::MAX; sizes.indices],
+                };
+                let (written, rep) = scheme::subdivide_levels_mobius(
+                    s,
+                    m.view(),
+                    levels,
+                    &mut su,
+                    &mut sp,
+                    &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+                    MobiusOptions::default(),
+                )
+                .unwrap();
+                assert_eq!(written, sizes);
+                let (want, fallbacks) = msub_n(s, m, levels);
+                assert_eq!(hash(&out), hash(&want), "{s:?} x{levels}");
+                assert_eq!(rep.fallbacks, fallbacks, "{s:?} x{levels}");
+                assert_eq!(rep.first_fallback_level == 0, fallbacks == 0);
+                runs += 1;
+                // One point too few is refused before anything is computed.
+                if let Some(short) = sp.len().checked_sub(1) {
+                    let e = scheme::subdivide_levels_mobius(
+                        s,
+                        m.view(),
+                        levels,
+                        &mut su,
+                        &mut sp[..short],
+                        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+                        MobiusOptions::default(),
+                    )
+                    .unwrap_err();
+                    assert_eq!((e.status, e.needed), (Status::BufferTooSmall, sp.len()));
+                }
+            }
+        }
+    }
+    assert!(runs >= 80, "{runs} runs");
+}
+
+#[test]
+fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
+    let mut m = onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5]));
+    m.positions[1] = m.positions[0];
+    let s = Scheme::CatmullClark;
+    let mut su = vec![0u32; 4096];
+    let p = scheme::plan(s, m.view(), 2, &mut su).unwrap();
+    let mut sp = vec![[0.0; 3]; p.mobius_scratch_points().unwrap()];
+    let sizes = p.output();
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; sizes.vertices],
+        offsets: vec![u32::MAX; sizes.faces + 1],
+        indices: vec![u32::MAX; sizes.indices],
+    };
+    let run = |strict: bool, su: &mut [u32], sp: &mut [Point], out: &mut OwnedMesh| {
+        scheme::subdivide_levels_mobius(
+            s,
+            m.view(),
+            2,
+            su,
+            sp,
+            &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+            MobiusOptions { strict },
+        )
+    };
+    let (_, rep) = run(false, &mut su, &mut sp, &mut out).unwrap();
+    let (_, first) = msub(s, &m, false).unwrap();
+    assert!(first.fallbacks > 0);
+    assert_eq!(rep.first_fallback_level, 1);
+    assert_eq!(rep.first_fallback, first.first_fallback);
+    assert!(rep.fallbacks >= first.fallbacks);
+    let e = run(true, &mut su, &mut sp, &mut out).unwrap_err();
+    assert_eq!(
+        (e.status, e.element),
+        (Status::FallbackInStrictMode, first.first_fallback)
+    );
+}
+
+/// The ring of `v` (star order) and, for each spoke with a face, that face's corners in
+/// face order.
+fn star_of(t: &Topology<'_, '_>, v: u32) -> (Vec<Point>, Vec<u32>, Vec<Point>, bool) {
+    let mut ring = Vec::new();
+    let mut offs = vec![0u32];
+    let mut corners = Vec::new();
+    for s in t.star(v) {
+        ring.push(t.position(s.neighbour).unwrap());
+        if s.face != nlsubdiv::mesh::NONE {
+            for &u in t.face_vertices(s.face).unwrap() {
+                corners.push(t.position(u).unwrap());
+            }
+            offs.push(corners.len() as u32);
+        }
+    }
+    (ring, offs, corners, !t.is_boundary_vertex(v).unwrap())
+}
+
+/// What a star rule gives: the vertex point, the edge and the face candidates.
+type StarRule = (Option<Point>, Vec<Point>, Vec<Point>);
+
+/// The candidate of the edge from `v` to `u` in `v`'s star, via `rule`.
+fn candidate(
+    t: &Topology<'_, '_>,
+    v: u32,
+    u: u32,
+    rule: &dyn Fn(u32) -> Option<StarRule>,
+) -> Point {
+    let Some((_, edges, _)) = rule(v) else {
+        return [f64::NAN; 3];
+    };
+    let j = t.star(v).position(|s| s.neighbour == u).unwrap();
+    edges[j]
+}
+
+#[test]
+fn star_rules_reproduce_the_driver_bit_for_bit() {
+    use nlsubdiv::blend::{f4_hinted, face_point};
+    let cases = [
+        (Scheme::Loop, jitter(&tri_torus(7, 5), 0.05, 31)),
+        (Scheme::Loop, jitter(&tri_grid(4, 4), 0.05, 32)),
+        (Scheme::Loop, onto_sphere(&bipyramid(7))),
+        (
+            Scheme::CatmullClark,
+            jitter(&quad_torus(7, 5, 2.0, 0.7), 0.05, 33),
+        ),
+        (Scheme::CatmullClark, jitter(&quad_grid(4, 3), 0.05, 34)),
+        (Scheme::CatmullClark, jitter(&prism(5), 0.05, 35)),
+        (
+            Scheme::CatmullClark,
+            onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5])),
+        ),
+    ];
+    let mut checked = [0usize; 3];
+    for (s, m) in &cases {
+        let (out, rep) = msub(*s, m, false).unwrap();
+        assert_eq!(rep.fallbacks, 0, "{s:?}");
+        with_topology(m, |t| {
+            let nv = t.num_vertices();
+            let ne = t.num_edges();
+            let rule = |v: u32| -> Option<StarRule> {
+                let (ring, offs, corners, closed) = star_of(t, v);
+                let mut e = vec![[0.0; 3]; ring.len()];
+                let mut f = vec![[0.0; 3]; offs.len() - 1];
+                let vp = match s {
+                    Scheme::Loop => {
+                        mobius::loop_star(t.position(v).unwrap(), &ring, closed, &mut e)
+                    }
+                    _ => mobius::catmull_clark_star(
+                        t.position(v).unwrap(),
+                        &ring,
+                        closed,
+                        &offs,
+                        &corners,
+                        &mut e,
+                        &mut f,
+                    ),
+                };
+                vp.ok().map(|vp| (vp, e, f))
+            };
+            for v in 0..nv as u32 {
+                if t.is_boundary_vertex(v).unwrap() {
+                    continue;
+                }
+                let (vp, _, _) = rule(v).unwrap();
+                assert_eq!(vp.unwrap(), out.positions[v as usize], "{s:?} vertex {v}");
+                checked[0] += 1;
+            }
+            for e in 0..ne as u32 {
+                if t.is_boundary_edge(e).unwrap() {
+                    continue;
+                }
+                let h = t.edge_half_edge(e).unwrap();
+                let (a, b) = (t.origin(h).unwrap(), t.dest(h).unwrap());
+                let (ca, cb) = (candidate(t, a, b, &rule), candidate(t, b, a, &rule));
+                let hint = t.position(t.dest(t.next(h).unwrap()).unwrap()).unwrap();
+                let (pa, pb) = (t.position(a).unwrap(), t.position(b).unwrap());
+                let p = match (ca[0].is_nan(), cb[0].is_nan()) {
+                    (false, false) => f4_hinted(pa, ca, cb, pb, hint).unwrap(),
+                    (false, true) => ca,
+                    (true, false) => cb,
+                    (true, true) => panic!("{s:?}: no candidate for edge {e}"),
+                };
+                assert_eq!(p, out.positions[nv + e as usize], "{s:?} edge {e}");
+                checked[1] += 1;
+            }
+            if *s == Scheme::CatmullClark {
+                for f in 0..t.num_faces() as u32 {
+                    let verts: Vec<Point> = t
+                        .face_vertices(f)
+                        .unwrap()
+                        .iter()
+                        .map(|&u| t.position(u).unwrap())
+                        .collect();
+                    if t.face_vertices(f).unwrap().iter().any(|&u| {
+                        t.is_boundary_vertex(u).unwrap() && t.vertex_face_count(u).unwrap() == 1
+                    }) {
+                        continue; // ears take a substitute's form (documented)
+                    }
+                    let cands: Vec<Point> = t
+                        .face_half_edges(f)
+                        .unwrap()
+                        .map(|h| {
+                            let u = t.origin(h).unwrap();
+                            let (_, _, fc) = rule(u).unwrap();
+                            let j = t.star(u).position(|sp| sp.face == f).unwrap();
+                            fc[j]
+                        })
+                        .collect();
+                    let p = face_point(&verts, &cands).unwrap();
+                    assert_eq!(p, out.positions[nv + ne + f as usize], "face {f}");
+                    checked[2] += 1;
+                }
+            }
+        })
+        .unwrap();
+    }
+    println!("star rules = driver: {checked:?} (vertices, edges, faces)");
+    assert!(checked.iter().all(|&c| c > 50));
+}

@@ -19,8 +19,10 @@
 
 pub mod curve;
 mod guard;
+pub mod mesh;
 pub mod mobius;
 pub mod primitives;
+pub mod star;
 
 pub use nlsubdiv::Status;
 

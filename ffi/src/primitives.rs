@@ -90,6 +90,50 @@ pub unsafe extern "C" fn nls_f4(
     })
 }
 
+/// [`nls_f4`] with a fifth point `x` that decides the one case where F4 is not
+/// Möbius-equivariant: when `ρ = cr[c, a, b, d]` is a negative real (the four points are
+/// cocircular and `(b, c)` separates `(a, d)`), the new point is taken on the sphere through
+/// `a, b, c, x` instead of in the plane of the circle. Elsewhere identical to [`nls_f4`].
+///
+/// This is the edge blend of the Möbius mesh schemes: the edge point of an interior edge
+/// `a → b` (the half-edge from the smaller to the larger vertex index) is
+/// `F4(a, e_a, e_b, b)` with `e_a`, `e_b` the edge candidates of the two end points' stars
+/// (`nls_mobius_loop_star`, `nls_mobius_catmull_clark_star`) and `x` the corner after `b` in
+/// the face on the left of `a → b` (the third vertex of a triangle), so a spherical mesh
+/// stays on its sphere in the cocircular case too.
+///
+/// Errors: as [`nls_f4`]; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
+///
+/// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [x;3], [out;3]]
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_f4_hinted(
+    a: *const f64,
+    b: *const f64,
+    c: *const f64,
+    d: *const f64,
+    x: *const f64,
+    out: *mut f64,
+) -> Status {
+    run(|| {
+        // SAFETY: the caller passes NULL or three readable doubles per point.
+        let (a, b, c, d, x) = unsafe {
+            (
+                read_point(a)?,
+                read_point(b)?,
+                read_point(c)?,
+                read_point(d)?,
+                read_point(x)?,
+            )
+        };
+        check_out(out, 3)?;
+        check_fp_env()?;
+        let p = status_of(blend::f4_hinted(a, b, c, d, x))?;
+        // SAFETY: checked above; three writable doubles by contract.
+        unsafe { write(out, p) };
+        Ok(())
+    })
+}
+
 /// The six-point blend `F6(a, b, c, d, e, f)` of the chains `a, b, c` and `d, e, f`
 /// (seed 000 §4.4.2). Sphere preserving for cospherical points; `b = e` gives `b`.
 ///

@@ -11,6 +11,7 @@
 //! exceed the capacity is [`Status::ValenceTooHigh`] (no element: it does not exist yet).
 
 use super::linear::subdivide_size;
+use super::mobius::MobiusOptions;
 use super::{subdivide, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::Pattern;
@@ -42,6 +43,50 @@ impl LevelPlan {
     /// The sizes of the last level (what the caller's output buffers must hold).
     pub fn output(&self) -> MeshSizes {
         self.sizes.get(self.levels).copied().unwrap_or_default()
+    }
+
+    /// Point scratch of [`subdivide_levels_mobius`]: [`LevelPlan::scratch_points`] plus the
+    /// candidate scratch of one Möbius step ([`super::mobius::scratch_len`]) for the largest
+    /// input level.
+    ///
+    /// # Errors
+    /// [`Status::SizeOverflow`].
+    pub fn mobius_scratch_points(&self) -> Result<usize> {
+        cadd(self.scratch_points, self.mobius_step_points()?)
+    }
+
+    /// The candidate scratch of the largest Möbius step (0 for zero levels).
+    fn mobius_step_points(&self) -> Result<usize> {
+        let mut corners = 0usize;
+        for k in 0..self.levels {
+            corners = corners.max(self.sizes.get(k).ok_or(internal())?.indices);
+        }
+        if self.levels == 0 {
+            return Ok(0);
+        }
+        super::mobius::scratch_len_for(corners)
+    }
+}
+
+/// What the Möbius steps of [`subdivide_levels_mobius`] had to do besides the paper's rules.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LevelsReport {
+    /// Output vertices that took their linear rule, summed over all levels.
+    pub fallbacks: u32,
+    /// The first such vertex of the first level that had one (an index into that level), or
+    /// [`crate::NO_ELEMENT`].
+    pub first_fallback: u32,
+    /// That level (1 for the first step), or 0 when there was no fallback.
+    pub first_fallback_level: u32,
+}
+
+impl Default for LevelsReport {
+    fn default() -> Self {
+        LevelsReport {
+            fallbacks: 0,
+            first_fallback: crate::NO_ELEMENT,
+            first_fallback_level: 0,
+        }
     }
 }
 
@@ -334,6 +379,72 @@ pub fn subdivide_levels(
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
 ) -> Result<MeshSizes> {
+    run_levels(
+        scheme,
+        mesh,
+        levels,
+        scratch_u32,
+        scratch_points,
+        out,
+        |_| Ok(0),
+        |_, topo, step_out, _| subdivide(scheme, topo, step_out),
+    )
+}
+
+/// [`subdivide_levels`] with the canonical Möbius version of `scheme`
+/// ([`super::mobius::subdivide`]) at every level: `scratch_points` must hold
+/// [`LevelPlan::mobius_scratch_points`]. Returns the output sizes and the fallbacks of all
+/// levels. With [`MobiusOptions::strict`] a fallback is an error naming the output vertex
+/// of the level being computed.
+///
+/// # Errors
+/// Those of [`plan`] and [`super::mobius::subdivide`]; [`Status::BufferTooSmall`] with the
+/// needed size.
+pub fn subdivide_levels_mobius(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch_u32: &mut [u32],
+    scratch_points: &mut [Point],
+    out: &mut MeshOut<'_>,
+    opts: MobiusOptions,
+) -> Result<(MeshSizes, LevelsReport)> {
+    let mut report = LevelsReport::default();
+    let sizes = run_levels(
+        scheme,
+        mesh,
+        levels,
+        scratch_u32,
+        scratch_points,
+        out,
+        LevelPlan::mobius_step_points,
+        |k, topo, step_out, cand| {
+            let (written, r) = super::mobius::subdivide(scheme, topo, step_out, cand, opts)?;
+            report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
+            if report.first_fallback_level == 0 && r.fallbacks > 0 {
+                report.first_fallback = r.first_fallback;
+                report.first_fallback_level = (k + 1) as u32;
+            }
+            Ok(written)
+        },
+    )?;
+    Ok((sizes, report))
+}
+
+/// The level loop shared by [`subdivide_levels`] and [`subdivide_levels_mobius`]:
+/// `step_points(plan)` extra points of scratch (after the intermediate levels) are handed to
+/// every `step(k, topology of level k, output of level k + 1, extra scratch)`.
+#[allow(clippy::too_many_arguments)]
+fn run_levels(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch_u32: &mut [u32],
+    scratch_points: &mut [Point],
+    out: &mut MeshOut<'_>,
+    step_points: impl Fn(&LevelPlan) -> Result<usize>,
+    mut step: impl FnMut(usize, &Topology<'_, '_>, &mut MeshOut<'_>, &mut [Point]) -> Result<MeshSizes>,
+) -> Result<MeshSizes> {
     let need_plan = plan_scratch_len(&mesh)?;
     if scratch_u32.len() < need_plan {
         return Err(Error::too_small(need_plan));
@@ -344,8 +455,10 @@ pub fn subdivide_levels(
     if scratch_u32.len() < p.scratch_u32 {
         return Err(Error::too_small(p.scratch_u32));
     }
-    if scratch_points.len() < p.scratch_points {
-        return Err(Error::too_small(p.scratch_points));
+    let extra = step_points(&p)?;
+    let need_points = cadd(p.scratch_points, extra)?;
+    if scratch_points.len() < need_points {
+        return Err(Error::too_small(need_points));
     }
     if levels == 0 {
         copy_mesh(mesh, out)?;
@@ -374,7 +487,8 @@ pub fn subdivide_levels(
     let (p_a, rest) = scratch_points
         .split_at_mut_checked(slot_pts[0])
         .ok_or(internal())?;
-    let (p_b, _) = rest.split_at_mut_checked(slot_pts[1]).ok_or(internal())?;
+    let (p_b, rest) = rest.split_at_mut_checked(slot_pts[1]).ok_or(internal())?;
+    let step_scratch = rest.get_mut(..extra).ok_or(internal())?;
     // Slot 0 holds even levels, slot 1 odd levels.
     let mut bufs_u: [&mut [u32]; 2] = [u_a, u_b];
     let mut bufs_p: [&mut [Point]; 2] = [p_a, p_b];
@@ -401,12 +515,12 @@ pub fn subdivide_levels(
         };
         let topo = Topology::build(input, topo_scratch)?;
         let written = if k + 1 == levels {
-            subdivide(scheme, &topo, out)?
+            step(k, &topo, out, step_scratch)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(out_p, o, rest);
-            subdivide(scheme, &topo, &mut step_out)?
+            step(k, &topo, &mut step_out, step_scratch)?
         };
         if written != out_sizes {
             return Err(internal());

@@ -85,9 +85,277 @@ fn present(p: &Point) -> bool {
 /// # Errors
 /// [`Status::SizeOverflow`].
 pub fn scratch_len(topo: &Topology<'_, '_>) -> Result<usize> {
-    topo.num_half_edges()
+    scratch_len_for(topo.num_half_edges())
+}
+
+/// [`scratch_len`] from the number of corners (= half-edges) alone, for callers that size
+/// buffers before the mesh is validated (the C ABI): two points per corner.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn scratch_len_for(num_corners: usize) -> Result<usize> {
+    num_corners
         .checked_mul(2)
         .ok_or(Error::new(Status::SizeOverflow))
+}
+
+// ---- rules at one vertex star (tier 1: for hosts that own the connectivity) ----
+
+/// The star kind of a cyclic (`closed`) or open ring.
+const fn kind_of(closed: bool) -> StarKind {
+    if closed {
+        StarKind::Interior
+    } else {
+        StarKind::Boundary
+    }
+}
+
+/// Whether spoke `j` of a star of `n` spokes is an interior edge: every spoke of a closed
+/// star, the spokes `1 ..= n − 2` of an open one (its first and last spokes are boundary
+/// edges).
+const fn interior_spoke(closed: bool, j: usize, n: usize) -> bool {
+    closed || (j >= 1 && j + 1 < n)
+}
+
+/// The canonical form of the star `v ring…` and the ring's images in its normalised frame
+/// ([`MISSING`] for a neighbour the form sends to infinity).
+fn star_form(
+    v: Point,
+    ring: &[Point],
+    closed: bool,
+) -> Result<(CanonicalForm, ArrayVec<Point, MAX_VALENCE>)> {
+    let cf = CanonicalForm::new(v, ring, kind_of(closed))?;
+    let mut images = ArrayVec::new();
+    for u in ring {
+        images
+            .try_push(cf.to_normalised(*u).unwrap_or(MISSING))
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    }
+    Ok((cf, images))
+}
+
+/// The Loop rules in a star's canonical form (normalised frame, centre at the origin):
+/// the vertex point of a closed star, and the edge candidate of every interior spoke `j`,
+/// `edge_interior(0, r_j, r_{j+1}, r_{j−1})` (the two apexes of a triangle fan are the ring
+/// neighbours of the spoke), each mapped back with `back`. `ring` holds the images of the
+/// neighbours; a rule whose value cannot be mapped back leaves its slot [`MISSING`]
+/// (`None` for the vertex point). The driver and [`loop_star`] both evaluate the star here.
+fn loop_star_in_form(
+    ring: &[Point],
+    closed: bool,
+    back: impl Fn(Point) -> Result<Point>,
+    edge_candidates: &mut [Point],
+) -> Result<Option<Point>> {
+    let n = ring.len();
+    let vertex = if closed {
+        loop_scheme::vertex_interior(ORIGIN, ring)
+            .and_then(&back)
+            .ok()
+    } else {
+        None
+    };
+    for j in 0..n {
+        let c = if interior_spoke(closed, j, n) {
+            let b = get(ring, j)?;
+            let c = get(ring, (j + 1) % n)?;
+            let d = get(ring, (j + n - 1) % n)?;
+            back(loop_scheme::edge_interior(ORIGIN, b, c, d)).unwrap_or(MISSING)
+        } else {
+            MISSING
+        };
+        set(edge_candidates, j, c)?;
+    }
+    Ok(vertex)
+}
+
+/// The canonical Möbius Loop rules at one vertex star (seed 000 §4.1 steps 1–3), exactly as
+/// [`subdivide`] evaluates them for [`Scheme::Loop`]: the canonical form of `v ring…`
+/// (`closed`: a cyclic ring of an interior vertex; otherwise the ring runs from one boundary
+/// neighbour to the other, counter-clockwise), Loop's stencils on the mapped 1-ring, the
+/// results mapped back.
+///
+/// Returns the vertex point of an interior vertex (`None` for a boundary vertex, whose
+/// vertex point is the boundary curve rule, or when it cannot be mapped back), and writes
+/// `edge_candidates[j]`, the candidate of the edge to `ring[j]`, for every interior spoke; the
+/// other slots (boundary spokes, candidates at infinity) are NaN. An edge point is then
+/// `F4(a, e_a, e_b, b)` of the candidates of both end points ([`blend::f4_hinted`], hint the
+/// apex of the triangle on the left of `a → b`), the single candidate when only one exists,
+/// or the linear rule when none does.
+///
+/// Bit-identical to the driver when `ring` starts at the same spoke (the driver's star
+/// starts at the vertex's lowest-numbered outgoing half-edge, see
+/// [`crate::mesh::Topology::star`]); another rotation changes the last bits only.
+///
+/// # Errors
+/// [`Status::BufferTooSmall`] when `edge_candidates` is shorter than `ring`; the errors of
+/// [`CanonicalForm::new`] (the star has no canonical form: the driver takes the linear rule
+/// for everything this star would give); [`Status::DegenerateGeometry`] naming the ring
+/// index of a neighbour the form sends to infinity.
+pub fn loop_star(
+    v: Point,
+    ring: &[Point],
+    closed: bool,
+    edge_candidates: &mut [Point],
+) -> Result<Option<Point>> {
+    if edge_candidates.len() < ring.len() {
+        return Err(Error::too_small(ring.len()));
+    }
+    let (cf, images) = star_form(v, ring, closed)?;
+    if let Some(i) = images.iter().position(|p| !present(p)) {
+        // The driver takes no candidate from a star with a neighbour at infinity.
+        return Err(Error::at(Status::DegenerateGeometry, i as u32));
+    }
+    loop_star_in_form(&images, closed, |p| cf.from_normalised(p), edge_candidates)
+}
+
+/// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of
+/// the neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when
+/// not available). Writes the edge candidate `edge_interior(0, r_j, f_{j−1}, f_j)` of every
+/// interior spoke and returns the vertex point of a closed star, all mapped back with `back`.
+fn catmull_clark_star_in_form(
+    ring: &[Point],
+    faces: &[Point],
+    closed: bool,
+    back: impl Fn(Point) -> Result<Point>,
+    edge_candidates: &mut [Point],
+) -> Result<Option<Point>> {
+    let n = ring.len();
+    for j in 0..n {
+        let mut c = MISSING;
+        if interior_spoke(closed, j, n) {
+            let b = get(ring, j)?;
+            let f0 = get(faces, (j + n - 1) % n)?;
+            let f1 = get(faces, j)?;
+            if present(&b) && present(&f0) && present(&f1) {
+                c = back(catmull_clark::edge_interior(ORIGIN, b, f0, f1)).unwrap_or(MISSING);
+            }
+        }
+        set(edge_candidates, j, c)?;
+    }
+    let all = |s: &[Point]| s.iter().take(n).all(present);
+    if closed && all(ring) && all(faces) {
+        let faces = faces.get(..n).ok_or(internal())?;
+        Ok(catmull_clark::vertex_interior(ORIGIN, ring, faces)
+            .and_then(&back)
+            .ok())
+    } else {
+        Ok(None)
+    }
+}
+
+/// The canonical Möbius Catmull–Clark rules at one vertex star, exactly as [`subdivide`]
+/// evaluates them for [`Scheme::CatmullClark`]. `ring` as for [`loop_star`]; face `j`
+/// (`face_corners[face_offsets[j]..face_offsets[j + 1]]`) is the face between spoke `j` and
+/// spoke `j + 1` counter-clockwise, given by the positions of all its corners in face order
+/// (`v` included, anywhere in the cycle): `ring.len()` faces for a closed star, one fewer for
+/// an open one.
+///
+/// Returns the vertex point of an interior vertex (`None` as for [`loop_star`]); writes the
+/// edge candidate of every interior spoke to `edge_candidates[j]` and the face candidate (the
+/// face's centroid taken in this star's form) to `face_candidates[j]`; NaN where there is
+/// none. Face points are then [`blend::face_point`] of a face's corners and the candidates of
+/// its corners' stars; edge points as for [`loop_star`] (hint: the corner after `b` in the
+/// face on the left of `a → b`).
+///
+/// Bit-identical to the driver when `ring` starts at the driver's first spoke and each face
+/// lists its corners from the face's first corner in the mesh.
+///
+/// # Errors
+/// [`Status::BufferTooSmall`] for short candidate buffers; [`Status::InvalidArgument`] when
+/// the number of faces does not fit the ring; [`Status::BadOffsets`], [`Status::FaceTooSmall`],
+/// [`Status::ValenceTooHigh`] (more than [`MAX_FACE_SIZE`] corners) naming the face; the
+/// errors of [`CanonicalForm::new`]; [`Status::NonFiniteInput`] and
+/// [`Status::InvalidArgument`] (a face that does not contain `v`) naming the face. Unlike
+/// [`loop_star`], a neighbour sent to infinity only removes the rules that use it, as in the
+/// driver.
+pub fn catmull_clark_star(
+    v: Point,
+    ring: &[Point],
+    closed: bool,
+    face_offsets: &[u32],
+    face_corners: &[Point],
+    edge_candidates: &mut [Point],
+    face_candidates: &mut [Point],
+) -> Result<Option<Point>> {
+    let n = ring.len();
+    let nf = if closed { n } else { n.saturating_sub(1) };
+    if face_offsets.len() != nf + 1 {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    if edge_candidates.len() < n {
+        return Err(Error::too_small(n));
+    }
+    if face_candidates.len() < nf {
+        return Err(Error::too_small(nf));
+    }
+    let first = face_offsets.first().copied();
+    let last = face_offsets.last().map(|&o| o as usize);
+    if first != Some(0) || last != Some(face_corners.len()) {
+        return Err(Error::at(Status::BadOffsets, 0));
+    }
+    // The face lists, checked before any computation.
+    let face = |j: usize| -> Result<&[Point]> {
+        let bad = |s: Status| Error::at(s, j as u32);
+        let a = *face_offsets.get(j).ok_or(internal())? as usize;
+        let b = *face_offsets.get(j + 1).ok_or(internal())? as usize;
+        let corners = face_corners.get(a..b).ok_or(bad(Status::BadOffsets))?;
+        if corners.len() < 3 {
+            return Err(bad(Status::FaceTooSmall));
+        }
+        if corners.len() > MAX_FACE_SIZE {
+            return Err(bad(Status::ValenceTooHigh));
+        }
+        Ok(corners)
+    };
+    for j in 0..nf {
+        face(j)?;
+    }
+    let (cf, images) = star_form(v, ring, closed)?;
+    for j in 0..nf {
+        let corners = face(j)?;
+        if !corners.iter().all(point_is_finite) {
+            return Err(Error::at(Status::NonFiniteInput, j as u32));
+        }
+        if !corners.contains(&v) {
+            return Err(Error::at(Status::InvalidArgument, j as u32));
+        }
+    }
+    let mut centroids: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+    for j in 0..n {
+        let c = if j < nf {
+            let mut pts: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            let mut ok = true;
+            for p in face(j)? {
+                match cf.to_normalised(*p) {
+                    Ok(q) => pts.try_push(q).map_err(|_| internal())?,
+                    Err(_) => ok = false,
+                }
+            }
+            if ok {
+                centroid(&pts)?
+            } else {
+                MISSING
+            }
+        } else {
+            MISSING
+        };
+        centroids.try_push(c).map_err(|_| internal())?;
+        if j < nf {
+            let back = if present(&c) {
+                cf.from_normalised(c).unwrap_or(MISSING)
+            } else {
+                MISSING
+            };
+            set(face_candidates, j, back)?;
+        }
+    }
+    catmull_clark_star_in_form(
+        &images,
+        &centroids,
+        closed,
+        |p| cf.from_normalised(p),
+        edge_candidates,
+    )
 }
 
 /// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
@@ -563,24 +831,12 @@ impl Driver<'_, '_, '_, '_> {
                     }
                 }
                 if ok {
-                    if !boundary {
-                        vertex = loop_scheme::vertex_interior(ORIGIN, &ring)
-                            .and_then(|q| l.back(q))
-                            .ok();
-                    }
-                    for s in &spokes {
-                        if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
-                            continue;
-                        }
-                        let h = s.half_edge;
-                        let cand = (|| -> Result<Point> {
-                            let b = l.canon(topo, s.neighbour)?;
-                            let c = l.canon(topo, apex(topo, h)?)?;
-                            let d = l.canon(topo, apex(topo, topo.twin(h)?)?)?;
-                            l.back(loop_scheme::edge_interior(ORIGIN, b, c, d))
-                        })();
-                        if let Ok(c) = cand {
-                            set(self.edge_c, h as usize, c)?;
+                    // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
+                    let mut cands = [MISSING; MAX_VALENCE];
+                    vertex = loop_star_in_form(&ring, !boundary, |q| l.back(q), &mut cands)?;
+                    for (s, c) in spokes.iter().zip(cands) {
+                        if s.half_edge != NONE && present(&c) {
+                            set(self.edge_c, s.half_edge as usize, c)?;
                         }
                     }
                 }
@@ -630,53 +886,33 @@ impl Driver<'_, '_, '_, '_> {
             let mut vertex = None;
             if let Some(mut l) = self.local(v)? {
                 let spokes = topo.spokes(v)?;
-                // Canonical face points of the faces after each spoke.
-                let mut fc: ArrayVec<Option<Point>, MAX_VALENCE> = ArrayVec::new();
+                // Images of the neighbours and canonical centroids of the faces after each
+                // spoke ([`MISSING`] when unavailable).
+                let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                let mut fc: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
                 for s in &spokes {
                     let c = if s.face == NONE {
-                        None
+                        MISSING
                     } else {
-                        l.face(topo, s.face).and_then(|pts| centroid(&pts)).ok()
+                        l.face(topo, s.face)
+                            .and_then(|pts| centroid(&pts))
+                            .unwrap_or(MISSING)
                     };
-                    if let Some(b) = c.and_then(|c| l.back(c).ok()) {
-                        set(self.face_c, s.half_edge as usize, b)?;
+                    if present(&c) {
+                        if let Ok(b) = l.back(c) {
+                            set(self.face_c, s.half_edge as usize, b)?;
+                        }
                     }
                     fc.try_push(c).map_err(|_| internal())?;
+                    let r = l.canon(topo, s.neighbour).unwrap_or(MISSING);
+                    ring.try_push(r).map_err(|_| internal())?;
                 }
-                let n = spokes.len();
-                for (i, s) in spokes.iter().enumerate() {
-                    if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
-                        continue;
-                    }
-                    let prev = fc.get((i + n - 1) % n).copied().flatten();
-                    let cur = fc.get(i).copied().flatten();
-                    let cand = match (l.canon(topo, s.neighbour), prev, cur) {
-                        (Ok(b), Some(f0), Some(f1)) => {
-                            l.back(catmull_clark::edge_interior(ORIGIN, b, f0, f1)).ok()
-                        }
-                        _ => None,
-                    };
-                    if let Some(c) = cand {
+                let mut cands = [MISSING; MAX_VALENCE];
+                vertex =
+                    catmull_clark_star_in_form(&ring, &fc, !boundary, |q| l.back(q), &mut cands)?;
+                for (s, c) in spokes.iter().zip(cands) {
+                    if s.half_edge != NONE && present(&c) {
                         set(self.edge_c, s.half_edge as usize, c)?;
-                    }
-                }
-                if !boundary {
-                    let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-                    let mut faces: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-                    let mut ok = true;
-                    for (s, f) in spokes.iter().zip(fc.iter()) {
-                        match (l.canon(topo, s.neighbour), f) {
-                            (Ok(c), Some(f)) => {
-                                ring.try_push(c).map_err(|_| internal())?;
-                                faces.try_push(*f).map_err(|_| internal())?;
-                            }
-                            _ => ok = false,
-                        }
-                    }
-                    if ok {
-                        vertex = catmull_clark::vertex_interior(ORIGIN, &ring, &faces)
-                            .and_then(|q| l.back(q))
-                            .ok();
                     }
                 }
             }

@@ -5,7 +5,8 @@
 //! before the call, [`subdivide`] writes one level. [`subdivide_mesh`] and
 //! [`subdivide_mesh_size`] take the raw mesh slices and a scratch buffer
 //! ([`scratch_len`]) for callers that do not keep a [`Topology`]; [`plan`] and
-//! [`subdivide_levels`] run several levels.
+//! [`subdivide_levels`] run several levels, [`subdivide_levels_mobius`] several levels of the
+//! Möbius version ([`mobius`]), through the same level loop.
 //!
 //! Output vertex order (DESIGN.md): primal schemes write the old vertices first at the same
 //! indices, then edge points in edge-id order (edges sorted by `(min, max)` vertex key), then
@@ -16,7 +17,10 @@ mod levels;
 pub mod linear;
 pub mod mobius;
 
-pub use levels::{plan, plan_scratch_len, subdivide_levels, LevelPlan, MAX_LEVELS};
+pub use levels::{
+    plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
+    MAX_LEVELS,
+};
 pub use linear::{subdivide, subdivide_size};
 
 use crate::error::Result;

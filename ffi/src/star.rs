@@ -1,0 +1,238 @@
+//! Tier-1 exports of the Möbius mesh schemes (DESIGN.md "Two API tiers"): the rules at one
+//! vertex star, for a host mesh library (OpenMesh, CGAL, a CAD kernel) that drives the
+//! schemes with its own connectivity. They are the code paths of `nls_mesh_subdivide` with
+//! `NLS_SUBDIVIDE_MOBIUS`: the driver evaluates every star through the same core functions
+//! (`nlsubdiv::scheme::mobius::{loop_star, catmull_clark_star}`).
+//!
+//! How a host assembles a whole level from them: the docs of [`nls_mobius_loop_star`].
+
+use nlsubdiv::scheme::mobius as smobius;
+use nlsubdiv::{Point, Status, MAX_VALENCE};
+
+use crate::guard::{check_fp_env, check_out, check_ptr, flag, points, read_point};
+use crate::primitives::run;
+
+const NAN3: Point = [f64::NAN; 3];
+
+/// Writes `values` packed to `out[0..3*values.len()]`.
+///
+/// # Safety
+/// `out` passed `check_out(out, 3*values.len())` and is writable for that many doubles.
+unsafe fn write_points(out: *mut f64, values: &[Point]) {
+    for (i, p) in values.iter().enumerate() {
+        for (k, c) in p.iter().enumerate() {
+            // SAFETY: `3i + k < 3*values.len()`, writable by the caller's contract.
+            unsafe { out.add(3 * i + k).write(*c) };
+        }
+    }
+}
+
+/// A byte range `(start, bytes)` of `count` elements of `T` at `p`.
+fn bytes<T>(p: *const T, count: usize) -> (usize, usize) {
+    (p as usize, count.saturating_mul(core::mem::size_of::<T>()))
+}
+
+/// Fails with `AliasingBuffers` when an output range intersects an input or another output
+/// (inputs may overlap each other: they are only read).
+fn disjoint(outputs: &[(usize, usize)], inputs: &[(usize, usize)]) -> Result<(), Status> {
+    let hit = |(a, na): (usize, usize), (b, nb): (usize, usize)| {
+        na > 0 && nb > 0 && a < b.saturating_add(nb) && b < a.saturating_add(na)
+    };
+    for (i, &o) in outputs.iter().enumerate() {
+        if inputs
+            .iter()
+            .chain(outputs.iter().skip(i + 1))
+            .any(|&x| hit(o, x))
+        {
+            return Err(Status::AliasingBuffers);
+        }
+    }
+    Ok(())
+}
+
+/// The canonical Möbius Loop rules at the vertex star `v ring[0..ring_len]` (packed `x, y, z`),
+/// exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_LOOP` with
+/// `NLS_SUBDIVIDE_MOBIUS`: the star's canonical form (seed 000 §4.2), Loop's stencils on the
+/// mapped 1-ring, the results mapped back.
+///
+/// `closed = 1`: an interior vertex, `ring` its neighbours counter-clockwise (seen from
+/// outside) as a cycle. `closed = 0`: a boundary vertex, `ring` from one boundary neighbour
+/// counter-clockwise to the other. The faces are triangles: face `j` is `(v, ring[j],
+/// ring[j+1])`.
+///
+/// Writes `out_vertex_point` (the Möbius vertex point; NaN for a boundary vertex, whose
+/// vertex point is the boundary curve rule, and when it does not exist) and
+/// `out_edge_candidates[3j..3j+3]`, the candidate of the edge to `ring[j]` in this star's form
+/// (NaN for the two boundary edges of a boundary star, and when it does not exist); the
+/// outputs hold 3 and `3*ring_len` doubles and must not overlap `ring`. Edge points: see
+/// `nls_f4_hinted` (the hint `x` of edge `a → b` is the third vertex
+/// of the triangle on its left).
+///
+/// Bit-identical to the driver when `ring` starts at the spoke the driver starts at (the
+/// vertex's outgoing half-edge with the lowest corner index); otherwise equal up to rounding.
+///
+/// One level of a Möbius scheme from the star rules (seed 000 §4.1), as the driver does it:
+/// 1. every non-isolated vertex: its star rule (vertex point, edge candidates, and for
+///    Catmull–Clark face candidates);
+/// 2. every interior edge `a → b` (`a` the smaller index): `nls_f4_hinted(a, e_a, e_b, b, x)`
+///    of the candidates of both end points; the one candidate when the other is NaN;
+/// 3. every face (Catmull–Clark, Akleman schemes): `nls_face_point` of its corners and their
+///    stars' face candidates; a boundary vertex with a single face (an *ear*) lends the
+///    candidate of the first non-ear corner at offset `h, h+1, h−1, …` (`h = ⌊d/2⌋`);
+/// 4. boundary loops as closed curves: edge points `nls_f4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`,
+///    vertex points (approximating schemes) `nls_f4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`;
+/// 5. whatever has no value (an error status here, a NaN vertex point of an interior vertex,
+///    an edge without candidates) takes the linear rule: what `nls_mesh_subdivide` counts as
+///    a fallback.
+///
+/// Errors: `NLS_STATUS_TOO_FEW_POINTS` (fewer than 2 neighbours),
+/// `NLS_STATUS_VALENCE_TOO_HIGH` (more than 128), `NLS_STATUS_NON_FINITE_INPUT`,
+/// `NLS_STATUS_DEGENERATE_GEOMETRY` (the star has no canonical form: a neighbour coincides
+/// with `v`, or the form sends a neighbour to infinity; the driver then takes the linear rule
+/// for everything this star gives), `NLS_STATUS_INVALID_ARGUMENT` (`closed` not 0 or 1),
+/// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
+/// `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
+///
+/// cbindgen:ptrs-as-arrays=[[v;3], [out_vertex_point;3]]
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_mobius_loop_star(
+    v: *const f64,
+    ring: *const f64,
+    ring_len: usize,
+    closed: u32,
+    out_vertex_point: *mut f64,
+    out_edge_candidates: *mut f64,
+) -> Status {
+    run(|| {
+        // SAFETY: the caller passes NULL or three readable doubles.
+        let v = unsafe { read_point(v)? };
+        check_ptr(ring.cast::<Point>(), ring_len)?;
+        if ring_len > MAX_VALENCE {
+            return Err(Status::ValenceTooHigh);
+        }
+        let closed = flag(closed)?;
+        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        check_out(out_vertex_point, 3)?;
+        check_out(out_edge_candidates, n3)?;
+        disjoint(
+            &[
+                bytes(out_vertex_point.cast_const(), 3),
+                bytes(out_edge_candidates.cast_const(), n3),
+            ],
+            &[bytes(ring, n3)],
+        )?;
+        check_fp_env()?;
+        // SAFETY: checked above; readable by the caller's contract and disjoint from the
+        // outputs.
+        let ring_pts = unsafe { points(ring, ring_len)? };
+        let mut edges = [NAN3; MAX_VALENCE];
+        let cands = edges.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        let vp = smobius::loop_star(v, ring_pts, closed, cands).map_err(|e| e.status)?;
+        // SAFETY: both outputs checked above for their sizes.
+        unsafe {
+            write_points(out_vertex_point, &[vp.unwrap_or(NAN3)]);
+            write_points(out_edge_candidates, cands);
+        }
+        Ok(())
+    })
+}
+
+/// The canonical Möbius Catmull–Clark rules at the vertex star `v ring[0..ring_len]`, exactly
+/// as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_CATMULL_CLARK` with
+/// `NLS_SUBDIVIDE_MOBIUS`. `ring` and `closed` as for [`nls_mobius_loop_star`].
+///
+/// The faces of the star: face `j` lies between the edges to `ring[j]` and `ring[j+1]`
+/// (counter-clockwise); `face_count` is `ring_len` for a closed star, `ring_len − 1` for an
+/// open one. Face `j` is `face_corners[3*face_offsets[j] .. 3*face_offsets[j+1]]`: the
+/// positions of all its corners in face order, `v` included (anywhere in the cycle);
+/// `face_offsets` holds `face_count + 1` entries, from 0 to `corner_count`.
+///
+/// Writes `out_vertex_point` (NaN as for [`nls_mobius_loop_star`]),
+/// `out_edge_candidates[3j..3j+3]` (the candidate of the edge to `ring[j]`; NaN for boundary
+/// edges and when it does not exist) and `out_face_candidates[3j..3j+3]` (the centroid of
+/// face `j` taken in this star's canonical form; NaN when it does not exist); they hold 3,
+/// `3*ring_len` and `3*face_count` doubles and must not overlap the inputs. Face points are
+/// `nls_face_point` of a face's corners and the face candidates of the corners' stars (the
+/// Akleman schemes use the same face candidates); edge points as in
+/// `nls_f4_hinted` (hint: the corner after `b` in the face on the left
+/// of `a → b`).
+///
+/// Bit-identical to the driver when `ring` starts at the driver's first spoke and each face
+/// lists its corners from its first corner in the mesh; otherwise equal up to rounding.
+///
+/// Errors: those of [`nls_mobius_loop_star`], except that a neighbour sent to infinity only
+/// removes the rules that use it (NaN), as in the driver; `NLS_STATUS_INVALID_ARGUMENT`
+/// (`face_count` does not fit `ring_len` and `closed`, or a face does not contain `v`),
+/// `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
+/// above 128 corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+///
+/// cbindgen:ptrs-as-arrays=[[v;3], [out_vertex_point;3]]
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
+    v: *const f64,
+    ring: *const f64,
+    ring_len: usize,
+    closed: u32,
+    face_offsets: *const u32,
+    face_count: usize,
+    face_corners: *const f64,
+    corner_count: usize,
+    out_vertex_point: *mut f64,
+    out_edge_candidates: *mut f64,
+    out_face_candidates: *mut f64,
+) -> Status {
+    run(|| {
+        let offsets_len = face_count.checked_add(1).ok_or(Status::SizeOverflow)?;
+        // SAFETY: the caller passes NULL or three readable doubles.
+        let v = unsafe { read_point(v)? };
+        check_ptr(ring.cast::<Point>(), ring_len)?;
+        check_ptr(face_offsets, offsets_len)?;
+        check_ptr(face_corners.cast::<Point>(), corner_count)?;
+        if ring_len > MAX_VALENCE || face_count > MAX_VALENCE {
+            return Err(Status::ValenceTooHigh);
+        }
+        let closed = flag(closed)?;
+        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let f3 = face_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let c3 = corner_count.saturating_mul(3);
+        check_out(out_vertex_point, 3)?;
+        check_out(out_edge_candidates, n3)?;
+        check_out(out_face_candidates, f3)?;
+        disjoint(
+            &[
+                bytes(out_vertex_point.cast_const(), 3),
+                bytes(out_edge_candidates.cast_const(), n3),
+                bytes(out_face_candidates.cast_const(), f3),
+            ],
+            &[
+                bytes(ring, n3),
+                bytes(face_corners, c3),
+                bytes(face_offsets, offsets_len),
+            ],
+        )?;
+        check_fp_env()?;
+        // SAFETY: checked above (`face_offsets` is non-NULL since `offsets_len ≥ 1`); readable
+        // by the caller's contract and disjoint from the outputs.
+        let (ring_pts, corners, offs) = unsafe {
+            (
+                points(ring, ring_len)?,
+                points(face_corners, corner_count)?,
+                core::slice::from_raw_parts(face_offsets, offsets_len),
+            )
+        };
+        let mut edges = [NAN3; MAX_VALENCE];
+        let mut faces = [NAN3; MAX_VALENCE];
+        let e = edges.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        let f = faces.get_mut(..face_count).ok_or(Status::ValenceTooHigh)?;
+        let vp = smobius::catmull_clark_star(v, ring_pts, closed, offs, corners, e, f)
+            .map_err(|e| e.status)?;
+        // SAFETY: the three outputs checked above for their sizes.
+        unsafe {
+            write_points(out_vertex_point, &[vp.unwrap_or(NAN3)]);
+            write_points(out_edge_candidates, e);
+            write_points(out_face_candidates, f);
+        }
+        Ok(())
+    })
+}
