@@ -4,15 +4,18 @@
 pub mod check;
 pub mod compare;
 pub mod convert;
+pub mod curve;
+pub mod demo;
 pub mod metrics;
 pub mod render;
+pub mod subdivide;
 
 use std::path::Path;
 use std::time::Instant;
 
 use crate::error::{CliError, CliResult};
 use crate::io::read_mesh;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Source};
 use crate::progress::{Progress, Spinner};
 use crate::topology::{Finding, Severity, Topology};
 
@@ -91,6 +94,8 @@ pub struct Loaded {
     pub topo: Topology,
     /// The defects found.
     pub findings: Vec<Finding>,
+    /// Where each element came from (file, lines), for messages.
+    pub source: Source,
 }
 
 /// Reads `path`, builds its topology and applies `policy` to its defects.
@@ -132,6 +137,7 @@ pub fn load(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
         mesh,
         topo,
         findings,
+        source,
     })
 }
 
