@@ -175,13 +175,13 @@ fn describe_output_vertex(
     let i = i as usize;
     let edge = |e: usize| match topo.edge_vertices(e as u32) {
         Ok((a, b)) => format!(
-            "the point of the edge between {} and {}",
+            "the edge point of the edge between {} and {}",
             n.vertex(a),
             n.vertex(b)
         ),
-        Err(_) => format!("the point of edge {e}"),
+        Err(_) => format!("the edge point of edge {e}"),
     };
-    let face = |f: usize| format!("the point of {}", n.face(f as u32));
+    let face = |f: usize| format!("the face point of {}", n.face(f as u32));
     let old = |v: usize| format!("the new position of {}", n.vertex(v as u32));
     let isolated = |k: usize| match nth_vertex(topo, k, |v| topo.is_isolated(v) == Ok(true)) {
         Some(v) => format!("{} (unreferenced, carried through)", n.vertex(v)),
@@ -296,7 +296,8 @@ fn core_error(
             };
             let why = if e.status == Status::FallbackInStrictMode {
                 "needed the linear fallback (a degenerate neighbourhood: coincident points, a \
-                 star without a canonical form or a blend at infinity) and --strict is set"
+                 star without a canonical form, a blend at infinity, or a face whose corners \
+                 are all ears, boundary vertices of one face) and --strict is set"
                     .to_string()
             } else {
                 "is not finite (the coordinates are too large for this rule)".to_string()

@@ -96,9 +96,17 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::io(&args.out, "create the folder", &e))?;
     let levels = args.levels as usize;
-    let cage_path = args.out.join("demo_cage.off");
-    let out_path = args.out.join("demo_out.off");
-    let png_path = args.out.join("demo.png");
+    // `demo_out.off` rather than `./demo_out.off` in messages.
+    let path = |name: &str| {
+        if args.out == Path::new(".") {
+            PathBuf::from(name)
+        } else {
+            args.out.join(name)
+        }
+    };
+    let cage_path = path("demo_cage.off");
+    let out_path = path("demo_out.off");
+    let png_path = path("demo.png");
 
     let cage = dome::cage(true);
     let src = Source::new(Path::new("demo_cage.off"));
