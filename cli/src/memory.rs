@@ -46,7 +46,7 @@ pub fn filled<T: Clone>(n: usize, fill: T, what: &str) -> CliResult<Vec<T>> {
     let mut v = Vec::new();
     v.try_reserve_exact(n).map_err(|_| {
         CliError::usage(format!(
-            "cannot allocate {} for {what}",
+            "cannot allocate {} for {what}: use fewer levels or a smaller input",
             human_bytes((n as u128).saturating_mul(std::mem::size_of::<T>() as u128))
         ))
     })?;
