@@ -40,6 +40,24 @@ Meshes are read from and written to OFF, OBJ and PLY by file extension; curves a
 one \"x y z\" per line. Outputs are written to a temporary file and renamed into place: a
 failed command leaves no output behind.";
 
+const SUBDIVIDE_HELP: &str = "\
+The output is the library's, bit for bit, in the library's vertex order (the C ABI's): old
+vertices first at their indices, then edge points in edge order (edges sorted by their
+(min, max) vertex pair), then face points in face order; the dual schemes (doo-sabin,
+simplest, dual) number their points by corner, edge or face (docs/mesh-and-linear-schemes.md).
+Loop and butterfly take triangles, kobbelt quads, the others any polygons. spherelike and
+differential-* are not implemented in this version.
+
+Example: nlsubdiv subdivide --scheme mobius-catmull-clark --levels 3 cage.off smooth.ply";
+
+const CURVE_HELP: &str = "\
+Input: one point \"x y z\" per line; blank lines and text after # are ignored. Output: one
+point per line, shortest decimals that read back to the same bits, interleaved as the
+library writes them (vertex point of input point i at 2i, edge points between); after k
+levels of an interpolating scheme input point i is output point 2^k i.
+
+Example: nlsubdiv curve --scheme circle-blend --levels 4 --closed polygon.txt smooth.txt";
+
 /// Nonlinear subdivision of curves and polygon meshes: tools around the nlsubdiv kernel.
 #[derive(Parser, Debug)]
 #[command(name = "nlsubdiv", version, after_help = EXIT_HELP, propagate_version = true)]
@@ -54,8 +72,10 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Subdivide a mesh N levels with a linear or Möbius scheme.
+    #[command(after_help = SUBDIVIDE_HELP)]
     Subdivide(cmd::subdivide::Args),
     /// Subdivide a curve (text, one "x y z" per line) N levels.
+    #[command(after_help = CURVE_HELP)]
     Curve(cmd::curve::Args),
     /// The main job on a bundled dome-like cage: Möbius Catmull–Clark, a mesh and a picture.
     Demo(cmd::demo::Args),

@@ -442,7 +442,7 @@ pub fn run(
     )?;
 
     let total: usize = sizes.iter().skip(1).map(|s| s.vertices).sum();
-    let mut progress = ctx.progress(total, "subdividing");
+    let progress = ctx.steps(total, levels, "level");
     let mut current = input.clone();
     let mut fallbacks = 0u64;
     let mut first_fallback = None;
@@ -501,10 +501,10 @@ pub fn run(
                 ms.name()
             )));
         }
-        progress.inc(out_sizes.vertices as u64);
+        progress.step_done(out_sizes.vertices as u64);
         current = next;
     }
-    progress.finish();
+    drop(progress);
     Ok(Outcome {
         mesh: current,
         fallbacks,

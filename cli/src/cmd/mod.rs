@@ -16,7 +16,7 @@ use std::time::Instant;
 use crate::error::{CliError, CliResult};
 use crate::io::read_mesh;
 use crate::mesh::{Mesh, Source};
-use crate::progress::{Progress, Spinner};
+use crate::progress::{Progress, Spinner, Steps};
 use crate::topology::{Finding, Severity, Topology};
 
 /// What every command gets from the command line's global options.
@@ -37,6 +37,17 @@ impl Ctx {
     /// A progress bar over `total` steps.
     pub fn progress(&self, total: usize, message: &'static str) -> Progress {
         Progress::new(!self.quiet, self.started, total as u64, message)
+    }
+
+    /// A bar over `steps` long steps of `total` weight (see [`Steps`]).
+    pub fn steps(&self, total: usize, steps: usize, message: &'static str) -> Steps {
+        Steps::start(
+            !self.quiet,
+            self.started,
+            total as u64,
+            steps as u64,
+            message,
+        )
     }
 
     /// A note on stderr unless `--quiet`.
