@@ -281,11 +281,18 @@ fn core_error(
             } else {
                 n.at_vertex(el)
             };
-            bad(format!(
-                "{at}: step {step} of {} would need a vertex of valence (or a face of size) \
-                 above the kernel's {MAX_VALENCE}",
-                ms.name()
-            ))
+            if stage == Stage::Build {
+                let what = if is_face { "corners" } else { "neighbours" };
+                bad(format!(
+                    "{at}: more {what} than the kernel's limit of {MAX_VALENCE}"
+                ))
+            } else {
+                bad(format!(
+                    "{at}: step {step} of {} would need a vertex of valence (or a face of \
+                     size) above the kernel's {MAX_VALENCE}",
+                    ms.name()
+                ))
+            }
         }
         (Stage::Step, Status::FallbackInStrictMode | Status::NumericalFailure) => {
             let what = match topo {
