@@ -6,13 +6,16 @@
 #![forbid(unsafe_code)]
 
 mod cmd;
+mod dome;
 mod error;
 mod fields;
 mod grid;
 mod io;
+mod memory;
 mod mesh;
 mod progress;
 mod sphere;
+mod subdiv;
 mod topology;
 
 use std::process::ExitCode;
@@ -27,13 +30,33 @@ const EXIT_HELP: &str = "\
 Exit status:
   0  success
   1  the answer is no: `compare` found a difference, `check` found warnings
-  2  bad input: not a valid mesh file, or a mesh with defects the command refuses
+  2  bad input: not a valid mesh or curve file, a mesh with defects the command refuses, or
+     one the scheme cannot subdivide (the message names the file, line and element)
   3  I/O error: a file cannot be read or written
-  4  bad command line
+  4  bad command line (including more levels than the kernel or the memory can hold)
   5  internal error (a bug: please report it with the input)
 
-Meshes are read from and written to OFF, OBJ and PLY by file extension. Outputs are written
-to a temporary file and renamed into place: a failed command leaves no output behind.";
+Meshes are read from and written to OFF, OBJ and PLY by file extension; curves are text,
+one \"x y z\" per line. Outputs are written to a temporary file and renamed into place: a
+failed command leaves no output behind.";
+
+const SUBDIVIDE_HELP: &str = "\
+The output is the library's, bit for bit, in the library's vertex order (the C ABI's): old
+vertices first at their indices, then edge points in edge order (edges sorted by their
+(min, max) vertex pair), then face points in face order; the dual schemes (doo-sabin,
+simplest, dual) number their points by corner, edge or face (docs/mesh-and-linear-schemes.md).
+Loop and butterfly take triangles, kobbelt quads, the others any polygons. spherelike and
+differential-* are not implemented in this version.
+
+Example: nlsubdiv subdivide --scheme mobius-catmull-clark --levels 3 cage.off smooth.ply";
+
+const CURVE_HELP: &str = "\
+Input: one point \"x y z\" per line; blank lines and text after # are ignored. Output: one
+point per line, shortest decimals that read back to the same bits, interleaved as the
+library writes them (vertex point of input point i at 2i, edge points between); after k
+levels of an interpolating scheme input point i is output point 2^k i.
+
+Example: nlsubdiv curve --scheme circle-blend --levels 4 --closed polygon.txt smooth.txt";
 
 /// Nonlinear subdivision of curves and polygon meshes: tools around the nlsubdiv kernel.
 #[derive(Parser, Debug)]
@@ -48,6 +71,14 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Subdivide a mesh N levels with a linear or Möbius scheme.
+    #[command(after_help = SUBDIVIDE_HELP)]
+    Subdivide(cmd::subdivide::Args),
+    /// Subdivide a curve (text, one "x y z" per line) N levels.
+    #[command(after_help = CURVE_HELP)]
+    Curve(cmd::curve::Args),
+    /// The main job on a bundled dome-like cage: Möbius Catmull–Clark, a mesh and a picture.
+    Demo(cmd::demo::Args),
     /// Check a mesh: every defect, with the file, line and element of the first ones.
     Check(cmd::check::Args),
     /// Convert a mesh between OFF, OBJ and PLY, bit-exact, keeping the order of everything.
@@ -62,6 +93,9 @@ enum Command {
 
 fn dispatch(command: &Command, ctx: &Ctx) -> CliResult<Exit> {
     match command {
+        Command::Subdivide(a) => cmd::subdivide::run(a, ctx),
+        Command::Curve(a) => cmd::curve::run(a, ctx),
+        Command::Demo(a) => cmd::demo::run(a, ctx),
         Command::Check(a) => cmd::check::run(a, ctx),
         Command::Convert(a) => cmd::convert::run(a, ctx),
         Command::Compare(a) => cmd::compare::run(a, ctx),

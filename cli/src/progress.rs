@@ -1,7 +1,8 @@
 //! Progress bars that appear only on runs longer than about a second, only on a terminal,
 //! and never with `--quiet`.
 
-use std::sync::mpsc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{mpsc, Arc};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -114,6 +115,91 @@ impl Spinner {
 }
 
 impl Drop for Spinner {
+    fn drop(&mut self) {
+        if let Some(tx) = self.stop.take() {
+            let _ = tx.send(());
+        }
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// A bar over a few long steps that cannot report progress inside themselves (the levels of
+/// a subdivision: one core call each). A helper thread shows it once the command has run
+/// for about a second and keeps its elapsed time ticking between the steps; the position
+/// moves by each step's weight when the step ends.
+#[derive(Debug)]
+pub struct Steps {
+    stop: Option<mpsc::Sender<()>>,
+    thread: Option<JoinHandle<()>>,
+    state: Arc<(AtomicU64, AtomicU64)>,
+}
+
+impl Steps {
+    /// Starts the bar's thread: `total` weight over `steps` steps of `message`.
+    pub fn start(
+        enabled: bool,
+        started: Instant,
+        total: u64,
+        steps: u64,
+        message: &'static str,
+    ) -> Steps {
+        let state = Arc::new((AtomicU64::new(0), AtomicU64::new(0)));
+        if !enabled || steps == 0 {
+            return Steps {
+                stop: None,
+                thread: None,
+                state,
+            };
+        }
+        let (tx, rx) = mpsc::channel::<()>();
+        let wait = DELAY.saturating_sub(started.elapsed());
+        let shared = Arc::clone(&state);
+        let thread = std::thread::Builder::new()
+            .name("progress".into())
+            .spawn(move || {
+                if rx.recv_timeout(wait) != Err(mpsc::RecvTimeoutError::Timeout) {
+                    return; // finished in time
+                }
+                let bar = ProgressBar::new(total.max(1));
+                if let Ok(style) = ProgressStyle::with_template(
+                    "{msg:>16} [{bar:40}] {percent:>3}% {elapsed_precise}",
+                ) {
+                    bar.set_style(style.progress_chars("=> "));
+                }
+                bar.enable_steady_tick(Duration::from_millis(200));
+                loop {
+                    let (pos, done) = (
+                        shared.0.load(Ordering::Relaxed),
+                        shared.1.load(Ordering::Relaxed),
+                    );
+                    bar.set_position(pos);
+                    bar.set_message(format!("{message} {}/{steps}", (done + 1).min(steps)));
+                    if rx.recv_timeout(Duration::from_millis(100))
+                        != Err(mpsc::RecvTimeoutError::Timeout)
+                    {
+                        break;
+                    }
+                }
+                bar.finish_and_clear();
+            })
+            .ok();
+        Steps {
+            stop: Some(tx),
+            thread,
+            state,
+        }
+    }
+
+    /// One more step is done, of `weight`.
+    pub fn step_done(&self, weight: u64) {
+        self.state.0.fetch_add(weight, Ordering::Relaxed);
+        self.state.1.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+impl Drop for Steps {
     fn drop(&mut self) {
         if let Some(tx) = self.stop.take() {
             let _ = tx.send(());

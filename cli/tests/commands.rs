@@ -279,37 +279,6 @@ fn metrics_of_shared_meshes() {
     }
 }
 
-fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
-    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let mut r = dec.read_info().unwrap();
-    let mut buf = vec![0; r.output_buffer_size().unwrap()];
-    let info = r.next_frame(&mut buf).unwrap();
-    assert_eq!(info.color_type, png::ColorType::Rgb);
-    buf.truncate(info.buffer_size());
-    (info.width, info.height, buf)
-}
-
-/// Variance of the luminance over the picture, and the share of pixels that differ from
-/// the background's colour in their row.
-fn picture_stats(w: u32, h: u32, rgb: &[u8]) -> (f64, f64) {
-    let lum: Vec<f64> = rgb
-        .chunks(3)
-        .map(|c| 0.299 * c[0] as f64 + 0.587 * c[1] as f64 + 0.114 * c[2] as f64)
-        .collect();
-    let mean = lum.iter().sum::<f64>() / lum.len() as f64;
-    let var = lum.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / lum.len() as f64;
-    let mut covered = 0;
-    for y in 0..h as usize {
-        let row = &rgb[y * w as usize * 3..(y + 1) * w as usize * 3];
-        let bg = &row[..3]; // the left edge is background
-        covered += row
-            .chunks(3)
-            .filter(|c| c.iter().zip(bg).any(|(a, b)| a.abs_diff(*b) > 12))
-            .count();
-    }
-    (var, covered as f64 / (w * h) as f64)
-}
-
 #[test]
 fn render_draws_the_mesh() {
     let dir = TempDir::new("render");

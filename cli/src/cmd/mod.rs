@@ -4,16 +4,19 @@
 pub mod check;
 pub mod compare;
 pub mod convert;
+pub mod curve;
+pub mod demo;
 pub mod metrics;
 pub mod render;
+pub mod subdivide;
 
 use std::path::Path;
 use std::time::Instant;
 
 use crate::error::{CliError, CliResult};
 use crate::io::read_mesh;
-use crate::mesh::Mesh;
-use crate::progress::{Progress, Spinner};
+use crate::mesh::{Mesh, Source};
+use crate::progress::{Progress, Spinner, Steps};
 use crate::topology::{Finding, Severity, Topology};
 
 /// What every command gets from the command line's global options.
@@ -34,6 +37,17 @@ impl Ctx {
     /// A progress bar over `total` steps.
     pub fn progress(&self, total: usize, message: &'static str) -> Progress {
         Progress::new(!self.quiet, self.started, total as u64, message)
+    }
+
+    /// A bar over `steps` long steps of `total` weight (see [`Steps`]).
+    pub fn steps(&self, total: usize, steps: usize, message: &'static str) -> Steps {
+        Steps::start(
+            !self.quiet,
+            self.started,
+            total as u64,
+            steps as u64,
+            message,
+        )
     }
 
     /// A note on stderr unless `--quiet`.
@@ -91,6 +105,8 @@ pub struct Loaded {
     pub topo: Topology,
     /// The defects found.
     pub findings: Vec<Finding>,
+    /// Where each element came from (file, lines), for messages.
+    pub source: Source,
 }
 
 /// Reads `path`, builds its topology and applies `policy` to its defects.
@@ -132,6 +148,7 @@ pub fn load(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
         mesh,
         topo,
         findings,
+        source,
     })
 }
 

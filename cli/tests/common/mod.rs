@@ -343,3 +343,79 @@ pub fn nasty(mut m: TMesh, rng: &mut Rng) -> TMesh {
     }
     m
 }
+
+/// Decodes an RGB PNG: width, height and the pixels, rows top to bottom.
+pub fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut r = dec.read_info().unwrap();
+    let mut buf = vec![0; r.output_buffer_size().unwrap()];
+    let info = r.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// Variance of the luminance over the picture, and the share of pixels that differ from
+/// the background's colour in their row.
+pub fn picture_stats(w: u32, h: u32, rgb: &[u8]) -> (f64, f64) {
+    let lum: Vec<f64> = rgb
+        .chunks(3)
+        .map(|c| 0.299 * c[0] as f64 + 0.587 * c[1] as f64 + 0.114 * c[2] as f64)
+        .collect();
+    let mean = lum.iter().sum::<f64>() / lum.len() as f64;
+    let var = lum.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / lum.len() as f64;
+    let mut covered = 0;
+    for y in 0..h as usize {
+        let row = &rgb[y * w as usize * 3..(y + 1) * w as usize * 3];
+        let bg = &row[..3]; // the left edge is background
+        covered += row
+            .chunks(3)
+            .filter(|c| c.iter().zip(bg).any(|(a, b)| a.abs_diff(*b) > 12))
+            .count();
+    }
+    (var, covered as f64 / (w * h) as f64)
+}
+
+impl TMesh {
+    /// The faces as CSR offsets and indices (the core's layout).
+    pub fn csr(&self) -> (Vec<u32>, Vec<u32>) {
+        let mut offsets = vec![0u32];
+        let mut indices = Vec::new();
+        for f in &self.faces {
+            indices.extend_from_slice(f);
+            offsets.push(indices.len() as u32);
+        }
+        (offsets, indices)
+    }
+
+    /// A mesh from positions and CSR faces.
+    pub fn from_csr(positions: Vec<[f64; 3]>, offsets: &[u32], indices: &[u32]) -> TMesh {
+        let faces = offsets
+            .windows(2)
+            .map(|w| indices[w[0] as usize..w[1] as usize].to_vec())
+            .collect();
+        TMesh { positions, faces }
+    }
+}
+
+/// Points of a curve text file: `x y z` lines, `#` comments and blank lines skipped.
+pub fn read_points(path: &Path) -> Vec<[f64; 3]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.split('#').next().unwrap().trim())
+        .filter(|l| !l.is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            assert_eq!(v.len(), 3, "{l}");
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+/// Asserts that `dir` holds exactly the files `expected` (no output, no temporary file).
+pub fn assert_files(dir: &TempDir, expected: &[&str], what: &str) {
+    let mut want: Vec<String> = expected.iter().map(|s| s.to_string()).collect();
+    want.sort();
+    assert_eq!(dir.files(), want, "{what}: files left in the folder");
+}

@@ -131,10 +131,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         ColorBy::MobiusRegularity => Some(Field::MobiusRegularity),
     };
     let img = render(&l.mesh, &l.topo, field, args, ctx);
-    let mut file = AtomicFile::create(&args.output)?;
-    write_png(file.writer(), &img)
-        .map_err(|e| CliError::io(&args.output, "write", &std::io::Error::other(e.to_string())))?;
-    file.commit()?;
+    save_png(&args.output, &img)?;
     ctx.note(&format!(
         "wrote {} ({}x{})",
         args.output.display(),
@@ -153,6 +150,17 @@ pub struct Image {
     pub height: usize,
     /// Rows top to bottom, `RGB` per pixel.
     pub rgb: Vec<u8>,
+}
+
+/// Writes `img` to `path` as PNG, atomically.
+///
+/// # Errors
+/// Exit 3 when the file cannot be written.
+pub fn save_png(path: &std::path::Path, img: &Image) -> CliResult<()> {
+    let mut file = AtomicFile::create(path)?;
+    write_png(file.writer(), img)
+        .map_err(|e| CliError::io(path, "write", &std::io::Error::other(e.to_string())))?;
+    file.commit()
 }
 
 fn write_png(out: &mut dyn std::io::Write, img: &Image) -> Result<(), png::EncodingError> {

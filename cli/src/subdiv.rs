@@ -1,0 +1,521 @@
+//! Several levels of one of the core's mesh schemes, linear or Möbius, on the command's
+//! [`Mesh`]: sizes planned before anything is computed, one core call per level (exactly
+//! the calls a C or Rust host makes, so the output is the library's bit for bit), progress,
+//! and errors that name the file, the level and the element at fault.
+//!
+//! Output vertex order is the library's ([`nlsubdiv::mesh::refine`]): primal schemes keep
+//! the old vertices first at their indices, then edge points in edge order (edges sorted by
+//! their `(min, max)` vertex pair), then face points in face order; the dual schemes number
+//! their points by corner, edge or face as that table says.
+
+use std::time::{Duration, Instant};
+
+use nlsubdiv::mesh::refine::Pattern;
+use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut, MeshSizes, Topology as CoreTopology};
+use nlsubdiv::scheme::{self, mobius, Scheme, MAX_LEVELS};
+use nlsubdiv::{Error, Status, MAX_FACE_SIZE, MAX_VALENCE, NO_ELEMENT};
+
+use crate::cmd::Ctx;
+use crate::error::{CliError, CliResult};
+use crate::memory;
+use crate::mesh::{Mesh, Source};
+
+/// A mesh scheme of the command line: one of the core's [`Scheme`]s, linear or in its
+/// canonical Möbius form (seed 000 §4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshScheme {
+    /// The underlying scheme.
+    pub scheme: Scheme,
+    /// The Möbius driver (`mobius-<name>`) instead of the linear one.
+    pub mobius: bool,
+}
+
+/// Names of DESIGN.md that this version does not implement yet.
+const NOT_YET: [&str; 4] = [
+    "spherelike",
+    "differential-loop",
+    "differential-butterfly",
+    "differential-dirmag",
+];
+
+impl MeshScheme {
+    /// The command-line name: the core's name, with `mobius-` in front for the Möbius form.
+    pub fn name(self) -> String {
+        if self.mobius {
+            format!("mobius-{}", self.scheme.name())
+        } else {
+            self.scheme.name().to_string()
+        }
+    }
+
+    /// Every scheme: the linear ones in code order, then their Möbius forms.
+    pub fn all() -> impl Iterator<Item = MeshScheme> {
+        [false, true].into_iter().flat_map(|mobius| {
+            Scheme::ALL
+                .iter()
+                .map(move |&scheme| MeshScheme { scheme, mobius })
+        })
+    }
+
+    /// The names of [`MeshScheme::all`], comma-separated.
+    pub fn available() -> String {
+        MeshScheme::all()
+            .map(MeshScheme::name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// Parses a command-line name; the message of an error lists the available names.
+    ///
+    /// # Errors
+    /// A message for unknown names and for the names this version does not implement.
+    pub fn parse(name: &str) -> Result<MeshScheme, String> {
+        let (base, mobius) = match name.strip_prefix("mobius-") {
+            Some(rest) => (rest, true),
+            None => (name, false),
+        };
+        if let Some(scheme) = Scheme::from_name(base) {
+            return Ok(MeshScheme { scheme, mobius });
+        }
+        let why = if NOT_YET.contains(&name) {
+            format!("'{name}' is not implemented in this version")
+        } else if nlsubdiv::curve::CurveScheme::from_name(name).is_some() {
+            format!("'{name}' is a curve scheme (use `nlsubdiv curve`)")
+        } else {
+            format!("unknown mesh scheme '{name}'")
+        };
+        Err(format!("{why}; available: {}", MeshScheme::available()))
+    }
+}
+
+/// The result of [`run`].
+#[derive(Debug)]
+pub struct Outcome {
+    /// The last level.
+    pub mesh: Mesh,
+    /// Elements that took their linear rule, over all levels (Möbius schemes).
+    pub fallbacks: u64,
+    /// The first fallback: a description naming the level and the element.
+    pub first_fallback: Option<String>,
+    /// Time spent in the core (planning and every level).
+    pub elapsed: Duration,
+}
+
+/// Names the elements of the input of one step: the file's (level 0, with lines) or an
+/// intermediate level's.
+struct Namer<'a> {
+    src: &'a Source,
+    level: usize,
+}
+
+impl Namer<'_> {
+    fn file(&self) -> String {
+        self.src.path.display().to_string()
+    }
+
+    fn line(l: Option<u32>) -> String {
+        l.map(|l| format!(" (line {l})")).unwrap_or_default()
+    }
+
+    /// `vertex 3 (line 7)` or `vertex 3 of level 2`.
+    fn vertex(&self, v: u32) -> String {
+        if self.level == 0 {
+            format!("vertex {v}{}", Self::line(self.src.vertex_line(v as usize)))
+        } else {
+            format!("vertex {v} of level {}", self.level)
+        }
+    }
+
+    /// `face 3 (line 12)` or `face 3 of level 2`.
+    fn face(&self, f: u32) -> String {
+        if self.level == 0 {
+            format!("face {f}{}", Self::line(self.src.face_line(f as usize)))
+        } else {
+            format!("face {f} of level {}", self.level)
+        }
+    }
+
+    /// `path:line: face f` for level 0, `path: level 2: face f` otherwise.
+    fn at_face(&self, f: u32) -> String {
+        if self.level == 0 {
+            self.src.at_face(f as usize)
+        } else {
+            format!("{}: {}", self.file(), self.face(f))
+        }
+    }
+
+    fn at_vertex(&self, v: u32) -> String {
+        if self.level == 0 {
+            self.src.at_vertex(v as usize)
+        } else {
+            format!("{}: {}", self.file(), self.vertex(v))
+        }
+    }
+}
+
+/// The `k`-th vertex (in index order) among those where `pick` holds.
+fn nth_vertex(topo: &CoreTopology<'_, '_>, k: usize, pick: impl Fn(u32) -> bool) -> Option<u32> {
+    (0..topo.num_vertices() as u32).filter(|&v| pick(v)).nth(k)
+}
+
+/// What output vertex `i` of one step of `pattern` on `topo` is, in words (the numbering of
+/// [`nlsubdiv::mesh::refine`]).
+fn describe_output_vertex(
+    pattern: Pattern,
+    topo: &CoreTopology<'_, '_>,
+    i: u32,
+    n: &Namer<'_>,
+) -> String {
+    let (nv, ne, nf, nh) = (
+        topo.num_vertices(),
+        topo.num_edges(),
+        topo.num_faces(),
+        topo.num_half_edges(),
+    );
+    let i = i as usize;
+    let edge = |e: usize| match topo.edge_vertices(e as u32) {
+        Ok((a, b)) => format!(
+            "the edge point of the edge between {} and {}",
+            n.vertex(a),
+            n.vertex(b)
+        ),
+        Err(_) => format!("the edge point of edge {e}"),
+    };
+    let face = |f: usize| format!("the face point of {}", n.face(f as u32));
+    let old = |v: usize| format!("the new position of {}", n.vertex(v as u32));
+    let isolated = |k: usize| match nth_vertex(topo, k, |v| topo.is_isolated(v) == Ok(true)) {
+        Some(v) => format!("{} (unreferenced, carried through)", n.vertex(v)),
+        None => "an unreferenced vertex".to_string(),
+    };
+    let boundary = |k: usize| nth_vertex(topo, k, |v| topo.is_boundary_vertex(v) == Ok(true));
+    let nb = topo.num_boundary_vertices();
+    match pattern {
+        Pattern::Split1To4 if i < nv => old(i),
+        Pattern::Split1To4 => edge(i - nv),
+        Pattern::Quads if i < nv => old(i),
+        Pattern::Quads if i < nv + ne => edge(i - nv),
+        Pattern::Quads => face(i - nv - ne),
+        Pattern::VertexInsertion | Pattern::DualTruncation if i < nv => old(i),
+        Pattern::VertexInsertion | Pattern::DualTruncation => face(i - nv),
+        Pattern::CornerCut if i < nh => match (topo.origin(i as u32), topo.face(i as u32)) {
+            (Ok(v), Ok(f)) => format!("the corner point of {} in {}", n.vertex(v), n.face(f)),
+            _ => format!("the corner point of corner {i}"),
+        },
+        Pattern::CornerCut => isolated(i - nh),
+        Pattern::MidEdge if i < ne => edge(i),
+        Pattern::MidEdge if i < ne + nb => match boundary(i - ne) {
+            Some(v) => format!("the boundary point of {}", n.vertex(v)),
+            None => format!("boundary point {}", i - ne),
+        },
+        Pattern::MidEdge => isolated(i - ne - nb),
+        Pattern::Dual if i < nf => face(i),
+        Pattern::Dual if i < nf + nb => match boundary(i - nf) {
+            Some(v) => format!("the midpoint of the boundary edge leaving {}", n.vertex(v)),
+            None => format!("boundary edge point {}", i - nf),
+        },
+        Pattern::Dual if i < nf + 2 * nb => match boundary(i - nf - nb) {
+            Some(v) => format!("the boundary point of {}", n.vertex(v)),
+            None => format!("boundary point {}", i - nf - nb),
+        },
+        Pattern::Dual => isolated(i - nf - 2 * nb),
+    }
+}
+
+/// The hint for a face the scheme does not take.
+const ANY_POLYGONS: &str = "catmull-clark, doo-sabin, simplest, dual, vertex-insertion and \
+     dual-truncation take any polygons";
+
+/// Where a core call failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    /// Validation and topology ([`CoreTopology::build`]).
+    Build,
+    /// The step itself (sizes, connectivity, positions).
+    Step,
+}
+
+/// The message and exit status of a core error in step `level + 1` (input: level `level`).
+fn core_error(
+    e: Error,
+    stage: Stage,
+    ms: MeshScheme,
+    topo: Option<&CoreTopology<'_, '_>>,
+    mesh: &CoreMesh<'_>,
+    n: &Namer<'_>,
+) -> CliError {
+    let el = e.element;
+    let step = n.level + 1;
+    let bad = |msg: String| CliError::bad_input(msg);
+    let face_size = |f: u32| mesh.face(f as usize).map_or(0, <[u32]>::len);
+    match (stage, e.status) {
+        (Stage::Step, Status::UnsupportedFaceType) if el != NO_ELEMENT => {
+            let size = face_size(el);
+            let why = match ms.scheme {
+                Scheme::Loop | Scheme::ModifiedButterfly => format!(
+                    "has {size} corners; {} needs triangles ({ANY_POLYGONS})",
+                    ms.name()
+                ),
+                Scheme::Kobbelt => format!(
+                    "has {size} corners; {} needs quads ({ANY_POLYGONS})",
+                    ms.name()
+                ),
+                _ => format!(
+                    "shares two edges with one neighbouring face; {} would make a double edge",
+                    ms.name()
+                ),
+            };
+            bad(format!("{}: {why}", n.at_face(el)))
+        }
+        (Stage::Step, Status::FaceTooSmall) if el != NO_ELEMENT => bad(format!(
+            "{}: an interior vertex of valence 2: its face in {} would be a 2-gon",
+            n.at_vertex(el),
+            ms.name()
+        )),
+        (_, Status::ValenceTooHigh) if el != NO_ELEMENT => {
+            let is_face = (stage == Stage::Build && face_size(el) > MAX_FACE_SIZE)
+                || (stage == Stage::Step
+                    && ms.scheme == Scheme::DualTruncation
+                    && el as usize >= mesh.num_vertices());
+            let at = if is_face {
+                n.at_face(el)
+            } else {
+                n.at_vertex(el)
+            };
+            if stage == Stage::Build {
+                let what = if is_face { "corners" } else { "neighbours" };
+                bad(format!(
+                    "{at}: more {what} than the kernel's limit of {MAX_VALENCE}"
+                ))
+            } else {
+                bad(format!(
+                    "{at}: step {step} of {} would need a vertex of valence (or a face of \
+                     size) above the kernel's {MAX_VALENCE}",
+                    ms.name()
+                ))
+            }
+        }
+        (Stage::Step, Status::FallbackInStrictMode | Status::NumericalFailure) => {
+            let what = match topo {
+                Some(t) if el != NO_ELEMENT => {
+                    describe_output_vertex(ms.scheme.pattern(), t, el, n)
+                }
+                _ => "an element".to_string(),
+            };
+            let why = if e.status == Status::FallbackInStrictMode {
+                "needed the linear fallback (a degenerate neighbourhood: coincident points, a \
+                 star without a canonical form, a blend at infinity, or a face whose corners \
+                 are all ears, boundary vertices of one face) and --strict is set"
+                    .to_string()
+            } else {
+                "is not finite (the coordinates are too large for this rule)".to_string()
+            };
+            bad(format!(
+                "{}: step {step} of {}, output vertex {el} ({what}) {why}",
+                n.file(),
+                ms.name()
+            ))
+        }
+        (Stage::Build, s) if el != NO_ELEMENT => {
+            let at = match s {
+                Status::NonManifoldVertex | Status::NonFiniteInput => n.at_vertex(el),
+                _ => n.at_face(el),
+            };
+            bad(format!("{at}: {}", s.message()))
+        }
+        (_, Status::SizeOverflow) => CliError::usage(format!(
+            "{}: step {step} of {} would exceed the kernel's 32-bit indices: use fewer levels",
+            n.file(),
+            ms.name()
+        )),
+        (_, Status::BufferTooSmall | Status::InvalidArgument) => CliError::internal(format!(
+            "{}: step {step} of {}: the kernel reported '{e}' (a bug: please report it with the \
+             input)",
+            n.file(),
+            ms.name()
+        )),
+        (_, s) => bad(format!(
+            "{}: step {step} of {}: {}",
+            n.file(),
+            ms.name(),
+            if el == NO_ELEMENT {
+                s.message().to_string()
+            } else {
+                format!("{} (element {el})", s.message())
+            }
+        )),
+    }
+}
+
+/// The sizes of every level, with a message naming the first level that cannot be made.
+fn plan_sizes(
+    ms: MeshScheme,
+    mesh: CoreMesh<'_>,
+    levels: usize,
+    n: &Namer<'_>,
+) -> CliResult<Vec<MeshSizes>> {
+    let mut scratch = memory::filled(
+        scheme::plan_scratch_len(&mesh).unwrap_or(0),
+        0u32,
+        "the topology",
+    )?;
+    match scheme::plan(ms.scheme, mesh, levels, &mut scratch) {
+        Ok(p) => Ok(p
+            .sizes
+            .get(..=levels)
+            .map(<[MeshSizes]>::to_vec)
+            .unwrap_or_default()),
+        Err(e)
+            if e.element == NO_ELEMENT
+                && matches!(e.status, Status::ValenceTooHigh | Status::SizeOverflow) =>
+        {
+            // Find the first level that fails (each plan is cheap: counts only).
+            let first = (1..=levels)
+                .find(|&k| scheme::plan(ms.scheme, mesh, k, &mut scratch).is_err())
+                .unwrap_or(levels);
+            let why = if e.status == Status::ValenceTooHigh {
+                format!("would have a vertex of valence (or a face of size) above the kernel's {MAX_VALENCE}")
+            } else {
+                "would exceed the kernel's 32-bit indices".to_string()
+            };
+            Err(CliError::usage(format!(
+                "{}: level {first} of {} {why}: use at most {} levels",
+                n.file(),
+                ms.name(),
+                first - 1
+            )))
+        }
+        Err(e) => Err(CliError::internal(format!(
+            "{}: planning {} levels of {}: {e}",
+            n.file(),
+            levels,
+            ms.name()
+        ))),
+    }
+}
+
+/// Runs `levels` steps of `ms` on `input` (read from `src`). `strict`: a Möbius fallback is
+/// an error naming the element. Level 0 returns a copy.
+///
+/// # Errors
+/// Exit 2 for meshes the scheme refuses (naming the file, the level and the element), exit 4
+/// when the levels ask for more than the kernel or the machine can hold, exit 5 for a bug.
+pub fn run(
+    input: &Mesh,
+    src: &Source,
+    ms: MeshScheme,
+    levels: usize,
+    strict: bool,
+    ctx: &Ctx,
+) -> CliResult<Outcome> {
+    let started = Instant::now();
+    if levels > MAX_LEVELS {
+        return Err(CliError::usage(format!(
+            "--levels {levels}: at most {MAX_LEVELS}"
+        )));
+    }
+    let mesh0 = CoreMesh::new(&input.positions, &input.offsets, &input.indices);
+    let n0 = Namer { src, level: 0 };
+    // Validation and the first step's requirements, with the file's elements named.
+    {
+        let len = scheme::scratch_len(&mesh0)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
+        let mut scratch = memory::filled(len, 0u32, "the topology")?;
+        let topo = CoreTopology::build(mesh0, &mut scratch)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
+        if levels > 0 {
+            scheme::subdivide_size(ms.scheme, &topo)
+                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh0, &n0))?;
+        }
+    }
+    let sizes = plan_sizes(ms, mesh0, levels, &n0)?;
+    // Peak memory of the largest step: input and output meshes, topology, Möbius scratch.
+    let peak = sizes
+        .windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let mesh_bytes =
+                |s: MeshSizes| 24 * s.vertices as u128 + 4 * (s.faces + 1 + s.indices) as u128;
+            mesh_bytes(a)
+                + mesh_bytes(b)
+                + 4 * (4 * a.indices as u128 + 3 * a.vertices as u128)
+                + if ms.mobius { 48 * a.indices as u128 } else { 0 }
+        })
+        .max()
+        .unwrap_or(0);
+    memory::check(
+        peak,
+        &format!("{levels} levels of {}", ms.name()),
+        "use fewer levels",
+    )?;
+
+    let total: usize = sizes.iter().skip(1).map(|s| s.vertices).sum();
+    let progress = ctx.steps(total, levels, "level");
+    let mut current = input.clone();
+    let mut fallbacks = 0u64;
+    let mut first_fallback = None;
+    for level in 0..levels {
+        let out_sizes = sizes.get(level + 1).copied().unwrap_or_default();
+        let namer = Namer { src, level };
+        let mesh = CoreMesh::new(&current.positions, &current.offsets, &current.indices);
+        let len = scheme::scratch_len(&mesh)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
+        let mut scratch = memory::filled(len, 0u32, "the topology")?;
+        let topo = CoreTopology::build(mesh, &mut scratch)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
+        let mut next = Mesh {
+            positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
+            offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
+            indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
+        };
+        let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
+        let written = if ms.mobius {
+            let need = mobius::scratch_len(&topo)
+                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?;
+            let mut points = memory::filled(need, [0.0; 3], "the Möbius candidates")?;
+            let (written, report) = mobius::subdivide(
+                ms.scheme,
+                &topo,
+                &mut out,
+                &mut points,
+                mobius::MobiusOptions { strict },
+            )
+            .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?;
+            if report.fallbacks > 0 {
+                fallbacks += u64::from(report.fallbacks);
+                if first_fallback.is_none() {
+                    let what = describe_output_vertex(
+                        ms.scheme.pattern(),
+                        &topo,
+                        report.first_fallback,
+                        &namer,
+                    );
+                    first_fallback = Some(format!(
+                        "step {}, output vertex {} ({what})",
+                        level + 1,
+                        report.first_fallback
+                    ));
+                }
+            }
+            written
+        } else {
+            scheme::subdivide(ms.scheme, &topo, &mut out)
+                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?
+        };
+        if written != out_sizes {
+            return Err(CliError::internal(format!(
+                "step {} of {}: wrote {written:?}, planned {out_sizes:?}",
+                level + 1,
+                ms.name()
+            )));
+        }
+        progress.step_done(out_sizes.vertices as u64);
+        current = next;
+    }
+    drop(progress);
+    Ok(Outcome {
+        mesh: current,
+        fallbacks,
+        first_fallback,
+        elapsed: started.elapsed(),
+    })
+}

@@ -1,0 +1,515 @@
+//! `subdivide` and `demo`: every scheme, linear and Möbius, gives the library's output bit
+//! for bit through every file format; bad input gives its exit status, a message naming the
+//! file and element, and no output; the demo runs on nothing and draws a picture.
+
+// Test helpers outside #[test] functions: clippy's in-test allowances do not reach them.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+
+mod common;
+
+use common::*;
+use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut, Topology};
+use nlsubdiv::scheme::{self, mobius, Scheme};
+
+/// The library's result: `subdivide_levels` for the linear schemes (a different entry point
+/// from the command's per-level calls), one `mobius::subdivide` per level for the Möbius
+/// ones. `Err` with the status when the library refuses the mesh.
+fn library(m: &TMesh, s: Scheme, is_mobius: bool, levels: usize) -> Result<TMesh, String> {
+    let (offsets, indices) = m.csr();
+    if !is_mobius {
+        let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
+        let mut s0 = vec![0u32; scheme::plan_scratch_len(&mesh).unwrap()];
+        let plan = scheme::plan(s, mesh, levels, &mut s0).map_err(|e| e.to_string())?;
+        let mut su = vec![0u32; plan.scratch_u32.max(s0.len())];
+        let mut sp = vec![[0.0; 3]; plan.scratch_points];
+        let o = plan.output();
+        let (mut pos, mut offs, mut idx) = (
+            vec![[0.0; 3]; o.vertices],
+            vec![0u32; o.faces + 1],
+            vec![0u32; o.indices],
+        );
+        let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
+        scheme::subdivide_levels(s, mesh, levels, &mut su, &mut sp, &mut out)
+            .map_err(|e| e.to_string())?;
+        return Ok(TMesh::from_csr(pos, &offs, &idx));
+    }
+    let (mut pos, mut offs, mut idx) = (m.positions.clone(), offsets, indices);
+    for _ in 0..levels {
+        let mesh = CoreMesh::new(&pos, &offs, &idx);
+        let mut s0 = vec![0u32; scheme::scratch_len(&mesh).unwrap()];
+        let topo = Topology::build(mesh, &mut s0).map_err(|e| e.to_string())?;
+        let o = scheme::subdivide_size(s, &topo).map_err(|e| e.to_string())?;
+        let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo).unwrap()];
+        let (mut p2, mut o2, mut i2) = (
+            vec![[0.0; 3]; o.vertices],
+            vec![0u32; o.faces + 1],
+            vec![0u32; o.indices],
+        );
+        let mut out = MeshOut::new(&mut p2, &mut o2, &mut i2);
+        mobius::subdivide(
+            s,
+            &topo,
+            &mut out,
+            &mut pts,
+            mobius::MobiusOptions::default(),
+        )
+        .map_err(|e| e.to_string())?;
+        (pos, offs, idx) = (p2, o2, i2);
+    }
+    Ok(TMesh::from_csr(pos, &offs, &idx))
+}
+
+fn name(s: Scheme, is_mobius: bool) -> String {
+    if is_mobius {
+        format!("mobius-{}", s.name())
+    } else {
+        s.name().to_string()
+    }
+}
+
+fn assert_same(a: &TMesh, b: &TMesh, what: &str) {
+    assert_eq!(a.faces, b.faces, "{what}: faces differ");
+    assert_eq!(a.positions.len(), b.positions.len(), "{what}: vertex count");
+    for (i, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+        assert_eq!(
+            p.map(f64::to_bits),
+            q.map(f64::to_bits),
+            "{what}: vertex {i}: {p:?} vs {q:?}"
+        );
+    }
+}
+
+/// Runs `subdivide` into `out_name` (any format) and reads the result back as OFF (through
+/// `convert` for OBJ and PLY, which keeps every bit and the order).
+fn run_subdivide(
+    dir: &TempDir,
+    input: &str,
+    scheme: &str,
+    levels: usize,
+    out_name: &str,
+) -> (std::process::Output, Option<TMesh>) {
+    let out = dir.path(out_name);
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        scheme,
+        "--levels",
+        &levels.to_string(),
+        dir.path(input).to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    if code(&o) != 0 {
+        return (o, None);
+    }
+    let off = if out_name.ends_with(".off") {
+        out.clone()
+    } else {
+        let off = dir.path("back.off");
+        let c = run(&["convert", out.to_str().unwrap(), off.to_str().unwrap()]);
+        assert_eq!(code(&c), 0, "convert {out_name}: {}", stderr(&c));
+        off
+    };
+    let m = read_off(&off);
+    std::fs::remove_file(&out).unwrap();
+    let _ = std::fs::remove_file(dir.path("back.off"));
+    (o, Some(m))
+}
+
+/// A closed prism over a regular `n`-gon: two `n`-gons and `n` quads (mixed faces).
+fn prism(n: u32) -> TMesh {
+    let mut positions = Vec::new();
+    for z in [-0.6, 0.7] {
+        for i in 0..n {
+            let t = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            positions.push([t.cos(), t.sin() * 0.9, z + 0.05 * (3.0 * t).sin()]);
+        }
+    }
+    let mut faces = vec![(0..n).rev().collect::<Vec<u32>>(), (n..2 * n).collect()];
+    for i in 0..n {
+        let j = (i + 1) % n;
+        faces.push(vec![i, j, n + j, n + i]);
+    }
+    TMesh { positions, faces }
+}
+
+/// An open quad grid on a saddle.
+fn quad_grid(n: u32, m: u32) -> TMesh {
+    let mut positions = Vec::new();
+    for j in 0..=m {
+        for i in 0..=n {
+            let (x, y) = (
+                f64::from(i) / f64::from(n) - 0.5,
+                f64::from(j) / f64::from(m) - 0.5,
+            );
+            positions.push([x, y, 0.4 * (x * x - y * y) + 0.1 * x * y]);
+        }
+    }
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let mut faces = Vec::new();
+    for j in 0..m {
+        for i in 0..n {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    TMesh { positions, faces }
+}
+
+/// The quad grid with every quad split into two triangles.
+fn tri_grid(n: u32, m: u32) -> TMesh {
+    let q = quad_grid(n, m);
+    let faces = q
+        .faces
+        .iter()
+        .flat_map(|f| [vec![f[0], f[1], f[2]], vec![f[0], f[2], f[3]]])
+        .collect();
+    TMesh {
+        positions: q.positions,
+        faces,
+    }
+}
+
+/// Generated meshes each scheme accepts: closed and open.
+fn meshes_for(s: Scheme) -> Vec<(&'static str, TMesh)> {
+    match s {
+        Scheme::Loop | Scheme::ModifiedButterfly => {
+            vec![("icosphere", icosphere(1)), ("tri-grid", tri_grid(4, 3))]
+        }
+        Scheme::Kobbelt => vec![
+            ("torus", torus(8, 6, 2.0, 0.7)),
+            ("quad-grid", quad_grid(5, 4)),
+        ],
+        _ => vec![("prism", prism(5)), ("mixed-grid", open_grid(4, 3))],
+    }
+}
+
+#[test]
+fn every_scheme_gives_the_library_output_bit_for_bit() {
+    let dir = TempDir::new("subdivide-all");
+    let formats = ["off", "obj", "ply"];
+    let mut k = 0;
+    for is_mobius in [false, true] {
+        for &s in &Scheme::ALL {
+            for (mname, m) in meshes_for(s) {
+                let input = format!("{mname}.off");
+                m.write_off(&dir.path(&input));
+                let levels = 2;
+                let sname = name(s, is_mobius);
+                let fmt = formats[k % formats.len()];
+                k += 1;
+                let (o, got) = run_subdivide(&dir, &input, &sname, levels, &format!("out.{fmt}"));
+                let what = format!("{sname} on {mname} (.{fmt})");
+                assert_eq!(code(&o), 0, "{what}: {}", stderr(&o));
+                let want = library(&read_off(&dir.path(&input)), s, is_mobius, levels)
+                    .unwrap_or_else(|e| panic!("{what}: the library refuses: {e}"));
+                assert_same(&got.unwrap(), &want, &what);
+                // The one-line summary.
+                let err = stderr(&o);
+                assert_eq!(err.lines().count(), 1, "{what}: {err}");
+                assert!(
+                    err.starts_with("wrote ")
+                        && err.contains(&format!("{sname}, 2 levels"))
+                        && err.contains(&format!("→ {} vertices", want.positions.len()))
+                        && err.contains(&format!("→ {} faces", want.faces.len()))
+                        && err.contains(" s"),
+                    "{what}: {err}"
+                );
+                assert_eq!(err.contains("fallback"), is_mobius, "{what}: {err}");
+            }
+        }
+    }
+    // Level 0 copies, whatever the scheme accepts.
+    let m = quad_grid(3, 2);
+    m.write_off(&dir.path("q.off"));
+    for s in ["loop", "mobius-kobbelt", "dual"] {
+        let (o, got) = run_subdivide(&dir, "q.off", s, 0, "copy.ply");
+        assert_eq!(code(&o), 0, "{s}: {}", stderr(&o));
+        assert_same(&got.unwrap(), &read_off(&dir.path("q.off")), "level 0");
+    }
+}
+
+#[test]
+fn shared_meshes_give_the_library_output_or_are_refused() {
+    let Some(shared) = shared_meshes("shared_meshes_give_the_library_output_or_are_refused") else {
+        return;
+    };
+    let dir = TempDir::new("subdivide-shared");
+    let names = [
+        "cube",
+        "icosahedron",
+        "pyramid_mixed",
+        "house_pentagons",
+        "helmet_quad",
+        "pole8_mixed",
+    ];
+    let (mut ok, mut refused) = (0, 0);
+    for n in names {
+        let src = shared.join(format!("{n}.off"));
+        if !src.exists() {
+            println!("SKIP {n}: not in {}", shared.display());
+            continue;
+        }
+        std::fs::copy(&src, dir.path("in.off")).unwrap();
+        let m = read_off(&dir.path("in.off"));
+        for is_mobius in [false, true] {
+            for &s in &Scheme::ALL {
+                let sname = name(s, is_mobius);
+                let what = format!("{sname} on {n}");
+                let (o, got) = run_subdivide(&dir, "in.off", &sname, 2, "out.off");
+                match library(&m, s, is_mobius, 2) {
+                    Ok(want) => {
+                        assert_eq!(code(&o), 0, "{what}: {}", stderr(&o));
+                        assert_same(&got.unwrap(), &want, &what);
+                        ok += 1;
+                    }
+                    Err(e) => {
+                        assert_eq!(code(&o), 2, "{what} (library: {e}): {}", stderr(&o));
+                        assert!(stderr(&o).contains("in.off"), "{what}: {}", stderr(&o));
+                        refused += 1;
+                    }
+                }
+                assert_files(&dir, &["in.off"], &what);
+            }
+        }
+    }
+    println!("shared meshes: {ok} subdivided as the library does, {refused} refused as it does");
+    assert!(ok > 0);
+}
+
+fn refs(v: &[String]) -> Vec<&str> {
+    v.iter().map(String::as_str).collect()
+}
+
+/// Runs a command that must fail: its status, a message containing every needle, and no
+/// file but `keep` left in the folder.
+fn must_fail(dir: &TempDir, args: &[&str], status: i32, needles: &[&str], keep: &[&str]) {
+    let o = run(args);
+    let err = stderr(&o);
+    assert_eq!(code(&o), status, "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: '{n}' not in: {err}");
+    }
+    assert_files(dir, keep, &format!("{args:?}"));
+}
+
+#[test]
+fn bad_input_gives_its_status_names_the_element_and_leaves_nothing() {
+    let dir = TempDir::new("subdivide-bad");
+    let p = |n: &str| dir.path(n).to_str().unwrap().to_string();
+    // Loop on quads: the file, the line and the face.
+    let q = quad_grid(3, 2);
+    q.write_off(&dir.path("quads.off"));
+    let face0_line = 3 + q.positions.len();
+    // A single quad: its face point has no Möbius rule (all corners are ears).
+    std::fs::write(
+        dir.path("quad.off"),
+        "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+    )
+    .unwrap();
+    // Three faces on one edge.
+    std::fs::write(
+        dir.path("fin.off"),
+        "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n",
+    )
+    .unwrap();
+    // An unreferenced vertex (a warning: refused with --strict only).
+    std::fs::write(
+        dir.path("extra.off"),
+        "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n5 5 5\n3 0 1 2\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path("nan.off"),
+        "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path("junk.off"), "this is not a mesh\n").unwrap();
+    let inputs = [
+        "extra.off",
+        "fin.off",
+        "junk.off",
+        "nan.off",
+        "quad.off",
+        "quads.off",
+    ];
+    let out = p("out.off");
+    let sub = |scheme: &str, levels: &str, input: &str, out: &str| -> Vec<String> {
+        [
+            "subdivide",
+            "--scheme",
+            scheme,
+            "--levels",
+            levels,
+            &p(input),
+            out,
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+    };
+
+    let a = sub("loop", "1", "quads.off", &out);
+    must_fail(
+        &dir,
+        &refs(&a),
+        2,
+        &[&format!("quads.off:{face0_line}: face 0"), "triangles"],
+        &inputs,
+    );
+    let a = sub("mobius-butterfly", "2", "quads.off", &out);
+    must_fail(&dir, &refs(&a), 2, &["face 0", "triangles"], &inputs);
+    let a = sub("kobbelt", "1", "fin.off", &out);
+    must_fail(&dir, &refs(&a), 2, &["fin.off", "non-manifold"], &inputs);
+    let a = sub("catmull-clark", "1", "junk.off", &out);
+    must_fail(&dir, &refs(&a), 2, &["junk.off"], &inputs);
+    let a = sub("catmull-clark", "1", "nan.off", &out);
+    must_fail(&dir, &refs(&a), 2, &["nan.off:4: vertex 1", "NaN"], &inputs);
+    let a = sub("catmull-clark", "1", "missing.off", &out);
+    must_fail(&dir, &refs(&a), 3, &["missing.off"], &inputs);
+    let a = sub("catmull-clark", "1", "quad.off", &p("no/such/dir/out.off"));
+    must_fail(&dir, &refs(&a), 3, &["out.off"], &inputs);
+    let a = sub("catmull-clark", "1", "quad.off", &p("out.txt"));
+    must_fail(
+        &dir,
+        &refs(&a),
+        4,
+        &["out.txt", ".off, .obj or .ply"],
+        &inputs,
+    );
+
+    // Möbius fallbacks: counted by default, an error naming the element with --strict.
+    let mut a = sub("mobius-catmull-clark", "1", "quad.off", &out);
+    a.insert(5, "--strict".into());
+    must_fail(
+        &dir,
+        &refs(&a),
+        2,
+        &[
+            "quad.off",
+            "output vertex 8",
+            "face point of face 0 (line 7)",
+            "--strict",
+        ],
+        &inputs,
+    );
+    let o = run(&refs(&sub("mobius-catmull-clark", "1", "quad.off", &out)));
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("1 fallback to the linear rule"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_file(&out).unwrap();
+    // Warnings: printed by default, refused with --strict.
+    let o = run(&refs(&sub("loop", "1", "extra.off", &out)));
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(stderr(&o).contains("unreferenced"), "{}", stderr(&o));
+    std::fs::remove_file(&out).unwrap();
+    let mut a = sub("loop", "1", "extra.off", &out);
+    a.insert(5, "--strict".into());
+    must_fail(&dir, &refs(&a), 2, &["extra.off", "vertex 3"], &inputs);
+
+    // The command line: names this version does not have, unknown names, too many levels.
+    for (scheme, needle) in [
+        ("spherelike", "not implemented"),
+        ("differential-loop", "not implemented"),
+        ("mobius-spherelike", "unknown mesh scheme"),
+        ("four-point", "curve scheme"),
+        ("catmul-clark", "unknown mesh scheme"),
+    ] {
+        let a = sub(scheme, "1", "quads.off", &out);
+        must_fail(
+            &dir,
+            &refs(&a),
+            4,
+            &[
+                needle,
+                "available: loop, catmull-clark",
+                "mobius-dual-truncation",
+            ],
+            &inputs,
+        );
+    }
+    let a = sub("vertex-insertion", "9", "quads.off", &out);
+    must_fail(
+        &dir,
+        &refs(&a),
+        4,
+        &["level 6 of vertex-insertion", "use at most 5 levels"],
+        &inputs,
+    );
+    let a = sub("loop", "17", "quads.off", &out);
+    must_fail(&dir, &refs(&a), 4, &["17"], &inputs);
+}
+
+#[test]
+fn demo_runs_on_nothing_and_draws_the_dome() {
+    // No arguments, in an empty folder: it writes there.
+    let dir = TempDir::new("demo");
+    let o = std::process::Command::new(bin())
+        .arg("demo")
+        .current_dir(&dir.0)
+        .output()
+        .unwrap();
+    let out = stdout(&o);
+    assert_eq!(code(&o), 0, "{out}{}", stderr(&o));
+    println!("{out}");
+    assert_files(&dir, &["demo.png", "demo_cage.off", "demo_out.off"], "demo");
+    for needle in [
+        "78 vertices, 55 faces",
+        "4 levels of mobius-catmull-clark",
+        "15360 faces",
+        "0 fallbacks",
+        "best-fit sphere",
+        "Willmore",
+    ] {
+        assert!(out.contains(needle), "'{needle}' not in:\n{out}");
+    }
+    // A cage on the sphere stays on it: the printed deviation is a rounding error.
+    let line = out.lines().find(|l| l.contains("unit sphere")).unwrap();
+    let dev: f64 = line
+        .split("max |r − 1| = ")
+        .nth(1)
+        .unwrap()
+        .split(')')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(dev < 1e-13, "{line}");
+    // The picture: not blank, mostly covered by the dome, with colour.
+    let (w, h, rgb) = decode_png(&dir.path("demo.png"));
+    let (var, covered) = picture_stats(w, h, &rgb);
+    assert!(
+        var > 100.0 && covered > 0.2,
+        "variance {var}, covered {covered}"
+    );
+    let colourful = rgb
+        .chunks(3)
+        .filter(|c| c.iter().max().unwrap() - c.iter().min().unwrap() > 60)
+        .count();
+    assert!(
+        colourful as f64 > 0.05 * f64::from(w * h),
+        "{colourful} coloured pixels"
+    );
+    // The result is `subdivide` of the cage it wrote, bit for bit.
+    let (o, got) = run_subdivide(
+        &dir,
+        "demo_cage.off",
+        "mobius-catmull-clark",
+        4,
+        "again.off",
+    );
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert_same(&got.unwrap(), &read_off(&dir.path("demo_out.off")), "demo");
+
+    // --out: a new folder.
+    let sub = dir.path("a/b");
+    let o = run(&["demo", "--levels", "1", "--out", sub.to_str().unwrap()]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(sub.join("demo.png").is_file() && sub.join("demo_out.off").is_file());
+}
