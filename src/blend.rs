@@ -223,13 +223,21 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     if frame.coincide(b, d) {
         return Ok(b);
     }
-    let (la, lb, lc, ld) = (
+    let (mut la, mut lb, mut lc, mut ld) = (
         frame.to_local(a),
         frame.to_local(b),
         frame.to_local(c),
         frame.to_local(d),
     );
-    let rho = cross_ratio(lc, la, lb, ld)?;
+    let mut rho = cross_ratio(lc, la, lb, ld)?;
+    // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
+    // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
+    // the negative-real case, whose printed rule depends on the order.) Both orders give
+    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric.
+    if !is_negative_real(rho) && norm(sub(lb, la)) < norm(sub(lc, ld)) {
+        (la, lb, lc, ld) = (ld, lc, lb, la);
+        rho = cross_ratio(lc, la, lb, ld)?;
+    }
     let mut axis = plane_normal(la, lb, lc);
     let mut snap = false;
     if let Some(x) = hint {
