@@ -16,8 +16,7 @@ mod common;
 use std::time::Instant;
 
 use common::*;
-use nlsubdiv::mesh::{MeshOut, Topology};
-use nlsubdiv::scheme::{self, mobius, Scheme};
+use nlsubdiv::scheme::Scheme;
 
 fn linear_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
     subdivide_n(s, m, levels).unwrap()
@@ -26,24 +25,7 @@ fn linear_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
 fn mobius_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
     let mut cur = m.clone();
     for _ in 0..levels {
-        let mut scratch = vec![0u32; scheme::scratch_len(&cur.view()).unwrap()];
-        let topo = Topology::build(cur.view(), &mut scratch).unwrap();
-        let sizes = scheme::subdivide_size(s, &topo).unwrap();
-        let mut out = OwnedMesh {
-            positions: vec![[0.0; 3]; sizes.vertices],
-            offsets: vec![0; sizes.faces + 1],
-            indices: vec![0; sizes.indices],
-        };
-        let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo).unwrap()];
-        mobius::subdivide(
-            s,
-            &topo,
-            &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-            &mut pts,
-            Default::default(),
-        )
-        .unwrap();
-        cur = out;
+        cur = mobius_subdivide(s, &cur, false).unwrap().0;
     }
     cur
 }

@@ -14,72 +14,11 @@
 mod common;
 
 use common::*;
-use nlsubdiv::mesh::{MeshOut, Topology};
-use nlsubdiv::metrics::willmore_energy;
-use nlsubdiv::scheme::{self, mobius, Scheme};
-use nlsubdiv::Point;
+use nlsubdiv::scheme::Scheme;
 
 fn mobius_step(s: Scheme, m: &OwnedMesh) -> (OwnedMesh, u32) {
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
-    let topo = Topology::build(m.view(), &mut scratch).unwrap();
-    let sizes = scheme::subdivide_size(s, &topo).unwrap();
-    let mut out = OwnedMesh {
-        positions: vec![[0.0; 3]; sizes.vertices],
-        offsets: vec![0; sizes.faces + 1],
-        indices: vec![0; sizes.indices],
-    };
-    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo).unwrap()];
-    let (_, rep) = mobius::subdivide(
-        s,
-        &topo,
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        &mut pts,
-        Default::default(),
-    )
-    .unwrap();
+    let (out, rep) = mobius_subdivide(s, m, false).unwrap();
     (out, rep.fallbacks)
-}
-
-fn max_edge(m: &OwnedMesh) -> f64 {
-    let mut best: f64 = 0.0;
-    for f in m.faces() {
-        for i in 0..f.len() {
-            let (a, b) = (
-                m.positions[f[i] as usize],
-                m.positions[f[(i + 1) % f.len()] as usize],
-            );
-            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            best = best.max(d);
-        }
-    }
-    best
-}
-
-/// Mean Willmore energy over interior vertices with at least four neighbours.
-fn mean_willmore(m: &OwnedMesh) -> f64 {
-    with_topology(m, |t| {
-        let (mut sum, mut n) = (0.0, 0usize);
-        for v in 0..t.num_vertices() as u32 {
-            if t.is_isolated(v).unwrap() || t.is_boundary_vertex(v).unwrap() {
-                continue;
-            }
-            let ring: Vec<Point> = t
-                .ring(v)
-                .unwrap()
-                .iter()
-                .map(|&u| t.position(u).unwrap())
-                .collect();
-            if ring.len() < 4 {
-                continue;
-            }
-            if let Ok(w) = willmore_energy(t.position(v).unwrap(), &ring, true) {
-                sum += w;
-                n += 1;
-            }
-        }
-        sum / n.max(1) as f64
-    })
-    .unwrap()
 }
 
 fn main() {

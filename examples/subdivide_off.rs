@@ -14,30 +14,14 @@ mod common;
 use std::path::Path;
 
 use common::*;
-use nlsubdiv::mesh::{MeshOut, Topology};
-use nlsubdiv::scheme::{self, mobius, Scheme};
+use nlsubdiv::scheme::Scheme;
 
 fn step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> nlsubdiv::Result<OwnedMesh> {
-    if !mobius_on {
-        return subdivide(s, m);
+    if mobius_on {
+        Ok(mobius_subdivide(s, m, false)?.0)
+    } else {
+        subdivide(s, m)
     }
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
-    let topo = Topology::build(m.view(), &mut scratch)?;
-    let sizes = scheme::subdivide_size(s, &topo)?;
-    let mut out = OwnedMesh {
-        positions: vec![[0.0; 3]; sizes.vertices],
-        offsets: vec![0; sizes.faces + 1],
-        indices: vec![0; sizes.indices],
-    };
-    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
-    mobius::subdivide(
-        s,
-        &topo,
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        &mut pts,
-        Default::default(),
-    )?;
-    Ok(out)
 }
 
 fn main() {

@@ -18,26 +18,9 @@ use nlsubdiv::scheme::mobius::{self, MobiusOptions, MobiusReport};
 use nlsubdiv::scheme::{self, Scheme};
 use nlsubdiv::{Point, Status};
 
-/// One Möbius step with buffers sized by the size queries.
+/// One Möbius step ([`mobius_subdivide`] of the shared test support).
 fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, MobiusReport)> {
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
-    let topo = Topology::build(m.view(), &mut scratch)?;
-    let sizes = scheme::subdivide_size(s, &topo)?;
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; sizes.vertices],
-        offsets: vec![u32::MAX; sizes.faces + 1],
-        indices: vec![u32::MAX; sizes.indices],
-    };
-    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
-    let (written, report) = mobius::subdivide(
-        s,
-        &topo,
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        &mut pts,
-        MobiusOptions { strict },
-    )?;
-    assert_eq!(written, sizes);
-    Ok((out, report))
+    mobius_subdivide(s, m, strict)
 }
 
 fn msub_n(s: Scheme, m: &OwnedMesh, levels: usize) -> (OwnedMesh, u32) {
@@ -460,44 +443,6 @@ fn same_input_same_bits() {
         let (b, _) = msub(s, &m, false).unwrap();
         assert_eq!(hash(&a), hash(&b));
     }
-}
-
-fn max_edge(m: &OwnedMesh) -> f64 {
-    let mut best: f64 = 0.0;
-    for f in m.faces() {
-        for i in 0..f.len() {
-            let (a, b) = (
-                m.positions[f[i] as usize],
-                m.positions[f[(i + 1) % f.len()] as usize],
-            );
-            best = best.max(dist(a, b));
-        }
-    }
-    best
-}
-
-fn mean_willmore(m: &OwnedMesh) -> f64 {
-    with_topology(m, |t| {
-        let (mut sum, mut n) = (0.0, 0usize);
-        for v in 0..t.num_vertices() as u32 {
-            if t.is_isolated(v).unwrap() || t.is_boundary_vertex(v).unwrap() {
-                continue;
-            }
-            let ring: Vec<Point> = t
-                .ring(v)
-                .unwrap()
-                .iter()
-                .map(|&u| t.position(u).unwrap())
-                .collect();
-            if ring.len() >= 4 {
-                sum += nlsubdiv::metrics::willmore_energy(t.position(v).unwrap(), &ring, true)
-                    .unwrap();
-                n += 1;
-            }
-        }
-        sum / n.max(1) as f64
-    })
-    .unwrap()
 }
 
 /// Seed 000 Table 2 and Fig. 9 on tori (no boundary): the maximal edge length shrinks by a

@@ -432,3 +432,75 @@ pub fn octahedron() -> OwnedMesh {
         ],
     )
 }
+
+// ---------------------------------------------------------------- Möbius steps and measures
+
+/// One canonical Möbius step (`scheme::mobius`) with buffers sized by the size queries; the
+/// output starts as NaN/`u32::MAX` so that an unwritten entry cannot pass unnoticed.
+pub fn mobius_subdivide(
+    s: Scheme,
+    m: &OwnedMesh,
+    strict: bool,
+) -> Result<(OwnedMesh, nlsubdiv::scheme::mobius::MobiusReport)> {
+    use nlsubdiv::scheme::mobius;
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let topo = Topology::build(m.view(), &mut scratch)?;
+    let sizes = scheme::subdivide_size(s, &topo)?;
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; sizes.vertices],
+        offsets: vec![u32::MAX; sizes.faces + 1],
+        indices: vec![u32::MAX; sizes.indices],
+    };
+    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
+    let (written, report) = mobius::subdivide(
+        s,
+        &topo,
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+        &mut pts,
+        mobius::MobiusOptions { strict },
+    )?;
+    assert_eq!(written, sizes, "sizes written differ from the size query");
+    Ok((out, report))
+}
+
+/// The longest edge of any face.
+pub fn max_edge(m: &OwnedMesh) -> f64 {
+    let mut best: f64 = 0.0;
+    for f in m.faces() {
+        for i in 0..f.len() {
+            let (a, b) = (
+                m.positions[f[i] as usize],
+                m.positions[f[(i + 1) % f.len()] as usize],
+            );
+            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            best = best.max(d);
+        }
+    }
+    best
+}
+
+/// The mean discrete Willmore energy (seed 000 §3.3) over interior vertices with at least
+/// four neighbours.
+pub fn mean_willmore(m: &OwnedMesh) -> f64 {
+    with_topology(m, |t| {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for v in 0..t.num_vertices() as u32 {
+            if t.is_isolated(v).unwrap() || t.is_boundary_vertex(v).unwrap() {
+                continue;
+            }
+            let ring: Vec<Point> = t
+                .ring(v)
+                .unwrap()
+                .iter()
+                .map(|&u| t.position(u).unwrap())
+                .collect();
+            if ring.len() >= 4 {
+                sum += nlsubdiv::metrics::willmore_energy(t.position(v).unwrap(), &ring, true)
+                    .unwrap();
+                n += 1;
+            }
+        }
+        sum / n.max(1) as f64
+    })
+    .unwrap()
+}
