@@ -26,10 +26,11 @@ fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> [f64; 4] {
             .unwrap();
         a.swap(c, p);
         b.swap(c, p);
+        let pivot = a[c];
         for r in c + 1..4 {
-            let f = a[r][c] / a[c][c];
-            for k in c..4 {
-                a[r][k] -= f * a[c][k];
+            let f = a[r][c] / pivot[c];
+            for (x, y) in a[r].iter_mut().zip(pivot).skip(c) {
+                *x -= f * y;
             }
             b[r] -= f * b[c];
         }
