@@ -126,6 +126,15 @@
 #define NLS_SCHEME_DUAL_TRUNCATION 8
 
 /**
+ * Mesh scheme: spherelike interpolating subdivision (seed 003 §3; any polygons → quads;
+ * interpolating; circle-blend rules keep rows of cocircular points on their circles). It
+ * has no Möbius form: with `NLS_SUBDIVIDE_MOBIUS` the call is `NLS_STATUS_INVALID_ARGUMENT`.
+ * Coincident points or a spike the circle rule cannot bend through give
+ * `NLS_STATUS_DEGENERATE_GEOMETRY` naming the output vertex (no fallback).
+ */
+#define NLS_SCHEME_SPHERELIKE 9
+
+/**
  * Subdivision flag: the canonical Möbius version of the scheme (seed 000 §4): every vertex
  * star is evaluated in its canonical form, candidates are blended with F4/F6. Möbius
  * equivariant; cospherical meshes stay on their sphere.

@@ -53,8 +53,10 @@ fn diameter(m: &OwnedMesh) -> f64 {
     dist(lo, hi)
 }
 
+/// Whether the Möbius driver accepts `m` for `s` (schemes without a Möbius form never).
 fn accepts(s: Scheme, m: &OwnedMesh) -> bool {
-    with_topology(m, |t| scheme::subdivide_size(s, t).is_ok()).unwrap_or(false)
+    s.has_mobius_form()
+        && with_topology(m, |t| scheme::subdivide_size(s, t).is_ok()).unwrap_or(false)
 }
 
 /// SplitMix64 in [-1, 1).
@@ -102,7 +104,7 @@ fn map_mesh(m: &OwnedMesh, f: &MobiusMap) -> OwnedMesh {
     m.map_positions(|p| f.apply(p).unwrap())
 }
 
-const ALL: [Scheme; 9] = Scheme::ALL;
+const ALL: [Scheme; 10] = Scheme::ALL;
 
 /// Project a mesh's vertices onto the unit sphere around the origin.
 fn onto_sphere(m: &OwnedMesh) -> OwnedMesh {

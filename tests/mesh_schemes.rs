@@ -655,7 +655,9 @@ fn affine_covariance() {
     };
     for (name, m) in all_meshes() {
         for s in Scheme::ALL {
-            if !accepts(s, &m) {
+            // The spherelike scheme is not affine: circles are only similarity-invariant
+            // (tests/mesh_spherelike.rs checks similarities).
+            if !accepts(s, &m) || s == Scheme::Spherelike {
                 continue;
             }
             let lhs = subdivide(s, &m.map_positions(f)).unwrap();
@@ -813,8 +815,11 @@ fn shared_meshes_one_level() {
                                 | Scheme::Dual
                                 | Scheme::DualTruncation
                         );
+                    // The spherelike circles need distinct points: meshes with coincident
+                    // vertices (cow.off has two at one position) are DegenerateGeometry.
+                    let circles = e.status == Status::DegenerateGeometry && s == Scheme::Spherelike;
                     assert!(
-                        e.status == Status::ValenceTooHigh || dual2,
+                        e.status == Status::ValenceTooHigh || dual2 || circles,
                         "{name} {s:?}: {e}"
                     );
                     println!("{name} {s:?}: {e}");

@@ -31,8 +31,7 @@ pub struct MeshScheme {
 }
 
 /// Names of DESIGN.md that this version does not implement yet.
-const NOT_YET: [&str; 4] = [
-    "spherelike",
+const NOT_YET: [&str; 3] = [
     "differential-loop",
     "differential-butterfly",
     "differential-dirmag",
@@ -48,11 +47,13 @@ impl MeshScheme {
         }
     }
 
-    /// Every scheme: the linear ones in code order, then their Möbius forms.
+    /// Every scheme: the linear ones (and `spherelike`) in code order, then the Möbius forms
+    /// of those that have one ([`Scheme::has_mobius_form`]).
     pub fn all() -> impl Iterator<Item = MeshScheme> {
         [false, true].into_iter().flat_map(|mobius| {
             Scheme::ALL
                 .iter()
+                .filter(move |s| !mobius || s.has_mobius_form())
                 .map(move |&scheme| MeshScheme { scheme, mobius })
         })
     }
@@ -74,10 +75,18 @@ impl MeshScheme {
             Some(rest) => (rest, true),
             None => (name, false),
         };
-        if let Some(scheme) = Scheme::from_name(base) {
-            return Ok(MeshScheme { scheme, mobius });
-        }
-        let why = if NOT_YET.contains(&name) {
+        let why = match Scheme::from_name(base) {
+            Some(scheme) if !mobius || scheme.has_mobius_form() => {
+                return Ok(MeshScheme { scheme, mobius });
+            }
+            Some(_) => {
+                format!("'{base}' has no Möbius form (its circle rules keep circles already)")
+            }
+            None => String::new(),
+        };
+        let why = if !why.is_empty() {
+            why
+        } else if NOT_YET.contains(&name) {
             format!("'{name}' is not implemented in this version")
         } else if nlsubdiv::curve::CurveScheme::from_name(name).is_some() {
             format!("'{name}' is a curve scheme (use `nlsubdiv curve`)")
@@ -294,7 +303,10 @@ fn core_error(
                 ))
             }
         }
-        (Stage::Step, Status::FallbackInStrictMode | Status::NumericalFailure) => {
+        (
+            Stage::Step,
+            Status::FallbackInStrictMode | Status::NumericalFailure | Status::DegenerateGeometry,
+        ) => {
             let what = match topo {
                 Some(t) if el != NO_ELEMENT => {
                     describe_output_vertex(ms.scheme.pattern(), t, el, n)
@@ -305,6 +317,10 @@ fn core_error(
                 "needed the linear fallback (a degenerate neighbourhood: coincident points, a \
                  star without a canonical form, a blend at infinity, or a face whose corners \
                  are all ears, boundary vertices of one face) and --strict is set"
+                    .to_string()
+            } else if e.status == Status::DegenerateGeometry {
+                "has no circle through its points (coincident vertices or a spike; the \
+                 spherelike rule has no fallback)"
                     .to_string()
             } else {
                 "is not finite (the coordinates are too large for this rule)".to_string()

@@ -36,6 +36,12 @@ pub const NLS_SCHEME_DUAL: u32 = 6;
 pub const NLS_SCHEME_VERTEX_INSERTION: u32 = 7;
 /// Mesh scheme: Akleman's dual truncation (any polygons → triangles, √3 connectivity).
 pub const NLS_SCHEME_DUAL_TRUNCATION: u32 = 8;
+/// Mesh scheme: spherelike interpolating subdivision (seed 003 §3; any polygons → quads;
+/// interpolating; circle-blend rules keep rows of cocircular points on their circles). It
+/// has no Möbius form: with `NLS_SUBDIVIDE_MOBIUS` the call is `NLS_STATUS_INVALID_ARGUMENT`.
+/// Coincident points or a spike the circle rule cannot bend through give
+/// `NLS_STATUS_DEGENERATE_GEOMETRY` naming the output vertex (no fallback).
+pub const NLS_SCHEME_SPHERELIKE: u32 = 9;
 
 /// Subdivision flag: the canonical Möbius version of the scheme (seed 000 §4): every vertex
 /// star is evaluated in its canonical form, candidates are blended with F4/F6. Möbius
@@ -87,6 +93,9 @@ struct Options {
 fn options(scheme: u32, flags: u32) -> Result<Options, Status> {
     let scheme = Scheme::from_code(scheme).ok_or(Status::InvalidArgument)?;
     if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT) != 0 {
+        return Err(Status::InvalidArgument);
+    }
+    if flags & NLS_SUBDIVIDE_MOBIUS != 0 && !scheme.has_mobius_form() {
         return Err(Status::InvalidArgument);
     }
     Ok(Options {
@@ -556,10 +565,14 @@ pub unsafe extern "C" fn nls_mesh_subdivide_size(
 ///
 /// `out_element` may be NULL. Otherwise it receives, on failure only: the element of a
 /// validation error (see [`nls_mesh_subdivide_size`]), the output vertex for
-/// `NLS_STATUS_FALLBACK_IN_STRICT_MODE` and `NLS_STATUS_NUMERICAL_FAILURE`, the buffer for
+/// `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, `NLS_STATUS_NUMERICAL_FAILURE` and
+/// `NLS_STATUS_DEGENERATE_GEOMETRY` (`NLS_SCHEME_SPHERELIKE`), the buffer for
 /// `NLS_STATUS_BUFFER_TOO_SMALL`, else `NLS_NO_ELEMENT`.
 ///
 /// Errors: those of [`nls_mesh_subdivide_size`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
+/// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag, or `NLS_SUBDIVIDE_MOBIUS` with a
+/// scheme without Möbius form: `NLS_SCHEME_SPHERELIKE`); `NLS_STATUS_DEGENERATE_GEOMETRY`
+/// (`NLS_SCHEME_SPHERELIKE`: coincident points of one circle, or a spike);
 /// `NLS_STATUS_FALLBACK_IN_STRICT_MODE` (`NLS_SUBDIVIDE_STRICT`); `NLS_STATUS_NUMERICAL_FAILURE`
 /// (an output vertex would not be finite: coordinates near the ends of the double range).
 #[unsafe(no_mangle)]
@@ -908,6 +921,7 @@ mod tests {
             (NLS_SCHEME_DUAL, Scheme::Dual),
             (NLS_SCHEME_VERTEX_INSERTION, Scheme::VertexInsertion),
             (NLS_SCHEME_DUAL_TRUNCATION, Scheme::DualTruncation),
+            (NLS_SCHEME_SPHERELIKE, Scheme::Spherelike),
         ];
         assert_eq!(pairs.len(), Scheme::ALL.len());
         for (code, scheme) in pairs {

@@ -66,6 +66,8 @@ pub fn subdivide(
         Scheme::Dual => dual_positions(topo, pos)?,
         Scheme::VertexInsertion => vertex_insertion_positions(topo, pos)?,
         Scheme::DualTruncation => dual_truncation_positions(topo, pos)?,
+        // Not linear, but it shares this entry point (and so the level loop and the C ABI).
+        Scheme::Spherelike => super::spherelike::positions(topo, pos)?,
     }
     for (i, p) in pos.iter().enumerate() {
         if !point_is_finite(p) {

@@ -489,6 +489,8 @@ impl Driver<'_, '_, '_, '_> {
                 let nv = self.topo.num_vertices();
                 self.run_face_scheme(nv, true, true)
             }
+            // No Möbius form (Scheme::has_mobius_form).
+            Scheme::Spherelike => Err(Error::new(Status::InvalidArgument)),
         }
     }
 

@@ -6,7 +6,8 @@
 //! [`subdivide_mesh_size`] take the raw mesh slices and a scratch buffer
 //! ([`scratch_len`]) for callers that do not keep a [`Topology`]; [`plan`] and
 //! [`subdivide_levels`] run several levels, [`subdivide_levels_mobius`] several levels of the
-//! Möbius version ([`mobius`]), through the same level loop.
+//! Möbius version ([`mobius`]), through the same level loop. [`Scheme::Spherelike`] (seed 003
+//! §3, [`spherelike`]) runs through the same one-level and multi-level entry points.
 //!
 //! Output vertex order (DESIGN.md): primal schemes write the old vertices first at the same
 //! indices, then edge points in edge-id order (edges sorted by `(min, max)` vertex key), then
@@ -16,6 +17,7 @@
 mod levels;
 pub mod linear;
 pub mod mobius;
+pub mod spherelike;
 
 pub use levels::{
     plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
@@ -49,11 +51,14 @@ pub enum Scheme {
     VertexInsertion = 7,
     /// Akleman's dual truncation (any polygons → triangles, √3 connectivity).
     DualTruncation = 8,
+    /// Spherelike interpolating subdivision (seed 003 §3): circle-blend edge and face rules,
+    /// any polygons → quads; interpolating; no Möbius form ([`spherelike`]).
+    Spherelike = 9,
 }
 
 impl Scheme {
     /// Every scheme, in code order.
-    pub const ALL: [Scheme; 9] = [
+    pub const ALL: [Scheme; 10] = [
         Scheme::Loop,
         Scheme::CatmullClark,
         Scheme::ModifiedButterfly,
@@ -63,6 +68,7 @@ impl Scheme {
         Scheme::Dual,
         Scheme::VertexInsertion,
         Scheme::DualTruncation,
+        Scheme::Spherelike,
     ];
 
     /// The stable numeric code.
@@ -87,6 +93,7 @@ impl Scheme {
             Scheme::Dual => "dual",
             Scheme::VertexInsertion => "vertex-insertion",
             Scheme::DualTruncation => "dual-truncation",
+            Scheme::Spherelike => "spherelike",
         }
     }
 
@@ -99,7 +106,7 @@ impl Scheme {
     pub const fn pattern(self) -> Pattern {
         match self {
             Scheme::Loop | Scheme::ModifiedButterfly => Pattern::Split1To4,
-            Scheme::CatmullClark | Scheme::Kobbelt => Pattern::Quads,
+            Scheme::CatmullClark | Scheme::Kobbelt | Scheme::Spherelike => Pattern::Quads,
             Scheme::DooSabin => Pattern::CornerCut,
             Scheme::Simplest => Pattern::MidEdge,
             Scheme::Dual => Pattern::Dual,
@@ -112,8 +119,18 @@ impl Scheme {
     pub const fn is_interpolating(self) -> bool {
         matches!(
             self,
-            Scheme::ModifiedButterfly | Scheme::Kobbelt | Scheme::VertexInsertion
+            Scheme::ModifiedButterfly
+                | Scheme::Kobbelt
+                | Scheme::VertexInsertion
+                | Scheme::Spherelike
         )
+    }
+
+    /// Whether the scheme has a canonical Möbius version (seed 000 §4; [`mobius`]). The
+    /// spherelike scheme has none: its circle-blend rules keep circles by construction and
+    /// are not built from a linear stencil that a canonical form could carry.
+    pub const fn has_mobius_form(self) -> bool {
+        !matches!(self, Scheme::Spherelike)
     }
 }
 
