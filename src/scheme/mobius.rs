@@ -374,6 +374,10 @@ pub fn subdivide(
     scratch: &mut [Point],
     opts: MobiusOptions,
 ) -> Result<(MeshSizes, MobiusReport)> {
+    if !scheme.has_mobius_form() {
+        // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
+        return Err(Error::new(Status::InvalidArgument));
+    }
     let sizes = super::linear::subdivide_size(scheme, topo)?;
     out.check(&sizes)?;
     let need = scratch_len(topo)?;
