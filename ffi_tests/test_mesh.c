@@ -531,14 +531,14 @@ static void test_bad_arguments(void) {
     x.nv = x.nf = x.ni = 777;
     x.rep.fallbacks = 777;
     /* unknown scheme codes and flag bits */
-    CHECK_STATUS(call(&x, 9u, 0), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(call(&x, NLS_SCHEME_SPHERELIKE + 1u, 0), NLS_STATUS_INVALID_ARGUMENT);
     CHECK(x.element == NLS_NO_ELEMENT);
     CHECK_STATUS(call(&x, UINT32_MAX, 0), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(call(&x, NLS_SCHEME_CATMULL_CLARK, 1u << 2), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(call(&x, NLS_SCHEME_CATMULL_CLARK, 0x80000000u | NLS_SUBDIVIDE_MOBIUS), NLS_STATUS_INVALID_ARGUMENT);
     {
         size_t su = 777, sp = 777;
-        CHECK_STATUS(nls_mesh_scratch_size(9u, 0, 6, 20, &su, &sp), NLS_STATUS_INVALID_ARGUMENT);
+        CHECK_STATUS(nls_mesh_scratch_size(NLS_SCHEME_SPHERELIKE + 1u, 0, 6, 20, &su, &sp), NLS_STATUS_INVALID_ARGUMENT);
         CHECK_STATUS(nls_mesh_scratch_size(0, 4u, 6, 20, &su, &sp), NLS_STATUS_INVALID_ARGUMENT);
         CHECK(su == 777 && sp == 777);
         CHECK_STATUS(nls_mesh_scratch_size(0, NLS_SUBDIVIDE_MOBIUS, 6, 20, &su, &sp), NLS_STATUS_OK);

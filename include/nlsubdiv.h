@@ -556,10 +556,14 @@ nls_status nls_mesh_subdivide_size(uint32_t scheme,
  *
  * `out_element` may be NULL. Otherwise it receives, on failure only: the element of a
  * validation error (see [`nls_mesh_subdivide_size`]), the output vertex for
- * `NLS_STATUS_FALLBACK_IN_STRICT_MODE` and `NLS_STATUS_NUMERICAL_FAILURE`, the buffer for
+ * `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, `NLS_STATUS_NUMERICAL_FAILURE` and
+ * `NLS_STATUS_DEGENERATE_GEOMETRY` (`NLS_SCHEME_SPHERELIKE`), the buffer for
  * `NLS_STATUS_BUFFER_TOO_SMALL`, else `NLS_NO_ELEMENT`.
  *
  * Errors: those of [`nls_mesh_subdivide_size`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
+ * `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag, or `NLS_SUBDIVIDE_MOBIUS` with a
+ * scheme without Möbius form: `NLS_SCHEME_SPHERELIKE`); `NLS_STATUS_DEGENERATE_GEOMETRY`
+ * (`NLS_SCHEME_SPHERELIKE`: coincident points of one circle, or a spike);
  * `NLS_STATUS_FALLBACK_IN_STRICT_MODE` (`NLS_SUBDIVIDE_STRICT`); `NLS_STATUS_NUMERICAL_FAILURE`
  * (an output vertex would not be finite: coordinates near the ends of the double range).
  */

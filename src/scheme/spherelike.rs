@@ -12,13 +12,13 @@
 //!
 //! Each edge `V1 V2` is split by the curve rule on `(V0, V1, V2, V3)`
 //! ([`circle_blend::blend_point`]). `V0` is the point "beyond" `V1` away from `V2`
-//! ([`beyond`]), `V3` the point beyond `V2` away from `V1`:
+//! (`beyond`), `V3` the point beyond `V2` away from `V1`:
 //! * valence 4: the straight continuation, the spoke opposite `V1 V2` (Fig. 3a);
 //! * even valence `n ≠ 4`: the "most central edge", the spoke `n/2` steps round the star
 //!   (Fig. 3b) — at valence 4 this is the same spoke, so one rule serves both;
 //! * odd valence: "the vertex which is the furthest away from V1, and belonging to the central
 //!   face" (Fig. 3c): the face between spokes `(n−1)/2` and `(n+1)/2` steps round the star
-//!   (the face opposite the edge). Ties: see [`farthest`].
+//!   (the face opposite the edge). Ties: see `farthest`.
 //!
 //! Where the paper is silent (docs/DECISIONS.md, docs/spherelike.md):
 //! * **Boundary edges** follow the curve rule along their boundary loop, a closed curve
@@ -34,7 +34,7 @@
 //!
 //! * **Even n-gon** (the regular quad included, Fig. 5 / Fig. 6 left): the average of the
 //!   `n/2` curve applications on `(O_i, E_i, E_{i+n/2}, O_{i+n/2})`, `E_i` the new point of
-//!   the face's edge `i`, `O_i` the point across edge `i` ([`across`]). For a quad these are
+//!   the face's edge `i`, `O_i` the point across edge `i` (`across`). For a quad these are
 //!   the two curves "through it" of Fig. 5, on the edge points of the row and the column.
 //! * **Odd n-gon** (Fig. 6 right): the average of `n` curve applications, one per corner:
 //!   the segment from corner `v_i` to the edge point `E_{i+(n−1)/2}` of the opposite edge,
@@ -73,7 +73,7 @@ use crate::MAX_FACE_SIZE;
 use arrayvec::ArrayVec;
 
 /// Relative tolerance on squared distances under which two candidates of the odd-valence
-/// rule count as equally far ([`farthest`]).
+/// rule count as equally far (`farthest`).
 pub const TIE_TOLERANCE: f64 = 1e-12;
 
 /// Writes the positions of one spherelike step: `pos` holds `V + E + F` points
@@ -151,11 +151,17 @@ fn beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Option<Point>>
         .position(|s| s.neighbour == toward)
         .ok_or(internal())?;
     if n % 2 == 0 {
-        let s = spokes.get((j + n / 2) % n).ok_or(internal())?;
+        let s = (j + n / 2)
+            .checked_rem(n)
+            .and_then(|k| spokes.get(k))
+            .ok_or(internal())?;
         return topo.position(s.neighbour).map(Some);
     }
     // The central face lies between spokes j + (n−1)/2 and j + (n+1)/2.
-    let s = spokes.get((j + (n - 1) / 2) % n).ok_or(internal())?;
+    let s = (j + n.saturating_sub(1) / 2)
+        .checked_rem(n)
+        .and_then(|k| spokes.get(k))
+        .ok_or(internal())?;
     let f = s.face;
     if f == NONE {
         return Err(internal());
@@ -174,7 +180,7 @@ fn farthest(topo: &Topology<'_, '_>, v: u32, f: u32) -> Result<Point> {
     let m = corners.len();
     let mut cand: ArrayVec<(f64, Point), MAX_FACE_SIZE> = ArrayVec::new();
     for i in 1..m {
-        let c = get(corners, (k + i) % m)?;
+        let c = get(corners, (k + i).checked_rem(m).ok_or(internal())?)?;
         let p = topo.position(c)?;
         let d = [p[0] - pv[0], p[1] - pv[1], p[2] - pv[2]];
         cand.try_push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2], p))
@@ -220,13 +226,17 @@ fn face_point(topo: &Topology<'_, '_>, pos: &[Point], f: u32) -> Result<Point> {
     let hs = topo.face_half_edges(f)?;
     let n = hs.len();
     let first = hs.start;
-    let he = |i: usize| -> u32 { first + (i % n) as u32 };
+    // `checked_rem`, not `%`: the core has no panic paths, not even unreachable ones.
+    let he = |i: usize| -> Result<u32> {
+        let k = i.checked_rem(n).ok_or(internal())?;
+        first.checked_add(k as u32).ok_or(internal())
+    };
     let mut sum = [0.0_f64; 3];
     let count;
     if n % 2 == 0 {
         count = n / 2;
         for i in 0..count {
-            let (a, b) = (he(i), he(i + n / 2));
+            let (a, b) = (he(i)?, he(i + n / 2)?);
             let p = segment_point(
                 across(topo, pos, a)?,
                 ep(topo, pos, a)?,
@@ -239,7 +249,7 @@ fn face_point(topo: &Topology<'_, '_>, pos: &[Point], f: u32) -> Result<Point> {
         count = n;
         let corners = face_points(topo, f)?;
         for (i, &c) in corners.iter().enumerate() {
-            let b = he(i + (n - 1) / 2);
+            let b = he(i + n.saturating_sub(1) / 2)?;
             let p = segment_point(None, c, ep(topo, pos, b)?, across(topo, pos, b)?)?;
             sum = [sum[0] + p[0], sum[1] + p[1], sum[2] + p[2]];
         }
