@@ -1,0 +1,1 @@
+//! Surface-quality measures of seed 001 §4.3.
