@@ -30,9 +30,15 @@ pub struct Laplacian<'a> {
     pub rows: &'a [u32],
     /// Ring entries.
     pub cols: &'a [u32],
-    /// `n` flags, non-zero for boundary rows.
+    /// `n` flags: bit 0 ([`BOUNDARY`]) marks boundary rows, bit 1 ([`PINNED`]) an anchor
+    /// that the reconstruction keeps fixed ([`super::solve`]).
     pub boundary: &'a [u32],
 }
+
+/// Flag bit of a boundary row.
+pub const BOUNDARY: u32 = 1;
+/// Flag bit of a pinned (anchor) vertex.
+pub const PINNED: u32 = 2;
 
 /// The number of ring entries of `topo`: Σ valence = 2 · edges.
 pub fn laplacian_nnz(topo: &Topology<'_, '_>) -> Result<usize> {
@@ -104,7 +110,20 @@ impl Laplacian<'_> {
     #[inline]
     fn row_parts(&self, i: usize) -> Result<(&[u32], bool)> {
         let r = self.ring(i)?;
-        Ok((r, get(self.boundary, i)? != 0 && r.len() >= 2))
+        Ok((r, get(self.boundary, i)? & BOUNDARY != 0 && r.len() >= 2))
+    }
+
+    /// Whether row `i` is a boundary (Eq. (8)) row.
+    #[inline]
+    pub fn is_boundary(&self, i: usize) -> Result<bool> {
+        Ok(get(self.boundary, i)? & BOUNDARY != 0)
+    }
+
+    /// Whether vertex `i` is a Dirichlet vertex of the reconstruction's interior problem:
+    /// on the boundary, pinned, or isolated (empty ring).
+    #[inline]
+    pub fn is_fixed(&self, i: usize) -> Result<bool> {
+        Ok(get(self.boundary, i)? != 0 || get(self.rows, i + 1)? == get(self.rows, i)?)
     }
 
     /// `y = c · L x` (x, y at least [`Laplacian::len`] long).

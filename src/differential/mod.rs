@@ -13,8 +13,10 @@
 //!    [`DifferentialOptions::dirmag_levels`] levels ("we only perform the DirMag subdivision
 //!    in the first one or two iterations").
 //! 3. The geometry of level `k` is the least-squares solution of `4ᵏ L_k Ṽᵏ = Δᵏ` with anchor
-//!    rows (§3.5 step 4), solved by [`solve`] (multigrid-preconditioned CG on the normal
-//!    equations, warm-started from the spatial subdivision of the same stencil).
+//!    rows (§3.5 step 4), solved by [`solve`]: the boundary loops exactly (tridiagonal), the
+//!    rest as the equivalent Dirichlet graph-Laplacian problem by multigrid-preconditioned CG,
+//!    warm-started from the spatial subdivision of the same stencil; the tolerance is checked
+//!    on the residual of the normal equations.
 //!
 //! # Placement (decision)
 //!
@@ -376,6 +378,7 @@ pub fn subdivide(
 
     // ---- level 0: Δ⁰, separation, anchors, components ----
     let mut anchors_n;
+    let loops_n;
     let mut degenerate = 0u32;
     {
         let topo = Topology::build(mesh, topo_buf)?;
@@ -453,6 +456,7 @@ pub fn subdivide(
             set(aux, get(parent, v as usize)? as usize, 1)?;
         }
         anchors_n = loops;
+        loops_n = loops;
         for v in 0..n0 {
             let r = get(parent, v)? as usize;
             if get(aux, r)? == 0 {
@@ -460,6 +464,10 @@ pub fn subdivide(
                 set(anchors_buf, anchors_n, v as u32)?;
                 anchors_n += 1;
             }
+        }
+        // From here on `aux[root] ≠ 0` means "this component has a boundary".
+        for a in aux.iter_mut() {
+            *a = u32::from(*a == 1);
         }
     }
 
@@ -574,6 +582,13 @@ pub fn subdivide(
             }
         }
     }
+    let anchors = anchors_buf.get(..anchors_n).ok_or(internal())?;
+    for (_, _, bf) in laps.iter_mut() {
+        for &a in anchors {
+            let f = bf.get_mut(a as usize).ok_or(internal())?;
+            *f |= laplacian::PINNED;
+        }
+    }
     let mut levels = ArrayVec::<SolveLevel<'_>, { MAX_LEVELS + 1 }>::new();
     for j in 0..=k {
         let (r, c, bf) = laps.get(j).ok_or(internal())?;
@@ -588,27 +603,15 @@ pub fn subdivide(
             })
             .map_err(|_| internal())?;
     }
-    let top = levels.last().copied().ok_or(internal())?;
 
-    // ---- right-hand side Lᵀ(4⁻ᵏ Δᵏ) + w x₀ at the anchors (Δᵏ is in `da`) ----
+    // ---- δ = 4⁻ᵏ Δᵏ (Δᵏ is in `da`, inside the solver's scratch: copy it out) ----
     let mut c = 1.0;
     for _ in 0..k {
         c *= 0.25;
     }
-    let rhs = dummy;
-    for d in rhs.iter_mut() {
-        *d = [0.0; 3];
-    }
-    for dk in da.iter_mut().take(nk) {
-        *dk = [c * dk[0], c * dk[1], c * dk[2]];
-    }
-    top.lap.apply_transpose_add(da, rhs)?;
-    let anchors = anchors_buf.get(..anchors_n).ok_or(internal())?;
-    let w = 1.0;
-    for &a in anchors {
-        let xa = get(out_pos, a as usize)?;
-        let ra = rhs.get_mut(a as usize).ok_or(internal())?;
-        *ra = [ra[0] + w * xa[0], ra[1] + w * xa[1], ra[2] + w * xa[2]];
+    let delta = dummy;
+    for (d, dk) in delta.iter_mut().zip(da.iter()).take(nk) {
+        *d = [c * dk[0], c * dk[1], c * dk[2]];
     }
     // Component centroids of the warm start.
     for ((a, b), c) in sums_x
@@ -631,9 +634,12 @@ pub fn subdivide(
     let sys = System {
         levels: &levels,
         anchors,
-        anchor_weight: w,
+        loop_anchors: loops_n,
+        anchor_weight: 1.0,
+        components: labels,
+        open: aux,
     };
-    let r = solve::solve(&sys, rhs, out_pos, work, &opts.solve)?;
+    let r = solve::solve(&sys, delta, out_pos, work, &opts.solve)?;
     report.solve = r;
     if !r.converged {
         return Err(Error::new(Status::NotConverged));
