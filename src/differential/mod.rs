@@ -272,7 +272,7 @@ fn take<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
     if whole.len() < n {
         return Err(internal());
     }
-    let (a, b) = whole.split_at_mut(n);
+    let (a, b) = whole.split_at_mut_checked(n).ok_or(internal())?;
     *s = b;
     Ok(a)
 }
@@ -365,7 +365,7 @@ pub fn subdivide(
     let counts = take(&mut ps, n0)?;
 
     // Field buffers inside `work` (the solver reuses it afterwards).
-    let (field, _) = work.split_at_mut(cadd(cmul(nk, 7)?, n0)?);
+    let field = work.get_mut(..cadd(cmul(nk, 7)?, n0)?).ok_or(internal())?;
     let mut fr: &mut [Point] = field;
     let mut da = take(&mut fr, nk)?;
     let mut db = take(&mut fr, nk)?;
@@ -484,7 +484,7 @@ pub fn subdivide(
         let sj = plan.size(j)?;
         let sn = plan.size(j + 1)?;
         let nf = faces.len();
-        let (lo, hi) = faces.split_at_mut(j.min(nf));
+        let (lo, hi) = faces.split_at_mut_checked(j.min(nf)).ok_or(internal())?;
         let (src_o, src_i): (&[u32], &[u32]) = if j == 0 {
             (mesh.offsets, mesh.indices)
         } else {
@@ -670,8 +670,12 @@ pub fn subdivide(
 
 fn set_faces(mesh: Mesh<'_>, offs: &mut [u32], idx: &mut [u32]) -> Result<()> {
     let o = offs.get_mut(..mesh.offsets.len()).ok_or(internal())?;
-    o.copy_from_slice(mesh.offsets);
+    for (d, s) in o.iter_mut().zip(mesh.offsets) {
+        *d = *s;
+    }
     let i = idx.get_mut(..mesh.indices.len()).ok_or(internal())?;
-    i.copy_from_slice(mesh.indices);
+    for (d, s) in i.iter_mut().zip(mesh.indices) {
+        *d = *s;
+    }
     Ok(())
 }

@@ -187,9 +187,17 @@ fn take<'a>(s: &mut &'a mut [Point], n: usize) -> Result<&'a mut [Point]> {
     if whole.len() < n {
         return Err(Error::too_small(n));
     }
-    let (a, b) = whole.split_at_mut(n);
+    let (a, b) = whole.split_at_mut_checked(n).ok_or(Error::too_small(n))?;
     *s = b;
     Ok(a)
+}
+
+/// `dst = src` element-wise over the common length (no length-mismatch panic path).
+#[inline]
+fn copy(dst: &mut [Point], src: &[Point]) {
+    for (d, s) in dst.iter_mut().zip(src) {
+        *d = *s;
+    }
 }
 
 #[inline]
@@ -403,7 +411,7 @@ fn coarse_solve(
         return Ok(());
     }
     jacobi(lap, w.r, z)?;
-    p.copy_from_slice(z);
+    copy(p, z);
     let mut rz = dots(w.r, z);
     for _ in 0..c.max {
         apply_k(lap, p, q)?;
@@ -697,10 +705,10 @@ pub fn solve(
                         z: &mut [Point]|
      -> Result<()> {
         let fw = work.last_mut().ok_or(internal())?;
-        fw.b.copy_from_slice(r);
+        copy(fw.b, r);
         sys.vcycle(work, coarse, c)?;
         let fw = work.last().ok_or(internal())?;
-        z.copy_from_slice(fw.x);
+        copy(z, fw.x);
         Ok(())
     };
     let mut rel = {
@@ -709,7 +717,7 @@ pub fn solve(
     };
     if rel > opts.tolerance {
         precondition(&mut work, &mut coarse, r, z)?;
-        p.copy_from_slice(z);
+        copy(p, z);
         let mut rz = dots(r, z);
         while report.iterations < opts.max_iterations {
             apply_k(&fine, p, q)?;
