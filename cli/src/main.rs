@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 
 mod cmd;
+mod differential;
 mod dome;
 mod error;
 mod fields;
@@ -45,8 +46,10 @@ The output is the library's, bit for bit, in the library's vertex order (the C A
 vertices first at their indices, then edge points in edge order (edges sorted by their
 (min, max) vertex pair), then face points in face order; the dual schemes (doo-sabin,
 simplest, dual) number their points by corner, edge or face (docs/mesh-and-linear-schemes.md).
-Loop and butterfly take triangles, kobbelt quads, the others any polygons. spherelike and
-differential-* are not implemented in this version.
+Loop and butterfly take triangles, kobbelt quads, the others any polygons. spherelike is
+not implemented in this version. differential-loop, differential-butterfly and
+differential-dirmag (seed 001) take triangles and reconstruct once at the last level
+(--tolerance, --max-iterations, --dirmag-levels).
 
 Example: nlsubdiv subdivide --scheme mobius-catmull-clark --levels 3 cage.off smooth.ply";
 
