@@ -179,6 +179,24 @@
 #define NLS_MAX_LEVELS 16
 
 /**
+ * Differential scheme: Loop on the differential coordinates (§3.3).
+ */
+#define NLS_DIFFERENTIAL_LOOP 0
+
+/**
+ * Differential scheme: Modified Butterfly on the differential coordinates (the paper's
+ * preferred stencil, §4.2).
+ */
+#define NLS_DIFFERENTIAL_BUTTERFLY 1
+
+/**
+ * Differential scheme: DirMag (§3.4; mean-curvature magnitudes subdivided linearly, normals
+ * on the sphere by normalised averaging) with the Modified Butterfly stencil for the first
+ * `dirmag_levels` levels, plain Modified Butterfly on `Δ` after that.
+ */
+#define NLS_DIFFERENTIAL_DIRMAG 2
+
+/**
  * Star kind: interior vertex, cyclic ring (seed 000 §4.2).
  */
 #define NLS_STAR_INTERIOR 0
@@ -334,6 +352,76 @@ typedef struct nls_subdivide_report {
      */
     uint32_t first_fallback_level;
 } nls_subdivide_report;
+
+/**
+ * Options of [`nls_differential_plan`] and [`nls_differential_subdivide`]. Start from
+ * [`nls_differential_default_options`]. Plain data; the edit arrays are read, never kept.
+ */
+typedef struct nls_differential_options {
+    /**
+     * `NLS_DIFFERENTIAL_LOOP`, `_BUTTERFLY` or `_DIRMAG`.
+     */
+    uint32_t scheme;
+    /**
+     * Subdivision levels `k`, at most `NLS_MAX_LEVELS` (0 reconstructs the control mesh).
+     */
+    uint32_t levels;
+    /**
+     * `NLS_DIFFERENTIAL_DIRMAG` only: the first this many levels use DirMag (at least 1;
+     * the paper uses 1 or 2; values above `levels` act as `levels`). Must be 0 otherwise.
+     */
+    uint32_t dirmag_levels;
+    /**
+     * Iteration cap of the reconstruction (default 100); reaching it is
+     * `NLS_STATUS_NOT_CONVERGED`.
+     */
+    uint32_t max_iterations;
+    /**
+     * Relative residual of the reconstruction's normal equations to reach (default 1e-10);
+     * finite and ≥ 0.
+     */
+    double tolerance;
+    /**
+     * §4.4 editing: NULL, or `vertex_count` factors on the control vertices' mean curvatures.
+     */
+    const double *curvature_scale;
+    /**
+     * §4.4 editing: NULL, or `3*vertex_count` replacement normal directions of the control
+     * vertices (normalised by the library; a zero vector keeps the vertex's own normal).
+     */
+    const double *normals;
+} nls_differential_options;
+
+/**
+ * What [`nls_differential_subdivide`] did. Written on success and on
+ * `NLS_STATUS_NOT_CONVERGED` (then it says how far the solver got).
+ */
+typedef struct nls_differential_report {
+    /**
+     * Outer solver iterations run.
+     */
+    uint32_t iterations;
+    /**
+     * 1 when `relative_residual ≤ tolerance`, else 0.
+     */
+    uint32_t converged;
+    /**
+     * Anchor rows (one per closed component, boundary loop and isolated vertex).
+     */
+    uint32_t anchors;
+    /**
+     * DirMag outputs whose subdivided normal was too short to normalise.
+     */
+    uint32_t dirmag_degenerate;
+    /**
+     * Relative residual of the returned positions, recomputed at the end.
+     */
+    double relative_residual;
+    /**
+     * Relative residual of the warm start (the spatial subdivision).
+     */
+    double initial_residual;
+} nls_differential_report;
 
 /**
  * A Möbius map `q ↦ (aq + b)(cq + d)⁻¹` of R³ ∪ {∞} (seed 000 Eq. (1)); quaternions as
@@ -669,6 +757,102 @@ nls_status nls_mesh_subdivide_levels(uint32_t scheme,
                                      size_t *out_index_count,
                                      struct nls_subdivide_report *out_report,
                                      uint32_t *out_element);
+
+/**
+ * Writes the defaults: Loop, 1 level, no DirMag, 100 iterations, tolerance 1e-10, no edits.
+ * `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for a bad `out_options`.
+ */
+nls_status nls_differential_default_options(struct nls_differential_options *out_options);
+
+/**
+ * The `uint32_t` scratch [`nls_differential_plan`] needs for a mesh of `vertex_count`
+ * vertices and `index_count` corners (its half-edge topology): `*out_scratch_u32` entries.
+ *
+ * Errors: `NLS_STATUS_SIZE_OVERFLOW`, `NLS_STATUS_NULL_PARAMETER`,
+ * `NLS_STATUS_MISALIGNED_POINTER`.
+ */
+nls_status nls_differential_scratch_size(size_t vertex_count, size_t index_count, size_t *out_scratch_u32);
+
+/**
+ * Validates the mesh (triangles only) and the options and plans
+ * [`nls_differential_subdivide`]: the exact output sizes (`*out_vertex_count`,
+ * `*out_face_count`, `*out_index_count`; those of the spatial Loop/Butterfly subdivision) and
+ * the scratch it needs, `*out_scratch_u32` entries and `*out_scratch_points` points
+ * (`3*` that many doubles).
+ *
+ * Mesh buffers as in `nls_mesh_subdivide_size`; `scratch_u32` holds at least
+ * `*out_scratch_u32` of [`nls_differential_scratch_size`] and must not overlap the mesh.
+ *
+ * Errors: the validation errors of `nls_mesh_subdivide_size`;
+ * `NLS_STATUS_UNSUPPORTED_FACE_TYPE` naming the first face that is not a triangle;
+ * `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `dirmag_levels` not matching the scheme,
+ * more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite
+ * edit value; `NLS_STATUS_BUFFER_TOO_SMALL` (`NLS_MESH_BUFFER_SCRATCH_U32`);
+ * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
+ * `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. `out_element` (may be NULL)
+ * as for `nls_mesh_subdivide_size`. Outputs are written on success only.
+ */
+nls_status nls_differential_plan(const double *positions,
+                                 size_t vertex_count,
+                                 const uint32_t *offsets,
+                                 size_t face_count,
+                                 const uint32_t *indices,
+                                 size_t index_count,
+                                 const struct nls_differential_options *options,
+                                 uint32_t *scratch_u32,
+                                 size_t scratch_u32_capacity,
+                                 size_t *out_vertex_count,
+                                 size_t *out_face_count,
+                                 size_t *out_index_count,
+                                 size_t *out_scratch_u32,
+                                 size_t *out_scratch_points,
+                                 uint32_t *out_element);
+
+/**
+ * Differential-space subdivision of the mesh (buffers as in `nls_mesh_subdivide`) with
+ * `options`, written to `out_positions` / `out_offsets` / `out_indices` (capacities as in
+ * `nls_mesh_subdivide`; output order and faces those of the spatial Loop or Modified
+ * Butterfly subdivision). Scratch: at least the sizes of [`nls_differential_plan`].
+ *
+ * Placement (documented choice): each boundary loop and each closed component is anchored
+ * at one vertex of the spatial subdivision, then every connected component is translated so
+ * its centroid equals that of the spatial subdivision. `levels = 0` returns the control mesh
+ * up to the tolerance; translating the input translates the output.
+ *
+ * On success the counts receive the sizes written and `*out_report` (may be NULL) the solver
+ * report. `NLS_STATUS_NOT_CONVERGED`: the solver reached `max_iterations`; the report is
+ * written (the one exception to "outputs on success only"), the counts are not, the output
+ * buffers hold no result. `NLS_STATUS_BUFFER_TOO_SMALL`: `*out_element` names the first
+ * short buffer (`NLS_MESH_BUFFER_*`, order scratch_u32, scratch_points, positions, offsets,
+ * indices) and the counts receive the output sizes; nothing is written to the outputs.
+ * After any other error the output and scratch contents are unspecified.
+ *
+ * Errors: those of [`nls_differential_plan`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
+ * `NLS_STATUS_NOT_CONVERGED`; `NLS_STATUS_NUMERICAL_FAILURE` (a non-finite iterate or
+ * result, naming the vertex when known).
+ */
+nls_status nls_differential_subdivide(const double *positions,
+                                      size_t vertex_count,
+                                      const uint32_t *offsets,
+                                      size_t face_count,
+                                      const uint32_t *indices,
+                                      size_t index_count,
+                                      const struct nls_differential_options *options,
+                                      uint32_t *scratch_u32,
+                                      size_t scratch_u32_capacity,
+                                      double *scratch_points,
+                                      size_t scratch_point_capacity,
+                                      double *out_positions,
+                                      size_t out_vertex_capacity,
+                                      uint32_t *out_offsets,
+                                      size_t out_face_capacity,
+                                      uint32_t *out_indices,
+                                      size_t out_index_capacity,
+                                      size_t *out_vertex_count,
+                                      size_t *out_face_count,
+                                      size_t *out_index_count,
+                                      struct nls_differential_report *out_report,
+                                      uint32_t *out_element);
 
 /**
  * The identity map.

@@ -50,6 +50,7 @@
 
 pub mod blend;
 pub mod curve;
+pub mod differential;
 pub mod error;
 pub mod mesh;
 pub mod metrics;

@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 
 mod cmd;
+mod differential;
 mod dome;
 mod error;
 mod fields;
@@ -46,8 +47,9 @@ vertices first at their indices, then edge points in edge order (edges sorted by
 (min, max) vertex pair), then face points in face order; the dual schemes (doo-sabin,
 simplest, dual) number their points by corner, edge or face (docs/mesh-and-linear-schemes.md).
 Loop and butterfly take triangles, kobbelt quads, the others any polygons (spherelike, seed
-003: any polygons, interpolating, no Möbius form). differential-* are not implemented in this
-version.
+003: any polygons, interpolating, no Möbius form). differential-loop, differential-butterfly
+and differential-dirmag (seed 001) take triangles and reconstruct once at the last level
+(--tolerance, --max-iterations, --dirmag-levels).
 
 Example: nlsubdiv subdivide --scheme mobius-catmull-clark --levels 3 cage.off smooth.ply";
 

@@ -30,8 +30,9 @@ pub struct MeshScheme {
     pub mobius: bool,
 }
 
-/// Names of DESIGN.md that this version does not implement yet.
-const NOT_YET: [&str; 3] = [
+/// The differential-space names (seed 001), run by `cli/src/differential.rs`, not by
+/// [`MeshScheme`]; listed so that every "available" message names them.
+const DIFFERENTIAL: [&str; 3] = [
     "differential-loop",
     "differential-butterfly",
     "differential-dirmag",
@@ -62,6 +63,7 @@ impl MeshScheme {
     pub fn available() -> String {
         MeshScheme::all()
             .map(MeshScheme::name)
+            .chain(DIFFERENTIAL.iter().map(|s| s.to_string()))
             .collect::<Vec<_>>()
             .join(", ")
     }
@@ -86,8 +88,6 @@ impl MeshScheme {
         };
         let why = if !why.is_empty() {
             why
-        } else if NOT_YET.contains(&name) {
-            format!("'{name}' is not implemented in this version")
         } else if nlsubdiv::curve::CurveScheme::from_name(name).is_some() {
             format!("'{name}' is a curve scheme (use `nlsubdiv curve`)")
         } else {

@@ -421,7 +421,7 @@ fn bad_input_gives_its_status_names_the_element_and_leaves_nothing() {
 
     // The command line: names this version does not have, unknown names, too many levels.
     for (scheme, needle) in [
-        ("differential-loop", "not implemented"),
+        ("differential-spline", "unknown mesh scheme"),
         ("mobius-spherelike", "no Möbius form"),
         ("four-point", "curve scheme"),
         ("catmul-clark", "unknown mesh scheme"),

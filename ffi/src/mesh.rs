@@ -1023,3 +1023,7 @@ mod tests {
         assert_eq!((nv, nf, ni, element), (9, 4, 16, NLS_MESH_BUFFER_OFFSETS));
     }
 }
+
+// Differential-space subdivision (seed 001) shares this module's buffer checks.
+#[path = "differential.rs"]
+pub mod differential;

@@ -504,3 +504,38 @@ pub fn mean_willmore(m: &OwnedMesh) -> f64 {
     })
     .unwrap()
 }
+
+// ---------------------------------------------------------------- differential space
+
+/// Differential-space subdivision with owned buffers (plan, then run).
+pub fn differential_subdivide(
+    m: &OwnedMesh,
+    opts: &nlsubdiv::differential::DifferentialOptions<'_>,
+) -> std::result::Result<
+    (OwnedMesh, nlsubdiv::differential::DifferentialReport),
+    (nlsubdiv::Error, nlsubdiv::differential::DifferentialReport),
+> {
+    use nlsubdiv::differential as d;
+    let mut rep = d::DifferentialReport::default();
+    let mut ps = vec![0u32; d::plan_scratch_len(&m.view()).map_err(|e| (e, rep))?];
+    let plan = d::plan(m.view(), opts, &mut ps).map_err(|e| (e, rep))?;
+    let o = plan.output();
+    let mut su = vec![0u32; plan.scratch_u32];
+    let mut sp = vec![[0.0; 3]; plan.scratch_points];
+    let mut pos = vec![[0.0; 3]; o.vertices];
+    let mut offs = vec![0u32; o.faces + 1];
+    let mut idx = vec![0u32; o.indices];
+    let mut out = nlsubdiv::mesh::MeshOut::new(&mut pos, &mut offs, &mut idx);
+    let r = d::subdivide(m.view(), opts, &mut su, &mut sp, &mut out, &mut rep);
+    match r {
+        Ok(_) => Ok((
+            OwnedMesh {
+                positions: pos,
+                offsets: offs,
+                indices: idx,
+            },
+            rep,
+        )),
+        Err(e) => Err((e, rep)),
+    }
+}

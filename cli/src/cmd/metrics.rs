@@ -182,6 +182,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         "willmore": stats_json(&sw),
         "mobius_regularity": stats_json(&sm),
         "mean_curvature": stats_json(&sh),
+        "thin_plate": crate::differential::thin_plate(m),
         "sphere": sphere.map(|s| json!({
             "center": s.center,
             "radius": s.radius,
@@ -295,6 +296,10 @@ fn print_text(
                 String::new()
             }
         );
+    }
+    match r["thin_plate"].as_f64() {
+        Some(e) => println!("  thin-plate energy (seed 001 §4.3, ∫(κ₁²+κ₂²)/area): {e:.6e}"),
+        None => println!("  thin-plate energy: none (not a triangle mesh, or no area)"),
     }
     match sphere {
         Some(s) => println!(

@@ -1,0 +1,142 @@
+//! `subdivide --scheme differential-*` and the thin-plate energy of `metrics`: the output is
+//! the library's (`nlsubdiv::differential::subdivide`) bit for bit, the summary reports the
+//! reconstruction, non-triangles and non-convergence give exit 2 with a message and no
+//! output, and `metrics` reports the thin-plate energy of a sphere as about 2/r².
+
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+
+mod common;
+
+use common::*;
+use nlsubdiv::differential::{self as diff, DifferentialOptions, DifferentialReport, Stencil};
+use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut};
+
+fn library(m: &TMesh, stencil: Stencil, levels: usize, dirmag: usize) -> TMesh {
+    let (off, idx) = m.csr();
+    let mesh = CoreMesh::new(&m.positions, &off, &idx);
+    let opts = DifferentialOptions {
+        stencil,
+        levels,
+        dirmag_levels: dirmag,
+        ..Default::default()
+    };
+    let mut s0 = vec![0u32; diff::plan_scratch_len(&mesh).unwrap()];
+    let plan = diff::plan(mesh, &opts, &mut s0).unwrap();
+    let mut su = vec![0u32; plan.scratch_u32];
+    let mut sp = vec![[0.0; 3]; plan.scratch_points];
+    let o = plan.output();
+    let (mut pos, mut offs, mut ix) = (
+        vec![[0.0; 3]; o.vertices],
+        vec![0u32; o.faces + 1],
+        vec![0u32; o.indices],
+    );
+    let mut out = MeshOut::new(&mut pos, &mut offs, &mut ix);
+    let mut rep = DifferentialReport::default();
+    diff::subdivide(mesh, &opts, &mut su, &mut sp, &mut out, &mut rep).unwrap();
+    TMesh::from_csr(pos, &offs, &ix)
+}
+
+#[test]
+fn differential_schemes_give_the_library_output_bit_for_bit() {
+    let dir = TempDir::new("differential");
+    let input = dir.path("ico.off");
+    let mut m = icosphere(1);
+    // Not on a sphere, so the three schemes differ.
+    for (i, p) in m.positions.iter_mut().enumerate() {
+        p[2] *= 1.0 + 0.1 * (i % 3) as f64;
+    }
+    m.write_off(&input);
+    for (name, stencil, dirmag) in [
+        ("differential-loop", Stencil::Loop, 0),
+        ("differential-butterfly", Stencil::ModifiedButterfly, 0),
+        ("differential-dirmag", Stencil::ModifiedButterfly, 1),
+    ] {
+        let out = dir.path(&format!("{name}.off"));
+        let o = run(&[
+            "subdivide",
+            "--scheme",
+            name,
+            "--levels",
+            "2",
+            input.to_str().unwrap(),
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code(&o), 0, "{}", stderr(&o));
+        assert!(stderr(&o).contains("reconstruction:"), "{}", stderr(&o));
+        let got = read_off(&out);
+        let want = library(&m, stencil, 2, dirmag);
+        assert_eq!(got.faces, want.faces, "{name}");
+        assert_eq!(got.bits(), want.bits(), "{name}");
+    }
+}
+
+#[test]
+fn bad_input_and_non_convergence_fail_with_a_message_and_no_output() {
+    let dir = TempDir::new("differential-bad");
+    let quads = dir.path("quads.off");
+    open_grid(3, 3).write_off(&quads);
+    let ico = dir.path("ico.off");
+    icosphere(1).write_off(&ico);
+    let out = dir.path("out.off");
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "differential-butterfly",
+        "--levels",
+        "1",
+        quads.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    // open_grid's face 0 is a quad.
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    assert!(stderr(&o).contains("face 0"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a triangle"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "differential-loop",
+        "--levels",
+        "3",
+        "--max-iterations",
+        "1",
+        ico.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    assert!(stderr(&o).contains("did not converge"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "differential-loop",
+        "--levels",
+        "1",
+        "--tolerance",
+        "nan",
+        ico.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 4, "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+#[test]
+fn metrics_report_the_thin_plate_energy_of_a_sphere() {
+    let dir = TempDir::new("differential-metrics");
+    let f = dir.path("sphere.off");
+    icosphere(4).write_off(&f);
+    let o = run(&["metrics", "--json", f.to_str().unwrap()]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let e = v["thin_plate"].as_f64().unwrap();
+    // Unit sphere: κ₁ = κ₂ = 1, so ∫(κ₁² + κ₂²)/area = 2 (up to the discretisation).
+    assert!((e - 2.0).abs() < 0.05, "{e}");
+    let o = run(&["metrics", f.to_str().unwrap()]);
+    assert!(stdout(&o).contains("thin-plate energy"), "{}", stdout(&o));
+}
