@@ -215,6 +215,9 @@ fn combinatorial_h(m: &OwnedMesh, k: usize) -> Vec<(f64, f64)> {
     .unwrap()
 }
 
+/// A generated fallback for a cage missing from the mesh directory.
+type Builtin = fn() -> OwnedMesh;
+
 fn dirmag_table(dir: &std::path::Path) {
     println!("## DirMag vs linear subdivision of Δ on coarse cages (seed 001 §3.4, Fig. 5–6)\n");
     println!(
@@ -224,12 +227,12 @@ fn dirmag_table(dir: &std::path::Path) {
          so uniform values are the ideal (0 and 1).\n"
     );
     let k = 4;
-    let cages: [(&str, Option<fn() -> OwnedMesh>); 3] = [
+    let cages: [(&str, Option<Builtin>); 3] = [
         ("tetrahedron", Some(tetrahedron)),
         ("octahedron", Some(octahedron)),
         ("icosahedron", None),
     ];
-    println!("| cage | method | CV(H) | max/min H | CV(|δ|) | max/min |δ| | E·d² |");
+    println!("| cage | method | CV(H) | max/min H | CV(‖δ‖) | max/min ‖δ‖ | E·d² |");
     println!("|---|---|---|---|---|---|---|");
     for (name, builtin) in cages {
         let m = match read_off(&dir.join(format!("{name}.off"))) {
