@@ -361,9 +361,9 @@ fn thin_plate_energy_of_a_sphere_is_two_over_r_squared() {
 
 /// Seed 001 §4.3 measures `∫(κ₁² + κ₂²) / ∫1`. On the torus of radii `R > r`
 /// (`κ₁ = 1/r`, `κ₂ = cos θ / (R + r cos θ)`, `dA = r (R + r cos θ) dθ dφ`) this is
-/// `R / (r² √(R² − r²))`. Unlike the sphere, the torus is not umbilic and has `K < 0` on its
-/// inner half, so an estimator returning `2H²` (0.25 here) or `4H² − 2K` with a wrong `K`
-/// fails this test.
+/// `R / (r² √(R² − r²))`. Unlike the sphere, the torus is not umbilic (κ₁ ≠ κ₂, `K < 0` on
+/// its inner half): an estimator returning `2H²`, exact on the sphere, gives half this value
+/// here (`∫4H² = ∫(κ₁² + κ₂²) + 2∫K` and `∫K = 0`).
 #[test]
 fn thin_plate_energy_of_a_torus_matches_the_analytic_value() {
     let (big, small) = (3.0f64, 1.0f64);
