@@ -2,11 +2,11 @@
 //! §4.4, which both work on the separated form `δ_i = H_i n_i`.
 //!
 //! Separation (§3.4, Case 1): `|H_i| = ‖δ_i‖`; the sign of `H_i` is that of `n̄_i · δ_i`,
-//! `n̄_i` the angle-weighted vertex normal (Thürmer–Wüthrich, the paper's [34]); then
+//! `n̄_i` the angle-weighted vertex normal (Thürmer–Wüthrich, the paper's \[34\]); then
 //! `n_i = δ_i / H_i`. When `H_i = 0` the paper sets `n_i = n̄_i`.
 //!
 //! Subdivision: normals are points of S² and are "subdivided using weighted sums in S²" by the
-//! method of subdivision shading (Alexa & Boubekeur 2008, the paper's [6]): the linear stencil
+//! method of subdivision shading (Alexa & Boubekeur 2008, the paper's \[6\]): the linear stencil
 //! applied to the normals, then each result normalised. The magnitudes `H` are subdivided
 //! linearly with the same stencil. The refined differential coordinate is `H · n`.
 //! Decision: a refined normal shorter than [`MIN_NORMAL`] (opposite normals cancelling) is

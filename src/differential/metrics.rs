@@ -2,7 +2,7 @@
 //!
 //! * [`thin_plate_energy`]: the normalised thin-plate energy `E = ∫(κ₁² + κ₂²) / ∫ 1`, with
 //!   the principal curvatures taken from the edge-based curvature tensor of Cohen-Steiner and
-//!   Morvan (2003; the paper cites "the curvature tensor proposed in [39]"): at vertex `v`,
+//!   Morvan (2003; the paper cites "the curvature tensor proposed in \[39\]"): at vertex `v`,
 //!   `T_v = (1/A_v) Σ_{e ∋ v} β(e) (|e|/2) ê êᵀ`, `β(e)` the signed dihedral angle (positive
 //!   on convex edges, 0 on boundary edges), `A_v` a third of the area of the incident
 //!   triangles. Projected on the tangent plane (angle-weighted normal), the squared

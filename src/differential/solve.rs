@@ -55,7 +55,7 @@
 //!   and restriction `Pᵀ`, the rediscretised `K_j` *is* the Galerkin operator `Pᵀ K_{j+1} P`
 //!   on the free vertices (Dirichlet vertices are nested too: boundary stays boundary,
 //!   anchors are old vertices);
-//! * smoother: [`NU`] Gauss–Seidel sweeps, forward before and backward after the coarse
+//! * smoother: `NU` Gauss–Seidel sweeps, forward before and backward after the coarse
 //!   correction (a symmetric cycle);
 //! * the coarsest level (the control mesh) is solved by Jacobi-preconditioned CG to
 //!   [`SolveOptions::coarse_tolerance`] — inexact, hence the flexible outer CG.
