@@ -134,6 +134,17 @@ inline Cmp compare(const Flat& a, const Flat& b) {
     match[i] = bj;
     r.max_rel = std::max(r.max_rel, std::sqrt(best) / diag);
   }
+  // Vertices of b at bit-identical positions are one vertex for the face comparison (the
+  // nearest-point match cannot tell them apart).
+  std::vector<uint32_t> cls(b.nv());
+  {
+    std::vector<uint32_t> ord(b.nv());
+    for (std::size_t i = 0; i < ord.size(); ++i) ord[i] = (uint32_t)i;
+    auto P = [&](uint32_t i) { return std::array<double, 3>{b.pos[3 * i], b.pos[3 * i + 1], b.pos[3 * i + 2]}; };
+    std::sort(ord.begin(), ord.end(), [&](uint32_t x, uint32_t y) { return P(x) < P(y) || (P(x) == P(y) && x < y); });
+    for (std::size_t k = 0; k < ord.size(); ++k) cls[ord[k]] = (k > 0 && P(ord[k]) == P(ord[k - 1])) ? cls[ord[k - 1]] : ord[k];
+  }
+  for (auto& mj : match) mj = cls[mj];
   auto canon = [](std::vector<uint32_t> f) {
     auto m = std::min_element(f.begin(), f.end());
     std::rotate(f.begin(), m, f.end());
@@ -145,7 +156,11 @@ inline Cmp compare(const Flat& a, const Flat& b) {
     for (uint32_t c = a.off[f]; c < a.off[f + 1]; ++c) x.push_back(match[a.idx[c]]);
     fa.push_back(canon(x));
   }
-  for (std::size_t f = 0; f < b.nf(); ++f) fb.push_back(canon(std::vector<uint32_t>(b.idx.begin() + b.off[f], b.idx.begin() + b.off[f + 1])));
+  for (std::size_t f = 0; f < b.nf(); ++f) {
+    std::vector<uint32_t> x;
+    for (uint32_t c = b.off[f]; c < b.off[f + 1]; ++c) x.push_back(cls[b.idx[c]]);
+    fb.push_back(canon(x));
+  }
   std::sort(fa.begin(), fa.end());
   std::sort(fb.begin(), fb.end());
   r.faces = r.faces && fa == fb;

@@ -171,12 +171,29 @@ void check_plugins(itest::Tally& t, const std::string& mesh, const M& m0, const 
   }
 }
 
+template <class S>
+auto size_table(S& sd, std::size_t n, int) -> decltype(sd.init_weights(n), void()) {
+  sd.init_weights(n);  // LoopT indexes past its valence-50 table otherwise (peers/peer_openmesh.cpp)
+}
+template <class S>
+void size_table(S&, std::size_t, long) {}
+
 template <class Ours, class Theirs, class M>
 void check_openmesh_peer(itest::Tally& t, const std::string& mesh, const M& m0, const char* what, uint32_t levels) {
   M a = m0, b = m0;
   Ours ours;
   bool ok = ours(a, levels);
+  if (!ok && ours.level() == 1 && ours.status() != NLS_STATUS_FALLBACK_IN_STRICT_MODE) {
+    // The input is one the kernel refuses (checked against the driver above); OpenMesh's own
+    // subdividers take it (e.g. a non-manifold vertex): nothing to compare.
+    std::printf("skip %s on %s: ours refuses it (%s), as the driver does\n", what, mesh.c_str(), ours.message());
+    ++t.skipped;
+    return;
+  }
   Theirs theirs;
+  std::size_t maxval = 0;
+  for (auto v : m0.vertices()) maxval = std::max<std::size_t>(maxval, m0.valence(v));
+  size_table(theirs, std::max<std::size_t>(50, 2 * maxval + 8), 0);
   theirs.attach(b);
   bool ok2 = theirs(levels);
   theirs.detach();
