@@ -35,13 +35,13 @@ lib="$build/release"
 
 install -d "$PREFIX/include/nlsubdiv/openmesh" "$PREFIX/include/nlsubdiv/cgal" \
     "$PREFIX/$LIBDIR/pkgconfig" "$PREFIX/$LIBDIR/cmake/nlsubdiv"
-install -m 644 include/nlsubdiv.h "$PREFIX/include/"
-for f in integrations/openmesh/*.hh; do [[ -f $f ]] && install -m 644 "$f" "$PREFIX/include/nlsubdiv/openmesh/"; done
+install -p -m 644 include/nlsubdiv.h "$PREFIX/include/"
+for f in integrations/openmesh/*.hh; do [[ -f $f ]] && install -p -m 644 "$f" "$PREFIX/include/nlsubdiv/openmesh/"; done
 install -d "$PREFIX/include/nlsubdiv/common"
-install -m 644 integrations/common/nlsubdiv_flat.hh "$PREFIX/include/nlsubdiv/common/"
-for f in integrations/cgal/*.h; do [[ -f $f ]] && install -m 644 "$f" "$PREFIX/include/nlsubdiv/cgal/"; done
-install -m 644 "$lib/libnlsubdiv.a" "$PREFIX/$LIBDIR/"
-install -m 755 "$lib/libnlsubdiv.so" "$PREFIX/$LIBDIR/libnlsubdiv.so.$VERSION"
+install -p -m 644 integrations/common/nlsubdiv_flat.hh "$PREFIX/include/nlsubdiv/common/"
+for f in integrations/cgal/*.h; do [[ -f $f ]] && install -p -m 644 "$f" "$PREFIX/include/nlsubdiv/cgal/"; done
+install -p -m 644 "$lib/libnlsubdiv.a" "$PREFIX/$LIBDIR/"
+install -p -m 755 "$lib/libnlsubdiv.so" "$PREFIX/$LIBDIR/libnlsubdiv.so.$VERSION"
 ln -sf "libnlsubdiv.so.$VERSION" "$PREFIX/$LIBDIR/libnlsubdiv.so.$MAJOR"
 ln -sf "libnlsubdiv.so.$MAJOR" "$PREFIX/$LIBDIR/libnlsubdiv.so"
 

@@ -199,6 +199,8 @@ template <class PolygonMesh, uint32_t Scheme, uint32_t Flags,
           class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
 class Driver_mask_3 {
  public:
+  static constexpr uint32_t scheme = Scheme;
+  static constexpr uint32_t flags = Flags;
   typedef PolygonMesh Mesh;
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
@@ -274,16 +276,16 @@ class Driver_mask_3 {
     st.face_pt.clear();
     st.level.build(*pmesh_, vpm_, st.nv_prev);
     const FlatMesh& in = st.level.flat;
-    const uint32_t flags = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+    const uint32_t fl = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
     uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
     nls_status s = NLS_STATUS_OK;
     if (st.opts.strict && st.level_no == 1) {
-      s = nlsubdiv::flat::validate(Scheme, flags, in, el);
+      s = nlsubdiv::flat::validate(Scheme, fl, in, el);
       if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(in, el);
       if (s != NLS_STATUS_OK) return st.fail(s, el);
     }
     FlatMesh out;
-    s = nlsubdiv::flat::run_levels(Scheme, flags, in, 1, out, el, fallbacks);
+    s = nlsubdiv::flat::run_levels(Scheme, fl, in, 1, out, el, fallbacks);
     if (s != NLS_STATUS_OK) return st.fail(s, el);
     st.report.fallbacks += fallbacks;
     st.report.path = "driver mask";
@@ -320,6 +322,8 @@ class Driver_mask_3 {
 template <class PolygonMesh, class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
 class Mobius_loop_mask_3 {
  public:
+  static constexpr uint32_t scheme = NLS_SCHEME_LOOP;
+  static constexpr uint32_t flags = NLS_SUBDIVIDE_MOBIUS;
   typedef PolygonMesh Mesh;
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
@@ -433,9 +437,9 @@ class Mobius_loop_mask_3 {
     cand_.clear();
     st.report.path = "star rules";
     st.level.build(pm(), vpm_, st.nv_prev);
-    const uint32_t flags = NLS_SUBDIVIDE_MOBIUS | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+    const uint32_t fl = NLS_SUBDIVIDE_MOBIUS | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
     uint32_t el = NLS_NO_ELEMENT;
-    nls_status s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, flags, st.level.flat, el);
+    nls_status s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, fl, st.level.flat, el);
     if (s == NLS_STATUS_OK && st.opts.strict && st.level_no == 1) s = nlsubdiv::flat::strict_check(st.level.flat, el);
     if (s != NLS_STATUS_OK) return st.fail(s, el);
     return vertices() && edges() && boundary_vertices() && finite();
@@ -592,42 +596,6 @@ unsigned int iterations(const NP& np) {
   return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::number_of_iterations), 1);
 }
 
-/// `levels` host steps with a mask of type Mask built per level; each level evaluated before
-/// the host touches the mesh; restore from a copy if a later level fails.
-template <class Mask, bool Quad, class PM, class NP>
-Report with_mask(PM& pm, const NP& np, Options opts) {
-  typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
-  Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                                               get_property_map(CGAL::vertex_point, pm));
-  const unsigned int levels = iterations<PM>(np);
-  Report total;
-  std::unique_ptr<PM> backup;
-  if (levels > 1) backup.reset(new PM(pm));
-  std::size_t nv_prev = SIZE_MAX;
-  for (unsigned int k = 0; k < levels; ++k) {
-    Mask mask(&pm, vpm, opts);
-    mask.set_previous_vertex_count(nv_prev);
-    const std::size_t nv = num_vertices(pm);
-    const bool ok = mask.evaluate();
-    Report r = mask.report();
-    total.fallbacks += r.fallbacks;
-    total.path = r.path;
-    if (!ok) {
-      total.status = r.status;
-      total.element = r.element;
-      total.level = k + 1;
-      if (k > 0 && backup) pm = *backup;
-      return total;
-    }
-    if constexpr (Quad)
-      CGAL::Subdivision_method_3::PQQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
-    else
-      CGAL::Subdivision_method_3::PTQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
-    nv_prev = nv;
-  }
-  return total;
-}
-
 /// The bulk path: flat copy -> nls_mesh_subdivide_levels -> the mesh rebuilt (old vertices
 /// first, in order; the mesh's internal point map receives the positions).
 template <class PM, class NP>
@@ -679,6 +647,52 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
     }
   }
   return r;
+}
+
+/// `levels` host steps with a mask of type Mask built per level; each level evaluated before
+/// the host touches the mesh; restore from a copy if a later level fails.
+template <class Mask, bool Quad, class PM, class NP>
+Report with_mask(PM& pm, const NP& np, Options opts) {
+  typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
+  Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                               get_property_map(CGAL::vertex_point, pm));
+  const unsigned int levels = iterations<PM>(np);
+  Report total;
+  // CGAL's hosts assert CGAL::is_valid_polygon_mesh after each step (it refuses isolated
+  // vertices, which the kernel carries through): such meshes take the bulk path, which
+  // gives the driver's result, so the answer does not depend on the path.
+  if (!CGAL::is_valid_polygon_mesh(pm)) return bulk(pm, Mask::scheme, Mask::flags, np, opts);
+  PM backup(pm);
+  std::size_t nv_prev = SIZE_MAX;
+  for (unsigned int k = 0; k < levels; ++k) {
+    Mask mask(&pm, vpm, opts);
+    mask.set_previous_vertex_count(nv_prev);
+    const std::size_t nv = num_vertices(pm);
+    const bool ok = mask.evaluate();
+    Report r = mask.report();
+    total.fallbacks += r.fallbacks;
+    total.path = r.path;
+    if (!ok) {
+      total.status = r.status;
+      total.element = r.element;
+      total.level = k + 1;
+      if (k > 0) pm = backup;
+      return total;
+    }
+    try {
+      if constexpr (Quad)
+        CGAL::Subdivision_method_3::PQQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
+      else
+        CGAL::Subdivision_method_3::PTQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
+    } catch (const std::exception&) {  // a CGAL precondition/postcondition of the host
+      pm = backup;
+      total.status = NLS_STATUS_INVALID_ARGUMENT;
+      total.level = k + 1;
+      return total;
+    }
+    nv_prev = nv;
+  }
+  return total;
 }
 
 }  // namespace detail

@@ -26,7 +26,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "../cgal/nlsubdiv_cgal.h"
+#include <nlsubdiv/cgal/nlsubdiv_cgal.h>  // installed header (scripts/install.sh)
 #include "common.hpp"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
       continue;
     }
     check_functions(t, f, pm, "Surface_mesh");
-    if (num_faces(pm) <= 3000) check_masks_with_cgal_hosts(t, f, pm);
+    if (num_faces(pm) <= 3000 && CGAL::is_valid_polygon_mesh(pm)) check_masks_with_cgal_hosts(t, f, pm);
     if (num_faces(pm) <= 400) {
       Poly ph;
       if (load(dir + "/" + f, ph)) check_functions(t, f, ph, "Polyhedron_3");

@@ -26,7 +26,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "../openmesh/nlsubdiv_openmesh.hh"
+#include <nlsubdiv/openmesh/nlsubdiv_openmesh.hh>  // installed header (scripts/install.sh)
 #include "common.hpp"
 
 using Poly = OpenMesh::PolyMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
