@@ -307,8 +307,8 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   }
 };
 
-/// Möbius Modified Butterfly (bulk path: the 2-ring rule has no tier-1 export yet).
-template <typename M> using MobiusButterflyT = BulkSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS>;
+/// Möbius Modified Butterfly through the driver (the tier-1 class MobiusButterflyT is below).
+template <typename M> using MobiusButterflyBulkT = BulkSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS>;
 /// Möbius Kobbelt (interpolating quad scheme; bulk path: its virtual points need a 2-ring).
 template <typename M> using MobiusKobbeltT = BulkSubdividerT<M, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS>;
 /// Möbius Doo–Sabin (bulk path; the mesh must be a PolyMesh).
@@ -344,8 +344,9 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   ~StarSubdividerT() override { this->detach(); }
 
   const char* name() const override {
-    return Scheme == NLS_SCHEME_LOOP ? "Uniform nlsubdiv Moebius Loop (star rules)"
-                                     : "Uniform nlsubdiv Moebius Catmull-Clark (star rules)";
+    return Scheme == NLS_SCHEME_LOOP                ? "Uniform nlsubdiv Moebius Loop (star rules)"
+           : Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY ? "Uniform nlsubdiv Moebius Modified Butterfly (star rules)"
+                                                     : "Uniform nlsubdiv Moebius Catmull-Clark (star rules)";
   }
 
  protected:
@@ -372,6 +373,7 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   std::vector<uint32_t> edge_rank_;  // OpenMesh edge idx -> driver edge index
   uint32_t level_ = 0;
   bool failed_ = false;
+  bool need_driver_ = false;  // Butterfly: an element needs the linear fallback (2-ring rule)
 
   P3 pos(VH v) const { return pos_[static_cast<std::size_t>(v.idx())]; }
 
@@ -386,7 +388,16 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     return true;
   }
 
-  bool is_boundary_vertex(const mesh_t& m, VH v) const { return m.is_boundary(v); }
+  /// Butterfly: a fallback is an error in strict mode, else the level comes from the driver.
+  bool driver_fallback(std::size_t k) {
+    if (this->strict_) {
+      failed_ = true;
+      this->fail(NLS_STATUS_FALLBACK_IN_STRICT_MODE, static_cast<uint32_t>(k), level_);
+      return false;
+    }
+    need_driver_ = true;
+    return true;
+  }
 
   /// The driver's star of v: spokes counter-clockwise from the outgoing half-edge with the
   /// lowest corner index (interior) or from the face-side outgoing boundary half-edge
@@ -492,10 +503,23 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     const std::size_t nout = nv + ne + (Scheme == NLS_SCHEME_CATMULL_CLARK ? nf : 0);
     new_.assign(nout, detail::nan3());
 
+    need_driver_ = false;
     if (!vertex_pass(m)) return false;
     if (Scheme == NLS_SCHEME_CATMULL_CLARK && !faces_pass(m, nv + ne)) return false;
     if (!edges_pass(m, nv)) return false;
-    if (!boundary_vertices(m, nv)) return false;
+    if (Scheme != NLS_SCHEME_MODIFIED_BUTTERFLY && !boundary_vertices(m, nv)) return false;
+    if (need_driver_) {
+      // Butterfly's linear fallback reads the 2-ring (Zorin / OpenMesh stencils): this level
+      // is taken from the driver on the same flat copy instead (same layout, same values
+      // elsewhere, the fallbacks counted by its report).
+      FlatMesh out;
+      uint32_t el = NLS_NO_ELEMENT, fb = 0;
+      s = nlsubdiv::flat::run_levels(Scheme, flags, flat_, 1, out, el, fb);
+      if (s != NLS_STATUS_OK) return this->fail(s, el, lvl);
+      if (out.vertex_count() != new_.size()) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, lvl);
+      for (std::size_t k = 0; k < new_.size(); ++k) new_[k] = {out.positions[3 * k], out.positions[3 * k + 1], out.positions[3 * k + 2]};
+      this->out_.fallbacks += fb;
+    }
     if (!update_points)
       for (std::size_t i = 0; i < nv; ++i) new_[i] = pos_[i];
     for (std::size_t k = 0; k < new_.size(); ++k)
@@ -508,7 +532,7 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     out.offsets.assign(1, 0);
     auto E = [&](HH h) { return static_cast<uint32_t>(nv + edge_rank_[static_cast<std::size_t>(m.edge_handle(h).idx())]); };
     for (auto f : m.faces()) {
-      if (Scheme == NLS_SCHEME_LOOP) {
+      if (Scheme != NLS_SCHEME_CATMULL_CLARK) {
         HH h0 = m.halfedge_handle(f), h1 = m.next_halfedge_handle(h0), h2 = m.next_halfedge_handle(h1);
         uint32_t v0 = static_cast<uint32_t>(m.from_vertex_handle(h0).idx()), v1 = static_cast<uint32_t>(m.from_vertex_handle(h1).idx()),
                  v2 = static_cast<uint32_t>(m.from_vertex_handle(h2).idx());
@@ -543,7 +567,7 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     std::vector<HH> spokes;
     std::vector<VH> ring;
     std::vector<double> ring_xyz, corners, ec, fc;
-    std::vector<uint32_t> offs;
+    std::vector<uint32_t> offs, irregular;
     HH in;
     for (auto v : m.vertices()) {
       const std::size_t vi = static_cast<std::size_t>(v.idx());
@@ -566,6 +590,11 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
         const P3 pv = pos_[vi];
         if (Scheme == NLS_SCHEME_LOOP) {
           s = nls_mobius_loop_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+        } else if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          irregular.assign(n, 0);
+          for (std::size_t j = 0; j < n; ++j)
+            irregular[j] = (!m.is_boundary(ring[j]) && m.valence(ring[j]) != 6) ? 1u : 0u;
+          s = nls_mobius_butterfly_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
         } else {
           const std::size_t nfs = boundary ? n - 1 : n;
           offs.assign(1, 0);
@@ -586,6 +615,10 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
         } else {
           vp = detail::nan3();
         }
+      }
+      if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {  // interpolating
+        new_[vi] = pos_[vi];
+        continue;
       }
       if (!boundary) {
         if (!detail::finite3(vp)) {
@@ -666,6 +699,10 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
                  b = pos(m.to_vertex_handle(h)), p3 = pos(m.from_vertex_handle(m.prev_halfedge_handle(hb)));
         P3 q;
         if (nls_f4(p0.data(), a.data(), b.data(), p3.data(), q.data()) != NLS_STATUS_OK) {
+          if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+            if (!driver_fallback(k)) return false;
+            continue;
+          }
           if (!fallback(k)) return false;
           q = detail::midpoint(a, b);
         }
@@ -689,6 +726,10 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
         have = true;
       }
       if (!(have && detail::finite3(q))) {
+        if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          if (!driver_fallback(k)) return false;
+          continue;
+        }
         if (!fallback(k)) return false;
         if (Scheme == NLS_SCHEME_LOOP) {
           const P3 c = pos(m.to_vertex_handle(m.next_halfedge_handle(h))), d = pos(m.to_vertex_handle(m.next_halfedge_handle(t)));
@@ -731,6 +772,10 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
 
 /// Möbius Loop from the tier-1 star rules (triangle meshes; a PolyMesh of triangles works too).
 template <typename M> using MobiusLoopT = StarSubdividerT<M, NLS_SCHEME_LOOP>;
+/// Möbius Modified Butterfly from the tier-1 star rules (nls_mobius_butterfly_star; triangles).
+/// An element that needs the linear fallback (a 2-ring stencil) makes the level come from
+/// the driver on the same mesh (same result; strict mode: an error).
+template <typename M> using MobiusButterflyT = StarSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY>;
 /// Möbius Catmull–Clark from the tier-1 star rules (any polygon mesh; output quads, so use a
 /// PolyMesh).
 template <typename M> using MobiusCatmullClarkT = StarSubdividerT<M, NLS_SCHEME_CATMULL_CLARK>;

@@ -78,6 +78,7 @@ std::vector<Plugin<M>> plugins(const std::string& tag) {
       make<M, nom::MobiusLoopT<M>>("MobiusLoopT<" + tag + ">", NLS_SCHEME_LOOP, MOB, true),
       make<M, nom::MobiusLoopBulkT<M>>("MobiusLoopBulkT<" + tag + ">", NLS_SCHEME_LOOP, MOB, false),
       make<M, nom::MobiusButterflyT<M>>("MobiusButterflyT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, MOB, true),
+      make<M, nom::MobiusButterflyBulkT<M>>("MobiusButterflyBulkT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, MOB, false),
       make<M, nom::LinearLoopT<M>>("LinearLoopT<" + tag + ">", NLS_SCHEME_LOOP, 0, false),
       make<M, nom::LinearButterflyT<M>>("LinearButterflyT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, 0, true),
   };
