@@ -9,13 +9,14 @@
 //   if (!r.ok()) std::cerr << r.message() << "\n";
 //
 // Three layers (docs/integrations.md):
-// * Mobius_loop_mask_3: a PTQMask_3 that evaluates the Möbius Loop star rules
-//   (nls_mobius_loop_star, nls_f4_hinted, nls_f4) with the mesh's own connectivity;
-// * Driver_mask_3 (aliases Mobius_butterfly_mask_3 and Linear_butterfly_mask_3 for PTQ,
-//   Mobius_catmull_clark_mask_3 and Mobius_kobbelt_mask_3 for PQQ): masks whose level is
-//   evaluated by the driver (nls_mesh_subdivide) on a flat copy of the current level, each
-//   callback a lookup: schemes whose rules need more than a star (Butterfly's 2-ring,
-//   Kobbelt's virtual points) or whose face points depend on which corner a face starts at
+// * Mobius_loop_mask_3 and Mobius_butterfly_mask_3 (Star_mask_3): PTQMask_3s that evaluate
+//   the star rules (nls_mobius_loop_star / nls_mobius_butterfly_star, nls_f4_hinted,
+//   nls_f4) with the mesh's own connectivity;
+// * Driver_mask_3 (aliases Mobius_catmull_clark_mask_3 and Mobius_kobbelt_mask_3 for PQQ,
+//   Mobius_butterfly_driver_mask_3, Linear_butterfly_mask_3 and Linear_kobbelt_mask_3):
+//   masks whose level is evaluated by the driver (nls_mesh_subdivide) on a flat copy of the
+//   current level, each callback a lookup: for rules that need more than a star (Kobbelt's
+//   virtual points) or whose face points depend on which corner a face starts at
 //   (Catmull–Clark, Kobbelt: the mask starts every face of a refined level at its old-vertex
 //   corner, as the driver's quad pattern does, so levels chain like the driver's);
 // * free functions for every scheme, in CGAL's named-parameter style
@@ -185,6 +186,38 @@ struct MaskState {
   }
 };
 
+/// Evaluates the level of `st` (its flat copy) with the driver and fills the lookup tables
+/// (old vertices, edge points by (min, max) pair, face points of the quad schemes).
+template <class PM>
+bool fill_from_driver(MaskState<PM>& st, uint32_t scheme, uint32_t flags) {
+  const FlatMesh& in = st.level.flat;
+  uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
+  FlatMesh out;
+  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks);
+  if (s != NLS_STATUS_OK) return st.fail(s, el);
+  st.report.fallbacks += fallbacks;
+  const std::size_t n = in.vertex_count();
+  std::vector<uint64_t> keys;
+  for (std::size_t f = 0; f + 1 < in.offsets.size(); ++f)
+    for (uint32_t c = in.offsets[f]; c < in.offsets[f + 1]; ++c) {
+      const uint32_t a = in.indices[c], b = in.indices[c + 1 < in.offsets[f + 1] ? c + 1 : in.offsets[f]];
+      keys.push_back(edge_key(a, b));
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  auto P = [&](std::size_t i) { return P3{out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]}; };
+  st.vertex_pt.assign(n, nan3());
+  for (std::size_t i = 0; i < n; ++i) st.vertex_pt[i] = P(i);
+  st.edge_pt.clear();
+  for (std::size_t e = 0; e < keys.size(); ++e) st.edge_pt.emplace(keys[e], P(n + e));
+  st.face_pt.clear();
+  if (scheme == NLS_SCHEME_CATMULL_CLARK || scheme == NLS_SCHEME_KOBBELT) {
+    st.face_pt.resize(in.face_count());
+    for (std::size_t f = 0; f < in.face_count(); ++f) st.face_pt[f] = P(n + keys.size() + f);
+  }
+  return true;
+}
+
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
@@ -277,37 +310,15 @@ class Driver_mask_3 {
     st.level.build(*pmesh_, vpm_, st.nv_prev);
     const FlatMesh& in = st.level.flat;
     const uint32_t fl = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
-    uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
+    uint32_t el = NLS_NO_ELEMENT;
     nls_status s = NLS_STATUS_OK;
     if (st.opts.strict && st.level_no == 1) {
       s = nlsubdiv::flat::validate(Scheme, fl, in, el);
       if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(in, el);
       if (s != NLS_STATUS_OK) return st.fail(s, el);
     }
-    FlatMesh out;
-    s = nlsubdiv::flat::run_levels(Scheme, fl, in, 1, out, el, fallbacks);
-    if (s != NLS_STATUS_OK) return st.fail(s, el);
-    st.report.fallbacks += fallbacks;
     st.report.path = "driver mask";
-    // The driver's layout: old vertices, edge points in (min, max) order, face points.
-    const std::size_t n = in.vertex_count();
-    std::vector<uint64_t> keys;
-    for (std::size_t f = 0; f + 1 < in.offsets.size(); ++f)
-      for (uint32_t c = in.offsets[f]; c < in.offsets[f + 1]; ++c) {
-        const uint32_t a = in.indices[c], b = in.indices[c + 1 < in.offsets[f + 1] ? c + 1 : in.offsets[f]];
-        keys.push_back(detail::edge_key(a, b));
-      }
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    auto P = [&](std::size_t i) { return detail::P3{out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]}; };
-    st.vertex_pt.resize(n);
-    for (std::size_t i = 0; i < n; ++i) st.vertex_pt[i] = P(i);
-    for (std::size_t e = 0; e < keys.size(); ++e) st.edge_pt.emplace(keys[e], P(n + e));
-    if (Scheme == NLS_SCHEME_CATMULL_CLARK || Scheme == NLS_SCHEME_KOBBELT) {
-      st.face_pt.resize(in.face_count());
-      for (std::size_t f = 0; f < in.face_count(); ++f) st.face_pt[f] = P(n + keys.size() + f);
-    }
-    return true;
+    return detail::fill_from_driver(st, Scheme, fl);
   }
 };
 
@@ -315,14 +326,18 @@ class Driver_mask_3 {
 // Mobius_loop_mask_3: the Möbius Loop star rules with CGAL's connectivity.
 // ---------------------------------------------------------------------------------------
 
-/// PTQMask_3 of canonical Möbius Loop (seed 000 §4): per vertex star nls_mobius_loop_star
-/// (ring counter-clockwise from the driver's first spoke), interior edges
-/// nls_f4_hinted(a, e_a, e_b, b, apex) with a the smaller index, boundary loops by the Möbius
-/// curve rules (nls_f4), the driver's linear fallbacks (counted, or an error in strict mode).
-template <class PolygonMesh, class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
-class Mobius_loop_mask_3 {
+/// PTQMask_3 of canonical Möbius Loop or Modified Butterfly (seed 000 §4) from the star
+/// rules with CGAL's connectivity: per vertex star nls_mobius_loop_star or
+/// nls_mobius_butterfly_star (ring counter-clockwise from the driver's first spoke),
+/// interior edges nls_f4_hinted(a, e_a, e_b, b, apex) with a the smaller index (or the one
+/// candidate), boundary loops by the Möbius curve rules (nls_f4). Loop's linear fallbacks are
+/// evaluated here (counted, or an error in strict mode); a Butterfly fallback reads the 2-ring
+/// linear stencils, so that level is taken from the driver on the same flat copy instead.
+template <class PolygonMesh, uint32_t Scheme,
+          class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
+class Star_mask_3 {
  public:
-  static constexpr uint32_t scheme = NLS_SCHEME_LOOP;
+  static constexpr uint32_t scheme = Scheme;
   static constexpr uint32_t flags = NLS_SUBDIVIDE_MOBIUS;
   typedef PolygonMesh Mesh;
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
@@ -330,7 +345,7 @@ class Mobius_loop_mask_3 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   typedef typename boost::property_traits<VertexPointMap>::value_type Point;
 
-  Mobius_loop_mask_3(Mesh* pmesh, VertexPointMap vpm, Options opts = Options())
+  Star_mask_3(Mesh* pmesh, VertexPointMap vpm, Options opts = Options())
       : pmesh_(pmesh), vpm_(vpm), st_(std::make_shared<detail::MaskState<Mesh>>()) {
     st_->opts = opts;
   }
@@ -357,6 +372,7 @@ class Mobius_loop_mask_3 {
   VertexPointMap vpm_;
   std::shared_ptr<detail::MaskState<Mesh>> st_;
   std::unordered_map<uint64_t, detail::P3> cand_;  // (v << 32 | u): candidate of edge v-u from v's star
+  bool need_driver_ = false;                        // Butterfly: a fallback in this level
 
   const Mesh& pm() const { return *pmesh_; }
   uint32_t id(vertex_descriptor v) const { return st_->level.vid.at(v); }
@@ -420,7 +436,10 @@ class Mobius_loop_mask_3 {
 
   bool fallback(std::size_t k) {
     if (st_->opts.strict) return st_->fail(NLS_STATUS_FALLBACK_IN_STRICT_MODE, static_cast<uint32_t>(k));
-    ++st_->report.fallbacks;
+    if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY)
+      need_driver_ = true;  // the driver counts it
+    else
+      ++st_->report.fallbacks;
     return true;
   }
 
@@ -439,10 +458,14 @@ class Mobius_loop_mask_3 {
     st.level.build(pm(), vpm_, st.nv_prev);
     const uint32_t fl = NLS_SUBDIVIDE_MOBIUS | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
     uint32_t el = NLS_NO_ELEMENT;
-    nls_status s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, fl, st.level.flat, el);
+    nls_status s = nlsubdiv::flat::validate(Scheme, fl, st.level.flat, el);
     if (s == NLS_STATUS_OK && st.opts.strict && st.level_no == 1) s = nlsubdiv::flat::strict_check(st.level.flat, el);
     if (s != NLS_STATUS_OK) return st.fail(s, el);
-    return vertices() && edges() && boundary_vertices() && finite();
+    need_driver_ = false;
+    if (!(vertices() && edges())) return false;
+    if (Scheme != NLS_SCHEME_MODIFIED_BUTTERFLY && !boundary_vertices()) return false;
+    if (need_driver_) return detail::fill_from_driver(st, Scheme, fl);
+    return finite();
   }
 
   bool vertices() {
@@ -451,6 +474,16 @@ class Mobius_loop_mask_3 {
     std::vector<double> xyz, ec;
     halfedge_descriptor in;
     bool boundary = false;
+    std::vector<uint32_t> irregular;
+    // Butterfly: which vertices are interior with valence != 6 (the singular rings).
+    std::vector<char> singular;
+    if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+      singular.assign(st_->level.verts.size(), 0);
+      for (vertex_descriptor v : st_->level.verts) {
+        star(v, spokes, ring, in, boundary);
+        singular[id(v)] = (!spokes.empty() && !boundary && ring.size() != 6) ? 1 : 0;
+      }
+    }
     for (vertex_descriptor v : st_->level.verts) {
       const uint32_t vi = id(v);
       star(v, spokes, ring, in, boundary);
@@ -469,12 +502,24 @@ class Mobius_loop_mask_3 {
         }
         ec.assign(3 * n, NAN);
         const detail::P3 pv = pos(v);
-        if (nls_mobius_loop_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data()) == NLS_STATUS_OK) {
+        nls_status s;
+        if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          irregular.assign(n, 0);
+          for (std::size_t j = 0; j < n; ++j) irregular[j] = singular[id(ring[j])] ? 1u : 0u;
+          s = nls_mobius_butterfly_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
+        } else {
+          s = nls_mobius_loop_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+        }
+        if (s == NLS_STATUS_OK) {
           for (std::size_t j = 0; j < spokes.size(); ++j)
             cand_[(static_cast<uint64_t>(vi) << 32) | id(ring[j])] = {ec[3 * j], ec[3 * j + 1], ec[3 * j + 2]};
         } else {
           vp = detail::nan3();
         }
+      }
+      if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {  // interpolating
+        st_->vertex_pt[vi] = pos(v);
+        continue;
       }
       if (!boundary) {
         if (!detail::finite3(vp)) {
@@ -575,7 +620,11 @@ class Mobius_loop_mask_3 {
 };
 
 template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
-using Mobius_butterfly_mask_3 = Driver_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, VPM>;
+using Mobius_loop_mask_3 = Star_mask_3<PM, NLS_SCHEME_LOOP, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_butterfly_mask_3 = Star_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_butterfly_driver_mask_3 = Driver_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, VPM>;
 template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
 using Mobius_catmull_clark_mask_3 = Driver_mask_3<PM, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, VPM>;
 template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
@@ -705,7 +754,7 @@ Report with_mask(PM& pm, const NP& np, Options opts) {
 
 /// Möbius Loop: PTQ host + Mobius_loop_mask_3 (star rules).
 NLSUBDIV_CGAL_FN(mobius_loop_subdivision, (detail::with_mask<Mobius_loop_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
-/// Möbius Modified Butterfly: PTQ host + Mobius_butterfly_mask_3 (driver mask).
+/// Möbius Modified Butterfly: PTQ host + Mobius_butterfly_mask_3 (star rules).
 NLSUBDIV_CGAL_FN(mobius_butterfly_subdivision, (detail::with_mask<Mobius_butterfly_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
 /// Möbius Catmull–Clark: PQQ host + Mobius_catmull_clark_mask_3 (driver mask).
 NLSUBDIV_CGAL_FN(mobius_catmull_clark_subdivision, (detail::with_mask<Mobius_catmull_clark_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
