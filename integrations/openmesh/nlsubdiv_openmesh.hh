@@ -9,13 +9,13 @@
 //   // or in one call: sd(mesh, 3);
 //
 // Two kinds of classes (docs/integrations.md):
-// * tier 1, MobiusLoopT and MobiusCatmullClarkT: the rules are evaluated at each vertex star
-//   with OpenMesh's own connectivity (circulators over the half-edges), through the tier-1
-//   exports nls_mobius_loop_star / nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and
-//   nls_face_point; the new connectivity is written in the driver's layout, so the result
+// * tier 1, MobiusLoopT, MobiusButterflyT and MobiusCatmullClarkT: the rules are evaluated
+//   at each vertex star with OpenMesh's own connectivity (circulators over the half-edges),
+//   through the tier-1 exports nls_mobius_loop_star / nls_mobius_butterfly_star /
+//   nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and nls_face_point; the new connectivity is written in the driver's layout, so the result
 //   equals nls_mesh_subdivide on the same mesh (bit for bit where the stars start at the
 //   driver's spokes, which this header arranges);
-// * bulk, every scheme (BulkSubdividerT and the aliases MobiusButterflyT, MobiusKobbeltT,
+// * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
 //   LinearLoopT, ...): the mesh is copied to flat arrays, subdivided with
 //   nls_mesh_subdivide_levels and the connectivity rebuilt.
 //
