@@ -1162,6 +1162,44 @@ nls_status nls_mobius_catmull_clark_star(const double v[3],
                                          double *out_edge_candidates,
                                          double *out_face_candidates);
 
+/**
+ * The canonical Möbius Modified Butterfly rules at the vertex star `v ring[0..ring_len]`
+ * (`ring` and `closed` as for [`nls_mobius_loop_star`]; triangles), as `nls_mesh_subdivide`
+ * evaluates them for `NLS_SCHEME_MODIFIED_BUTTERFLY` with `NLS_SUBDIVIDE_MOBIUS` (seed 000
+ * §4.3, "partial candidates"): the star's canonical form, then for each interior spoke `j`
+ * the candidate of the edge to `ring[j]`:
+ * * `v` interior and irregular (valence ≠ 6): Zorin's stencil of `v`, ring from `ring[j]`;
+ * * else, when `irregular_neighbours[j]` is 1 (`ring[j]` is an interior vertex of valence
+ *   ≠ 6): no candidate from this star (only the singular ring contributes);
+ * * else `v`'s half of the 8-point stencil, doubled (`v`, `ring[j]` ½; `ring[j ± 1]` ⅛;
+ *   the wings `ring[j ± 2]` −⅛, reflected as `u + w − z` across a boundary edge, as OpenMesh
+ *   does), all in the canonical form, the result mapped back.
+ *
+ * `irregular_neighbours` holds `ring_len` flags (0 or 1), or is NULL (no neighbour is
+ * irregular). Writes `out_edge_candidates[3j..3j+3]` (NaN for boundary spokes, the skipped
+ * spokes, a rule that needs a point the form sends to infinity, and every spoke of an *ear*,
+ * a boundary star of one face, to which the driver gives no form). Interior old vertices
+ * keep their positions (the scheme interpolates); edge points are
+ * `nls_f4_hinted(a, e_a, e_b, b, x)` of both end points' candidates (hint: the third vertex
+ * of the triangle on the left of `a → b`, `a` the smaller index), the one candidate when
+ * the other is NaN; boundary edges `nls_f4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`; what has no
+ * value takes the linear rule (the driver's fallback).
+ *
+ * Bit-identical to the driver when `ring` starts at the driver's first spoke (any start
+ * gives the same values here: each spoke's rule reads the ring relative to that spoke).
+ *
+ * Errors: those of [`nls_mobius_loop_star`] (including `NLS_STATUS_DEGENERATE_GEOMETRY` when
+ * the star has no canonical form); `NLS_STATUS_INVALID_ARGUMENT` also for a flag not 0 or 1;
+ * `NLS_STATUS_TOO_FEW_POINTS` for fewer than 2 neighbours. Nothing is written on error.
+ *
+ */
+nls_status nls_mobius_butterfly_star(const double v[3],
+                                     const double *ring,
+                                     size_t ring_len,
+                                     uint32_t closed,
+                                     const uint32_t *irregular_neighbours,
+                                     double *out_edge_candidates);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -180,6 +180,17 @@ else
     skip "peer comparison" "libopenmesh-dev, libcgal-dev or libosd-dev not installed (scripts/setup.sh installs them)"
 fi
 
+# --- C/C++ integrations and packaging (issue 8; scripts/test-integrations.sh) ----------------
+# OpenMesh subdividers and CGAL masks/functions = the driver, OpenMesh LoopT/ModifiedButterflyT,
+# bad meshes; install prefix, CMake consumer, c_examples via pkg-config.
+if [ -f /usr/include/OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh ] && [ -f /usr/include/CGAL/Subdivision_method_3/subdivision_hosts_3.h ] &&
+    command -v cmake >/dev/null && command -v pkg-config >/dev/null; then
+    step "integrations: OpenMesh/CGAL = driver, install prefix, CMake + pkg-config consumers" scripts/test-integrations.sh "$OUT/integrations"
+else
+    skip "integrations (OpenMesh, CGAL, packaging)" "libopenmesh-dev, libcgal-dev, cmake or pkg-config not installed (scripts/setup.sh installs them)"
+fi
+# --- end of the integrations step ---------------------------------------------------------------
+
 # --- C examples -------------------------------------------------------------------------------
 c_examples() {
     local ex

@@ -236,3 +236,187 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
         Ok(())
     })
 }
+
+// ---- Möbius Modified Butterfly (issue 8: tier 1 for host integrations) ----
+
+/// `p[(j + k) mod n]` for a signed offset `k`, NaN when out of range.
+fn cyc(p: &[Point], j: usize, k: isize) -> Point {
+    let n = p.len() as isize;
+    if n == 0 {
+        return NAN3;
+    }
+    let i = (j as isize + k).rem_euclid(n) as usize;
+    p.get(i).copied().unwrap_or(NAN3)
+}
+
+fn finite3(p: &Point) -> bool {
+    p.iter().all(|c| c.is_finite())
+}
+
+/// The candidate of spoke `j` of the star `images` (the ring in the star's normalised
+/// canonical frame, centre at the origin) by the rules of the Möbius Modified Butterfly
+/// driver (seed 000 §4.3, Fig. 11 right): Zorin's stencil of an irregular interior centre
+/// (ring from the spoke's neighbour); none when only the neighbour is irregular; else the
+/// centre's half of the 8-point stencil, doubled, with OpenMesh's reflection `u + w − z`
+/// for a wing across a boundary edge. `None` when an image it needs is at infinity.
+fn butterfly_spoke(
+    images: &[Point],
+    closed: bool,
+    j: usize,
+    neighbour_irregular: bool,
+) -> Option<Point> {
+    use nlsubdiv::stencil::butterfly;
+    let n = images.len();
+    let o: Point = [0.0; 3];
+    if closed && n != 6 {
+        let mut rot = [NAN3; MAX_VALENCE];
+        let r = rot.get_mut(..n)?;
+        for (k, slot) in r.iter_mut().enumerate() {
+            *slot = cyc(images, j, k as isize);
+        }
+        if !r.iter().all(finite3) {
+            return None;
+        }
+        return butterfly::zorin_stencil(o, r).ok();
+    }
+    if neighbour_irregular {
+        return None;
+    }
+    let a0 = o;
+    let a1 = cyc(images, j, 0);
+    let b0 = cyc(images, j, 1);
+    let b1 = cyc(images, j, -1);
+    // The wings across the triangle edges at the centre: (v, ring[j+1]) and (v, ring[j−1]);
+    // in an open star the first and last spokes are boundary edges.
+    let c0 = if !closed && j + 2 == n {
+        butterfly::reflect(b0, o, a1)
+    } else {
+        cyc(images, j, 2)
+    };
+    let c3 = if !closed && j == 1 {
+        butterfly::reflect(o, b1, a1)
+    } else {
+        cyc(images, j, -2)
+    };
+    if ![a1, b0, b1, c0, c3].iter().all(finite3) {
+        return None;
+    }
+    Some([
+        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125 - (c0[0] + c3[0]) * 0.125,
+        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125 - (c0[1] + c3[1]) * 0.125,
+        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125 - (c0[2] + c3[2]) * 0.125,
+    ])
+}
+
+/// The canonical Möbius Modified Butterfly rules at the vertex star `v ring[0..ring_len]`
+/// (`ring` and `closed` as for [`nls_mobius_loop_star`]; triangles), as `nls_mesh_subdivide`
+/// evaluates them for `NLS_SCHEME_MODIFIED_BUTTERFLY` with `NLS_SUBDIVIDE_MOBIUS` (seed 000
+/// §4.3, "partial candidates"): the star's canonical form, then for each interior spoke `j`
+/// the candidate of the edge to `ring[j]`:
+/// * `v` interior and irregular (valence ≠ 6): Zorin's stencil of `v`, ring from `ring[j]`;
+/// * else, when `irregular_neighbours[j]` is 1 (`ring[j]` is an interior vertex of valence
+///   ≠ 6): no candidate from this star (only the singular ring contributes);
+/// * else `v`'s half of the 8-point stencil, doubled (`v`, `ring[j]` ½; `ring[j ± 1]` ⅛;
+///   the wings `ring[j ± 2]` −⅛, reflected as `u + w − z` across a boundary edge, as OpenMesh
+///   does), all in the canonical form, the result mapped back.
+///
+/// `irregular_neighbours` holds `ring_len` flags (0 or 1), or is NULL (no neighbour is
+/// irregular). Writes `out_edge_candidates[3j..3j+3]` (NaN for boundary spokes, the skipped
+/// spokes, a rule that needs a point the form sends to infinity, and every spoke of an *ear*,
+/// a boundary star of one face, to which the driver gives no form). Interior old vertices
+/// keep their positions (the scheme interpolates); edge points are
+/// `nls_f4_hinted(a, e_a, e_b, b, x)` of both end points' candidates (hint: the third vertex
+/// of the triangle on the left of `a → b`, `a` the smaller index), the one candidate when
+/// the other is NaN; boundary edges `nls_f4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`; what has no
+/// value takes the linear rule (the driver's fallback).
+///
+/// Bit-identical to the driver when `ring` starts at the driver's first spoke (any start
+/// gives the same values here: each spoke's rule reads the ring relative to that spoke).
+///
+/// Errors: those of [`nls_mobius_loop_star`] (including `NLS_STATUS_DEGENERATE_GEOMETRY` when
+/// the star has no canonical form); `NLS_STATUS_INVALID_ARGUMENT` also for a flag not 0 or 1;
+/// `NLS_STATUS_TOO_FEW_POINTS` for fewer than 2 neighbours. Nothing is written on error.
+///
+/// cbindgen:ptrs-as-arrays=[[v;3]]
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_mobius_butterfly_star(
+    v: *const f64,
+    ring: *const f64,
+    ring_len: usize,
+    closed: u32,
+    irregular_neighbours: *const u32,
+    out_edge_candidates: *mut f64,
+) -> Status {
+    run(|| {
+        // SAFETY: the caller passes NULL or three readable doubles.
+        let v = unsafe { read_point(v)? };
+        check_ptr(ring.cast::<Point>(), ring_len)?;
+        if ring_len > MAX_VALENCE {
+            return Err(Status::ValenceTooHigh);
+        }
+        let closed = flag(closed)?;
+        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let flags_len = if irregular_neighbours.is_null() {
+            0
+        } else {
+            ring_len
+        };
+        check_ptr(irregular_neighbours, flags_len)?;
+        check_out(out_edge_candidates, n3)?;
+        disjoint(
+            &[bytes(out_edge_candidates.cast_const(), n3)],
+            &[bytes(ring, n3), bytes(irregular_neighbours, flags_len)],
+        )?;
+        check_fp_env()?;
+        // SAFETY: checked above; readable by the caller's contract and disjoint from the
+        // output.
+        let (ring_pts, flags) = unsafe {
+            (
+                points(ring, ring_len)?,
+                if flags_len == 0 {
+                    &[][..]
+                } else {
+                    core::slice::from_raw_parts(irregular_neighbours, flags_len)
+                },
+            )
+        };
+        let mut irregular = [false; MAX_VALENCE];
+        for (slot, &f) in irregular.iter_mut().zip(flags) {
+            *slot = flag(f)?;
+        }
+        if ring_len < 2 {
+            return Err(Status::TooFewPoints);
+        }
+        let kind = if closed {
+            nlsubdiv::mobius::StarKind::Interior
+        } else {
+            nlsubdiv::mobius::StarKind::Boundary
+        };
+        let mut cands = [NAN3; MAX_VALENCE];
+        // An ear (open star of one face): the driver gives it no form, so no candidates.
+        if closed || ring_len > 2 {
+            let cf =
+                nlsubdiv::mobius::CanonicalForm::new(v, ring_pts, kind).map_err(|e| e.status)?;
+            let mut images = [NAN3; MAX_VALENCE];
+            let im = images.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+            for (slot, u) in im.iter_mut().zip(ring_pts) {
+                *slot = cf.to_normalised(*u).unwrap_or(NAN3);
+            }
+            let im = images.get(..ring_len).ok_or(Status::ValenceTooHigh)?;
+            for (j, slot) in cands.iter_mut().enumerate().take(ring_len) {
+                let interior = closed || (j >= 1 && j + 1 < ring_len);
+                if !interior {
+                    continue;
+                }
+                let nb = irregular.get(j).copied().unwrap_or(false);
+                if let Some(p) = butterfly_spoke(im, closed, j, nb) {
+                    *slot = cf.from_normalised(p).unwrap_or(NAN3);
+                }
+            }
+        }
+        let out = cands.get(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        // SAFETY: checked above for `3*ring_len` doubles.
+        unsafe { write_points(out_edge_candidates, out) };
+        Ok(())
+    })
+}

@@ -1,0 +1,791 @@
+// nlsubdiv_cgal.h: nlsubdiv's subdivision schemes for CGAL polygon meshes (Surface_mesh,
+// Polyhedron_3, any MutableFaceGraph with a Point_3 vertex point map).
+//
+// Header-only, C++17, over include/nlsubdiv.h (link libnlsubdiv; CGAL 5.5 is header-only).
+//
+//   #include <nlsubdiv/cgal/nlsubdiv_cgal.h>
+//   nlsubdiv::cgal::Report r =
+//       nlsubdiv::cgal::mobius_loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
+//   if (!r.ok()) std::cerr << r.message() << "\n";
+//
+// Three layers (docs/integrations.md):
+// * Mobius_loop_mask_3 and Mobius_butterfly_mask_3 (Star_mask_3): PTQMask_3s that evaluate
+//   the star rules (nls_mobius_loop_star / nls_mobius_butterfly_star, nls_f4_hinted,
+//   nls_f4) with the mesh's own connectivity;
+// * Driver_mask_3 (aliases Mobius_catmull_clark_mask_3 and Mobius_kobbelt_mask_3 for PQQ,
+//   Mobius_butterfly_driver_mask_3, Linear_butterfly_mask_3 and Linear_kobbelt_mask_3):
+//   masks whose level is evaluated by the driver (nls_mesh_subdivide) on a flat copy of the
+//   current level, each callback a lookup: for rules that need more than a star (Kobbelt's
+//   virtual points) or whose face points depend on which corner a face starts at
+//   (Catmull–Clark, Kobbelt: the mask starts every face of a refined level at its old-vertex
+//   corner, as the driver's quad pattern does, so levels chain like the driver's);
+// * free functions for every scheme, in CGAL's named-parameter style
+//   (number_of_iterations, vertex_point_map): mask + host where a mask fits, otherwise the
+//   bulk path (flat copy -> nls_mesh_subdivide_levels -> mesh rebuilt).
+//
+// Masks compute the whole level when it is first touched and record any error in their
+// Report (CGAL's callbacks return void; nothing throws or aborts). The free functions
+// evaluate each level *before* the host changes the mesh, so a refused level leaves the mesh
+// untouched; when a later level of a multi-level call fails, the mesh is restored from a copy
+// made before the first level (copy-assignment of the PolygonMesh: the vertex point map must
+// be the mesh's own, which is the default).
+//
+// Licence: part of nlsubdiv (MIT OR Apache-2.0); CGAL's headers are LGPL-3.0+/commercial.
+#ifndef NLSUBDIV_CGAL_H
+#define NLSUBDIV_CGAL_H
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Subdivision_method_3/subdivision_hosts_3.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "../common/nlsubdiv_flat.hh"
+#include "nlsubdiv.h"
+
+namespace nlsubdiv {
+namespace cgal {
+
+/// Options of the masks and functions.
+struct Options {
+  /// Fallbacks become NLS_STATUS_FALLBACK_IN_STRICT_MODE, and the input is refused for what
+  /// the kernel accepts by policy but is most likely a mistake (nlsubdiv::flat::strict_check).
+  bool strict = false;
+};
+
+/// What a call did: `status` (NLS_STATUS_OK on success), the element it names (a face or
+/// vertex of the level's flat copy, or an output vertex; NLS_NO_ELEMENT), the 1-based level,
+/// the fallbacks (elements that took the documented linear rule), and the path taken.
+struct Report {
+  nls_status status = NLS_STATUS_OK;
+  uint32_t element = NLS_NO_ELEMENT;
+  uint32_t level = 0;
+  uint32_t fallbacks = 0;
+  const char* path = "";  ///< "star rules", "driver mask" or "bulk"
+  bool ok() const { return status == NLS_STATUS_OK; }
+  std::string message() const {
+    if (ok()) return "ok";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "level %u: ", level);
+    std::string m = std::string(buf) + nls_status_str(status);
+    if (element != NLS_NO_ELEMENT) {
+      std::snprintf(buf, sizeof buf, " (element %u)", element);
+      m += buf;
+    }
+    return m;
+  }
+};
+
+using FlatMesh = nlsubdiv::flat::FlatMesh;
+
+namespace detail {
+
+using P3 = std::array<double, 3>;
+inline bool finite3(const P3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+inline P3 nan3() { return {NAN, NAN, NAN}; }
+inline P3 add(const P3& a, const P3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline P3 scale(const P3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+
+inline uint64_t edge_key(uint32_t a, uint32_t b) {
+  return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+/// A contiguous numbering of the current level and its flat copy. Vertices and faces in
+/// iteration order; each face from `start[f]` (corners[i] = target of the i-th half-edge
+/// from it): the face's own half-edge on the first level, the half-edge into its corner of
+/// the previous level (vertex index < nv_prev) on refined levels when there is one, as the
+/// driver's quad pattern starts its faces.
+template <class PM>
+struct Level {
+  typedef typename boost::graph_traits<PM>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<PM>::halfedge_descriptor halfedge_descriptor;
+  typedef typename boost::graph_traits<PM>::face_descriptor face_descriptor;
+  std::unordered_map<vertex_descriptor, uint32_t> vid;
+  std::vector<vertex_descriptor> verts;
+  std::unordered_map<face_descriptor, uint32_t> fid;
+  std::vector<face_descriptor> faces;
+  std::vector<halfedge_descriptor> start;
+  FlatMesh flat;
+
+  template <class VPM>
+  void build(const PM& pm, VPM vpm, std::size_t nv_prev) {
+    vid.clear();
+    verts.clear();
+    fid.clear();
+    faces.clear();
+    start.clear();
+    flat.positions.clear();
+    flat.offsets.assign(1, 0);
+    flat.indices.clear();
+    for (auto v : CGAL::vertices(pm)) {
+      vid.emplace(v, static_cast<uint32_t>(verts.size()));
+      verts.push_back(v);
+      const auto& p = get(vpm, v);
+      flat.positions.push_back(CGAL::to_double(p.x()));
+      flat.positions.push_back(CGAL::to_double(p.y()));
+      flat.positions.push_back(CGAL::to_double(p.z()));
+    }
+    for (auto f : CGAL::faces(pm)) {
+      fid.emplace(f, static_cast<uint32_t>(faces.size()));
+      faces.push_back(f);
+      halfedge_descriptor h0 = halfedge(f, pm);
+      if (nv_prev != SIZE_MAX)
+        for (auto h : CGAL::halfedges_around_face(halfedge(f, pm), pm))
+          if (vid.at(target(h, pm)) < nv_prev) {
+            h0 = h;
+            break;
+          }
+      start.push_back(h0);
+      for (auto h : CGAL::halfedges_around_face(h0, pm)) flat.indices.push_back(vid.at(target(h, pm)));
+      flat.offsets.push_back(static_cast<uint32_t>(flat.indices.size()));
+    }
+  }
+  P3 pos(vertex_descriptor v) const {
+    const uint32_t i = vid.at(v);
+    return {flat.positions[3 * i], flat.positions[3 * i + 1], flat.positions[3 * i + 2]};
+  }
+};
+
+template <class Point>
+Point to_point(const P3& p) {
+  return Point(p[0], p[1], p[2]);
+}
+
+/// State shared by the copies of a mask (CGAL's hosts take masks by value): the level last
+/// evaluated, its results and the report.
+template <class PM>
+struct MaskState {
+  typedef typename boost::graph_traits<PM>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<PM>::face_descriptor face_descriptor;
+  Level<PM> level;
+  std::size_t evaluated_nv = SIZE_MAX;  // vertex count of the level evaluated
+  std::size_t nv_prev = SIZE_MAX;       // vertex count of the level before it (face starts)
+  uint32_t level_no = 0;
+  bool failed = false;
+  Options opts;
+  Report report;
+  std::vector<P3> vertex_pt;                    // by vertex index
+  std::unordered_map<uint64_t, P3> edge_pt;     // by (min, max) vertex pair
+  std::vector<P3> face_pt;                      // by face index (quad schemes)
+
+  bool fail(nls_status s, uint32_t el) {
+    failed = true;
+    if (report.ok()) {
+      report.status = s;
+      report.element = el;
+      report.level = level_no;
+    }
+    return false;
+  }
+};
+
+/// Evaluates the level of `st` (its flat copy) with the driver and fills the lookup tables
+/// (old vertices, edge points by (min, max) pair, face points of the quad schemes).
+template <class PM>
+bool fill_from_driver(MaskState<PM>& st, uint32_t scheme, uint32_t flags) {
+  const FlatMesh& in = st.level.flat;
+  uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
+  FlatMesh out;
+  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks);
+  if (s != NLS_STATUS_OK) return st.fail(s, el);
+  st.report.fallbacks += fallbacks;
+  const std::size_t n = in.vertex_count();
+  std::vector<uint64_t> keys;
+  for (std::size_t f = 0; f + 1 < in.offsets.size(); ++f)
+    for (uint32_t c = in.offsets[f]; c < in.offsets[f + 1]; ++c) {
+      const uint32_t a = in.indices[c], b = in.indices[c + 1 < in.offsets[f + 1] ? c + 1 : in.offsets[f]];
+      keys.push_back(edge_key(a, b));
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  auto P = [&](std::size_t i) { return P3{out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]}; };
+  st.vertex_pt.assign(n, nan3());
+  for (std::size_t i = 0; i < n; ++i) st.vertex_pt[i] = P(i);
+  st.edge_pt.clear();
+  for (std::size_t e = 0; e < keys.size(); ++e) st.edge_pt.emplace(keys[e], P(n + e));
+  st.face_pt.clear();
+  if (scheme == NLS_SCHEME_CATMULL_CLARK || scheme == NLS_SCHEME_KOBBELT) {
+    st.face_pt.resize(in.face_count());
+    for (std::size_t f = 0; f < in.face_count(); ++f) st.face_pt[f] = P(n + keys.size() + f);
+  }
+  return true;
+}
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------------------
+// Driver masks: the level evaluated by nls_mesh_subdivide, callbacks are lookups.
+// ---------------------------------------------------------------------------------------
+
+/// A PTQMask_3 (Scheme Loop or Modified Butterfly) or PQQMask_3 (Catmull–Clark, Kobbelt)
+/// whose level is computed by the driver on a flat copy of the mesh: the result of a
+/// host step equals one nls_mesh_subdivide level (order-independently; the driver's rounding
+/// where vertex numbering enters, e.g. the orientation of an edge blend).
+template <class PolygonMesh, uint32_t Scheme, uint32_t Flags,
+          class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
+class Driver_mask_3 {
+ public:
+  static constexpr uint32_t scheme = Scheme;
+  static constexpr uint32_t flags = Flags;
+  typedef PolygonMesh Mesh;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef typename boost::property_traits<VertexPointMap>::value_type Point;
+
+  Driver_mask_3(Mesh* pmesh, VertexPointMap vpm, Options opts = Options())
+      : pmesh_(pmesh), vpm_(vpm), st_(std::make_shared<detail::MaskState<Mesh>>()) {
+    st_->opts = opts;
+  }
+
+  /// Evaluates the current level now (the callbacks do it on first use); false on error.
+  bool evaluate() { return ensure(); }
+  /// The report of the levels evaluated so far (the first error is kept).
+  const Report& report() const { return st_->report; }
+  /// Sets the vertex count of the level before the current one (its vertices start the faces
+  /// of the current level; the free functions do this).
+  void set_previous_vertex_count(std::size_t n) { st_->nv_prev = n; }
+
+  void face_node(face_descriptor f, Point& pt) {
+    ensure();
+    pt = detail::to_point<Point>(pick(st_->face_pt, st_->level.fid.at(f), centroid(f)));
+  }
+  void edge_node(halfedge_descriptor h, Point& pt) {
+    ensure();
+    pt = detail::to_point<Point>(edge_point(h));
+  }
+  void vertex_node(vertex_descriptor v, Point& pt) {
+    ensure();
+    pt = detail::to_point<Point>(pick(st_->vertex_pt, st_->level.vid.at(v), st_->level.pos(v)));
+  }
+  void border_node(halfedge_descriptor h, Point& ept, Point& vpt) {
+    ensure();
+    ept = detail::to_point<Point>(edge_point(h));
+    vertex_descriptor t = target(h, *pmesh_);
+    vpt = detail::to_point<Point>(pick(st_->vertex_pt, st_->level.vid.at(t), st_->level.pos(t)));
+  }
+
+ private:
+  Mesh* pmesh_;
+  VertexPointMap vpm_;
+  std::shared_ptr<detail::MaskState<Mesh>> st_;
+
+  static detail::P3 pick(const std::vector<detail::P3>& v, uint32_t i, const detail::P3& dflt) {
+    return i < v.size() && detail::finite3(v[i]) ? v[i] : dflt;
+  }
+  detail::P3 centroid(face_descriptor f) const {
+    detail::P3 s{0, 0, 0};
+    double n = 0;
+    for (auto h : CGAL::halfedges_around_face(halfedge(f, *pmesh_), *pmesh_)) {
+      s = detail::add(s, st_->level.pos(target(h, *pmesh_)));
+      n += 1;
+    }
+    return detail::scale(s, 1.0 / n);
+  }
+  detail::P3 edge_point(halfedge_descriptor h) const {
+    const uint32_t a = st_->level.vid.at(source(h, *pmesh_)), b = st_->level.vid.at(target(h, *pmesh_));
+    auto it = st_->edge_pt.find(detail::edge_key(a, b));
+    if (it != st_->edge_pt.end() && detail::finite3(it->second)) return it->second;
+    return detail::scale(detail::add(st_->level.pos(source(h, *pmesh_)), st_->level.pos(target(h, *pmesh_))), 0.5);
+  }
+
+  bool ensure() {
+    detail::MaskState<Mesh>& st = *st_;
+    const std::size_t nv = num_vertices(*pmesh_);
+    if (st.evaluated_nv == nv) return !st.failed;
+    if (st.evaluated_nv != SIZE_MAX) st.nv_prev = st.evaluated_nv;  // the host's next step
+    st.evaluated_nv = nv;
+    st.failed = false;
+    ++st.level_no;
+    st.vertex_pt.clear();
+    st.edge_pt.clear();
+    st.face_pt.clear();
+    st.level.build(*pmesh_, vpm_, st.nv_prev);
+    const FlatMesh& in = st.level.flat;
+    const uint32_t fl = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+    uint32_t el = NLS_NO_ELEMENT;
+    nls_status s = NLS_STATUS_OK;
+    if (st.opts.strict && st.level_no == 1) {
+      s = nlsubdiv::flat::validate(Scheme, fl, in, el);
+      if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(in, el);
+      if (s != NLS_STATUS_OK) return st.fail(s, el);
+    }
+    st.report.path = "driver mask";
+    return detail::fill_from_driver(st, Scheme, fl);
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Mobius_loop_mask_3: the Möbius Loop star rules with CGAL's connectivity.
+// ---------------------------------------------------------------------------------------
+
+/// PTQMask_3 of canonical Möbius Loop or Modified Butterfly (seed 000 §4) from the star
+/// rules with CGAL's connectivity: per vertex star nls_mobius_loop_star or
+/// nls_mobius_butterfly_star (ring counter-clockwise from the driver's first spoke),
+/// interior edges nls_f4_hinted(a, e_a, e_b, b, apex) with a the smaller index (or the one
+/// candidate), boundary loops by the Möbius curve rules (nls_f4). Loop's linear fallbacks are
+/// evaluated here (counted, or an error in strict mode); a Butterfly fallback reads the 2-ring
+/// linear stencils, so that level is taken from the driver on the same flat copy instead.
+template <class PolygonMesh, uint32_t Scheme,
+          class VertexPointMap = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>
+class Star_mask_3 {
+ public:
+  static constexpr uint32_t scheme = Scheme;
+  static constexpr uint32_t flags = NLS_SUBDIVIDE_MOBIUS;
+  typedef PolygonMesh Mesh;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef typename boost::property_traits<VertexPointMap>::value_type Point;
+
+  Star_mask_3(Mesh* pmesh, VertexPointMap vpm, Options opts = Options())
+      : pmesh_(pmesh), vpm_(vpm), st_(std::make_shared<detail::MaskState<Mesh>>()) {
+    st_->opts = opts;
+  }
+  bool evaluate() { return ensure(); }
+  const Report& report() const { return st_->report; }
+  void set_previous_vertex_count(std::size_t n) { st_->nv_prev = n; }
+
+  void edge_node(halfedge_descriptor h, Point& pt) {
+    ensure();
+    pt = detail::to_point<Point>(edge_point(h));
+  }
+  void vertex_node(vertex_descriptor v, Point& pt) {
+    ensure();
+    pt = detail::to_point<Point>(vertex_point(v));
+  }
+  void border_node(halfedge_descriptor h, Point& ept, Point& vpt) {
+    ensure();
+    ept = detail::to_point<Point>(edge_point(h));
+    vpt = detail::to_point<Point>(vertex_point(target(h, *pmesh_)));
+  }
+
+ private:
+  Mesh* pmesh_;
+  VertexPointMap vpm_;
+  std::shared_ptr<detail::MaskState<Mesh>> st_;
+  std::unordered_map<uint64_t, detail::P3> cand_;  // (v << 32 | u): candidate of edge v-u from v's star
+  bool need_driver_ = false;                        // Butterfly: a fallback in this level
+
+  const Mesh& pm() const { return *pmesh_; }
+  uint32_t id(vertex_descriptor v) const { return st_->level.vid.at(v); }
+  detail::P3 pos(vertex_descriptor v) const { return st_->level.pos(v); }
+  detail::P3 vertex_point(vertex_descriptor v) const {
+    const uint32_t i = id(v);
+    return i < st_->vertex_pt.size() && detail::finite3(st_->vertex_pt[i]) ? st_->vertex_pt[i] : pos(v);
+  }
+  detail::P3 edge_point(halfedge_descriptor h) const {
+    auto it = st_->edge_pt.find(detail::edge_key(id(source(h, pm())), id(target(h, pm()))));
+    if (it != st_->edge_pt.end() && detail::finite3(it->second)) return it->second;
+    return detail::scale(detail::add(pos(source(h, pm())), pos(target(h, pm()))), 0.5);
+  }
+
+  /// The corner index (flat copy) of the outgoing half-edge h of v: face offset + position
+  /// of v in the face's corner list.
+  uint32_t corner(halfedge_descriptor h) const {
+    const FlatMesh& fl = st_->level.flat;
+    const uint32_t f = st_->level.fid.at(face(h, pm())), v = id(source(h, pm()));
+    for (uint32_t c = fl.offsets[f]; c < fl.offsets[f + 1]; ++c)
+      if (fl.indices[c] == v) return c;
+    return UINT32_MAX;
+  }
+
+  /// The driver's star: spokes counter-clockwise from the face-side outgoing boundary
+  /// half-edge (boundary) or the outgoing half-edge of lowest corner index (interior); the
+  /// closing spoke of a boundary star is `in` (b1 -> v).
+  void star(vertex_descriptor v, std::vector<halfedge_descriptor>& spokes, std::vector<vertex_descriptor>& ring,
+            halfedge_descriptor& in, bool& boundary) const {
+    spokes.clear();
+    ring.clear();
+    boundary = false;
+    if (halfedge(v, pm()) == boost::graph_traits<Mesh>::null_halfedge()) return;
+    halfedge_descriptor h0 = boost::graph_traits<Mesh>::null_halfedge();
+    uint32_t best = UINT32_MAX;
+    for (auto h : CGAL::halfedges_around_source(v, pm())) {
+      if (is_border(h, pm())) continue;
+      if (is_border(opposite(h, pm()), pm())) {
+        h0 = h;
+        boundary = true;
+        break;
+      }
+      const uint32_t c = corner(h);
+      if (c < best) best = c, h0 = h;
+    }
+    if (h0 == boost::graph_traits<Mesh>::null_halfedge()) return;
+    halfedge_descriptor h = h0;
+    std::size_t guard = 0;
+    do {
+      spokes.push_back(h);
+      ring.push_back(target(h, pm()));
+      halfedge_descriptor p = prev(h, pm()), o = opposite(p, pm());
+      if (is_border(o, pm())) {
+        in = p;
+        ring.push_back(source(p, pm()));
+        break;
+      }
+      h = o;
+    } while (h != h0 && ++guard < 4096);
+  }
+
+  bool fallback(std::size_t k) {
+    if (st_->opts.strict) return st_->fail(NLS_STATUS_FALLBACK_IN_STRICT_MODE, static_cast<uint32_t>(k));
+    if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY)
+      need_driver_ = true;  // the driver counts it
+    else
+      ++st_->report.fallbacks;
+    return true;
+  }
+
+  bool ensure() {
+    detail::MaskState<Mesh>& st = *st_;
+    const std::size_t nv = num_vertices(pm());
+    if (st.evaluated_nv == nv) return !st.failed;
+    if (st.evaluated_nv != SIZE_MAX) st.nv_prev = st.evaluated_nv;
+    st.evaluated_nv = nv;
+    st.failed = false;
+    ++st.level_no;
+    st.vertex_pt.assign(nv, detail::nan3());
+    st.edge_pt.clear();
+    cand_.clear();
+    st.report.path = "star rules";
+    st.level.build(pm(), vpm_, st.nv_prev);
+    const uint32_t fl = NLS_SUBDIVIDE_MOBIUS | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+    uint32_t el = NLS_NO_ELEMENT;
+    nls_status s = nlsubdiv::flat::validate(Scheme, fl, st.level.flat, el);
+    if (s == NLS_STATUS_OK && st.opts.strict && st.level_no == 1) s = nlsubdiv::flat::strict_check(st.level.flat, el);
+    if (s != NLS_STATUS_OK) return st.fail(s, el);
+    need_driver_ = false;
+    if (!(vertices() && edges())) return false;
+    if (Scheme != NLS_SCHEME_MODIFIED_BUTTERFLY && !boundary_vertices()) return false;
+    if (need_driver_) return detail::fill_from_driver(st, Scheme, fl);
+    return finite();
+  }
+
+  bool vertices() {
+    std::vector<halfedge_descriptor> spokes;
+    std::vector<vertex_descriptor> ring;
+    std::vector<double> xyz, ec;
+    halfedge_descriptor in;
+    bool boundary = false;
+    std::vector<uint32_t> irregular;
+    // Butterfly: which vertices are interior with valence != 6 (the singular rings).
+    std::vector<char> singular;
+    if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+      singular.assign(st_->level.verts.size(), 0);
+      for (vertex_descriptor v : st_->level.verts) {
+        star(v, spokes, ring, in, boundary);
+        singular[id(v)] = (!spokes.empty() && !boundary && ring.size() != 6) ? 1 : 0;
+      }
+    }
+    for (vertex_descriptor v : st_->level.verts) {
+      const uint32_t vi = id(v);
+      star(v, spokes, ring, in, boundary);
+      if (spokes.empty()) {  // isolated: carried through
+        st_->vertex_pt[vi] = pos(v);
+        continue;
+      }
+      const std::size_t n = ring.size();
+      detail::P3 vp = detail::nan3();
+      const bool ear = boundary && spokes.size() == 1;  // one face: the driver gives it no form
+      if (!ear) {
+        xyz.clear();
+        for (auto u : ring) {
+          detail::P3 p = pos(u);
+          xyz.insert(xyz.end(), p.begin(), p.end());
+        }
+        ec.assign(3 * n, NAN);
+        const detail::P3 pv = pos(v);
+        nls_status s;
+        if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          irregular.assign(n, 0);
+          for (std::size_t j = 0; j < n; ++j) irregular[j] = singular[id(ring[j])] ? 1u : 0u;
+          s = nls_mobius_butterfly_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
+        } else {
+          s = nls_mobius_loop_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+        }
+        if (s == NLS_STATUS_OK) {
+          for (std::size_t j = 0; j < spokes.size(); ++j)
+            cand_[(static_cast<uint64_t>(vi) << 32) | id(ring[j])] = {ec[3 * j], ec[3 * j + 1], ec[3 * j + 2]};
+        } else {
+          vp = detail::nan3();
+        }
+      }
+      if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {  // interpolating
+        st_->vertex_pt[vi] = pos(v);
+        continue;
+      }
+      if (!boundary) {
+        if (!detail::finite3(vp)) {
+          if (!fallback(vi)) return false;
+          double a = 0.375;
+          if (n != 6) {
+            const double c = 0.375 + 0.25 * std::cos(2.0 * 3.14159265358979323846 / static_cast<double>(n));
+            a = 0.625 - c * c;
+          }
+          detail::P3 sum{0, 0, 0};
+          for (auto u : ring) sum = detail::add(sum, pos(u));
+          vp = detail::add(detail::scale(pos(v), 1.0 - a), detail::scale(sum, a / static_cast<double>(n)));
+        }
+        st_->vertex_pt[vi] = vp;
+      }
+    }
+    return true;
+  }
+
+  detail::P3 cand(uint32_t v, uint32_t u) const {
+    auto it = cand_.find((static_cast<uint64_t>(v) << 32) | u);
+    return it == cand_.end() ? detail::nan3() : it->second;
+  }
+
+  bool edges() {
+    const std::size_t nv = st_->level.verts.size();
+    std::size_t rank = 0;  // output index for strict-mode reports only (edge iteration order)
+    for (auto e : CGAL::edges(pm())) {
+      halfedge_descriptor h = halfedge(e, pm());
+      const std::size_t k = nv + rank++;
+      if (is_border(e, pm())) {
+        if (is_border(h, pm())) h = opposite(h, pm());
+        halfedge_descriptor hb = opposite(h, pm());
+        const detail::P3 p0 = pos(target(next(hb, pm()), pm())), a = pos(source(h, pm())), b = pos(target(h, pm())),
+                         p3 = pos(source(prev(hb, pm()), pm()));
+        detail::P3 q;
+        if (nls_f4(p0.data(), a.data(), b.data(), p3.data(), q.data()) != NLS_STATUS_OK) {
+          if (!fallback(k)) return false;
+          q = detail::scale(detail::add(a, b), 0.5);
+        }
+        st_->edge_pt[detail::edge_key(id(source(h, pm())), id(target(h, pm())))] = q;
+        continue;
+      }
+      if (id(source(h, pm())) > id(target(h, pm()))) h = opposite(h, pm());
+      halfedge_descriptor t = opposite(h, pm());
+      const uint32_t ia = id(source(h, pm())), ib = id(target(h, pm()));
+      const detail::P3 a = pos(source(h, pm())), b = pos(target(h, pm()));
+      const detail::P3 ca = cand(ia, ib), cb = cand(ib, ia);
+      const detail::P3 hint = pos(target(next(h, pm()), pm()));
+      detail::P3 q = detail::nan3();
+      bool have = false;
+      if (detail::finite3(ca) && detail::finite3(cb))
+        have = nls_f4_hinted(a.data(), ca.data(), cb.data(), b.data(), hint.data(), q.data()) == NLS_STATUS_OK;
+      else if (detail::finite3(ca))
+        q = ca, have = true;
+      else if (detail::finite3(cb))
+        q = cb, have = true;
+      if (!(have && detail::finite3(q))) {
+        if (!fallback(k)) return false;
+        const detail::P3 c = pos(target(next(h, pm()), pm())), d = pos(target(next(t, pm()), pm()));
+        q = detail::add(detail::scale(detail::add(a, b), 0.375), detail::scale(detail::add(c, d), 0.125));
+      }
+      st_->edge_pt[detail::edge_key(ia, ib)] = q;
+    }
+    return true;
+  }
+
+  bool boundary_vertices() {
+    std::vector<halfedge_descriptor> spokes;
+    std::vector<vertex_descriptor> ring;
+    halfedge_descriptor in;
+    bool boundary = false;
+    for (vertex_descriptor v : st_->level.verts) {
+      star(v, spokes, ring, in, boundary);
+      if (spokes.empty() || !boundary) continue;
+      const uint32_t vi = id(v);
+      const halfedge_descriptor out_h = spokes.front();
+      const detail::P3 b0 = pos(target(out_h, pm())), b1 = pos(source(in, pm()));
+      const detail::P3 e_out = st_->edge_pt.at(detail::edge_key(vi, id(target(out_h, pm()))));
+      const detail::P3 e_in = st_->edge_pt.at(detail::edge_key(vi, id(source(in, pm()))));
+      detail::P3 q;
+      if (nls_f4(b1.data(), e_in.data(), e_out.data(), b0.data(), q.data()) != NLS_STATUS_OK) {
+        if (!fallback(vi)) return false;
+        q = detail::add(detail::scale(pos(v), 0.75), detail::scale(detail::add(b0, b1), 0.125));
+      }
+      st_->vertex_pt[vi] = q;
+    }
+    return true;
+  }
+
+  bool finite() {
+    for (std::size_t i = 0; i < st_->vertex_pt.size(); ++i)
+      if (!detail::finite3(st_->vertex_pt[i])) return st_->fail(NLS_STATUS_NUMERICAL_FAILURE, static_cast<uint32_t>(i));
+    for (const auto& e : st_->edge_pt)
+      if (!detail::finite3(e.second)) return st_->fail(NLS_STATUS_NUMERICAL_FAILURE, NLS_NO_ELEMENT);
+    return true;
+  }
+};
+
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_loop_mask_3 = Star_mask_3<PM, NLS_SCHEME_LOOP, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_butterfly_mask_3 = Star_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_butterfly_driver_mask_3 = Driver_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_catmull_clark_mask_3 = Driver_mask_3<PM, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Mobius_kobbelt_mask_3 = Driver_mask_3<PM, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Linear_butterfly_mask_3 = Driver_mask_3<PM, NLS_SCHEME_MODIFIED_BUTTERFLY, 0, VPM>;
+template <class PM, class VPM = typename boost::property_map<PM, CGAL::vertex_point_t>::type>
+using Linear_kobbelt_mask_3 = Driver_mask_3<PM, NLS_SCHEME_KOBBELT, 0, VPM>;
+
+// ---------------------------------------------------------------------------------------
+// Free functions.
+// ---------------------------------------------------------------------------------------
+
+namespace detail {
+
+template <class PM, class NP>
+unsigned int iterations(const NP& np) {
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::number_of_iterations), 1);
+}
+
+/// The bulk path: flat copy -> nls_mesh_subdivide_levels -> the mesh rebuilt (old vertices
+/// first, in order; the mesh's internal point map receives the positions).
+template <class PM, class NP>
+Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts) {
+  typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
+  Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                               get_property_map(CGAL::vertex_point, pm));
+  Report r;
+  r.path = "bulk";
+  Level<PM> lv;
+  lv.build(pm, vpm, SIZE_MAX);
+  const uint32_t f = flags | (opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+  uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
+  nls_status s = NLS_STATUS_OK;
+  if (opts.strict) {
+    s = nlsubdiv::flat::validate(scheme, f, lv.flat, el);
+    if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(lv.flat, el);
+  }
+  FlatMesh out;
+  if (s == NLS_STATUS_OK) s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks);
+  if (s != NLS_STATUS_OK) {
+    r.status = s;
+    r.element = el;
+    r.level = 1;
+    return r;
+  }
+  r.fallbacks = fallbacks;
+  typedef typename boost::property_traits<Vpm>::value_type Point;
+  typedef typename boost::graph_traits<PM>::vertex_descriptor vertex_descriptor;
+  PM backup(pm);
+  CGAL::clear(pm);
+  auto ppm = get(CGAL::vertex_point, pm);
+  std::vector<vertex_descriptor> vs;
+  vs.reserve(out.vertex_count());
+  for (std::size_t i = 0; i < out.vertex_count(); ++i) {
+    vertex_descriptor v = add_vertex(pm);
+    put(ppm, v, Point(out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]));
+    vs.push_back(v);
+  }
+  std::vector<vertex_descriptor> corners;
+  for (std::size_t fi = 0; fi + 1 < out.offsets.size(); ++fi) {
+    corners.clear();
+    for (uint32_t c = out.offsets[fi]; c < out.offsets[fi + 1]; ++c) corners.push_back(vs[out.indices[c]]);
+    if (CGAL::Euler::add_face(corners, pm) == boost::graph_traits<PM>::null_face()) {
+      pm = backup;
+      r.status = NLS_STATUS_NON_MANIFOLD_EDGE;  // cannot happen for the driver's output
+      r.level = iterations<PM>(np);
+      return r;
+    }
+  }
+  return r;
+}
+
+/// `levels` host steps with a mask of type Mask built per level; each level evaluated before
+/// the host touches the mesh; restore from a copy if a later level fails.
+template <class Mask, bool Quad, class PM, class NP>
+Report with_mask(PM& pm, const NP& np, Options opts) {
+  typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
+  Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                               get_property_map(CGAL::vertex_point, pm));
+  const unsigned int levels = iterations<PM>(np);
+  Report total;
+  // CGAL's hosts assert CGAL::is_valid_polygon_mesh after each step (it refuses isolated
+  // vertices, which the kernel carries through): such meshes take the bulk path, which
+  // gives the driver's result, so the answer does not depend on the path.
+  if (!CGAL::is_valid_polygon_mesh(pm)) return bulk(pm, Mask::scheme, Mask::flags, np, opts);
+  PM backup(pm);
+  std::size_t nv_prev = SIZE_MAX;
+  for (unsigned int k = 0; k < levels; ++k) {
+    Mask mask(&pm, vpm, opts);
+    mask.set_previous_vertex_count(nv_prev);
+    const std::size_t nv = num_vertices(pm);
+    const bool ok = mask.evaluate();
+    Report r = mask.report();
+    total.fallbacks += r.fallbacks;
+    total.path = r.path;
+    if (!ok) {
+      total.status = r.status;
+      total.element = r.element;
+      total.level = k + 1;
+      if (k > 0) pm = backup;
+      return total;
+    }
+    try {
+      if constexpr (Quad)
+        CGAL::Subdivision_method_3::PQQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
+      else
+        CGAL::Subdivision_method_3::PTQ(pm, mask, CGAL::parameters::vertex_point_map(vpm).number_of_iterations(1));
+    } catch (const std::exception&) {  // a CGAL precondition/postcondition of the host
+      pm = backup;
+      total.status = NLS_STATUS_INVALID_ARGUMENT;
+      total.level = k + 1;
+      return total;
+    }
+    nv_prev = nv;
+  }
+  return total;
+}
+
+}  // namespace detail
+
+#define NLSUBDIV_CGAL_FN(name, body)                                                                            \
+  template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>              \
+  Report name(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) { \
+    return body;                                                                                                \
+  }
+
+/// Möbius Loop: PTQ host + Mobius_loop_mask_3 (star rules).
+NLSUBDIV_CGAL_FN(mobius_loop_subdivision, (detail::with_mask<Mobius_loop_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
+/// Möbius Modified Butterfly: PTQ host + Mobius_butterfly_mask_3 (star rules).
+NLSUBDIV_CGAL_FN(mobius_butterfly_subdivision, (detail::with_mask<Mobius_butterfly_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
+/// Möbius Catmull–Clark: PQQ host + Mobius_catmull_clark_mask_3 (driver mask).
+NLSUBDIV_CGAL_FN(mobius_catmull_clark_subdivision, (detail::with_mask<Mobius_catmull_clark_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
+/// Möbius Kobbelt: PQQ host + Mobius_kobbelt_mask_3 (driver mask).
+NLSUBDIV_CGAL_FN(mobius_kobbelt_subdivision, (detail::with_mask<Mobius_kobbelt_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
+/// The other Möbius schemes: bulk path (their connectivity is not a CGAL host's).
+NLSUBDIV_CGAL_FN(mobius_doo_sabin_subdivision, (detail::bulk(pm, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS, np, opts)))
+NLSUBDIV_CGAL_FN(mobius_simplest_subdivision, (detail::bulk(pm, NLS_SCHEME_SIMPLEST, NLS_SUBDIVIDE_MOBIUS, np, opts)))
+NLSUBDIV_CGAL_FN(mobius_dual_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL, NLS_SUBDIVIDE_MOBIUS, np, opts)))
+NLSUBDIV_CGAL_FN(mobius_vertex_insertion_subdivision, (detail::bulk(pm, NLS_SCHEME_VERTEX_INSERTION, NLS_SUBDIVIDE_MOBIUS, np, opts)))
+NLSUBDIV_CGAL_FN(mobius_dual_truncation_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL_TRUNCATION, NLS_SUBDIVIDE_MOBIUS, np, opts)))
+/// The linear schemes (bulk path; the driver's boundary rules, peer-rules.md).
+NLSUBDIV_CGAL_FN(loop_subdivision, (detail::bulk(pm, NLS_SCHEME_LOOP, 0, np, opts)))
+NLSUBDIV_CGAL_FN(catmull_clark_subdivision, (detail::bulk(pm, NLS_SCHEME_CATMULL_CLARK, 0, np, opts)))
+NLSUBDIV_CGAL_FN(butterfly_subdivision, (detail::bulk(pm, NLS_SCHEME_MODIFIED_BUTTERFLY, 0, np, opts)))
+NLSUBDIV_CGAL_FN(kobbelt_subdivision, (detail::bulk(pm, NLS_SCHEME_KOBBELT, 0, np, opts)))
+NLSUBDIV_CGAL_FN(doo_sabin_subdivision, (detail::bulk(pm, NLS_SCHEME_DOO_SABIN, 0, np, opts)))
+NLSUBDIV_CGAL_FN(simplest_subdivision, (detail::bulk(pm, NLS_SCHEME_SIMPLEST, 0, np, opts)))
+NLSUBDIV_CGAL_FN(dual_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL, 0, np, opts)))
+NLSUBDIV_CGAL_FN(vertex_insertion_subdivision, (detail::bulk(pm, NLS_SCHEME_VERTEX_INSERTION, 0, np, opts)))
+NLSUBDIV_CGAL_FN(dual_truncation_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL_TRUNCATION, 0, np, opts)))
+#undef NLSUBDIV_CGAL_FN
+
+/// Any scheme (NLS_SCHEME_*) with flags (NLS_SUBDIVIDE_MOBIUS or 0) through the bulk path.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report subdivide(PolygonMesh& pm, uint32_t scheme, uint32_t flags, const NamedParameters& np = CGAL::parameters::default_values(),
+                 Options opts = {}) {
+  return detail::bulk(pm, scheme, flags, np, opts);
+}
+
+}  // namespace cgal
+}  // namespace nlsubdiv
+
+#endif  // NLSUBDIV_CGAL_H

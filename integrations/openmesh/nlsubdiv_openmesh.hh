@@ -1,0 +1,786 @@
+// nlsubdiv_openmesh.hh: nlsubdiv's subdivision schemes as OpenMesh uniform subdividers.
+//
+// Header-only, C++17, over the C ABI of include/nlsubdiv.h (link libnlsubdiv and
+// OpenMeshCore). Used exactly like OpenMesh's own LoopT:
+//
+//   #include <nlsubdiv/openmesh/nlsubdiv_openmesh.hh>
+//   nlsubdiv::openmesh::MobiusLoopT<Mesh> sd;
+//   sd.attach(mesh); if (!sd(3)) std::puts(sd.message()); sd.detach();
+//   // or in one call: sd(mesh, 3);
+//
+// Two kinds of classes (docs/integrations.md):
+// * tier 1, MobiusLoopT, MobiusButterflyT and MobiusCatmullClarkT: the rules are evaluated
+//   at each vertex star with OpenMesh's own connectivity (circulators over the half-edges),
+//   through the tier-1 exports nls_mobius_loop_star / nls_mobius_butterfly_star /
+//   nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and nls_face_point; the new connectivity is written in the driver's layout, so the result
+//   equals nls_mesh_subdivide on the same mesh (bit for bit where the stars start at the
+//   driver's spokes, which this header arranges);
+// * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
+//   LinearLoopT, ...): the mesh is copied to flat arrays, subdivided with
+//   nls_mesh_subdivide_levels and the connectivity rebuilt.
+//
+// In both, the mesh is validated (nls_mesh_subdivide_size: manifold, oriented, finite, face
+// types of the scheme) before anything is computed, and on any error the mesh is left exactly
+// as it was: operator() returns false and status(), element() and message() say why. Nothing
+// aborts the host and nothing throws (except std::bad_alloc from the host's own containers).
+//
+// Connectivity: the old vertices keep their handles (and their properties); edges and faces
+// are rebuilt (OpenMesh's own subdividers split them instead), so edge, half-edge and face
+// properties do not survive a level. Vertices of the mesh must not be marked deleted (call
+// garbage_collection() first). Use a mesh with double points (OpenMesh::DefaultTraitsDouble):
+// float points round every level.
+//
+// OpenMesh 9 pitfalls avoided (aesthetics-anchors.md §3.7): there is no (mesh&) constructor
+// (the base one calls the pure prepare() before the derived object exists), and the
+// destructor detaches first (the base destructor would call the pure cleanup()).
+//
+// Licence: this header is part of nlsubdiv (MIT OR Apache-2.0); it contains no OpenMesh code.
+#ifndef NLSUBDIV_OPENMESH_HH
+#define NLSUBDIV_OPENMESH_HH
+
+#include <OpenMesh/Tools/Subdivider/Uniform/SubdividerT.hh>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "nlsubdiv.h"
+#include "../common/nlsubdiv_flat.hh"
+
+namespace nlsubdiv {
+namespace openmesh {
+
+using FlatMesh = nlsubdiv::flat::FlatMesh;
+
+namespace detail {
+
+using P3 = std::array<double, 3>;
+
+inline bool finite3(const P3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+inline P3 nan3() { return {NAN, NAN, NAN}; }
+inline P3 add(const P3& a, const P3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline P3 scale(const P3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline P3 lin2(double wa, const P3& a, double wb, const P3& b) { return add(scale(a, wa), scale(b, wb)); }
+inline P3 sum(const std::vector<P3>& v) {
+  P3 s{0.0, 0.0, 0.0};
+  for (const P3& p : v) s = add(s, p);
+  return s;
+}
+inline P3 centroid(const std::vector<P3>& v) { return scale(sum(v), 1.0 / static_cast<double>(v.size())); }
+inline P3 midpoint(const P3& a, const P3& b) { return scale(add(a, b), 0.5); }
+/// The crease rule 3/4 v + 1/8 (b0 + b1), the driver's boundary fallback.
+inline P3 crease(const P3& v, const P3& b0, const P3& b1) { return lin2(0.75, v, 0.125, add(b0, b1)); }
+
+template <class Mesh>
+P3 point(const Mesh& m, typename Mesh::VertexHandle v) {
+  const auto& p = m.point(v);
+  return {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])};
+}
+
+/// The mesh as flat arrays: vertices by index, faces by index, each face from the start of
+/// its half-edge (`from_vertex(halfedge_handle(f))`). Fails (INVALID_ARGUMENT) when the mesh
+/// holds deleted elements.
+template <class Mesh>
+nls_status export_flat(const Mesh& m, FlatMesh& out) {
+  if (m.has_vertex_status() || m.has_face_status()) {
+    for (auto v : m.all_vertices())
+      if (m.has_vertex_status() && m.status(v).deleted()) return NLS_STATUS_INVALID_ARGUMENT;
+    for (auto f : m.all_faces())
+      if (m.has_face_status() && m.status(f).deleted()) return NLS_STATUS_INVALID_ARGUMENT;
+  }
+  out.positions.clear();
+  out.offsets.assign(1, 0);
+  out.indices.clear();
+  out.positions.reserve(3 * m.n_vertices());
+  for (auto v : m.all_vertices()) {
+    P3 p = point(m, v);
+    out.positions.insert(out.positions.end(), p.begin(), p.end());
+  }
+  out.indices.reserve(m.n_halfedges());
+  for (auto f : m.all_faces()) {
+    auto h0 = m.halfedge_handle(f), h = h0;
+    std::size_t guard = 0;
+    do {
+      out.indices.push_back(static_cast<uint32_t>(m.from_vertex_handle(h).idx()));
+      h = m.next_halfedge_handle(h);
+    } while (h != h0 && ++guard < m.n_halfedges());
+    out.offsets.push_back(static_cast<uint32_t>(out.indices.size()));
+  }
+  return NLS_STATUS_OK;
+}
+
+using nlsubdiv::flat::validate;
+
+using nlsubdiv::flat::strict_check;
+
+/// Replaces the connectivity of `m` by `flat` (the driver's output layout). The first
+/// `m.n_vertices()` vertices of `flat` are the old vertices (same handles, new positions);
+/// the others are appended. `flat` is a valid manifold mesh (the driver's output), so
+/// add_face cannot fail; returns false if it does anyway (then the mesh is incomplete: the
+/// callers restore their backup).
+template <class Mesh>
+bool rebuild(Mesh& m, const FlatMesh& flat) {
+  using Point = typename Mesh::Point;
+  using Scalar = typename Point::value_type;
+  const std::size_t nv_old = m.n_vertices();
+  if (flat.vertex_count() < nv_old) return false;
+  m.request_vertex_status();
+  m.request_edge_status();
+  m.request_halfedge_status();
+  m.request_face_status();
+  for (auto f : m.faces()) m.delete_face(f, false);
+  m.garbage_collection();
+  bool ok = m.n_vertices() == nv_old && m.n_faces() == 0;
+  auto pt = [&](std::size_t i) {
+    return Point(static_cast<Scalar>(flat.positions[3 * i]), static_cast<Scalar>(flat.positions[3 * i + 1]),
+                 static_cast<Scalar>(flat.positions[3 * i + 2]));
+  };
+  for (std::size_t i = 0; i < nv_old && ok; ++i) m.set_point(m.vertex_handle(static_cast<int>(i)), pt(i));
+  for (std::size_t i = nv_old; i < flat.vertex_count() && ok; ++i) m.add_vertex(pt(i));
+  std::vector<typename Mesh::VertexHandle> corners;
+  for (std::size_t f = 0; f + 1 < flat.offsets.size() && ok; ++f) {
+    corners.clear();
+    for (uint32_t c = flat.offsets[f]; c < flat.offsets[f + 1]; ++c)
+      corners.push_back(m.vertex_handle(static_cast<int>(flat.indices[c])));
+    // add_face makes the face's half-edge the one into corners[0]: rotate by one so the
+    // face starts (from_vertex of its half-edge) at corners[0], the driver's first corner.
+    auto fh = m.add_face(corners);
+    if (!fh.is_valid()) {
+      ok = false;
+      break;
+    }
+    auto h = m.halfedge_handle(fh);
+    std::size_t guard = 0;
+    while (m.from_vertex_handle(h) != corners[0] && ++guard <= corners.size()) h = m.next_halfedge_handle(h);
+    m.set_halfedge_handle(fh, h);
+  }
+  m.release_face_status();
+  m.release_halfedge_status();
+  m.release_edge_status();
+  m.release_vertex_status();
+  return ok;
+}
+
+}  // namespace detail
+
+/// What the last call did: status (NLS_STATUS_OK on success), the element the status names
+/// (a face, vertex or output vertex of the level being computed, or NLS_NO_ELEMENT), the
+/// level (1-based) at which it arose, and the fallback count (elements that took the
+/// documented linear rule of the Möbius schemes; with set_strict(true) a fallback is the error
+/// NLS_STATUS_FALLBACK_IN_STRICT_MODE instead).
+struct Outcome {
+  nls_status status = NLS_STATUS_OK;
+  uint32_t element = NLS_NO_ELEMENT;
+  uint32_t level = 0;
+  uint32_t fallbacks = 0;
+};
+
+/// Common base of the nlsubdiv subdividers: the status accessors and the transactional
+/// level loop. `subdivide` validates, runs `levels` levels through `level_()` (tier 1) or
+/// one bulk call, and restores the mesh on failure.
+template <typename MeshType, typename RealType = double>
+class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshType, RealType> {
+ public:
+  typedef OpenMesh::Subdivider::Uniform::SubdividerT<MeshType, RealType> parent_t;
+  typedef MeshType mesh_t;
+  typedef RealType real_t;
+
+  // No (mesh_t&) constructor: the base one would call prepare() before this object exists.
+  SubdividerBaseT() = default;
+
+  /// Strict mode: fallbacks become NLS_STATUS_FALLBACK_IN_STRICT_MODE, and the input is also
+  /// refused for what the kernel accepts by policy but is most likely a mistake
+  /// (detail::strict_check: unreferenced vertices, duplicated vertices, zero-area faces). The
+  /// mesh is then left unchanged.
+  void set_strict(bool strict) { strict_ = strict; }
+  bool strict() const { return strict_; }
+
+  nls_status status() const { return out_.status; }
+  uint32_t element() const { return out_.element; }
+  uint32_t level() const { return out_.level; }
+  uint32_t fallbacks() const { return out_.fallbacks; }
+  const Outcome& outcome() const { return out_; }
+  /// "ok", or the status text with the element and level, e.g.
+  /// "level 1: the scheme does not accept this face type (element 3)".
+  const char* message() const { return msg_.c_str(); }
+
+ protected:
+  bool prepare(mesh_t&) override { return true; }  // no properties: per-level arrays only
+  bool cleanup(mesh_t&) override { return true; }
+
+  bool fail(nls_status s, uint32_t element, uint32_t level) {
+    out_.status = s;
+    out_.element = element;
+    out_.level = level;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "level %u: ", level);
+    msg_ = std::string(buf) + nls_status_str(s);
+    if (element != NLS_NO_ELEMENT) {
+      std::snprintf(buf, sizeof buf, " (element %u)", element);
+      msg_ += buf;
+    }
+    return false;
+  }
+  void reset() {
+    out_ = Outcome();
+    msg_ = "ok";
+  }
+
+  Outcome out_;
+  std::string msg_ = "ok";
+  bool strict_ = false;
+};
+
+// ---------------------------------------------------------------------------------------
+// Bulk path: every scheme, through nls_mesh_subdivide_levels.
+// ---------------------------------------------------------------------------------------
+
+/// `levels` levels of `Scheme` (NLS_SCHEME_*) with `Flags` (NLS_SUBDIVIDE_MOBIUS or 0) in one
+/// nls_mesh_subdivide_levels call on a flat copy of the mesh, then the connectivity is
+/// rebuilt in the driver's layout: the result is the driver's, bit for bit (modulo the point
+/// type). With update_points = false the old vertices keep their positions at every level.
+template <typename MeshType, uint32_t Scheme, uint32_t Flags, typename RealType = double>
+class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
+ public:
+  typedef SubdividerBaseT<MeshType, RealType> base_t;
+  typedef MeshType mesh_t;
+  BulkSubdividerT() = default;
+  ~BulkSubdividerT() override { this->detach(); }
+
+  const char* name() const override {
+    static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
+                                        "Simplest", "Dual", "Vertex insertion", "Dual truncation"};
+    static const std::string n = std::string((Flags & NLS_SUBDIVIDE_MOBIUS) ? "Uniform nlsubdiv Moebius " : "Uniform nlsubdiv ") +
+                                 (Scheme < 9 ? names[Scheme] : "?");
+    return n.c_str();
+  }
+
+ protected:
+  bool subdivide(mesh_t& m, size_t n, const bool update_points = true) override {
+    this->reset();
+    if (n > NLS_MAX_LEVELS) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+    FlatMesh in;
+    nls_status s = detail::export_flat(m, in);
+    if (s != NLS_STATUS_OK) return this->fail(s, NLS_NO_ELEMENT, 0);
+    const uint32_t flags = Flags | (this->strict_ ? NLS_SUBDIVIDE_STRICT : 0u);
+    const std::size_t nv_old = in.vertex_count();
+    if (this->strict_) {
+      uint32_t el = NLS_NO_ELEMENT;
+      // The kernel's own validation first (its statuses win), then the strict input checks.
+      s = detail::validate(Scheme, flags, in, el);
+      if (s == NLS_STATUS_OK) s = detail::strict_check(in, el);
+      if (s != NLS_STATUS_OK) return this->fail(s, el, 1);
+    }
+    FlatMesh cur = in, next;
+    // update_points = false: one level at a time, old vertices put back after each.
+    const uint32_t per_call = update_points ? static_cast<uint32_t>(n) : 1u;
+    const std::size_t calls = n == 0 ? 1 : (update_points ? 1 : n);
+    for (std::size_t c = 0; c < calls; ++c) {
+      if (!run(cur, per_call, flags, next, static_cast<uint32_t>(c))) return false;
+      if (!update_points) {
+        const std::size_t keep = cur.vertex_count();
+        std::copy(cur.positions.begin(), cur.positions.begin() + static_cast<std::ptrdiff_t>(3 * keep), next.positions.begin());
+      }
+      std::swap(cur, next);
+    }
+    if (cur.vertex_count() < nv_old) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+    mesh_t backup = m;
+    if (!detail::rebuild(m, cur)) {
+      m = backup;
+      return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, static_cast<uint32_t>(n));
+    }
+    return true;
+  }
+
+ private:
+  bool run(const FlatMesh& in, uint32_t levels, uint32_t flags, FlatMesh& out, uint32_t done) {
+    uint32_t element = NLS_NO_ELEMENT, fallbacks = 0;
+    nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks);
+    if (s != NLS_STATUS_OK) return this->fail(s, element, done + 1);
+    this->out_.fallbacks += fallbacks;
+    return true;
+  }
+};
+
+/// Möbius Modified Butterfly through the driver (the tier-1 class MobiusButterflyT is below).
+template <typename M> using MobiusButterflyBulkT = BulkSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS>;
+/// Möbius Kobbelt (interpolating quad scheme; bulk path: its virtual points need a 2-ring).
+template <typename M> using MobiusKobbeltT = BulkSubdividerT<M, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS>;
+/// Möbius Doo–Sabin (bulk path; the mesh must be a PolyMesh).
+template <typename M> using MobiusDooSabinT = BulkSubdividerT<M, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS>;
+/// Bulk Möbius Loop and Catmull–Clark (the same results as the tier-1 classes below).
+template <typename M> using MobiusLoopBulkT = BulkSubdividerT<M, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS>;
+template <typename M> using MobiusCatmullClarkBulkT = BulkSubdividerT<M, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS>;
+/// The linear schemes (equal to OpenMesh's LoopT, ModifiedButterflyT, CatmullClarkT on the
+/// meshes they accept; peer-rules.md gives the boundary rules).
+template <typename M> using LinearLoopT = BulkSubdividerT<M, NLS_SCHEME_LOOP, 0>;
+template <typename M> using LinearCatmullClarkT = BulkSubdividerT<M, NLS_SCHEME_CATMULL_CLARK, 0>;
+template <typename M> using LinearButterflyT = BulkSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY, 0>;
+template <typename M> using LinearKobbeltT = BulkSubdividerT<M, NLS_SCHEME_KOBBELT, 0>;
+template <typename M> using LinearDooSabinT = BulkSubdividerT<M, NLS_SCHEME_DOO_SABIN, 0>;
+
+// ---------------------------------------------------------------------------------------
+// Tier 1: Möbius Loop and Catmull–Clark from the star rules, with OpenMesh's connectivity.
+// ---------------------------------------------------------------------------------------
+
+/// Shared machinery of the tier-1 classes: one level per call of `level()`, the driver's
+/// spoke starts and half-edge orientation, the boundary curve rules and the fallbacks.
+template <typename MeshType, uint32_t Scheme, typename RealType = double>
+class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
+ public:
+  typedef SubdividerBaseT<MeshType, RealType> base_t;
+  typedef MeshType mesh_t;
+  typedef typename MeshType::VertexHandle VH;
+  typedef typename MeshType::HalfedgeHandle HH;
+  typedef typename MeshType::FaceHandle FH;
+  using P3 = detail::P3;
+
+  StarSubdividerT() = default;
+  ~StarSubdividerT() override { this->detach(); }
+
+  const char* name() const override {
+    return Scheme == NLS_SCHEME_LOOP                ? "Uniform nlsubdiv Moebius Loop (star rules)"
+           : Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY ? "Uniform nlsubdiv Moebius Modified Butterfly (star rules)"
+                                                     : "Uniform nlsubdiv Moebius Catmull-Clark (star rules)";
+  }
+
+ protected:
+  bool subdivide(mesh_t& m, size_t n, const bool update_points = true) override {
+    this->reset();
+    if (n == 0) return true;
+    mesh_t backup = m;  // levels after the first can still fail (strict mode, overflow)
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!level(m, update_points, static_cast<uint32_t>(k + 1))) {
+        if (k > 0) m = backup;
+        return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  // Per level: the flat copy, the position of every half-edge's corner, candidates.
+  FlatMesh flat_;
+  std::vector<uint32_t> corner_of_;  // half-edge idx -> corner index in flat_ (faces only)
+  std::vector<P3> pos_;              // current positions by vertex idx
+  std::vector<P3> edge_c_, face_c_;  // per half-edge candidates (NaN: none)
+  std::vector<P3> new_;              // output positions in the driver's order
+  std::vector<uint32_t> edge_rank_;  // OpenMesh edge idx -> driver edge index
+  uint32_t level_ = 0;
+  bool failed_ = false;
+  bool need_driver_ = false;  // Butterfly: an element needs the linear fallback (2-ring rule)
+
+  P3 pos(VH v) const { return pos_[static_cast<std::size_t>(v.idx())]; }
+
+  /// Counts a fallback at output vertex `k`, or fails in strict mode.
+  bool fallback(std::size_t k) {
+    if (this->strict_) {
+      failed_ = true;
+      this->fail(NLS_STATUS_FALLBACK_IN_STRICT_MODE, static_cast<uint32_t>(k), level_);
+      return false;
+    }
+    ++this->out_.fallbacks;
+    return true;
+  }
+
+  /// Butterfly: a fallback is an error in strict mode, else the level comes from the driver.
+  bool driver_fallback(std::size_t k) {
+    if (this->strict_) {
+      failed_ = true;
+      this->fail(NLS_STATUS_FALLBACK_IN_STRICT_MODE, static_cast<uint32_t>(k), level_);
+      return false;
+    }
+    need_driver_ = true;
+    return true;
+  }
+
+  /// The driver's star of v: spokes counter-clockwise from the outgoing half-edge with the
+  /// lowest corner index (interior) or from the face-side outgoing boundary half-edge
+  /// (boundary; the last spoke is then the incoming boundary half-edge `in`, reported with
+  /// an invalid half-edge in `spokes`).
+  void star(const mesh_t& m, VH v, std::vector<HH>& spokes, std::vector<VH>& ring, HH& in) const {
+    spokes.clear();
+    ring.clear();
+    in = HH();
+    HH h0;
+    uint32_t best = UINT32_MAX;
+    for (auto h : m.voh_range(v)) {
+      if (m.is_boundary(h)) continue;
+      if (m.is_boundary(m.opposite_halfedge_handle(h))) {
+        h0 = h;
+        best = 0;
+        break;
+      }
+      uint32_t c = corner_of_[static_cast<std::size_t>(h.idx())];
+      if (c < best) {
+        best = c;
+        h0 = h;
+      }
+    }
+    if (!h0.is_valid()) return;
+    HH h = h0;
+    std::size_t guard = 0;
+    do {
+      spokes.push_back(h);
+      ring.push_back(m.to_vertex_handle(h));
+      HH p = m.prev_halfedge_handle(h);
+      HH o = m.opposite_halfedge_handle(p);
+      if (m.is_boundary(o)) {  // closing spoke of a boundary star: p = b1 -> v
+        in = p;
+        spokes.push_back(HH());
+        ring.push_back(m.from_vertex_handle(p));
+        break;
+      }
+      h = o;
+    } while (h != h0 && ++guard < 4096);
+  }
+
+  std::size_t face_count_at(const mesh_t& m, VH v) const {
+    std::size_t k = 0;
+    for (auto f : m.vf_range(v)) {
+      (void)f;
+      ++k;
+    }
+    return k;
+  }
+  bool is_ear(const mesh_t& m, VH v) const { return m.is_boundary(v) && face_count_at(m, v) == 1; }
+
+  std::vector<P3> face_points(FH f) const {
+    std::vector<P3> pts;
+    const uint32_t a = flat_.offsets[static_cast<std::size_t>(f.idx())], b = flat_.offsets[static_cast<std::size_t>(f.idx()) + 1];
+    for (uint32_t c = a; c < b; ++c) pts.push_back(pos_[flat_.indices[c]]);
+    return pts;
+  }
+  /// The half-edge of face f starting at corner i (flat order).
+  HH corner_halfedge(const mesh_t& m, FH f, std::size_t i) const {
+    HH h = m.halfedge_handle(f);
+    for (std::size_t k = 0; k < i; ++k) h = m.next_halfedge_handle(h);
+    return h;
+  }
+
+  // ---- one level ----
+  bool level(mesh_t& m, bool update_points, uint32_t lvl) {
+    level_ = lvl;
+    failed_ = false;
+    nls_status s = detail::export_flat(m, flat_);
+    if (s != NLS_STATUS_OK) return this->fail(s, NLS_NO_ELEMENT, lvl);
+    uint32_t element = NLS_NO_ELEMENT;
+    const uint32_t flags = NLS_SUBDIVIDE_MOBIUS | (this->strict_ ? NLS_SUBDIVIDE_STRICT : 0u);
+    s = detail::validate(Scheme, flags, flat_, element);
+    if (s == NLS_STATUS_OK && this->strict_ && lvl == 1) s = detail::strict_check(flat_, element);
+    if (s != NLS_STATUS_OK) return this->fail(s, element, lvl);
+
+    const std::size_t nv = m.n_vertices(), ne = m.n_edges(), nf = m.n_faces(), nh = m.n_halfedges();
+    pos_.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) pos_[i] = detail::point(m, m.vertex_handle(static_cast<int>(i)));
+    corner_of_.assign(nh, UINT32_MAX);
+    for (auto f : m.faces()) {
+      HH h = m.halfedge_handle(f);
+      for (uint32_t c = flat_.offsets[static_cast<std::size_t>(f.idx())]; c < flat_.offsets[static_cast<std::size_t>(f.idx()) + 1]; ++c) {
+        corner_of_[static_cast<std::size_t>(h.idx())] = c;
+        h = m.next_halfedge_handle(h);
+      }
+    }
+    // Driver edge numbering: ascending (min, max) vertex pair.
+    std::vector<std::pair<uint64_t, uint32_t>> keys;
+    keys.reserve(ne);
+    for (auto e : m.edges()) {
+      auto h = m.halfedge_handle(e, 0);
+      uint64_t a = static_cast<uint64_t>(m.from_vertex_handle(h).idx()), b = static_cast<uint64_t>(m.to_vertex_handle(h).idx());
+      keys.emplace_back((std::min(a, b) << 32) | std::max(a, b), static_cast<uint32_t>(e.idx()));
+    }
+    std::sort(keys.begin(), keys.end());
+    edge_rank_.assign(ne, 0);
+    for (std::size_t r = 0; r < keys.size(); ++r) edge_rank_[keys[r].second] = static_cast<uint32_t>(r);
+
+    edge_c_.assign(nh, detail::nan3());
+    face_c_.assign(nh, detail::nan3());
+    const std::size_t nout = nv + ne + (Scheme == NLS_SCHEME_CATMULL_CLARK ? nf : 0);
+    new_.assign(nout, detail::nan3());
+
+    need_driver_ = false;
+    if (!vertex_pass(m)) return false;
+    if (Scheme == NLS_SCHEME_CATMULL_CLARK && !faces_pass(m, nv + ne)) return false;
+    if (!edges_pass(m, nv)) return false;
+    if (Scheme != NLS_SCHEME_MODIFIED_BUTTERFLY && !boundary_vertices(m, nv)) return false;
+    if (need_driver_) {
+      // Butterfly's linear fallback reads the 2-ring (Zorin / OpenMesh stencils): this level
+      // is taken from the driver on the same flat copy instead (same layout, same values
+      // elsewhere, the fallbacks counted by its report).
+      FlatMesh out;
+      uint32_t el = NLS_NO_ELEMENT, fb = 0;
+      s = nlsubdiv::flat::run_levels(Scheme, flags, flat_, 1, out, el, fb);
+      if (s != NLS_STATUS_OK) return this->fail(s, el, lvl);
+      if (out.vertex_count() != new_.size()) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, lvl);
+      for (std::size_t k = 0; k < new_.size(); ++k) new_[k] = {out.positions[3 * k], out.positions[3 * k + 1], out.positions[3 * k + 2]};
+      this->out_.fallbacks += fb;
+    }
+    if (!update_points)
+      for (std::size_t i = 0; i < nv; ++i) new_[i] = pos_[i];
+    for (std::size_t k = 0; k < new_.size(); ++k)
+      if (!detail::finite3(new_[k])) return this->fail(NLS_STATUS_NUMERICAL_FAILURE, static_cast<uint32_t>(k), lvl);
+
+    // The driver's connectivity (patterns 1->4 and quads), then the rebuild.
+    FlatMesh out;
+    out.positions.reserve(3 * nout);
+    for (const P3& p : new_) out.positions.insert(out.positions.end(), p.begin(), p.end());
+    out.offsets.assign(1, 0);
+    auto E = [&](HH h) { return static_cast<uint32_t>(nv + edge_rank_[static_cast<std::size_t>(m.edge_handle(h).idx())]); };
+    for (auto f : m.faces()) {
+      if (Scheme != NLS_SCHEME_CATMULL_CLARK) {
+        HH h0 = m.halfedge_handle(f), h1 = m.next_halfedge_handle(h0), h2 = m.next_halfedge_handle(h1);
+        uint32_t v0 = static_cast<uint32_t>(m.from_vertex_handle(h0).idx()), v1 = static_cast<uint32_t>(m.from_vertex_handle(h1).idx()),
+                 v2 = static_cast<uint32_t>(m.from_vertex_handle(h2).idx());
+        uint32_t e0 = E(h0), e1 = E(h1), e2 = E(h2);
+        const uint32_t tris[4][3] = {{v0, e0, e2}, {v1, e1, e0}, {v2, e2, e1}, {e0, e1, e2}};
+        for (const auto& t : tris) {
+          out.indices.insert(out.indices.end(), t, t + 3);
+          out.offsets.push_back(static_cast<uint32_t>(out.indices.size()));
+        }
+      } else {
+        const uint32_t fp = static_cast<uint32_t>(nv + ne + static_cast<std::size_t>(f.idx()));
+        HH h0 = m.halfedge_handle(f), h = h0;
+        do {
+          const uint32_t q[4] = {static_cast<uint32_t>(m.from_vertex_handle(h).idx()), E(h), fp, E(m.prev_halfedge_handle(h))};
+          out.indices.insert(out.indices.end(), q, q + 4);
+          out.offsets.push_back(static_cast<uint32_t>(out.indices.size()));
+          h = m.next_halfedge_handle(h);
+        } while (h != h0);
+      }
+    }
+    mesh_t backup = m;
+    if (!detail::rebuild(m, out)) {
+      m = backup;
+      return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, lvl);
+    }
+    return true;
+  }
+
+  /// Star rules at every non-isolated, non-ear vertex (the driver gives ears no form), then
+  /// the interior vertex points.
+  bool vertex_pass(const mesh_t& m) {
+    std::vector<HH> spokes;
+    std::vector<VH> ring;
+    std::vector<double> ring_xyz, corners, ec, fc;
+    std::vector<uint32_t> offs, irregular;
+    HH in;
+    for (auto v : m.vertices()) {
+      const std::size_t vi = static_cast<std::size_t>(v.idx());
+      star(m, v, spokes, ring, in);
+      if (spokes.empty()) {  // isolated: carried through
+        new_[vi] = pos_[vi];
+        continue;
+      }
+      const bool boundary = in.is_valid();
+      const std::size_t n = ring.size();
+      P3 vp = detail::nan3();
+      if (!is_ear(m, v)) {
+        ring_xyz.clear();
+        for (VH u : ring) {
+          P3 p = pos(u);
+          ring_xyz.insert(ring_xyz.end(), p.begin(), p.end());
+        }
+        ec.assign(3 * n, NAN);
+        nls_status s;
+        const P3 pv = pos_[vi];
+        if (Scheme == NLS_SCHEME_LOOP) {
+          s = nls_mobius_loop_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+        } else if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          irregular.assign(n, 0);
+          for (std::size_t j = 0; j < n; ++j)
+            irregular[j] = (!m.is_boundary(ring[j]) && m.valence(ring[j]) != 6) ? 1u : 0u;
+          s = nls_mobius_butterfly_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
+        } else {
+          const std::size_t nfs = boundary ? n - 1 : n;
+          offs.assign(1, 0);
+          corners.clear();
+          for (std::size_t j = 0; j < nfs; ++j) {
+            for (const P3& p : face_points(m.face_handle(spokes[j]))) corners.insert(corners.end(), p.begin(), p.end());
+            offs.push_back(static_cast<uint32_t>(corners.size() / 3));
+          }
+          fc.assign(3 * nfs, NAN);
+          s = nls_mobius_catmull_clark_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, offs.data(), nfs, corners.data(),
+                                            corners.size() / 3, vp.data(), ec.data(), fc.data());
+          if (s == NLS_STATUS_OK)
+            for (std::size_t j = 0; j < nfs; ++j) face_c_[static_cast<std::size_t>(spokes[j].idx())] = {fc[3 * j], fc[3 * j + 1], fc[3 * j + 2]};
+        }
+        if (s == NLS_STATUS_OK) {
+          for (std::size_t j = 0; j < n; ++j)
+            if (spokes[j].is_valid()) edge_c_[static_cast<std::size_t>(spokes[j].idx())] = {ec[3 * j], ec[3 * j + 1], ec[3 * j + 2]};
+        } else {
+          vp = detail::nan3();
+        }
+      }
+      if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {  // interpolating
+        new_[vi] = pos_[vi];
+        continue;
+      }
+      if (!boundary) {
+        if (!detail::finite3(vp)) {
+          if (!fallback(vi)) return false;
+          std::vector<P3> rp;
+          for (VH u : ring) rp.push_back(pos(u));
+          if (Scheme == NLS_SCHEME_LOOP) {
+            double a = 0.375;
+            if (n != 6) {
+              double c = 0.375 + 0.25 * std::cos(2.0 * 3.14159265358979323846 / static_cast<double>(n));
+              a = 0.625 - c * c;
+            }
+            vp = detail::lin2(1.0 - a, pos_[vi], a / static_cast<double>(n), detail::sum(rp));
+          } else {
+            std::vector<P3> fcs;
+            for (HH h : spokes) fcs.push_back(detail::centroid(face_points(m.face_handle(h))));
+            const double nf = static_cast<double>(n);
+            vp = detail::lin2((nf - 2.0) / nf, pos_[vi], 1.0 / (nf * nf), detail::add(detail::sum(rp), detail::sum(fcs)));
+          }
+        }
+        new_[vi] = vp;
+      }
+    }
+    return true;
+  }
+
+  /// Catmull–Clark face points: ears borrow the face candidate of the first non-ear corner at
+  /// offset h, h+1, h-1, h+2, ... (h = d/2), as the driver does; then nls_face_point.
+  bool faces_pass(const mesh_t& m, std::size_t start) {
+    for (auto f : m.faces()) {
+      const std::vector<P3> verts = face_points(f);
+      const std::size_t d = verts.size();
+      std::vector<HH> hs;
+      for (std::size_t i = 0; i < d; ++i) hs.push_back(corner_halfedge(m, f, i));
+      std::vector<double> vx, cx;
+      bool all = true;
+      for (std::size_t i = 0; i < d; ++i) {
+        P3 c = face_c_[static_cast<std::size_t>(hs[i].idx())];
+        if (is_ear(m, m.from_vertex_handle(hs[i]))) {
+          c = detail::nan3();
+          const std::size_t h = d / 2;
+          for (std::size_t k = 0; k < d; ++k) {
+            const std::size_t step = (k + 1) / 2;
+            const std::size_t off = (k % 2 == 1) ? h + step : h + d - step;
+            const std::size_t j = (i + off) % d;
+            if (!is_ear(m, m.from_vertex_handle(hs[j]))) {
+              c = face_c_[static_cast<std::size_t>(hs[j].idx())];
+              break;
+            }
+          }
+        }
+        all = all && detail::finite3(c);
+        vx.insert(vx.end(), verts[i].begin(), verts[i].end());
+        cx.insert(cx.end(), c.begin(), c.end());
+      }
+      P3 p = detail::nan3();
+      const std::size_t k = start + static_cast<std::size_t>(f.idx());
+      if (!(all && nls_face_point(vx.data(), cx.data(), d, p.data()) == NLS_STATUS_OK)) {
+        if (!fallback(k)) return false;
+        p = detail::centroid(verts);
+      }
+      new_[k] = p;
+    }
+    return true;
+  }
+
+  /// Interior edges: F4(a, e_a, e_b, b) with the hint of the face on the left of a -> b
+  /// (a the smaller index); boundary edges: the Möbius curve rule F4(P_{i-1}, P_i, P_{i+1},
+  /// P_{i+2}).
+  bool edges_pass(const mesh_t& m, std::size_t start) {
+    for (auto e : m.edges()) {
+      const std::size_t k = start + edge_rank_[static_cast<std::size_t>(e.idx())];
+      HH h = m.halfedge_handle(e, 0);
+      if (m.is_boundary(e)) {
+        if (m.is_boundary(h)) h = m.opposite_halfedge_handle(h);  // face side, a -> b
+        HH hb = m.opposite_halfedge_handle(h);
+        const P3 p0 = pos(m.to_vertex_handle(m.next_halfedge_handle(hb))), a = pos(m.from_vertex_handle(h)),
+                 b = pos(m.to_vertex_handle(h)), p3 = pos(m.from_vertex_handle(m.prev_halfedge_handle(hb)));
+        P3 q;
+        if (nls_f4(p0.data(), a.data(), b.data(), p3.data(), q.data()) != NLS_STATUS_OK) {
+          if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+            if (!driver_fallback(k)) return false;
+            continue;
+          }
+          if (!fallback(k)) return false;
+          q = detail::midpoint(a, b);
+        }
+        new_[k] = q;
+        continue;
+      }
+      if (m.from_vertex_handle(h).idx() > m.to_vertex_handle(h).idx()) h = m.opposite_halfedge_handle(h);
+      HH t = m.opposite_halfedge_handle(h);
+      const P3 a = pos(m.from_vertex_handle(h)), b = pos(m.to_vertex_handle(h));
+      const P3 ca = edge_c_[static_cast<std::size_t>(h.idx())], cb = edge_c_[static_cast<std::size_t>(t.idx())];
+      const P3 hint = pos(m.to_vertex_handle(m.next_halfedge_handle(h)));
+      P3 q = detail::nan3();
+      bool have = false;
+      if (detail::finite3(ca) && detail::finite3(cb)) {
+        have = nls_f4_hinted(a.data(), ca.data(), cb.data(), b.data(), hint.data(), q.data()) == NLS_STATUS_OK;
+      } else if (detail::finite3(ca)) {
+        q = ca;
+        have = true;
+      } else if (detail::finite3(cb)) {
+        q = cb;
+        have = true;
+      }
+      if (!(have && detail::finite3(q))) {
+        if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
+          if (!driver_fallback(k)) return false;
+          continue;
+        }
+        if (!fallback(k)) return false;
+        if (Scheme == NLS_SCHEME_LOOP) {
+          const P3 c = pos(m.to_vertex_handle(m.next_halfedge_handle(h))), d = pos(m.to_vertex_handle(m.next_halfedge_handle(t)));
+          q = detail::add(detail::scale(detail::add(a, b), 0.375), detail::scale(detail::add(c, d), 0.125));
+        } else {
+          const P3 f0 = detail::centroid(face_points(m.face_handle(h))), f1 = detail::centroid(face_points(m.face_handle(t)));
+          q = detail::scale(detail::add(detail::add(a, b), detail::add(f0, f1)), 0.25);
+        }
+      }
+      new_[k] = q;
+    }
+    return true;
+  }
+
+  /// Boundary vertices: the Möbius approximating curve rule F4(P_{i-1}, E_{i-1/2}, E_{i+1/2},
+  /// P_{i+1}); fallback the crease rule.
+  bool boundary_vertices(const mesh_t& m, std::size_t start) {
+    std::vector<HH> spokes;
+    std::vector<VH> ring;
+    HH in;
+    for (auto v : m.vertices()) {
+      if (!m.is_boundary(v)) continue;
+      star(m, v, spokes, ring, in);
+      if (spokes.empty() || !in.is_valid()) continue;
+      const std::size_t vi = static_cast<std::size_t>(v.idx());
+      HH out_h = spokes.front();
+      const P3 b0 = pos(m.to_vertex_handle(out_h)), b1 = pos(m.from_vertex_handle(in));
+      const P3 e_out = new_[start + edge_rank_[static_cast<std::size_t>(m.edge_handle(out_h).idx())]];
+      const P3 e_in = new_[start + edge_rank_[static_cast<std::size_t>(m.edge_handle(in).idx())]];
+      P3 q;
+      if (nls_f4(b1.data(), e_in.data(), e_out.data(), b0.data(), q.data()) != NLS_STATUS_OK) {
+        if (!fallback(vi)) return false;
+        q = detail::crease(pos_[vi], b0, b1);
+      }
+      new_[vi] = q;
+    }
+    return true;
+  }
+};
+
+/// Möbius Loop from the tier-1 star rules (triangle meshes; a PolyMesh of triangles works too).
+template <typename M> using MobiusLoopT = StarSubdividerT<M, NLS_SCHEME_LOOP>;
+/// Möbius Modified Butterfly from the tier-1 star rules (nls_mobius_butterfly_star; triangles).
+/// An element that needs the linear fallback (a 2-ring stencil) makes the level come from
+/// the driver on the same mesh (same result; strict mode: an error).
+template <typename M> using MobiusButterflyT = StarSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY>;
+/// Möbius Catmull–Clark from the tier-1 star rules (any polygon mesh; output quads, so use a
+/// PolyMesh).
+template <typename M> using MobiusCatmullClarkT = StarSubdividerT<M, NLS_SCHEME_CATMULL_CLARK>;
+
+}  // namespace openmesh
+}  // namespace nlsubdiv
+
+#endif  // NLSUBDIV_OPENMESH_HH

@@ -1,0 +1,283 @@
+// Integration test of integrations/cgal/nlsubdiv_cgal.h against Debian's CGAL 5.5:
+//
+//   test_cgal MESH_DIR
+//
+// 1. every free function equals the driver (same scheme and flags, same flat copy of the
+//    mesh), order-independent, <= 1e-12 relative, on every mesh of MESH_DIR that CGAL's OFF
+//    reader loads whole into a Surface_mesh (1 or 2 levels by size); where the driver refuses
+//    a mesh, the function must refuse it with the same status and leave it unchanged;
+// 2. Mobius_loop_mask_3 and Mobius_catmull_clark_mask_3 driven by CGAL's own hosts (PTQ,
+//    PQQ with number_of_iterations(2)) equal the driver too, and the functions work on
+//    Polyhedron_3;
+// 3. every mesh of MESH_DIR/bad that CGAL loads as it is (child process) is refused by every
+//    function in strict mode with the mesh unchanged, and the process survives.
+// Last line: "test_cgal: N passed, M failed, K skipped".
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/IO/OFF.h>
+#include <CGAL/subdivision_method_3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <iostream>
+#include <sstream>
+
+#include <nlsubdiv/cgal/nlsubdiv_cgal.h>  // installed header (scripts/install.sh)
+#include "common.hpp"
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3> SM;
+typedef CGAL::Polyhedron_3<K> Poly;
+namespace nc = nlsubdiv::cgal;
+using itest::Flat;
+
+template <class PM>
+Flat flat_of(const PM& pm) {
+  nc::detail::Level<PM> lv;
+  lv.build(pm, get(CGAL::vertex_point, pm), SIZE_MAX);
+  Flat r;
+  r.pos = lv.flat.positions;
+  r.off = lv.flat.offsets;
+  r.idx = lv.flat.indices;
+  return r;
+}
+
+template <class PM>
+struct Fn {
+  std::string name;
+  uint32_t scheme, flags;
+  std::function<nc::Report(PM&, unsigned, nc::Options)> run;
+};
+
+#define FN(f, s, fl) \
+  Fn<PM> { #f, s, fl, [](PM& m, unsigned n, nc::Options o) { return nc::f(m, CGAL::parameters::number_of_iterations(n), o); } }
+
+template <class PM>
+std::vector<Fn<PM>> functions() {
+  const uint32_t M = NLS_SUBDIVIDE_MOBIUS;
+  return {FN(mobius_loop_subdivision, NLS_SCHEME_LOOP, M),
+          FN(mobius_butterfly_subdivision, NLS_SCHEME_MODIFIED_BUTTERFLY, M),
+          FN(mobius_catmull_clark_subdivision, NLS_SCHEME_CATMULL_CLARK, M),
+          FN(mobius_kobbelt_subdivision, NLS_SCHEME_KOBBELT, M),
+          FN(mobius_doo_sabin_subdivision, NLS_SCHEME_DOO_SABIN, M),
+          FN(mobius_simplest_subdivision, NLS_SCHEME_SIMPLEST, M),
+          FN(mobius_dual_subdivision, NLS_SCHEME_DUAL, M),
+          FN(mobius_vertex_insertion_subdivision, NLS_SCHEME_VERTEX_INSERTION, M),
+          FN(mobius_dual_truncation_subdivision, NLS_SCHEME_DUAL_TRUNCATION, M),
+          FN(loop_subdivision, NLS_SCHEME_LOOP, 0),
+          FN(catmull_clark_subdivision, NLS_SCHEME_CATMULL_CLARK, 0),
+          FN(butterfly_subdivision, NLS_SCHEME_MODIFIED_BUTTERFLY, 0),
+          FN(kobbelt_subdivision, NLS_SCHEME_KOBBELT, 0),
+          FN(doo_sabin_subdivision, NLS_SCHEME_DOO_SABIN, 0)};
+}
+
+static const double TOL = 1e-12;
+
+static std::size_t off_counts(const std::string& path, std::size_t& nv) {
+  FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) return 0;
+  char line[4096];
+  bool header = false;
+  std::size_t nf = 0;
+  nv = 0;
+  while (std::fgets(line, sizeof line, f)) {
+    std::string s(line);
+    auto h = s.find('#');
+    if (h != std::string::npos) s = s.substr(0, h);
+    std::istringstream in(s);
+    std::string tok;
+    while (in >> tok) {
+      if (!header) {
+        if (tok.find("OFF") != std::string::npos) header = true;
+        continue;
+      }
+      nv = std::strtoul(tok.c_str(), nullptr, 10);
+      in >> nf;
+      std::fclose(f);
+      return nf;
+    }
+  }
+  std::fclose(f);
+  return 0;
+}
+
+template <class PM>
+bool load(const std::string& path, PM& pm) {
+  std::streambuf* old = std::cerr.rdbuf(nullptr);
+  bool ok = CGAL::IO::read_OFF(path, pm);
+  std::cerr.rdbuf(old);
+  std::size_t nv = 0, nf = off_counts(path, nv);
+  return ok && num_vertices(pm) == nv && num_faces(pm) == nf && nf > 0;
+}
+
+template <class PM>
+void check_functions(itest::Tally& t, const std::string& mesh, const PM& pm0, const std::string& tag) {
+  const Flat in = flat_of(pm0);
+  const unsigned levels = num_faces(pm0) <= 3000 ? 2 : 1;
+  for (auto& fn : functions<PM>()) {
+    Flat ref;
+    nls_status ds = itest::driver(fn.scheme, fn.flags, in, levels, ref);
+    PM pm = pm0;
+    nc::Report r = fn.run(pm, levels, nc::Options());
+    const std::string where = fn.name + "<" + tag + "> on " + mesh + " (" + std::to_string(levels) + " levels)";
+    if (ds != NLS_STATUS_OK) {
+      if (!r.ok() && r.status == ds && flat_of(pm) == in)
+        t.pass(fn.name + "<" + tag + "> refuses what the driver refuses", 0);
+      else
+        t.fail(where + ": driver says " + nls_status_str(ds) + ", function " + r.message());
+      continue;
+    }
+    if (!r.ok()) {
+      t.fail(where + ": refused (" + r.message() + ") but the driver accepts");
+      continue;
+    }
+    itest::Cmp c = itest::compare(flat_of(pm), ref);
+    if (c.ok(TOL))
+      t.pass(fn.name + "<" + tag + "> = driver [" + r.path + "]", c.max_rel);
+    else
+      t.fail(where + ": " + c.summary());
+    if (std::getenv("NLS_ITEST_VERBOSE")) std::printf("  %s: %s\n", where.c_str(), c.summary().c_str());
+  }
+}
+
+/// The masks driven by CGAL's own hosts over two iterations.
+static void check_masks_with_cgal_hosts(itest::Tally& t, const std::string& mesh, const SM& pm0) {
+  const Flat in = flat_of(pm0);
+  {
+    Flat ref;
+    if (itest::driver(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, in, 2, ref) == NLS_STATUS_OK) {
+      SM pm = pm0;
+      nc::Mobius_loop_mask_3<SM> mask(&pm, get(CGAL::vertex_point, pm));
+      CGAL::Subdivision_method_3::PTQ(pm, mask, CGAL::parameters::number_of_iterations(2));
+      itest::Cmp c = itest::compare(flat_of(pm), ref);
+      if (mask.report().ok() && c.ok(TOL))
+        t.pass("Mobius_loop_mask_3 in CGAL's PTQ (2 iterations) = driver", c.max_rel);
+      else
+        t.fail("Mobius_loop_mask_3 in PTQ on " + mesh + ": " + mask.report().message() + " " + c.summary());
+    }
+  }
+  {
+    Flat ref;
+    if (itest::driver(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, in, 2, ref) == NLS_STATUS_OK) {
+      SM pm = pm0;
+      nc::Mobius_catmull_clark_mask_3<SM> mask(&pm, get(CGAL::vertex_point, pm));
+      CGAL::Subdivision_method_3::PQQ(pm, mask, CGAL::parameters::number_of_iterations(2));
+      itest::Cmp c = itest::compare(flat_of(pm), ref);
+      if (mask.report().ok() && c.ok(TOL))
+        t.pass("Mobius_catmull_clark_mask_3 in CGAL's PQQ (2 iterations) = driver", c.max_rel);
+      else
+        t.fail("Mobius_catmull_clark_mask_3 in PQQ on " + mesh + ": " + mask.report().message() + " " + c.summary());
+    }
+  }
+  // Our linear Loop equals CGAL's own Loop_subdivision (peer-rules.md: same boundary rules).
+  {
+    SM a = pm0, b = pm0;
+    nc::Report r = nc::loop_subdivision(a, CGAL::parameters::number_of_iterations(2));
+    if (r.ok()) {
+      CGAL::Subdivision_method_3::Loop_subdivision(b, CGAL::parameters::number_of_iterations(2));
+      itest::Cmp c = itest::compare(flat_of(a), flat_of(b));
+      if (c.ok(TOL))
+        t.pass("loop_subdivision = CGAL Loop_subdivision", c.max_rel);
+      else
+        t.fail("loop_subdivision vs CGAL Loop_subdivision on " + mesh + ": " + c.summary());
+    }
+  }
+}
+
+static int bad_child(const std::string& path, int fd, bool valid) {
+  SM pm0;
+  if (!load(path, pm0)) {
+    if (write(fd, "N", 1) != 1) return 4;
+    return 3;
+  }
+  if (write(fd, "L", 1) != 1) return 4;
+  const Flat before = flat_of(pm0);
+  int bad = 0;
+  for (auto& fn : functions<SM>()) {
+    SM pm = pm0;
+    nc::Options o;
+    o.strict = !valid;
+    nc::Report r = fn.run(pm, 1, o);
+    bool same = flat_of(pm) == before;
+    std::printf("    %-38s %s%s\n", fn.name.c_str(), r.ok() ? "accepted" : r.message().c_str(), r.ok() ? "" : same ? ", mesh unchanged" : " MESH CHANGED");
+    if (valid ? !(r.ok() || (r.status == NLS_STATUS_UNSUPPORTED_FACE_TYPE && same)) : (r.ok() || !same)) ++bad;
+  }
+  std::fflush(stdout);
+  return bad ? 1 : 0;
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
+    return 2;
+  }
+  const std::string dir = argv[1];
+  itest::Tally t;
+  auto t0 = std::chrono::steady_clock::now();
+  const auto files = itest::off_files(dir);
+  if (files.empty()) {
+    std::printf("SKIP no meshes in %s\n", dir.c_str());
+    ++t.skipped;
+  }
+  for (const auto& f : files) {
+    SM pm;
+    if (!load(dir + "/" + f, pm)) {
+      std::printf("skip %s: CGAL's OFF reader does not load it whole into a Surface_mesh\n", f.c_str());
+      ++t.skipped;
+      continue;
+    }
+    check_functions(t, f, pm, "Surface_mesh");
+    if (num_faces(pm) <= 3000 && CGAL::is_valid_polygon_mesh(pm)) check_masks_with_cgal_hosts(t, f, pm);
+    if (num_faces(pm) <= 400) {
+      Poly ph;
+      if (load(dir + "/" + f, ph)) check_functions(t, f, ph, "Polyhedron_3");
+    }
+  }
+  const auto bad = itest::off_files(dir + "/bad");
+  if (bad.empty()) {
+    std::printf("SKIP no meshes in %s/bad\n", dir.c_str());
+    ++t.skipped;
+  }
+  int loaded = 0, refused = 0;
+  for (const auto& f : bad) {
+    int fds[2];
+    if (pipe(fds) != 0) return 2;
+    std::fflush(stdout);
+    const bool valid = f.rfind("format_", 0) == 0;  // layout variants of a valid mesh
+    pid_t pid = fork();
+    if (pid == 0) {
+      close(fds[0]);
+      std::printf("  bad/%s:\n", f.c_str());
+      std::fflush(stdout);
+      _exit(bad_child(dir + "/bad/" + f, fds[1], valid));
+    }
+    close(fds[1]);
+    char mark = 0;
+    ssize_t got = read(fds[0], &mark, 1);
+    close(fds[0]);
+    int st = 0;
+    waitpid(pid, &st, 0);
+    if (got != 1 || mark != 'L') {
+      std::printf("    CGAL does not load it as it is (%s)\n", WIFSIGNALED(st) ? "its reader aborted" : "read_OFF failed or changed the counts");
+      ++t.skipped;
+      continue;
+    }
+    ++loaded;
+    if (WIFEXITED(st) && WEXITSTATUS(st) == 0) {
+      if (!valid) ++refused;
+      t.pass(valid ? "bad/format_* (valid layout variants) accepted" : "bad mesh refused (strict), unchanged, host alive", 0);
+    } else {
+      t.fail("bad/" + f + (WIFSIGNALED(st) ? ": the host process died" : valid ? ": a valid mesh was refused" : ": accepted or changed"));
+    }
+  }
+  std::printf("bad meshes: %zu files, %d loaded as they are by CGAL (format_* included), %d broken ones refused by every function with the mesh unchanged\n",
+              bad.size(), loaded, refused);
+  for (const auto& w : t.worst) std::printf("  %-70s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("test_cgal: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);
+  return t.failed ? 1 : 0;
+}
