@@ -4,6 +4,7 @@
 #include <float.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 #if defined(__x86_64__)
 #include <xmmintrin.h>
 #endif
@@ -143,6 +144,46 @@ static void test_face_point(void) {
     CHECK_STATUS(nls_face_point(sq, NULL, 4, p), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(nls_face_point(sq, cand, 4, NULL), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(nls_face_point(NULL, NULL, 0, p), NLS_STATUS_TOO_FEW_POINTS);
+}
+
+/* The face point with ids does not depend on the corner a face starts at, bit for bit: a
+ * quad (its quadruplets i and i+2 always tie) and a pentagon with distinct candidates near a
+ * common point, listed from every corner. */
+static void test_face_point_with_ids(void) {
+    static const double quad[12] = {1.02, 0.03, 0.01, -0.04, 0.97, -0.02, -1.01, 0.05, 0.03, 0.02, -0.99, -0.01};
+    static const double qc[12] = {0.01, -0.02, 0.31, -0.015, 0.02, 0.29, 0.02, 0.01, 0.305, -0.01, -0.02, 0.295};
+    static const double pent[15] = {1, 0, 0, 0.31, 0.95, 0.02, -0.81, 0.59, -0.01, -0.8, -0.6, 0.03, 0.3, -0.96, 0};
+    static const double pc[15] = {0.01, 0, 0.4, 0, 0.02, 0.41, -0.01, 0.01, 0.39, 0, -0.01, 0.4, 0.02, 0, 0.405};
+    const double *faces[2] = {quad, pent}, *cands[2] = {qc, pc};
+    const size_t sizes[2] = {4, 5};
+    const uint32_t ids0[5] = {17, 3, 42, 8, 25};
+    size_t f, s, i, k;
+    for (f = 0; f < 2; f++) {
+        size_t n = sizes[f];
+        double ref[3], got[3], v[15], c[15], plain[3];
+        uint32_t ids[5];
+        CHECK_STATUS(nls_face_point_with_ids(faces[f], cands[f], ids0, n, ref), NLS_STATUS_OK);
+        CHECK_STATUS(nls_face_point(faces[f], cands[f], n, plain), NLS_STATUS_OK);
+        CHECK(nls_dist3(ref, plain) < 1e-6); /* only the tie-break differs */
+        for (s = 1; s < n; s++) {
+            for (i = 0; i < n; i++) {
+                for (k = 0; k < 3; k++) {
+                    v[3 * i + k] = faces[f][3 * ((i + s) % n) + k];
+                    c[3 * i + k] = cands[f][3 * ((i + s) % n) + k];
+                }
+                ids[i] = ids0[(i + s) % n];
+            }
+            CHECK_STATUS(nls_face_point_with_ids(v, c, ids, n, got), NLS_STATUS_OK);
+            CHECK(memcmp(got, ref, sizeof ref) == 0);
+        }
+    }
+    {
+        double p[3];
+        fill(p, 3);
+        CHECK_STATUS(nls_face_point_with_ids(quad, qc, NULL, 4, p), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_face_point_with_ids(quad, qc, ids0, 2, p), NLS_STATUS_TOO_FEW_POINTS);
+        CHECK(untouched(p, 3));
+    }
 }
 
 static void test_small_primitives(void) {
@@ -346,6 +387,7 @@ int main(void) {
     test_f6();
     test_small_primitives();
     test_face_point();
+    test_face_point_with_ids();
     test_quaternions();
     test_tangent_polygon_and_metrics();
     test_mobius_maps();

@@ -1068,6 +1068,18 @@ nls_status nls_star_mobius_regularity(const double v[3], const double *ring, siz
 nls_status nls_face_point(const double *vertices, const double *candidates, size_t count, double out[3]);
 
 /**
+ * [`nls_face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]`
+ * (`count` of them, the host's indices of the face's corners): the face point is then the
+ * same, bit for bit, whichever corner the face is listed from, and stays Möbius-equivariant.
+ * This is what `nls_mesh_subdivide` uses for its Möbius face points; a host driving the
+ * tier-1 rules should call it with its own vertex indices.
+ *
+ * Errors: those of [`nls_face_point`].
+ *
+ */
+nls_status nls_face_point_with_ids(const double *vertices, const double *candidates, const uint32_t *ids, size_t count, double out[3]);
+
+/**
  * The canonical Möbius Loop rules at the vertex star `v ring[0..ring_len]` (packed `x, y, z`),
  * exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_LOOP` with
  * `NLS_SUBDIVIDE_MOBIUS`: the star's canonical form (seed 000 §4.2), Loop's stencils on the

@@ -348,11 +348,41 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 /// case). When all candidates agree (a Möbius-regular neighbourhood) every F4 and F6 returns
 /// that point, so `v_f` equals it.
 ///
+/// Ties of the sort (equal rounded keys) keep face order, as the paper's stable sort does. The
+/// F6 chain depends on the order, and for an even face quadruplets `i` and `i + h` always tie
+/// (the same four points reversed), so the result depends on which corner the face lists
+/// first — by up to 4 % of the face on a regular tetrahedron. Drivers use
+/// [`face_point_with_ids`], whose ties go by vertex id and so do not depend on the start.
+///
 /// # Errors
 /// [`Status::InvalidArgument`] when the slices differ in length; [`Status::TooFewPoints`] for
 /// fewer than 3 corners; [`Status::ValenceTooHigh`] above [`crate::MAX_FACE_SIZE`]; the errors
 /// of [`f4`] and [`f6`] (the caller's degenerate-neighbourhood policy decides what to do).
 pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
+    face_point_ordered(vertices, candidates, None)
+}
+
+/// [`face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]` of the
+/// quadruplets' first corners `v_i` (then by face order, for repeated ids). The quadruplets of
+/// a face and their ids are the same whichever corner the face starts at, so the face point
+/// is too, bit for bit; ids are untouched by Möbius maps, so Möbius equivariance is kept (a
+/// tie-break by coordinates would lose it). This is the rule every Möbius driver uses, with
+/// the mesh's vertex indices (docs/DECISIONS.md).
+///
+/// # Errors
+/// Those of [`face_point`]; [`Status::InvalidArgument`] when `ids` differs in length.
+pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]) -> Result<Point> {
+    if ids.len() != vertices.len() {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    face_point_ordered(vertices, candidates, Some(ids))
+}
+
+fn face_point_ordered(
+    vertices: &[Point],
+    candidates: &[Point],
+    ids: Option<&[u32]>,
+) -> Result<Point> {
     let d = vertices.len();
     if candidates.len() != d {
         return Err(Error::new(Status::InvalidArgument));
@@ -369,9 +399,10 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
             .and_then(|k| s.get(k).copied())
             .ok_or(Error::new(Status::InvalidArgument))
     };
-    // (quadruplet start i, rounded key), sorted stably by key with an insertion sort (d is
-    // small, and the sort must be stable and panic-free).
-    let mut order: arrayvec::ArrayVec<(usize, i64), { crate::MAX_FACE_SIZE }> =
+    // (quadruplet start i, (rounded key, tie-break)), sorted stably with an insertion sort (d
+    // is small, and the sort must be stable and panic-free). The tie-break is the id of `v_i`
+    // when given, else 0 (face order).
+    let mut order: arrayvec::ArrayVec<(usize, (i64, u32)), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
     for i in 0..d {
         let (a, b, c, e) = (
@@ -384,8 +415,15 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
         // as it gets: F4 returns a defined point for it.
         let key = noncircularity(a, b, c, e).unwrap_or(0.0);
         let key = libm::round(key * 1e12) as i64;
+        let tie = match ids {
+            Some(ids) => ids
+                .get(i)
+                .copied()
+                .ok_or(Error::new(Status::InvalidArgument))?,
+            None => 0,
+        };
         order
-            .try_push((i, key))
+            .try_push((i, (key, tie)))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         let mut j = order.len() - 1;
         while j > 0 {
@@ -494,6 +532,49 @@ mod tests {
         assert_eq!(
             face_point(&tri[..2], &[g; 2]).unwrap_err().status,
             Status::TooFewPoints
+        );
+    }
+
+    #[test]
+    fn face_point_with_ids_does_not_depend_on_the_face_start() {
+        // A regular-looking quad and hexagon with distinct candidates: every rotation of the
+        // corner list (ids rotated with it) gives the same bits.
+        let quad = [
+            [1.02, 0.03, 0.01],
+            [-0.04, 0.97, -0.02],
+            [-1.01, 0.05, 0.03],
+            [0.02, -0.99, -0.01],
+        ];
+        let qc = [
+            [0.01, -0.02, 0.31],
+            [-0.015, 0.02, 0.29],
+            [0.02, 0.01, 0.305],
+            [-0.01, -0.02, 0.295],
+        ];
+        let hex: [Point; 6] = core::array::from_fn(|i| {
+            let t = i as f64 * core::f64::consts::PI / 3.0;
+            [libm::cos(t), libm::sin(t), 0.0]
+        });
+        let hc: [Point; 6] = core::array::from_fn(|i| [0.01 * i as f64, 0.0, 0.5]);
+        let ids = [9u32, 4, 7, 1, 30, 2];
+        for (v, c) in [(&quad[..], &qc[..]), (&hex[..], &hc[..])] {
+            let n = v.len();
+            let reference = face_point_with_ids(v, c, &ids[..n]).unwrap();
+            for s in 1..n {
+                let rot = |a: &[Point]| -> [Point; 6] {
+                    core::array::from_fn(|i| if i < n { a[(i + s) % n] } else { [0.0; 3] })
+                };
+                let (rv, rc) = (rot(v), rot(c));
+                let rid: [u32; 6] = core::array::from_fn(|i| ids[(i + s) % n]);
+                let p = face_point_with_ids(&rv[..n], &rc[..n], &rid[..n]).unwrap();
+                assert_eq!(p, reference, "n = {n}, start {s}");
+            }
+        }
+        assert_eq!(
+            face_point_with_ids(&quad, &qc, &ids[..3])
+                .unwrap_err()
+                .status,
+            Status::InvalidArgument
         );
     }
 

@@ -413,3 +413,40 @@ pub unsafe extern "C" fn nls_face_point(
         Ok(())
     })
 }
+
+/// [`nls_face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]`
+/// (`count` of them, the host's indices of the face's corners): the face point is then the
+/// same, bit for bit, whichever corner the face is listed from, and stays Möbius-equivariant.
+/// This is what `nls_mesh_subdivide` uses for its Möbius face points; a host driving the
+/// tier-1 rules should call it with its own vertex indices.
+///
+/// Errors: those of [`nls_face_point`].
+///
+/// cbindgen:ptrs-as-arrays=[[out;3]]
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_face_point_with_ids(
+    vertices: *const f64,
+    candidates: *const f64,
+    ids: *const u32,
+    count: usize,
+    out: *mut f64,
+) -> Status {
+    run(|| {
+        // SAFETY: the caller passes NULL or readable memory of the documented sizes.
+        let (v, c) = unsafe { (points(vertices, count)?, points(candidates, count)?) };
+        crate::guard::check_ptr(ids, count)?;
+        let ids: &[u32] = if count == 0 {
+            &[]
+        } else {
+            // SAFETY: non-NULL, aligned, byte size ≤ isize::MAX (check_ptr), readable for
+            // `count` ids (contract).
+            unsafe { core::slice::from_raw_parts(ids, count) }
+        };
+        check_out(out, 3)?;
+        check_fp_env()?;
+        let p = status_of(blend::face_point_with_ids(v, c, ids))?;
+        // SAFETY: checked above.
+        unsafe { write(out, p) };
+        Ok(())
+    })
+}
