@@ -33,8 +33,9 @@ const SCHEME_CODES: u8 = 12;
 /// Caps that keep one execution short (the seeds have at most 400 vertices).
 const MAX_VERTICES: usize = 400;
 const MAX_FACES: usize = 800;
+const MAX_INDICES: u32 = 3200;
 /// Multi-level comparisons only when the last level stays below this many vertices.
-const MAX_LEVEL_VERTICES: usize = 6000;
+const MAX_LEVEL_VERTICES: usize = 1500;
 /// Interpolating schemes (old vertices kept bit for bit), by code.
 const INTERPOLATING: [u32; 3] = [
     NLS_SCHEME_MODIFIED_BUTTERFLY,
@@ -60,12 +61,15 @@ impl Mesh {
 
 fn decode(r: &mut Reader<'_>, tweak: u8, tweak_at: u16) -> Mesh {
     let nv = usize::from(r.u16()).min(MAX_VERTICES);
-    let nf = usize::from(r.u16()).min(MAX_FACES);
+    // No more faces than bytes left and at most MAX_INDICES corners: a mutated count must
+    // not turn the missing bytes into a huge mesh of zeros (that made every execution
+    // allocate megabytes and ran at ~100 exec/s).
+    let nf = usize::from(r.u16()).min(MAX_FACES).min(r.left());
     let mut off = Vec::with_capacity(nf + 1);
     off.push(0u32);
     let mut total = 0u32;
     for _ in 0..nf {
-        total += u32::from(r.u8());
+        total = (total + u32::from(r.u8())).min(MAX_INDICES);
         off.push(total);
     }
     let idx: Vec<u32> = (0..total).map(|_| u32::from(r.u16())).collect();
