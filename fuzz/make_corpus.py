@@ -113,7 +113,8 @@ def crop(pos, faces, count=16):
 def mesh_input(scheme, flags, levels, pos, faces):
     """The mesh target's layout: scheme, flags, levels, shrink, amount, tweak, tweak_at u16,
     vertex_count u16, face_count u16, face sizes u8, indices u16, positions f64."""
-    b = struct.pack("<6BH", scheme, flags, levels, 0, 0, 0, 0)
+    level_byte = {1: 0, 0: 5, 2: 6, 3: 7}[levels]  # the target maps b % 8 to 1,1,1,1,1,0,2,3
+    b = struct.pack("<6BH", scheme, flags, level_byte, 0, 0, 0, 0)
     b += struct.pack("<HH", len(pos), len(faces))
     b += bytes(min(len(f), 255) for f in faces)
     b += b"".join(struct.pack("<H", v & 0xFFFF) for f in faces for v in f[:255])

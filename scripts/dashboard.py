@@ -178,7 +178,7 @@ def main():
     # --- build gates ----------------------------------------------------------------------------
     pn = "no panic path reachable" in (find_log(out, "panic-freedom link proof") or "")
     det = find_log(out, "determinism") or ""
-    hashes = re.findall(r"^(debug|release|release again|opt-level=1|target-cpu=native) +(\S+)$", det, re.M)
+    hashes = re.findall(r"^(debug|release again|release|opt-level=1|target-cpu=native) +(.+)$", det, re.M)
     det_same = len(hashes) >= 2 and len({h for _, h in hashes}) == 1
     rep = find_log(out, "reproducible build") or ""
     shas = re.findall(r"^([0-9a-f]{64})  (\S+)$", rep, re.M)
@@ -186,6 +186,10 @@ def main():
     for h, path in shas:
         pairs.setdefault(os.path.basename(path), set()).add(h)
     rep_same = bool(pairs) and all(len(v) == 1 for v in pairs.values())
+
+    for ok, what in [(pn, "panic-freedom link proof"), (det_same, "determinism hashes"), (rep_same, "reproducible builds")]:
+        if not ok:
+            problems.append(f"{what}: not shown by this run's logs")
 
     # --- fuzz -------------------------------------------------------------------------------------
     flog = find_log(out, "fuzz") or ""
