@@ -30,8 +30,11 @@ echo "fuzz: $(cargo fuzz --version), $(rustc +nightly --version)"
 python3 fuzz/make_corpus.py || exit 1
 TD=target/fuzz
 mkdir -p target
-# Builds every target (ASan, -Cdebug-assertions, sancov: cargo-fuzz's defaults).
-if ! cargo +nightly fuzz build --target-dir "$TD" >"$TD-build.log" 2>&1; then
+# Builds every target: ASan, -Cdebug-assertions, sancov (cargo-fuzz's defaults) without
+# trace-compares: measured on the mesh target, the CMP tracing tripled the CPU time per
+# execution (8,000 runs: 10.7 s vs 3.3 s user) and reached fewer edges in 45 s
+# (cov 3112 vs 3155); the inputs hold no magic values for it to find.
+if ! cargo +nightly fuzz build --no-trace-compares --target-dir "$TD" >"$TD-build.log" 2>&1; then
     echo "fuzz: build failed — last lines of $TD-build.log:"; tail -n 20 "$TD-build.log"; exit 1
 fi
 BIN=$TD/x86_64-unknown-linux-gnu/release
