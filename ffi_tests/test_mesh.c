@@ -1086,7 +1086,7 @@ static void test_fp_environment(void) {
         s = nls_mesh_subdivide_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su, 64,
                                     &a, &b, &c, NULL);
         _mm_setcsr(saved);
-        CHECK(s == NLS_STATUS_FP_ENVIRONMENT);
+        CHECK_STATUS(s, NLS_STATUS_FP_ENVIRONMENT);
         CHECK(a == 777);
     }
     CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su,

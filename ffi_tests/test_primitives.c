@@ -298,6 +298,17 @@ static void test_mobius_maps(void) {
     CHECK_STATUS(nls_mobius_inversion(centre, 0.0, &inv), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(nls_mobius_inversion(centre, NAN, &inv), NLS_STATUS_NON_FINITE_INPUT);
     CHECK_STATUS(nls_mobius_similarity(axis, 1.0, 0.0, t, &sim), NLS_STATUS_INVALID_ARGUMENT);
+    {
+        /* Fuzz finding (fuzz/regressions/primitives/inversion-huge-radius): finite inputs
+         * far out in the double range gave OK with an infinite coefficient. */
+        double c[3] = {-0.741761, 6.61637, 0.735879};
+        nls_mobius before, after;
+        memset(&before, 0x5a, sizeof before);
+        after = before;
+        CHECK_STATUS(nls_mobius_inversion(c, 1.035746192103199e+266, &after), NLS_STATUS_NUMERICAL_FAILURE);
+        CHECK(memcmp(&before, &after, sizeof before) == 0);
+        CHECK_STATUS(nls_mobius_inversion(c, 1e150, &after), NLS_STATUS_OK);
+    }
     CHECK_STATUS(nls_mobius_compose(NULL, &sim, &m), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(nls_mobius_identity(NULL), NLS_STATUS_NULL_PARAMETER);
     {
@@ -368,13 +379,13 @@ static void test_fp_environment(void) {
     {
         nls_status s = nls_f4(a, b, c, d, p);
         _mm_setcsr(saved);
-        CHECK(s == NLS_STATUS_FP_ENVIRONMENT);
+        CHECK_STATUS(s, NLS_STATUS_FP_ENVIRONMENT);
     }
     _mm_setcsr((saved & ~0x6000u) | 0x6000u); /* round toward zero */
     {
         nls_status s = nls_f4(a, b, c, d, p);
         _mm_setcsr(saved);
-        CHECK(s == NLS_STATUS_FP_ENVIRONMENT);
+        CHECK_STATUS(s, NLS_STATUS_FP_ENVIRONMENT);
     }
     CHECK_STATUS(nls_f4(a, b, c, d, p), NLS_STATUS_OK);
 #endif

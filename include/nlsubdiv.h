@@ -520,6 +520,10 @@ nls_status nls_curve_scratch_len(uint32_t scheme, size_t count, uint32_t closed,
  * [`nls_curve_scratch_len`]; NULL with capacity 0 when that is 0). No buffer may overlap
  * another: in-place calls are not supported. `levels = 0` copies the input.
  *
+ * The local schemes give the same bits as `levels` calls of one level. The differential
+ * schemes are global (the differential polygon is subdivided `levels` times and the curve
+ * reconstructed once): `levels` calls of one level agree with one call only up to rounding.
+ *
  * On success `*out_count` is the number of points written. On `NLS_STATUS_BUFFER_TOO_SMALL`
  * `*out_count` is the size needed by the first buffer that is too small (`out` is checked
  * before `scratch`). Otherwise `*out_count` is not written. The contents of `out` and
@@ -863,6 +867,9 @@ nls_status nls_mobius_identity(struct nls_mobius *out);
  * The similarity `q ↦ s·R(q) + t`: rotation `R` by `angle` radians about the unit vector
  * `axis` (normalised here; it may be zero only when `angle` is 0), scaling by `scale ≠ 0`,
  * translation by `t`.
+ * Errors: `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_INVALID_ARGUMENT` (`scale = 0`, or a
+ * zero axis with a non-zero angle), `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would
+ * not be finite: inputs near the end of the double range). Nothing is written on error.
  *
  */
 nls_status nls_mobius_similarity(const double axis[3], double angle, double scale, const double t[3], struct nls_mobius *out);
@@ -870,6 +877,9 @@ nls_status nls_mobius_similarity(const double axis[3], double angle, double scal
 /**
  * The inversion in the sphere of centre `centre` and radius `radius > 0`:
  * `q ↦ centre + radius² (q − centre)/|q − centre|²`.
+ * Errors: `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_INVALID_ARGUMENT` (`radius ≤ 0`),
+ * `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite: a centre or radius
+ * near the end of the double range). Nothing is written on error.
  *
  */
 nls_status nls_mobius_inversion(const double centre[3], double radius, struct nls_mobius *out);
@@ -920,6 +930,9 @@ nls_status nls_canonical_form_from_canonical(const struct nls_canonical_form *cf
 /**
  * The Möbius map of a canonical form:
  * with `inverse = 0` the forward map `m_{B→C}`, with `inverse = 1` the map back `m_{C→B}`.
+ * Errors: `NLS_STATUS_INVALID_ARGUMENT` (a malformed `cf`, `inverse` not 0 or 1),
+ * `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite). Nothing is written on
+ * error.
  */
 nls_status nls_canonical_form_map(const struct nls_canonical_form *cf, uint32_t inverse, struct nls_mobius *out);
 

@@ -17,4 +17,10 @@ if ! (command -v cbindgen >/dev/null && cbindgen --version | grep -q "0.29.4"); 
     echo "setup: installing cbindgen 0.29.4"
     cargo install cbindgen --version 0.29.4 --locked --quiet
 fi
-echo "setup: ok ($(rustc --version); $(cbindgen --version); gcc $(gcc -dumpfullversion))"
+# cargo-fuzz for scripts/fuzz.sh (the fuzz targets run on nightly; 0.13.2 builds with the
+# stable toolchain here: about 51 s on this machine).
+if ! (cargo fuzz --version 2>/dev/null | grep -q "0.13.2"); then
+    echo "setup: installing cargo-fuzz 0.13.2"
+    cargo install cargo-fuzz --version 0.13.2 --locked --quiet
+fi
+echo "setup: ok ($(rustc --version); $(cbindgen --version); gcc $(gcc -dumpfullversion); $(cargo fuzz --version))"

@@ -32,6 +32,13 @@ skip() { skipped=$((skipped+1)); echo "SKIP  $1 — $2"; }
 CFLAGS_STRICT="-std=c99 -Wall -Wextra -Wpedantic -Werror"
 SAN="-g -O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
 
+# === issue 10: statuses verified at run time (begin) ========================================
+# Every C suite appends the statuses its CHECK_STATUS calls verified (ffi_tests/check.h);
+# scripts/dashboard.py reads them at the end of the run.
+export NLS_STATUS_LOG="$OUT/c-statuses.log"
+rm -f "$NLS_STATUS_LOG"
+# === issue 10: statuses verified at run time (end) ==========================================
+
 # --- Rust ---------------------------------------------------------------------------
 step "cargo fmt --check" cargo fmt --all -- --check
 step "cargo clippy -D warnings" cargo clippy --workspace --all-targets --locked -- -D warnings
@@ -166,6 +173,17 @@ else
     skip "ASan-instrumented Rust staticlib" "no nightly toolchain"
 fi
 
+# === issue 10: fuzzing (begin) ================================================================
+# cargo-fuzz targets over the C ABI (fuzz/), ASan, 60 s per target; needs nightly + cargo-fuzz.
+if ! rustup toolchain list 2>/dev/null | grep -q nightly; then
+    skip "fuzz (mesh, curve, primitives)" "no nightly toolchain (ASan fuzzing needs it)"
+elif ! cargo fuzz --version >/dev/null 2>&1; then
+    skip "fuzz (mesh, curve, primitives)" "cargo-fuzz not installed (scripts/setup.sh installs it)"
+else
+    step "fuzz: mesh, curve, primitives, ${NLS_FUZZ_SECONDS:-60} s each under ASan (nightly)" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
+fi
+# === issue 10: fuzzing (end) ==================================================================
+
 # --- peers: OpenMesh, CGAL, OpenSubdiv (Debian packages) ------------------------------------
 if [ -f /usr/include/OpenMesh/Core/Mesh/PolyMeshT.hh ] && [ -d /usr/include/CGAL ] && [ -d /usr/include/opensubdiv ]; then
     peers_selftest() { python3 peers/test_compare_off.py; }
@@ -201,6 +219,12 @@ c_examples() {
     done
 }
 step "C examples build and run" c_examples
+
+# === issue 10: dashboard (begin) ==============================================================
+# Last step: the README table from this run's logs; fails when a catalogue class is not covered.
+step "dashboard: README table from this run's logs" python3 scripts/dashboard.py "$OUT"
+sed -n '/dashboard:begin/,/dashboard:end/p' "$OUT/dashboard:_README_table_from_this_run's_logs.log" | grep '^|' | sed 's/^/      /'
+# === issue 10: dashboard (end) ================================================================
 
 echo
 if [ "$failed" -gt 0 ]; then echo "failed steps: ${failures[*]}"; fi

@@ -116,6 +116,10 @@ pub unsafe extern "C" fn nls_curve_scratch_len(
 /// [`nls_curve_scratch_len`]; NULL with capacity 0 when that is 0). No buffer may overlap
 /// another: in-place calls are not supported. `levels = 0` copies the input.
 ///
+/// The local schemes give the same bits as `levels` calls of one level. The differential
+/// schemes are global (the differential polygon is subdivided `levels` times and the curve
+/// reconstructed once): `levels` calls of one level agree with one call only up to rounding.
+///
 /// On success `*out_count` is the number of points written. On `NLS_STATUS_BUFFER_TOO_SMALL`
 /// `*out_count` is the size needed by the first buffer that is too small (`out` is checked
 /// before `scratch`). Otherwise `*out_count` is not written. The contents of `out` and

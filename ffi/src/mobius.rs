@@ -129,6 +129,9 @@ pub unsafe extern "C" fn nls_mobius_identity(out: *mut nls_mobius) -> Status {
 /// The similarity `q ↦ s·R(q) + t`: rotation `R` by `angle` radians about the unit vector
 /// `axis` (normalised here; it may be zero only when `angle` is 0), scaling by `scale ≠ 0`,
 /// translation by `t`.
+/// Errors: `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_INVALID_ARGUMENT` (`scale = 0`, or a
+/// zero axis with a non-zero angle), `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would
+/// not be finite: inputs near the end of the double range). Nothing is written on error.
 ///
 /// cbindgen:ptrs-as-arrays=[[axis;3], [t;3]]
 #[unsafe(no_mangle)]
@@ -159,17 +162,26 @@ pub unsafe extern "C" fn nls_mobius_similarity(
         } else {
             return Err(Status::InvalidArgument);
         };
-        let m = MobiusMap::translation(t)
+        let m: nls_mobius = MobiusMap::translation(t)
             .compose(&MobiusMap::scaling(scale))
-            .compose(&rot);
+            .compose(&rot)
+            .into();
+        // Finite inputs far out in the double range can overflow a coefficient (found by
+        // the `primitives` fuzz target): refuse rather than return an infinite map.
+        if !finite_map(&m) {
+            return Err(Status::NumericalFailure);
+        }
         // SAFETY: checked above.
-        unsafe { store(out, m.into()) };
+        unsafe { store(out, m) };
         Ok(())
     })
 }
 
 /// The inversion in the sphere of centre `centre` and radius `radius > 0`:
 /// `q ↦ centre + radius² (q − centre)/|q − centre|²`.
+/// Errors: `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_INVALID_ARGUMENT` (`radius ≤ 0`),
+/// `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite: a centre or radius
+/// near the end of the double range). Nothing is written on error.
 ///
 /// cbindgen:ptrs-as-arrays=[[centre;3]]
 #[unsafe(no_mangle)]
@@ -189,8 +201,14 @@ pub unsafe extern "C" fn nls_mobius_inversion(
         if radius <= 0.0 {
             return Err(Status::InvalidArgument);
         }
+        let m: nls_mobius = MobiusMap::inversion(m, radius).into();
+        // A centre or radius near the end of the double range overflows `|c|² − r²` (found
+        // by the `primitives` fuzz target, fuzz/regressions/primitives/).
+        if !finite_map(&m) {
+            return Err(Status::NumericalFailure);
+        }
         // SAFETY: checked above.
-        unsafe { store(out, MobiusMap::inversion(m, radius).into()) };
+        unsafe { store(out, m) };
         Ok(())
     })
 }
@@ -345,6 +363,9 @@ pub unsafe extern "C" fn nls_canonical_form_from_canonical(
 
 /// The Möbius map of a canonical form:
 /// with `inverse = 0` the forward map `m_{B→C}`, with `inverse = 1` the map back `m_{C→B}`.
+/// Errors: `NLS_STATUS_INVALID_ARGUMENT` (a malformed `cf`, `inverse` not 0 or 1),
+/// `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite). Nothing is written on
+/// error.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_canonical_form_map(
     cf: *const nls_canonical_form,
@@ -357,9 +378,13 @@ pub unsafe extern "C" fn nls_canonical_form_map(
         crate::guard::check_ptr(out.cast_const(), 1)?;
         let inverse = crate::guard::flag(inverse)?;
         let cf = canonical_form_of(&cf)?;
-        let m = if inverse { cf.inverse_map() } else { cf.map() };
+        let m: nls_mobius = if inverse { cf.inverse_map() } else { cf.map() }.into();
+        // A form far out in the double range overflows a coefficient: refuse.
+        if !finite_map(&m) {
+            return Err(Status::NumericalFailure);
+        }
         // SAFETY: checked above.
-        unsafe { store(out, m.into()) };
+        unsafe { store(out, m) };
         Ok(())
     })
 }

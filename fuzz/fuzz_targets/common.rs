@@ -1,0 +1,70 @@
+//! Shared by the fuzz targets: a byte reader that never fails (missing bytes read as 0) and
+//! the sentinels the contract checks compare against.
+#![allow(dead_code)]
+
+/// Reads the fuzz input front to back; past the end every read gives 0, so any byte string
+/// is an input.
+pub struct Reader<'a> {
+    data: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    pub fn new(data: &'a [u8]) -> Self {
+        Reader { data, at: 0 }
+    }
+    pub fn u8(&mut self) -> u8 {
+        let b = self.data.get(self.at).copied().unwrap_or(0);
+        self.at = self.at.saturating_add(1);
+        b
+    }
+    pub fn u16(&mut self) -> u16 {
+        u16::from_le_bytes([self.u8(), self.u8()])
+    }
+    pub fn f64(&mut self) -> f64 {
+        let mut b = [0u8; 8];
+        for x in &mut b {
+            *x = self.u8();
+        }
+        f64::from_le_bytes(b)
+    }
+    /// Bytes left to read.
+    pub fn left(&self) -> usize {
+        self.data.len().saturating_sub(self.at)
+    }
+}
+
+/// Special values a header byte can plant into an input coordinate (reliability-anchors §4.2).
+pub const SPECIALS: [f64; 8] = [
+    0.0,
+    -0.0,
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::MIN_POSITIVE,
+    1e308,
+    1e-310,
+];
+
+/// The bit pattern output buffers are filled with before a call: "nothing written" means
+/// every element still has it.
+pub const SENTINEL_F64: u64 = 0x7ff8_dead_beef_0001;
+pub const SENTINEL_U32: u32 = 0xa5a5_a5a5;
+pub const SENTINEL_COUNT: usize = usize::MAX - 7;
+pub const SENTINEL_ELEMENT: u32 = 0xbeef_0000;
+
+pub fn f64_sentinels(n: usize) -> Vec<f64> {
+    vec![f64::from_bits(SENTINEL_F64); n]
+}
+
+pub fn untouched_f64(v: &[f64]) -> bool {
+    v.iter().all(|x| x.to_bits() == SENTINEL_F64)
+}
+
+pub fn untouched_u32(v: &[u32]) -> bool {
+    v.iter().all(|&x| x == SENTINEL_U32)
+}
+
+pub fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}

@@ -1,0 +1,566 @@
+//! Fuzz target `mesh`: whole-mesh subdivision through the C ABI (`nls_mesh_*`).
+//!
+//! Checks the contract of include/nlsubdiv.h, not only "no crash" (docs/bad-input-catalogue.md):
+//! - `nls_mesh_scratch_size`, `nls_mesh_subdivide_size` and `nls_mesh_subdivide` agree on every
+//!   refusal (same status, same element), and a refusal writes no count, no report and no
+//!   output;
+//! - one buffer shortened by any amount gives `BUFFER_TOO_SMALL` naming exactly that buffer,
+//!   writes nothing to the outputs, and reports the exact sizes when it is an output buffer;
+//! - on success: the counts are the planned sizes, every position is finite, the output
+//!   validates again, interpolating schemes keep the old vertices bit for bit, and the report
+//!   is consistent;
+//! - `nls_mesh_subdivide_levels` equals the chain of one-level calls bit for bit (or fails
+//!   with the status the chain fails with).
+//!
+//! Input layout (fuzz/make_corpus.py writes the seeds in it; missing bytes read as 0):
+//! `scheme u8, flags u8, levels u8 (→ 1,1,1,1,1,0,2,3 by b % 8), shrink u8, amount u8, tweak u8, tweak_at u16,
+//!  vertex_count u16, face_count u16, face sizes u8 × F, indices u16 × Σsizes,
+//!  positions f64 × 3V` (little endian). Scheme codes run past the known ones so that new
+//! schemes are covered without editing this file; an unknown code must be refused with
+//! `INVALID_ARGUMENT`.
+#![no_main]
+
+#[path = "common.rs"]
+mod common;
+
+use common::*;
+use libfuzzer_sys::fuzz_target;
+use nlsubdiv_ffi::mesh::*;
+use nlsubdiv_ffi::Status;
+
+/// Scheme codes tried: the known ones and a few above (must give `INVALID_ARGUMENT`).
+const SCHEME_CODES: u8 = 12;
+/// Caps that keep one execution short (the seeds have at most 400 vertices).
+const MAX_VERTICES: usize = 400;
+const MAX_FACES: usize = 800;
+const MAX_INDICES: u32 = 3200;
+/// Multi-level comparisons only when the last level stays below this many vertices.
+const MAX_LEVEL_VERTICES: usize = 1500;
+/// Interpolating schemes (old vertices kept bit for bit), by code.
+const INTERPOLATING: [u32; 3] = [
+    NLS_SCHEME_MODIFIED_BUTTERFLY,
+    NLS_SCHEME_KOBBELT,
+    NLS_SCHEME_VERTEX_INSERTION,
+];
+
+#[derive(Clone)]
+struct Mesh {
+    pos: Vec<f64>,
+    off: Vec<u32>,
+    idx: Vec<u32>,
+}
+
+impl Mesh {
+    fn nv(&self) -> usize {
+        self.pos.len() / 3
+    }
+    fn nf(&self) -> usize {
+        self.off.len() - 1
+    }
+}
+
+fn decode(r: &mut Reader<'_>, tweak: u8, tweak_at: u16) -> Mesh {
+    let nv = usize::from(r.u16()).min(MAX_VERTICES);
+    // No more faces than bytes left and at most MAX_INDICES corners: a mutated count must
+    // not turn the missing bytes into a huge mesh of zeros (that made every execution
+    // allocate megabytes and ran at ~100 exec/s).
+    let nf = usize::from(r.u16()).min(MAX_FACES).min(r.left());
+    let mut off = Vec::with_capacity(nf + 1);
+    off.push(0u32);
+    let mut total = 0u32;
+    for _ in 0..nf {
+        total = (total + u32::from(r.u8())).min(MAX_INDICES);
+        off.push(total);
+    }
+    let idx: Vec<u32> = (0..total).map(|_| u32::from(r.u16())).collect();
+    let mut pos: Vec<f64> = (0..3 * nv).map(|_| r.f64()).collect();
+    // Out-of-contract inputs the byte mutations rarely reach: malformed offsets and special
+    // coordinates (in any vertex, referenced or not).
+    match tweak & 3 {
+        1 => {
+            let k = usize::from(tweak_at) % off.len();
+            off[k] ^= u32::from(tweak >> 2);
+        }
+        2 if !pos.is_empty() => {
+            let k = usize::from(tweak_at) % pos.len();
+            pos[k] = SPECIALS[usize::from(tweak >> 2) % SPECIALS.len()];
+        }
+        _ => {}
+    }
+    Mesh { pos, off, idx }
+}
+
+/// What one `nls_mesh_subdivide` call returned, with its buffers.
+struct Call {
+    status: Status,
+    mesh: Mesh,
+    counts: [usize; 3],
+    report: nls_subdivide_report,
+    element: u32,
+}
+
+const REPORT_SENTINEL: nls_subdivide_report = nls_subdivide_report {
+    fallbacks: 0xdead,
+    first_fallback: 0xdead,
+    first_fallback_level: 0xdead,
+};
+
+/// Output buffers of the given capacities, filled with sentinels.
+fn buffers(caps: [usize; 3]) -> Mesh {
+    Mesh {
+        pos: f64_sentinels(3 * caps[0]),
+        off: vec![SENTINEL_U32; caps[1] + 1],
+        idx: vec![SENTINEL_U32; caps[2]],
+    }
+}
+
+/// `nls_mesh_scratch_size`.
+fn scratch_size(scheme: u32, flags: u32, m: &Mesh) -> (Status, usize, usize) {
+    let (mut su, mut sp) = (SENTINEL_COUNT, SENTINEL_COUNT);
+    let s = unsafe { nls_mesh_scratch_size(scheme, flags, m.nv(), m.idx.len(), &mut su, &mut sp) };
+    (s, su, sp)
+}
+
+/// `nls_mesh_subdivide_size` with `su` scratch entries.
+fn subdivide_size(scheme: u32, flags: u32, m: &Mesh, su: usize) -> (Status, [usize; 3], u32) {
+    let mut scratch = vec![0u32; su];
+    let mut c = [SENTINEL_COUNT; 3];
+    let mut element = SENTINEL_ELEMENT;
+    let [c0, c1, c2] = &mut c;
+    let s = unsafe {
+        nls_mesh_subdivide_size(
+            scheme,
+            flags,
+            m.pos.as_ptr(),
+            m.nv(),
+            m.off.as_ptr(),
+            m.nf(),
+            m.idx.as_ptr(),
+            m.idx.len(),
+            scratch.as_mut_ptr(),
+            su,
+            c0,
+            c1,
+            c2,
+            &mut element,
+        )
+    };
+    (s, c, element)
+}
+
+/// `nls_mesh_subdivide` with exactly sized fresh buffers (so ASan sees any overrun).
+fn subdivide(scheme: u32, flags: u32, m: &Mesh, su: usize, sp: usize, caps: [usize; 3]) -> Call {
+    let mut scratch = vec![0u32; su];
+    let mut points = vec![0.0f64; 3 * sp];
+    let mut out = buffers(caps);
+    let mut counts = [SENTINEL_COUNT; 3];
+    let mut report = REPORT_SENTINEL;
+    let mut element = SENTINEL_ELEMENT;
+    let [c0, c1, c2] = &mut counts;
+    let status = unsafe {
+        nls_mesh_subdivide(
+            scheme,
+            flags,
+            m.pos.as_ptr(),
+            m.nv(),
+            m.off.as_ptr(),
+            m.nf(),
+            m.idx.as_ptr(),
+            m.idx.len(),
+            scratch.as_mut_ptr(),
+            su,
+            points.as_mut_ptr(),
+            sp,
+            out.pos.as_mut_ptr(),
+            caps[0],
+            out.off.as_mut_ptr(),
+            caps[1],
+            out.idx.as_mut_ptr(),
+            caps[2],
+            c0,
+            c1,
+            c2,
+            &mut report,
+            &mut element,
+        )
+    };
+    Call {
+        status,
+        mesh: out,
+        counts,
+        report,
+        element,
+    }
+}
+
+/// `nls_mesh_subdivide_levels_size`: status, last-level counts, scratch, element.
+fn levels_size(
+    scheme: u32,
+    flags: u32,
+    m: &Mesh,
+    levels: u32,
+    su: usize,
+) -> (Status, [usize; 3], [usize; 2], u32) {
+    let mut scratch = vec![0u32; su];
+    let mut c = [SENTINEL_COUNT; 3];
+    let mut s2 = [SENTINEL_COUNT; 2];
+    let mut element = SENTINEL_ELEMENT;
+    let [c0, c1, c2] = &mut c;
+    let [s0, s1] = &mut s2;
+    let s = unsafe {
+        nls_mesh_subdivide_levels_size(
+            scheme,
+            flags,
+            m.pos.as_ptr(),
+            m.nv(),
+            m.off.as_ptr(),
+            m.nf(),
+            m.idx.as_ptr(),
+            m.idx.len(),
+            levels,
+            scratch.as_mut_ptr(),
+            su,
+            c0,
+            c1,
+            c2,
+            s0,
+            s1,
+            &mut element,
+        )
+    };
+    (s, c, s2, element)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn subdivide_levels(
+    scheme: u32,
+    flags: u32,
+    m: &Mesh,
+    levels: u32,
+    su: usize,
+    sp: usize,
+    caps: [usize; 3],
+) -> Call {
+    let mut scratch = vec![0u32; su];
+    let mut points = vec![0.0f64; 3 * sp];
+    let mut out = buffers(caps);
+    let mut counts = [SENTINEL_COUNT; 3];
+    let mut report = REPORT_SENTINEL;
+    let mut element = SENTINEL_ELEMENT;
+    let [c0, c1, c2] = &mut counts;
+    let status = unsafe {
+        nls_mesh_subdivide_levels(
+            scheme,
+            flags,
+            m.pos.as_ptr(),
+            m.nv(),
+            m.off.as_ptr(),
+            m.nf(),
+            m.idx.as_ptr(),
+            m.idx.len(),
+            levels,
+            scratch.as_mut_ptr(),
+            su,
+            points.as_mut_ptr(),
+            sp,
+            out.pos.as_mut_ptr(),
+            caps[0],
+            out.off.as_mut_ptr(),
+            caps[1],
+            out.idx.as_mut_ptr(),
+            caps[2],
+            c0,
+            c1,
+            c2,
+            &mut report,
+            &mut element,
+        )
+    };
+    Call {
+        status,
+        mesh: out,
+        counts,
+        report,
+        element,
+    }
+}
+
+/// Statuses only the computation (not validation or planning) can give.
+fn compute_failure(s: Status, flags: u32) -> bool {
+    let strict = flags & NLS_SUBDIVIDE_STRICT != 0 && flags & NLS_SUBDIVIDE_MOBIUS != 0;
+    matches!(s, Status::NumericalFailure | Status::DegenerateGeometry)
+        || (strict && s == Status::FallbackInStrictMode)
+}
+
+/// A refused call wrote no count, no report and (validation failures) no output.
+fn assert_nothing_written(c: &Call, outputs_too: bool) {
+    assert_eq!(
+        c.counts, [SENTINEL_COUNT; 3],
+        "counts written on {:?}",
+        c.status
+    );
+    assert_eq!(
+        c.report, REPORT_SENTINEL,
+        "report written on {:?}",
+        c.status
+    );
+    assert_ne!(c.element, SENTINEL_ELEMENT, "no element on {:?}", c.status);
+    if outputs_too {
+        assert!(
+            untouched_f64(&c.mesh.pos),
+            "positions written on {:?}",
+            c.status
+        );
+        assert!(
+            untouched_u32(&c.mesh.off),
+            "offsets written on {:?}",
+            c.status
+        );
+        assert!(
+            untouched_u32(&c.mesh.idx),
+            "indices written on {:?}",
+            c.status
+        );
+    }
+}
+
+/// The written output as a mesh (checked against the counts).
+fn written(c: &Call) -> Mesh {
+    let [nv, nf, ni] = c.counts;
+    Mesh {
+        pos: c.mesh.pos[..3 * nv].to_vec(),
+        off: c.mesh.off[..nf + 1].to_vec(),
+        idx: c.mesh.idx[..ni].to_vec(),
+    }
+}
+
+/// Checks a successful one-level call against its plan.
+fn check_success(scheme: u32, flags: u32, input: &Mesh, c: &Call, plan: [usize; 3]) -> Mesh {
+    assert_eq!(c.counts, plan, "counts differ from the size query");
+    assert_eq!(c.element, SENTINEL_ELEMENT, "element written on success");
+    let out = written(c);
+    assert!(
+        out.pos.iter().all(|x| x.is_finite()),
+        "non-finite position with OK"
+    );
+    assert_eq!(out.off[0], 0);
+    assert_eq!(*out.off.last().unwrap() as usize, out.idx.len());
+    let r = c.report;
+    if flags & NLS_SUBDIVIDE_MOBIUS == 0 || flags & NLS_SUBDIVIDE_STRICT != 0 {
+        assert_eq!(
+            r.fallbacks, 0,
+            "fallbacks reported by a linear or strict call"
+        );
+    }
+    if r.fallbacks == 0 {
+        assert_eq!((r.first_fallback, r.first_fallback_level), (u32::MAX, 0));
+    } else {
+        assert!(r.fallbacks as usize <= plan[0] && (r.first_fallback as usize) < plan[0]);
+        assert_eq!(r.first_fallback_level, 1);
+    }
+    if INTERPOLATING.contains(&scheme) {
+        assert!(
+            same_bits(&out.pos[..input.pos.len()], &input.pos),
+            "an interpolating scheme moved an old vertex"
+        );
+    }
+    // The output is a valid mesh again (Catmull–Clark accepts every face size).
+    let (su, _) = {
+        let (s, su, sp) = scratch_size(NLS_SCHEME_CATMULL_CLARK, 0, &out);
+        assert_eq!(s, Status::Ok);
+        (su, sp)
+    };
+    let (s, _, e) = subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, &out, su);
+    assert_eq!(s, Status::Ok, "the output does not validate (element {e})");
+    out
+}
+
+/// One level, with the exact sizes: `Ok(output, report)` or the refusal.
+fn one_level(scheme: u32, flags: u32, m: &Mesh) -> Result<(Mesh, nls_subdivide_report), Status> {
+    let (s, su, sp) = scratch_size(scheme, flags, m);
+    if s != Status::Ok {
+        return Err(s);
+    }
+    let (s, plan, _) = subdivide_size(scheme, flags, m, su);
+    if s != Status::Ok {
+        return Err(s);
+    }
+    let c = subdivide(scheme, flags, m, su, sp, plan);
+    if c.status != Status::Ok {
+        return Err(c.status);
+    }
+    Ok((check_success(scheme, flags, m, &c, plan), c.report))
+}
+
+fn check_levels(scheme: u32, flags: u32, m: &Mesh, levels: u32, su_in: usize) {
+    let (s, plan, [su, sp], element) = levels_size(scheme, flags, m, levels, su_in);
+    if s != Status::Ok {
+        assert_ne!(s, Status::BufferTooSmall);
+        // The multi-level call refuses the same way and writes nothing.
+        let c = subdivide_levels(scheme, flags, m, levels, su_in, 0, [0, 0, 0]);
+        assert_eq!(
+            (c.status, c.element),
+            (s, element),
+            "levels call vs its size query"
+        );
+        assert_nothing_written(&c, true);
+        return;
+    }
+    if plan[0] > MAX_LEVEL_VERTICES {
+        return;
+    }
+    let c = subdivide_levels(scheme, flags, m, levels, su, sp, plan);
+    // The chain of one-level calls.
+    let mut cur = m.clone();
+    let mut chain = Ok(());
+    let mut fallbacks = 0u32;
+    let mut first = (u32::MAX, 0u32);
+    for level in 1..=levels {
+        match one_level(scheme, flags, &cur) {
+            Ok((next, r)) => {
+                if r.fallbacks > 0 && first.1 == 0 {
+                    first = (r.first_fallback, level);
+                }
+                fallbacks += r.fallbacks;
+                cur = next;
+            }
+            Err(e) => {
+                chain = Err(e);
+                break;
+            }
+        }
+    }
+    match chain {
+        Ok(()) => {
+            assert_eq!(
+                c.status,
+                Status::Ok,
+                "levels call failed where the chain did not"
+            );
+            assert_eq!(c.counts, plan);
+            let out = written(&c);
+            assert!(
+                same_bits(&out.pos, &cur.pos),
+                "levels positions differ from the chain"
+            );
+            assert_eq!(out.off, cur.off, "levels offsets differ from the chain");
+            assert_eq!(out.idx, cur.idx, "levels indices differ from the chain");
+            let r = c.report;
+            assert_eq!(
+                (r.fallbacks, r.first_fallback, r.first_fallback_level),
+                (fallbacks, first.0, first.1)
+            );
+        }
+        Err(e) => {
+            assert_eq!(c.status, e, "levels call vs the chain of one-level calls");
+            assert!(
+                compute_failure(e, flags),
+                "planned OK but the chain was refused: {e:?}"
+            );
+            assert_nothing_written(&c, false);
+        }
+    }
+}
+
+fuzz_target!(|data: &[u8]| {
+    let mut r = Reader::new(data);
+    let scheme = u32::from(r.u8() % SCHEME_CODES);
+    let flags = u32::from(r.u8() & 7);
+    // One level in 5 of 8 inputs; 0, 2 and 3 levels (the multi-level comparison, which runs
+    // the chain of one-level calls too) in the other 3.
+    let levels = [1, 1, 1, 1, 1, 0, 2, 3][usize::from(r.u8() % 8)];
+    let shrink = r.u8() % 6;
+    let amount = usize::from(r.u8());
+    let tweak = r.u8();
+    let tweak_at = r.u16();
+    let m = decode(&mut r, tweak, tweak_at);
+
+    // 1. Size queries and the call agree on refusals of the arguments.
+    let (s0, su, sp) = scratch_size(scheme, flags, &m);
+    if s0 != Status::Ok {
+        assert_eq!((su, sp), (SENTINEL_COUNT, SENTINEL_COUNT));
+        assert!(
+            matches!(s0, Status::InvalidArgument | Status::SizeOverflow),
+            "{s0:?}"
+        );
+        let (s1, c, _) = subdivide_size(scheme, flags, &m, 0);
+        assert_eq!((s1, c), (s0, [SENTINEL_COUNT; 3]));
+        let c = subdivide(scheme, flags, &m, 0, 0, [4, 4, 4]);
+        assert_eq!(c.status, s0);
+        assert_nothing_written(&c, true);
+        return;
+    }
+
+    // 2. Validation: the size query and the call refuse with the same status and element.
+    let (s1, plan, element) = subdivide_size(scheme, flags, &m, su);
+    assert_ne!(
+        s1,
+        Status::BufferTooSmall,
+        "scratch of nls_mesh_scratch_size is short"
+    );
+    if s1 != Status::Ok {
+        assert_eq!(plan, [SENTINEL_COUNT; 3], "counts written on {s1:?}");
+        let caps = [m.nv() * 4, m.nf() * 4, m.idx.len() * 4];
+        let c = subdivide(scheme, flags, &m, su, sp, caps);
+        assert_eq!((c.status, c.element), (s1, element), "call vs size query");
+        assert_nothing_written(&c, true);
+        return;
+    }
+    if shrink == 1 && su > 0 {
+        let (s, c, e) = subdivide_size(scheme, flags, &m, su - 1 - amount % su);
+        assert_eq!(
+            (s, c, e),
+            (
+                Status::BufferTooSmall,
+                [SENTINEL_COUNT; 3],
+                NLS_MESH_BUFFER_SCRATCH_U32
+            )
+        );
+    }
+
+    // 3. One buffer short by any amount: BUFFER_TOO_SMALL naming it, nothing written.
+    if shrink > 0 {
+        let buffer = u32::from(shrink - 1);
+        let (mut su2, mut sp2, mut caps) = (su, sp, plan);
+        let need = match buffer {
+            NLS_MESH_BUFFER_SCRATCH_U32 => &mut su2,
+            NLS_MESH_BUFFER_SCRATCH_POINTS => &mut sp2,
+            b => &mut caps[(b - NLS_MESH_BUFFER_POSITIONS) as usize],
+        };
+        if *need > 0 {
+            *need -= 1 + amount % *need;
+            let c = subdivide(scheme, flags, &m, su2, sp2, caps);
+            assert_eq!((c.status, c.element), (Status::BufferTooSmall, buffer));
+            let counts = if buffer >= NLS_MESH_BUFFER_POSITIONS {
+                plan
+            } else {
+                [SENTINEL_COUNT; 3]
+            };
+            assert_eq!(c.counts, counts, "sizes reported on BUFFER_TOO_SMALL");
+            assert_eq!(c.report, REPORT_SENTINEL);
+            assert!(
+                untouched_f64(&c.mesh.pos)
+                    && untouched_u32(&c.mesh.off)
+                    && untouched_u32(&c.mesh.idx)
+            );
+        }
+    }
+
+    // 4. The call itself.
+    let c = subdivide(scheme, flags, &m, su, sp, plan);
+    if c.status != Status::Ok {
+        assert!(
+            compute_failure(c.status, flags),
+            "validated, then {:?}",
+            c.status
+        );
+        assert_nothing_written(&c, false);
+    } else {
+        check_success(scheme, flags, &m, &c, plan);
+    }
+
+    // 5. Several levels (0, 2 or 3) in one call = the chain of one-level calls.
+    if levels != 1 {
+        check_levels(scheme, flags, &m, levels, su);
+    }
+});
