@@ -37,10 +37,11 @@ const MAX_INDICES: u32 = 3200;
 /// Multi-level comparisons only when the last level stays below this many vertices.
 const MAX_LEVEL_VERTICES: usize = 1500;
 /// Interpolating schemes (old vertices kept bit for bit), by code.
-const INTERPOLATING: [u32; 3] = [
+const INTERPOLATING: [u32; 4] = [
     NLS_SCHEME_MODIFIED_BUTTERFLY,
     NLS_SCHEME_KOBBELT,
     NLS_SCHEME_VERTEX_INSERTION,
+    NLS_SCHEME_SPHERELIKE,
 ];
 
 #[derive(Clone)]
