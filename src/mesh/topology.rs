@@ -5,10 +5,11 @@
 //! * Half-edge `h` **is corner `h`**: it starts at `indices[h]` and ends at the next corner of
 //!   its face. `next`, `prev` and `face` follow from the CSR offsets; `twin` is stored.
 //! * **Edges** are numbered in ascending `(min, max)` vertex-key order: the directed-edge table
-//!   is sorted by `(min, max, half-edge)` — a counting sort on `min`, then a hand-written
-//!   heapsort of each bucket (reliability-anchors.md §3.1: no hashing, no `sort_unstable`) —
-//!   so numbering never depends on input order beyond the vertex indices. Each edge's representative half-edge runs from `min` to `max` when
-//!   that direction exists (always, for interior edges), else it is the only half-edge.
+//!   is sorted by `(min, max, half-edge)` — two stable counting sorts, by `max` then by
+//!   `min` (reliability-anchors.md §3.1: no hashing, no `sort_unstable`) — so numbering
+//!   never depends on input order beyond the vertex indices. Each edge's representative
+//!   half-edge runs from `min` to `max` when that direction exists (always, for interior
+//!   edges), else it is the only half-edge.
 //! * **Stars** ([`Topology::star`]) are walked counter-clockwise (faces are CCW seen from
 //!   outside): `h → twin(prev(h))`. An interior vertex's star starts at its lowest-numbered
 //!   outgoing half-edge; a boundary vertex's star runs from one boundary neighbour `b0`
@@ -45,7 +46,7 @@
 
 use arrayvec::ArrayVec;
 
-use super::sort::heapsort_by_key;
+use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
 use crate::quat::{point_is_finite, Point};
@@ -213,6 +214,22 @@ fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32) -> bool {
     }
 }
 
+/// `(origin, dest)` of half-edge `h` from the corners and a table of end vertices (the
+/// build's first pass); `NONE` out of range.
+#[inline]
+fn ends_in(indices: &[u32], dest: &[u32], h: u32) -> (u32, u32) {
+    let a = indices.get(h as usize).copied().unwrap_or(NONE);
+    let b = dest.get(h as usize).copied().unwrap_or(NONE);
+    (a, b)
+}
+
+/// The undirected key `(min, max)` of half-edge `h`, as one `u64`.
+#[inline]
+fn key_in(indices: &[u32], dest: &[u32], h: u32) -> u64 {
+    let (a, b) = ends_in(indices, dest, h);
+    ((a.min(b) as u64) << 32) | a.max(b) as u64
+}
+
 /// `next(h)` from the offsets and the face of each half-edge.
 fn next_in(offsets: &[u32], face_of: &[u32], h: u32) -> Result<u32> {
     let f = get(face_of, h as usize)? as usize;
@@ -267,6 +284,9 @@ impl<'m, 's> Topology<'m, 's> {
         let indices = mesh.indices;
         let mut max_face = 0usize;
         let mut min_face = if nf == 0 { 0 } else { usize::MAX };
+        // Face of every half-edge, and its end vertex in the edge_of region (read by the
+        // sort and the edge scan below; each entry is overwritten by its edge id after its
+        // last read).
         for f in 0..nf {
             let a = get(offsets, f)? as usize;
             let b = get(offsets, f + 1)? as usize;
@@ -275,67 +295,37 @@ impl<'m, 's> Topology<'m, 's> {
             for slot in face_of.get_mut(a..b).ok_or(internal())? {
                 *slot = f as u32;
             }
+            let corners = indices.get(a..b).ok_or(internal())?;
+            let ends = edge_of.get_mut(a..b).ok_or(internal())?;
+            let first = corners.first().copied().ok_or(internal())?;
+            for (k, slot) in ends.iter_mut().enumerate() {
+                *slot = corners.get(k + 1).copied().unwrap_or(first);
+            }
         }
 
         // Directed-edge table: half-edge ids sorted by (min, max, half-edge), in the edge_he
-        // region. Counting sort by the smaller endpoint (bucket offsets and cursors in the
-        // still unused vertex regions), then a heapsort of each bucket by (max, half-edge):
-        // the same total order as one global sort, at a fraction of the cost.
+        // region. Two stable counting sorts (least significant key first): by the larger
+        // endpoint into the twin region, then by the smaller one into edge_he; the counts
+        // live in the still unused vertex region. Linear time, no comparisons, and the same
+        // total order as one global sort.
         let face_of_ro: &[u32] = face_of;
-        let ends = |h: u32| -> (u32, u32) {
-            let a = indices.get(h as usize).copied().unwrap_or(NONE);
-            let b = next_in(offsets, face_of_ro, h)
-                .ok()
-                .and_then(|n| indices.get(n as usize).copied())
-                .unwrap_or(NONE);
-            (a, b)
-        };
-        let key = |h: u32| -> u64 {
-            let (a, b) = ends(h);
-            ((a.min(b) as u64) << 32) | b.max(a) as u64
-        };
-        for c in vert_he.iter_mut() {
-            *c = 0;
-        }
-        for h in 0..nh as u32 {
-            let (a, b) = ends(h);
-            let m = a.min(b) as usize;
-            set(vert_he, m, get(vert_he, m)? + 1)?;
-        }
-        let mut acc = 0u32;
-        for v in 0..nv {
-            let c = get(vert_he, v)?;
-            set(vert_he, v, acc)?;
-            set(valence, v, acc)?;
-            acc += c;
-        }
-        for h in 0..nh as u32 {
-            let (a, b) = ends(h);
-            let m = a.min(b) as usize;
-            let at = get(valence, m)?;
-            set(edge_he, at as usize, h)?;
-            set(valence, m, at + 1)?;
-        }
-        for v in 0..nv {
-            // Bucket v spans [start, cursor) after the placement.
-            let (a, b) = (get(vert_he, v)? as usize, get(valence, v)? as usize);
-            let bucket = edge_he.get_mut(a..b).ok_or(internal())?;
-            if bucket.len() > 1 {
-                heapsort_by_key(bucket, |h| {
-                    let (x, y) = ends(h);
-                    x.max(y) as u64
-                });
-            }
-        }
+        counting_sort(0..nh as u32, twin, vert_he, |h| {
+            let (a, b) = ends_in(indices, edge_of, h);
+            a.max(b)
+        })?;
+        counting_sort(twin.iter().copied(), edge_he, vert_he, |h| {
+            let (a, b) = ends_in(indices, edge_of, h);
+            a.min(b)
+        })?;
 
         let mut n_edges = 0usize;
         let mut n_boundary_edges = 0usize;
         let mut s = 0usize;
         while s < nh {
             let h0 = get(edge_he, s)?;
-            let k0 = key(h0);
+            let k0 = key_in(indices, edge_of, h0);
             let mut e = s + 1;
-            while e < nh && key(get(edge_he, e)?) == k0 {
+            while e < nh && key_in(indices, edge_of, get(edge_he, e)?) == k0 {
                 e += 1;
             }
             let len = e - s;
@@ -362,8 +352,8 @@ impl<'m, 's> Topology<'m, 's> {
                 }
                 2 => {
                     let h1 = get(edge_he, s + 1)?;
-                    let (a0, _) = ends(h0);
-                    let (a1, _) = ends(h1);
+                    let a0 = get(indices, h0 as usize)?;
+                    let a1 = get(indices, h1 as usize)?;
                     if a0 == a1 {
                         return Err(Error::at(Status::InconsistentOrientation, last_face));
                     }
