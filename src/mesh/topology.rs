@@ -136,13 +136,23 @@ impl Iterator for Star<'_, '_, '_> {
             });
         }
         let h = self.cur;
-        let spoke = Spoke {
-            neighbour: t.dest(h).ok()?,
-            edge: t.edge(h).ok()?,
-            half_edge: h,
-            face: t.face(h).ok()?,
+        // One face lookup gives the spoke's face, its end (next corner) and the previous
+        // corner, whose twin is the next spoke.
+        let f = get(t.face_of, h as usize).ok()?;
+        let start = get(t.mesh.offsets, f as usize).ok()?;
+        let end = get(t.mesh.offsets, f as usize + 1).ok()?;
+        let next = if h + 1 == end { start } else { h + 1 };
+        let p = if h == start {
+            end.wrapping_sub(1)
+        } else {
+            h.wrapping_sub(1)
         };
-        let p = t.prev(h).ok()?;
+        let spoke = Spoke {
+            neighbour: get(t.mesh.indices, next as usize).ok()?,
+            edge: get(t.edge_of, h as usize).ok()?,
+            half_edge: h,
+            face: f,
+        };
         let tw = get(t.twin, p as usize).ok()?;
         if tw == NONE {
             self.cur = NONE;
@@ -718,6 +728,14 @@ impl<'m, 's> Topology<'m, 's> {
     /// The spokes of `v`'s star collected in a fixed-capacity array.
     pub fn spokes(&self, v: u32) -> Result<ArrayVec<Spoke, MAX_VALENCE>> {
         let mut out = ArrayVec::new();
+        self.spokes_into(v, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Topology::spokes`] into a reused buffer (the drivers: no 2 KB array returned per
+    /// vertex).
+    pub(crate) fn spokes_into(&self, v: u32, out: &mut ArrayVec<Spoke, MAX_VALENCE>) -> Result<()> {
+        out.clear();
         for s in self.star(v) {
             out.try_push(s)
                 .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
@@ -725,7 +743,7 @@ impl<'m, 's> Topology<'m, 's> {
         if out.len() != self.valence(v)? {
             return Err(internal());
         }
-        Ok(out)
+        Ok(())
     }
 
     /// The neighbours of `v`, counter-clockwise (the star's order).
