@@ -187,8 +187,30 @@ fn check_offsets(mesh: &Mesh<'_>) -> Result<()> {
     Ok(())
 }
 
+/// Whether face `face` passes every per-face check (classes 2–5) for `nv` vertices.
+fn face_ok(face: &[u32], nv: usize) -> bool {
+    (3..=MAX_FACE_SIZE).contains(&face.len())
+        && face
+            .iter()
+            .enumerate()
+            .all(|(i, &a)| (a as usize) < nv && !face.iter().skip(i + 1).any(|&b| b == a))
+}
+
 fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
     let nf = mesh.num_faces();
+    let nv = mesh.num_vertices();
+    // One pass when every face is good (the common case); otherwise the class-by-class
+    // passes below find the error the module table promises.
+    let indices = mesh.indices;
+    let all_ok = mesh.offsets.windows(2).all(|w| match *w {
+        [a, b] => indices
+            .get(a as usize..b as usize)
+            .is_some_and(|face| face_ok(face, nv)),
+        _ => false,
+    });
+    if all_ok {
+        return Ok(());
+    }
     let faces = || (0..nf).map(|f| (f as u32, mesh.face(f).unwrap_or(&[])));
     for (f, face) in faces() {
         if face.len() < 3 {
@@ -200,7 +222,6 @@ fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
             return Err(Error::at(Status::ValenceTooHigh, f));
         }
     }
-    let nv = mesh.num_vertices();
     for (f, face) in faces() {
         if face.iter().any(|&v| v as usize >= nv) {
             return Err(Error::at(Status::IndexOutOfRange, f));
@@ -217,11 +238,20 @@ fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
 }
 
 /// Whether faces `f` and `g` have the same vertex set (faces have no repeated vertices).
-fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32) -> bool {
-    match (mesh.face(f as usize), mesh.face(g as usize)) {
-        (Some(a), Some(b)) => a.len() == b.len() && a.iter().all(|v| b.contains(v)),
-        _ => false,
+/// `h` is a half-edge of `f` on an edge the two faces share: `f`'s corners are tested from
+/// the second corner after `h` on, which for neighbouring faces (the usual case) is off the
+/// shared edge and answers at the first test. The answer does not depend on the order.
+fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32, h: u32) -> bool {
+    let (Some(a), Some(b)) = (mesh.face(f as usize), mesh.face(g as usize)) else {
+        return false;
+    };
+    if a.len() != b.len() {
+        return false;
     }
+    let first = mesh.offsets.get(f as usize).copied().unwrap_or(h);
+    let k = (h.wrapping_sub(first) as usize).saturating_add(2) % a.len().max(1);
+    let (head, tail) = a.split_at(k.min(a.len()));
+    tail.iter().chain(head).all(|v| b.contains(v))
 }
 
 /// `(origin, dest)` of half-edge `h` from the corners and a table of end vertices (the
@@ -346,9 +376,10 @@ impl<'m, 's> Topology<'m, 's> {
                 let m = len.min(4);
                 for i in 0..m {
                     for j in i + 1..m {
-                        let fi = get(face_of_ro, get(edge_he, s + i)? as usize)?;
+                        let hi = get(edge_he, s + i)?;
+                        let fi = get(face_of_ro, hi as usize)?;
                         let fj = get(face_of_ro, get(edge_he, s + j)? as usize)?;
-                        if same_vertex_set(&mesh, fi, fj) {
+                        if same_vertex_set(&mesh, fi, fj, hi) {
                             return Err(Error::at(Status::DuplicateFace, fi.max(fj)));
                         }
                     }
