@@ -50,7 +50,33 @@ fn levels_call(
     } else {
         scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo)?;
     }
+    // Kernel memory of this call: the caller's output buffers plus the scratch the plan asks
+    // for (everything the kernel touches), for scripts/bench_peers.py.
+    let out_bytes = 24 * o.vertices + 4 * (o.faces + 1) + 4 * o.indices;
+    let scratch_bytes = 4 * su.len() + 24 * sp.len();
+    eprintln!("subdivide_off: output_bytes={out_bytes} scratch_bytes={scratch_bytes}");
     Ok(out)
+}
+
+/// The OFF text of `write_off` (tests/common), streamed through a buffer instead of built
+/// as one string, so that the process's peak memory is the kernel's plus a small constant,
+/// like the peers' harness (peers/peer_subdivide.cpp streams with fprintf).
+fn write_off_streamed(path: &Path, m: &OwnedMesh) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(w, "OFF\n{} {} 0", m.positions.len(), m.num_faces())?;
+    for p in &m.positions {
+        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+    }
+    for f in m.offsets.windows(2) {
+        let face = &m.indices[f[0] as usize..f[1] as usize];
+        write!(w, "{}", face.len())?;
+        for i in face {
+            write!(w, " {i}")?;
+        }
+        writeln!(w)?;
+    }
+    w.flush()
 }
 
 fn main() {
@@ -80,5 +106,5 @@ fn main() {
         "subdivide_off: time_ms={:.3}",
         t0.elapsed().as_secs_f64() * 1e3
     );
-    write_off(Path::new(&args[4]), &m).expect("write");
+    write_off_streamed(Path::new(&args[4]), &m).expect("write");
 }
