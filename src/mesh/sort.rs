@@ -9,22 +9,22 @@
 use super::internal;
 use crate::error::Result;
 
-/// Writes the ids of `ids` into `dst` ordered by `key(id)`, equal keys in input order
-/// (stable). `counts` needs one entry per key value (every key below `counts.len()`); `dst`
-/// at least as many entries as `ids` yields. `O(ids + keys)`, no allocation, no panic.
+/// Writes the ids of `items` (`(id, key)` pairs) into `dst` ordered by key, equal keys in
+/// input order (stable). `counts` needs one entry per key value (every key below
+/// `counts.len()`); `dst` at least as many entries as `items` yields. `O(items + keys)`, no
+/// allocation, no panic. `items` is walked twice (count, then place).
 ///
 /// # Errors
 /// An internal error for a key out of range or a short `dst` (never on a built topology).
-pub(crate) fn counting_sort<I, K>(ids: I, dst: &mut [u32], counts: &mut [u32], key: K) -> Result<()>
+pub(crate) fn counting_sort<I>(items: I, dst: &mut [u32], counts: &mut [u32]) -> Result<()>
 where
-    I: Iterator<Item = u32> + Clone,
-    K: Fn(u32) -> u32,
+    I: Iterator<Item = (u32, u32)> + Clone,
 {
     for c in counts.iter_mut() {
         *c = 0;
     }
-    for id in ids.clone() {
-        let c = counts.get_mut(key(id) as usize).ok_or(internal())?;
+    for (_, key) in items.clone() {
+        let c = counts.get_mut(key as usize).ok_or(internal())?;
         *c = c.saturating_add(1);
     }
     let mut acc = 0u32;
@@ -33,8 +33,8 @@ where
         *c = acc;
         acc = acc.saturating_add(n);
     }
-    for id in ids {
-        let c = counts.get_mut(key(id) as usize).ok_or(internal())?;
+    for (id, key) in items {
+        let c = counts.get_mut(key as usize).ok_or(internal())?;
         *dst.get_mut(*c as usize).ok_or(internal())? = id;
         *c = c.saturating_add(1);
     }
@@ -61,11 +61,10 @@ mod tests {
         let mut tmp = [0u32; 257];
         let mut ids = [0u32; 257];
         let mut counts = [0u32; 7];
-        counting_sort(0..257u32, &mut tmp, &mut counts, |i| minor[i as usize]).unwrap();
-        counting_sort(tmp.iter().copied(), &mut ids, &mut counts, |i| {
-            major[i as usize]
-        })
-        .unwrap();
+        let by_minor = (0..257u32).map(|i| (i, minor[i as usize]));
+        counting_sort(by_minor, &mut tmp, &mut counts).unwrap();
+        let by_major = tmp.iter().map(|&i| (i, major[i as usize]));
+        counting_sort(by_major, &mut ids, &mut counts).unwrap();
         for w in ids.windows(2) {
             let (a, b) = (w[0] as usize, w[1] as usize);
             assert!((major[a], minor[a], a) < (major[b], minor[b], b));
@@ -82,15 +81,17 @@ mod tests {
     fn trivial_lengths_and_bad_keys() {
         let mut counts = [0u32; 4];
         let mut e: [u32; 0] = [];
-        counting_sort(0..0u32, &mut e, &mut counts, |i| i).unwrap();
+        counting_sort(core::iter::empty(), &mut e, &mut counts).unwrap();
         let mut one = [0u32; 1];
-        counting_sort(7..8u32, &mut one, &mut counts, |_| 3).unwrap();
+        counting_sort([(7u32, 3u32)].into_iter(), &mut one, &mut counts).unwrap();
         assert_eq!(one, [7]);
         let mut two = [0u32; 2];
-        counting_sort([3u32, 1].into_iter(), &mut two, &mut counts, |_| 0).unwrap();
+        counting_sort([(3u32, 0u32), (1, 0)].into_iter(), &mut two, &mut counts).unwrap();
         assert_eq!(two, [3, 1], "stable: equal keys keep their input order");
         // A key out of range and a short destination are errors, not panics.
-        assert!(counting_sort(0..2u32, &mut two, &mut counts, |_| 4).is_err());
-        assert!(counting_sort(0..3u32, &mut two, &mut counts, |_| 0).is_err());
+        let bad_key = (0..2u32).map(|i| (i, 4));
+        assert!(counting_sort(bad_key, &mut two, &mut counts).is_err());
+        let too_many = (0..3u32).map(|i| (i, 0));
+        assert!(counting_sort(too_many, &mut two, &mut counts).is_err());
     }
 }

@@ -249,9 +249,16 @@ fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32, h: u32) -> bool {
         return false;
     }
     let first = mesh.offsets.get(f as usize).copied().unwrap_or(h);
-    let k = (h.wrapping_sub(first) as usize).saturating_add(2) % a.len().max(1);
-    let (head, tail) = a.split_at(k.min(a.len()));
-    tail.iter().chain(head).all(|v| b.contains(v))
+    let mut k = (h.wrapping_sub(first) as usize).saturating_add(2);
+    if k >= a.len() {
+        k -= a.len(); // h is a corner of f: k < 2 len
+    }
+    // Plain loops: `contains` takes a chunked path that costs more on 3–4 corners.
+    let has = |x: u32| b.iter().any(|&y| y == x);
+    match a.get(k) {
+        Some(&x) if !has(x) => false,
+        _ => a.iter().all(|&v| has(v)),
+    }
 }
 
 /// `(origin, dest)` of half-edge `h` from the corners and a table of end vertices (the
@@ -349,14 +356,17 @@ impl<'m, 's> Topology<'m, 's> {
         // live in the still unused vertex region. Linear time, no comparisons, and the same
         // total order as one global sort.
         let face_of_ro: &[u32] = face_of;
-        counting_sort(0..nh as u32, twin, vert_he, |h| {
+        let by_max = indices
+            .iter()
+            .zip(edge_of.iter())
+            .enumerate()
+            .map(|(h, (&a, &b))| (h as u32, a.max(b)));
+        counting_sort(by_max, twin, vert_he)?;
+        let by_min = twin.iter().map(|&h| {
             let (a, b) = ends_in(indices, edge_of, h);
-            a.max(b)
-        })?;
-        counting_sort(twin.iter().copied(), edge_he, vert_he, |h| {
-            let (a, b) = ends_in(indices, edge_of, h);
-            a.min(b)
-        })?;
+            (h, a.min(b))
+        });
+        counting_sort(by_min, edge_he, vert_he)?;
 
         let mut n_edges = 0usize;
         let mut n_boundary_edges = 0usize;
