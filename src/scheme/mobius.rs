@@ -30,7 +30,7 @@
 
 use arrayvec::ArrayVec;
 
-use super::linear::{face_points, ring_points, ring_points_into};
+use super::linear::{face_points, face_points_into, ring_points, ring_points_into};
 use super::Scheme;
 use crate::blend::{self, f4, f4_hinted};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
@@ -639,9 +639,11 @@ impl Driver<'_, '_, '_, '_> {
     /// Blends the face candidates into face points written at `start + f`.
     fn blend_faces(&mut self, start: usize) -> Result<()> {
         let topo = self.topo;
+        let mut verts = FacePts::new();
+        let mut cands = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
-            let verts = face_points(topo, f)?;
-            let mut cands: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            face_points_into(topo, f, &mut verts)?;
+            cands.clear();
             for h in topo.face_half_edges(f)? {
                 cands
                     .try_push(get(self.face_c, h as usize)?)
@@ -1070,8 +1072,9 @@ impl Driver<'_, '_, '_, '_> {
             }
         }
         // Ears in a substitute's form; anything still missing takes the linear rule.
+        let mut linear_pts = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
-            let linear_pts = face_points(topo, f)?;
+            face_points_into(topo, f, &mut linear_pts)?;
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
                 if present(&get(self.pos, h as usize)?) {
                     continue;
