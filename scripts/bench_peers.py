@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Side-by-side timings in one run, single-threaded: our linear and Möbius schemes and the
-peers' linear schemes on the rows of DESIGN.md "Performance" (best of 3 runs each; the time
-of the subdivision itself, excluding file I/O: for the peers, building their mesh,
-subdividing and reading it back; for ours, validation, topology and every level).
+peers' linear schemes on the rows of DESIGN.md "Performance" (best of 3 runs each, or of
+BENCH_REPS; the time of the subdivision itself, excluding file I/O: for the peers, building
+their mesh, subdividing and reading it back; for ours, one multi-level call with its buffers:
+validation, topology and every level).
 
   scripts/bench_peers.py PEER_BIN OURS_BIN [MESH_DIR]
 
@@ -27,10 +28,15 @@ ROWS = [
 ]
 
 
+# Runs per cell (best of); BENCH_REPS raises it on a loaded machine, where the minimum of
+# more runs is nearer the unloaded time.
+REPS = int(os.environ.get("BENCH_REPS", "3"))
+
+
 def timed(cmd):
-    """(best time_ms of 3 runs, max RSS in MB of the best run, stderr of the best run)."""
+    """(best time_ms of REPS runs, max RSS in MB of the best run, stderr of the best run)."""
     best = None
-    for _ in range(3):
+    for _ in range(REPS):
         r = subprocess.run(["/usr/bin/time", "-v"] + cmd, capture_output=True, text=True)
         if r.returncode != 0:
             return None
