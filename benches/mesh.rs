@@ -2,7 +2,15 @@
 //! the rows of DESIGN.md "Performance" and seed 000 Table 1 (Möbius / linear ratio).
 //!
 //! `cargo bench --bench mesh` (reads `../shared/data/meshes`; prints SKIP rows otherwise).
-//! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench-peers.sh`.
+//! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench_peers.py`.
+//!
+//! Each row is one multi-level call ([`plan`] + [`subdivide_levels`] /
+//! [`subdivide_levels_mobius`]), as a host would make it: validation, topology of every
+//! level, every level, with the caller's buffers allocated inside the timed region.
+//!
+//! `cargo bench --bench mesh -- SCHEME LEVELS MESH.off [--mobius]` runs one such call once
+//! (for `valgrind --tool=callgrind`: the instruction count is then the kernel's plus reading
+//! the small input file).
 #![allow(
     clippy::expect_used,
     clippy::unwrap_used,
@@ -13,21 +21,41 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use std::path::Path;
 use std::time::Instant;
 
 use common::*;
-use nlsubdiv::scheme::Scheme;
+use nlsubdiv::mesh::MeshOut;
+use nlsubdiv::scheme::mobius::MobiusOptions;
+use nlsubdiv::scheme::{self, Scheme};
 
-fn linear_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
-    subdivide_n(s, m, levels).unwrap()
-}
-
-fn mobius_levels(s: Scheme, m: &OwnedMesh, levels: usize) -> OwnedMesh {
-    let mut cur = m.clone();
-    for _ in 0..levels {
-        cur = mobius_subdivide(s, &cur, false).unwrap().0;
+/// `levels` steps in one multi-level call, linear or Möbius.
+fn levels_call(s: Scheme, m: &OwnedMesh, levels: usize, mobius: bool) -> OwnedMesh {
+    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
+    let p = scheme::plan(s, m.view(), levels, &mut su).unwrap();
+    let o = p.output();
+    let np = if mobius {
+        p.mobius_scratch_points().unwrap()
+    } else {
+        p.scratch_points
+    };
+    // A 0-level plan asks for no scratch, but the call still validates into the topology.
+    su.resize(p.scratch_u32.max(su.len()), 0);
+    let mut sp = vec![[0.0f64; 3]; np];
+    let mut out = OwnedMesh {
+        positions: vec![[0.0; 3]; o.vertices],
+        offsets: vec![0; o.faces + 1],
+        indices: vec![0; o.indices],
+    };
+    let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
+    if mobius {
+        let opts = MobiusOptions { strict: false };
+        scheme::subdivide_levels_mobius(s, m.view(), levels, &mut su, &mut sp, &mut mo, opts)
+            .unwrap();
+    } else {
+        scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo).unwrap();
     }
-    cur
+    out
 }
 
 /// Best of `reps` wall-clock runs, in milliseconds.
@@ -43,6 +71,27 @@ fn best_ms(reps: usize, mut f: impl FnMut() -> usize) -> (f64, usize) {
 }
 
 fn main() {
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| a != "--bench")
+        .collect();
+    if args.len() >= 3 {
+        let s = Scheme::from_name(&args[0]).expect("scheme name");
+        let levels: usize = args[1].parse().expect("levels");
+        let m = read_off(Path::new(&args[2])).expect("mesh");
+        let mobius = args.get(3).is_some_and(|a| a == "--mobius");
+        let t = Instant::now();
+        let out = levels_call(s, &m, levels, mobius);
+        println!(
+            "{} {levels} {}{}: {} faces, {:.1} ms",
+            s.name(),
+            args[2],
+            if mobius { " (Möbius)" } else { "" },
+            out.num_faces(),
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        return;
+    }
     let dir = shared_meshes_dir();
     let rows = [
         ("epcot.off", Scheme::Loop, 4),
@@ -63,8 +112,8 @@ fn main() {
             );
             continue;
         };
-        let (lin, faces) = best_ms(3, || linear_levels(s, &m, levels).num_faces());
-        let (mob, _) = best_ms(3, || mobius_levels(s, &m, levels).num_faces());
+        let (lin, faces) = best_ms(3, || levels_call(s, &m, levels, false).num_faces());
+        let (mob, _) = best_ms(3, || levels_call(s, &m, levels, true).num_faces());
         println!(
             "| {name} | {} | {levels} | {faces} | {lin:.1} | {mob:.1} | {:.2} |",
             s.name(),

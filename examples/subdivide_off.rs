@@ -14,14 +14,70 @@ mod common;
 use std::path::Path;
 
 use common::*;
-use nlsubdiv::scheme::Scheme;
+use nlsubdiv::mesh::MeshOut;
+use nlsubdiv::scheme::mobius::MobiusOptions;
+use nlsubdiv::scheme::{self, Scheme};
 
-fn step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> nlsubdiv::Result<OwnedMesh> {
-    if mobius_on {
-        Ok(mobius_subdivide(s, m, false)?.0)
+/// `levels` steps in one multi-level call ([`scheme::plan`] + [`scheme::subdivide_levels`] /
+/// [`scheme::subdivide_levels_mobius`]), buffers allocated here: what a host does. The
+/// result equals the chain of one-level calls bit for bit (checked by
+/// the tests of `subdivide_levels`).
+fn levels_call(
+    s: Scheme,
+    m: &OwnedMesh,
+    levels: usize,
+    mobius_on: bool,
+) -> nlsubdiv::Result<OwnedMesh> {
+    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view())?];
+    let p = scheme::plan(s, m.view(), levels, &mut su)?;
+    let o = p.output();
+    let np = if mobius_on {
+        p.mobius_scratch_points()?
     } else {
-        subdivide(s, m)
+        p.scratch_points
+    };
+    // A 0-level plan asks for no scratch, but the call still validates into the topology.
+    su.resize(p.scratch_u32.max(su.len()), 0);
+    let mut sp = vec![[0.0f64; 3]; np];
+    let mut out = OwnedMesh {
+        positions: vec![[0.0; 3]; o.vertices],
+        offsets: vec![0; o.faces + 1],
+        indices: vec![0; o.indices],
+    };
+    let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
+    if mobius_on {
+        let opts = MobiusOptions { strict: false };
+        scheme::subdivide_levels_mobius(s, m.view(), levels, &mut su, &mut sp, &mut mo, opts)?;
+    } else {
+        scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo)?;
     }
+    // Kernel memory of this call: the caller's output buffers plus the scratch the plan asks
+    // for (everything the kernel touches), for scripts/bench_peers.py.
+    let out_bytes = 24 * o.vertices + 4 * (o.faces + 1) + 4 * o.indices;
+    let scratch_bytes = 4 * su.len() + 24 * sp.len();
+    eprintln!("subdivide_off: output_bytes={out_bytes} scratch_bytes={scratch_bytes}");
+    Ok(out)
+}
+
+/// The OFF text of `write_off` (tests/common), streamed through a buffer instead of built
+/// as one string, so that the process's peak memory is the kernel's plus a small constant,
+/// like the peers' harness (peers/peer_subdivide.cpp streams with fprintf).
+fn write_off_streamed(path: &Path, m: &OwnedMesh) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(w, "OFF\n{} {} 0", m.positions.len(), m.num_faces())?;
+    for p in &m.positions {
+        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+    }
+    for f in m.offsets.windows(2) {
+        let face = &m.indices[f[0] as usize..f[1] as usize];
+        write!(w, "{}", face.len())?;
+        for i in face {
+            write!(w, " {i}")?;
+        }
+        writeln!(w)?;
+    }
+    w.flush()
 }
 
 fn main() {
@@ -36,22 +92,20 @@ fn main() {
     });
     let levels: usize = args[2].parse().expect("levels");
     let mobius_on = args.get(5).is_some_and(|a| a == "--mobius");
-    let mut m = read_off(Path::new(&args[3])).unwrap_or_else(|e| {
+    let m = read_off(Path::new(&args[3])).unwrap_or_else(|e| {
         eprintln!("{}: {e}", args[3]);
         std::process::exit(1)
     });
-    // Wall time of the subdivision (validation, topology and every level), without file I/O,
-    // printed for scripts/bench_peers.py.
+    // Wall time of the subdivision (buffers, validation, topology and every level), without
+    // file I/O, printed for scripts/bench_peers.py.
     let t0 = std::time::Instant::now();
-    for _ in 0..levels {
-        m = step(s, &m, mobius_on).unwrap_or_else(|e| {
-            eprintln!("{}: rejected: {e}", args[3]);
-            std::process::exit(2)
-        });
-    }
+    let m = levels_call(s, &m, levels, mobius_on).unwrap_or_else(|e| {
+        eprintln!("{}: rejected: {e}", args[3]);
+        std::process::exit(2)
+    });
     eprintln!(
         "subdivide_off: time_ms={:.3}",
         t0.elapsed().as_secs_f64() * 1e3
     );
-    write_off(Path::new(&args[4]), &m).expect("write");
+    write_off_streamed(Path::new(&args[4]), &m).expect("write");
 }

@@ -1,83 +1,73 @@
-//! A hand-written, panic-free heapsort on `u32` ids (reliability-anchors.md §3.1, §4.4:
-//! `core`'s `sort_unstable` keeps a `panic_on_ord_violation` path even for integers).
+//! A hand-written, panic-free stable counting sort on `u32` ids (reliability-anchors.md
+//! §3.1, §4.4: no hashing, and `core`'s `sort_unstable` keeps a `panic_on_ord_violation`
+//! path even for integers).
 //!
-//! Ids are ordered by `(key(id), id)`, a total order, so the result is unique and does not
-//! depend on the initial order: the sort is deterministic although heapsort is not stable.
+//! Ids are ordered by `key(id)`, ties kept in input order: two passes, least significant key
+//! first, sort by a pair of keys; with ids fed in ascending order the result is ordered by
+//! `(key, id)`, a total order, so it is unique and deterministic.
 
-/// Sorts `ids` ascending by `(key(id), id)`. `O(n log n)`, in place, no allocation, no panic.
-pub(crate) fn heapsort_by_key<K: Fn(u32) -> u64>(ids: &mut [u32], key: K) {
-    let n = ids.len();
-    let less = |a: u32, b: u32| (key(a), a) < (key(b), b);
-    let mut start = n / 2;
-    while start > 0 {
-        start -= 1;
-        sift_down(ids, start, n, &less);
-    }
-    let mut end = n;
-    while end > 1 {
-        end -= 1;
-        swap(ids, 0, end);
-        sift_down(ids, 0, end, &less);
-    }
-}
+use super::internal;
+use crate::error::Result;
 
-fn sift_down<L: Fn(u32, u32) -> bool>(ids: &mut [u32], mut root: usize, end: usize, less: &L) {
-    loop {
-        let child = root.saturating_mul(2).saturating_add(1);
-        if child >= end {
-            return;
-        }
-        let Some(&c0) = ids.get(child) else { return };
-        let mut c = child;
-        let mut cv = c0;
-        if child + 1 < end {
-            if let Some(&c1) = ids.get(child + 1) {
-                if less(c0, c1) {
-                    c = child + 1;
-                    cv = c1;
-                }
-            }
-        }
-        let Some(&rv) = ids.get(root) else { return };
-        if less(rv, cv) {
-            swap(ids, root, c);
-            root = c;
-        } else {
-            return;
-        }
+/// Writes the ids of `items` (`(id, key)` pairs) into `dst` ordered by key, equal keys in
+/// input order (stable). `counts` needs one entry per key value (every key below
+/// `counts.len()`); `dst` at least as many entries as `items` yields. `O(items + keys)`, no
+/// allocation, no panic. `items` is walked twice (count, then place).
+///
+/// # Errors
+/// An internal error for a key out of range or a short `dst` (never on a built topology).
+pub(crate) fn counting_sort<I>(items: I, dst: &mut [u32], counts: &mut [u32]) -> Result<()>
+where
+    I: Iterator<Item = (u32, u32)> + Clone,
+{
+    for c in counts.iter_mut() {
+        *c = 0;
     }
-}
-
-fn swap(ids: &mut [u32], i: usize, j: usize) {
-    if let (Some(&a), Some(&b)) = (ids.get(i), ids.get(j)) {
-        if let Some(x) = ids.get_mut(i) {
-            *x = b;
-        }
-        if let Some(y) = ids.get_mut(j) {
-            *y = a;
-        }
+    for (_, key) in items.clone() {
+        let c = counts.get_mut(key as usize).ok_or(internal())?;
+        *c = c.saturating_add(1);
     }
+    let mut acc = 0u32;
+    for c in counts.iter_mut() {
+        let n = *c;
+        *c = acc;
+        acc = acc.saturating_add(n);
+    }
+    for (id, key) in items {
+        let c = counts.get_mut(key as usize).ok_or(internal())?;
+        *dst.get_mut(*c as usize).ok_or(internal())? = id;
+        *c = c.saturating_add(1);
+    }
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// Two passes sort by `(major, minor, id)`: checked against the definition of the order.
     #[test]
-    fn sorts_by_key_then_id() {
+    fn two_passes_sort_by_key_pair_then_id() {
         // Pseudo-random keys from a fixed LCG, many ties.
         let mut state = 12345u64;
-        let keys: [u64; 257] = core::array::from_fn(|_| {
+        let mut next = || {
             state = state
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
-            (state >> 33) % 17
-        });
-        let mut ids: [u32; 257] = core::array::from_fn(|i| (256 - i) as u32);
-        heapsort_by_key(&mut ids, |i| keys[i as usize]);
+            ((state >> 33) % 7) as u32
+        };
+        let major: [u32; 257] = core::array::from_fn(|_| next());
+        let minor: [u32; 257] = core::array::from_fn(|_| next());
+        let mut tmp = [0u32; 257];
+        let mut ids = [0u32; 257];
+        let mut counts = [0u32; 7];
+        let by_minor = (0..257u32).map(|i| (i, minor[i as usize]));
+        counting_sort(by_minor, &mut tmp, &mut counts).unwrap();
+        let by_major = tmp.iter().map(|&i| (i, major[i as usize]));
+        counting_sort(by_major, &mut ids, &mut counts).unwrap();
         for w in ids.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            assert!((keys[a as usize], a) < (keys[b as usize], b));
+            let (a, b) = (w[0] as usize, w[1] as usize);
+            assert!((major[a], minor[a], a) < (major[b], minor[b], b));
         }
         // A permutation of 0..257.
         let mut seen = [false; 257];
@@ -88,14 +78,20 @@ mod tests {
     }
 
     #[test]
-    fn trivial_lengths() {
+    fn trivial_lengths_and_bad_keys() {
+        let mut counts = [0u32; 4];
         let mut e: [u32; 0] = [];
-        heapsort_by_key(&mut e, |i| i as u64);
-        let mut one = [7u32];
-        heapsort_by_key(&mut one, |i| i as u64);
+        counting_sort(core::iter::empty(), &mut e, &mut counts).unwrap();
+        let mut one = [0u32; 1];
+        counting_sort([(7u32, 3u32)].into_iter(), &mut one, &mut counts).unwrap();
         assert_eq!(one, [7]);
-        let mut two = [3u32, 1];
-        heapsort_by_key(&mut two, |_| 0);
-        assert_eq!(two, [1, 3]);
+        let mut two = [0u32; 2];
+        counting_sort([(3u32, 0u32), (1, 0)].into_iter(), &mut two, &mut counts).unwrap();
+        assert_eq!(two, [3, 1], "stable: equal keys keep their input order");
+        // A key out of range and a short destination are errors, not panics.
+        let bad_key = (0..2u32).map(|i| (i, 4));
+        assert!(counting_sort(bad_key, &mut two, &mut counts).is_err());
+        let too_many = (0..3u32).map(|i| (i, 0));
+        assert!(counting_sort(too_many, &mut two, &mut counts).is_err());
     }
 }

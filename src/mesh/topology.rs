@@ -5,10 +5,11 @@
 //! * Half-edge `h` **is corner `h`**: it starts at `indices[h]` and ends at the next corner of
 //!   its face. `next`, `prev` and `face` follow from the CSR offsets; `twin` is stored.
 //! * **Edges** are numbered in ascending `(min, max)` vertex-key order: the directed-edge table
-//!   is sorted by `(min, max, half-edge)` — a counting sort on `min`, then a hand-written
-//!   heapsort of each bucket (reliability-anchors.md §3.1: no hashing, no `sort_unstable`) —
-//!   so numbering never depends on input order beyond the vertex indices. Each edge's representative half-edge runs from `min` to `max` when
-//!   that direction exists (always, for interior edges), else it is the only half-edge.
+//!   is sorted by `(min, max, half-edge)` — two stable counting sorts, by `max` then by
+//!   `min` (reliability-anchors.md §3.1: no hashing, no `sort_unstable`) — so numbering
+//!   never depends on input order beyond the vertex indices. Each edge's representative
+//!   half-edge runs from `min` to `max` when that direction exists (always, for interior
+//!   edges), else it is the only half-edge.
 //! * **Stars** ([`Topology::star`]) are walked counter-clockwise (faces are CCW seen from
 //!   outside): `h → twin(prev(h))`. An interior vertex's star starts at its lowest-numbered
 //!   outgoing half-edge; a boundary vertex's star runs from one boundary neighbour `b0`
@@ -45,7 +46,7 @@
 
 use arrayvec::ArrayVec;
 
-use super::sort::heapsort_by_key;
+use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
 use crate::quat::{point_is_finite, Point};
@@ -135,13 +136,23 @@ impl Iterator for Star<'_, '_, '_> {
             });
         }
         let h = self.cur;
-        let spoke = Spoke {
-            neighbour: t.dest(h).ok()?,
-            edge: t.edge(h).ok()?,
-            half_edge: h,
-            face: t.face(h).ok()?,
+        // One face lookup gives the spoke's face, its end (next corner) and the previous
+        // corner, whose twin is the next spoke.
+        let f = get(t.face_of, h as usize).ok()?;
+        let start = get(t.mesh.offsets, f as usize).ok()?;
+        let end = get(t.mesh.offsets, f as usize + 1).ok()?;
+        let next = if h + 1 == end { start } else { h + 1 };
+        let p = if h == start {
+            end.wrapping_sub(1)
+        } else {
+            h.wrapping_sub(1)
         };
-        let p = t.prev(h).ok()?;
+        let spoke = Spoke {
+            neighbour: get(t.mesh.indices, next as usize).ok()?,
+            edge: get(t.edge_of, h as usize).ok()?,
+            half_edge: h,
+            face: f,
+        };
         let tw = get(t.twin, p as usize).ok()?;
         if tw == NONE {
             self.cur = NONE;
@@ -176,8 +187,30 @@ fn check_offsets(mesh: &Mesh<'_>) -> Result<()> {
     Ok(())
 }
 
+/// Whether face `face` passes every per-face check (classes 2–5) for `nv` vertices.
+fn face_ok(face: &[u32], nv: usize) -> bool {
+    (3..=MAX_FACE_SIZE).contains(&face.len())
+        && face
+            .iter()
+            .enumerate()
+            .all(|(i, &a)| (a as usize) < nv && !face.iter().skip(i + 1).any(|&b| b == a))
+}
+
 fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
     let nf = mesh.num_faces();
+    let nv = mesh.num_vertices();
+    // One pass when every face is good (the common case); otherwise the class-by-class
+    // passes below find the error the module table promises.
+    let indices = mesh.indices;
+    let all_ok = mesh.offsets.windows(2).all(|w| match *w {
+        [a, b] => indices
+            .get(a as usize..b as usize)
+            .is_some_and(|face| face_ok(face, nv)),
+        _ => false,
+    });
+    if all_ok {
+        return Ok(());
+    }
     let faces = || (0..nf).map(|f| (f as u32, mesh.face(f).unwrap_or(&[])));
     for (f, face) in faces() {
         if face.len() < 3 {
@@ -189,7 +222,6 @@ fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
             return Err(Error::at(Status::ValenceTooHigh, f));
         }
     }
-    let nv = mesh.num_vertices();
     for (f, face) in faces() {
         if face.iter().any(|&v| v as usize >= nv) {
             return Err(Error::at(Status::IndexOutOfRange, f));
@@ -206,11 +238,45 @@ fn check_faces(mesh: &Mesh<'_>) -> Result<()> {
 }
 
 /// Whether faces `f` and `g` have the same vertex set (faces have no repeated vertices).
-fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32) -> bool {
-    match (mesh.face(f as usize), mesh.face(g as usize)) {
-        (Some(a), Some(b)) => a.len() == b.len() && a.iter().all(|v| b.contains(v)),
-        _ => false,
+/// `h` is a half-edge of `f` on an edge the two faces share: `f`'s corners are tested from
+/// the second corner after `h` on, which for neighbouring faces (the usual case) is off the
+/// shared edge and answers at the first test. The answer does not depend on the order.
+fn same_vertex_set(mesh: &Mesh<'_>, f: u32, g: u32, h: u32) -> bool {
+    let (Some(a), Some(b)) = (mesh.face(f as usize), mesh.face(g as usize)) else {
+        return false;
+    };
+    if a.len() != b.len() {
+        return false;
     }
+    let first = mesh.offsets.get(f as usize).copied().unwrap_or(h);
+    let mut k = (h.wrapping_sub(first) as usize).saturating_add(2);
+    if k >= a.len() {
+        k -= a.len(); // h is a corner of f: k < 2 len
+    }
+    // Plain loops: `contains` takes a chunked path that costs more on 3–4 corners (measured
+    // with callgrind).
+    #[allow(clippy::manual_contains)]
+    let has = |x: u32| b.iter().any(|&y| y == x);
+    match a.get(k) {
+        Some(&x) if !has(x) => false,
+        _ => a.iter().all(|&v| has(v)),
+    }
+}
+
+/// `(origin, dest)` of half-edge `h` from the corners and a table of end vertices (the
+/// build's first pass); `NONE` out of range.
+#[inline]
+fn ends_in(indices: &[u32], dest: &[u32], h: u32) -> (u32, u32) {
+    let a = indices.get(h as usize).copied().unwrap_or(NONE);
+    let b = dest.get(h as usize).copied().unwrap_or(NONE);
+    (a, b)
+}
+
+/// The undirected key `(min, max)` of half-edge `h`, as one `u64`.
+#[inline]
+fn key_in(indices: &[u32], dest: &[u32], h: u32) -> u64 {
+    let (a, b) = ends_in(indices, dest, h);
+    ((a.min(b) as u64) << 32) | a.max(b) as u64
 }
 
 /// `next(h)` from the offsets and the face of each half-edge.
@@ -267,6 +333,9 @@ impl<'m, 's> Topology<'m, 's> {
         let indices = mesh.indices;
         let mut max_face = 0usize;
         let mut min_face = if nf == 0 { 0 } else { usize::MAX };
+        // Face of every half-edge, and its end vertex in the edge_of region (read by the
+        // sort and the edge scan below; each entry is overwritten by its edge id after its
+        // last read).
         for f in 0..nf {
             let a = get(offsets, f)? as usize;
             let b = get(offsets, f + 1)? as usize;
@@ -275,67 +344,40 @@ impl<'m, 's> Topology<'m, 's> {
             for slot in face_of.get_mut(a..b).ok_or(internal())? {
                 *slot = f as u32;
             }
+            let corners = indices.get(a..b).ok_or(internal())?;
+            let ends = edge_of.get_mut(a..b).ok_or(internal())?;
+            let first = corners.first().copied().ok_or(internal())?;
+            for (k, slot) in ends.iter_mut().enumerate() {
+                *slot = corners.get(k + 1).copied().unwrap_or(first);
+            }
         }
 
         // Directed-edge table: half-edge ids sorted by (min, max, half-edge), in the edge_he
-        // region. Counting sort by the smaller endpoint (bucket offsets and cursors in the
-        // still unused vertex regions), then a heapsort of each bucket by (max, half-edge):
-        // the same total order as one global sort, at a fraction of the cost.
+        // region. Two stable counting sorts (least significant key first): by the larger
+        // endpoint into the twin region, then by the smaller one into edge_he; the counts
+        // live in the still unused vertex region. Linear time, no comparisons, and the same
+        // total order as one global sort.
         let face_of_ro: &[u32] = face_of;
-        let ends = |h: u32| -> (u32, u32) {
-            let a = indices.get(h as usize).copied().unwrap_or(NONE);
-            let b = next_in(offsets, face_of_ro, h)
-                .ok()
-                .and_then(|n| indices.get(n as usize).copied())
-                .unwrap_or(NONE);
-            (a, b)
-        };
-        let key = |h: u32| -> u64 {
-            let (a, b) = ends(h);
-            ((a.min(b) as u64) << 32) | b.max(a) as u64
-        };
-        for c in vert_he.iter_mut() {
-            *c = 0;
-        }
-        for h in 0..nh as u32 {
-            let (a, b) = ends(h);
-            let m = a.min(b) as usize;
-            set(vert_he, m, get(vert_he, m)? + 1)?;
-        }
-        let mut acc = 0u32;
-        for v in 0..nv {
-            let c = get(vert_he, v)?;
-            set(vert_he, v, acc)?;
-            set(valence, v, acc)?;
-            acc += c;
-        }
-        for h in 0..nh as u32 {
-            let (a, b) = ends(h);
-            let m = a.min(b) as usize;
-            let at = get(valence, m)?;
-            set(edge_he, at as usize, h)?;
-            set(valence, m, at + 1)?;
-        }
-        for v in 0..nv {
-            // Bucket v spans [start, cursor) after the placement.
-            let (a, b) = (get(vert_he, v)? as usize, get(valence, v)? as usize);
-            let bucket = edge_he.get_mut(a..b).ok_or(internal())?;
-            if bucket.len() > 1 {
-                heapsort_by_key(bucket, |h| {
-                    let (x, y) = ends(h);
-                    x.max(y) as u64
-                });
-            }
-        }
+        let by_max = indices
+            .iter()
+            .zip(edge_of.iter())
+            .enumerate()
+            .map(|(h, (&a, &b))| (h as u32, a.max(b)));
+        counting_sort(by_max, twin, vert_he)?;
+        let by_min = twin.iter().map(|&h| {
+            let (a, b) = ends_in(indices, edge_of, h);
+            (h, a.min(b))
+        });
+        counting_sort(by_min, edge_he, vert_he)?;
 
         let mut n_edges = 0usize;
         let mut n_boundary_edges = 0usize;
         let mut s = 0usize;
         while s < nh {
             let h0 = get(edge_he, s)?;
-            let k0 = key(h0);
+            let k0 = key_in(indices, edge_of, h0);
             let mut e = s + 1;
-            while e < nh && key(get(edge_he, e)?) == k0 {
+            while e < nh && key_in(indices, edge_of, get(edge_he, e)?) == k0 {
                 e += 1;
             }
             let len = e - s;
@@ -346,9 +388,10 @@ impl<'m, 's> Topology<'m, 's> {
                 let m = len.min(4);
                 for i in 0..m {
                     for j in i + 1..m {
-                        let fi = get(face_of_ro, get(edge_he, s + i)? as usize)?;
+                        let hi = get(edge_he, s + i)?;
+                        let fi = get(face_of_ro, hi as usize)?;
                         let fj = get(face_of_ro, get(edge_he, s + j)? as usize)?;
-                        if same_vertex_set(&mesh, fi, fj) {
+                        if same_vertex_set(&mesh, fi, fj, hi) {
                             return Err(Error::at(Status::DuplicateFace, fi.max(fj)));
                         }
                     }
@@ -362,8 +405,8 @@ impl<'m, 's> Topology<'m, 's> {
                 }
                 2 => {
                     let h1 = get(edge_he, s + 1)?;
-                    let (a0, _) = ends(h0);
-                    let (a1, _) = ends(h1);
+                    let a0 = get(indices, h0 as usize)?;
+                    let a1 = get(indices, h1 as usize)?;
                     if a0 == a1 {
                         return Err(Error::at(Status::InconsistentOrientation, last_face));
                     }
@@ -728,6 +771,14 @@ impl<'m, 's> Topology<'m, 's> {
     /// The spokes of `v`'s star collected in a fixed-capacity array.
     pub fn spokes(&self, v: u32) -> Result<ArrayVec<Spoke, MAX_VALENCE>> {
         let mut out = ArrayVec::new();
+        self.spokes_into(v, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Topology::spokes`] into a reused buffer (the drivers: no 2 KB array returned per
+    /// vertex).
+    pub(crate) fn spokes_into(&self, v: u32, out: &mut ArrayVec<Spoke, MAX_VALENCE>) -> Result<()> {
+        out.clear();
         for s in self.star(v) {
             out.try_push(s)
                 .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
@@ -735,7 +786,7 @@ impl<'m, 's> Topology<'m, 's> {
         if out.len() != self.valence(v)? {
             return Err(internal());
         }
-        Ok(out)
+        Ok(())
     }
 
     /// The neighbours of `v`, counter-clockwise (the star's order).

@@ -82,21 +82,35 @@ pub fn subdivide(
 /// Positions of `v`'s neighbours, counter-clockwise.
 pub(crate) fn ring_points(topo: &Topology<'_, '_>, v: u32) -> Result<Ring> {
     let mut r = Ring::new();
+    ring_points_into(topo, v, &mut r)?;
+    Ok(r)
+}
+
+/// [`ring_points`] into a reused buffer (no 3 KB array returned per vertex).
+pub(crate) fn ring_points_into(topo: &Topology<'_, '_>, v: u32, r: &mut Ring) -> Result<()> {
+    r.clear();
     for s in topo.star(v) {
         r.try_push(topo.position(s.neighbour)?)
             .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
     }
-    Ok(r)
+    Ok(())
 }
 
 /// Positions of the corners of face `f`, in face order.
 pub(crate) fn face_points(topo: &Topology<'_, '_>, f: u32) -> Result<FacePts> {
     let mut r = FacePts::new();
+    face_points_into(topo, f, &mut r)?;
+    Ok(r)
+}
+
+/// [`face_points`] into a reused buffer.
+pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts) -> Result<()> {
+    r.clear();
     for &v in topo.face_vertices(f)? {
         r.try_push(topo.position(v)?)
             .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
     }
-    Ok(r)
+    Ok(())
 }
 
 /// The other boundary neighbour of boundary vertex `v` (not `other`).
@@ -137,6 +151,7 @@ fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
 
 fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
     let nv = topo.num_vertices();
+    let mut ring = Ring::new();
     for v in 0..nv as u32 {
         let p = topo.position(v)?;
         let q = if topo.is_isolated(v)? {
@@ -145,7 +160,8 @@ fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
             let (b0, b1) = topo.boundary_neighbours(v)?;
             loop_scheme::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
         } else {
-            loop_scheme::vertex_interior(p, &ring_points(topo, v)?)?
+            ring_points_into(topo, v, &mut ring)?;
+            loop_scheme::vertex_interior(p, &ring)?
         };
         set(pos, v as usize, q)?;
     }
@@ -171,8 +187,10 @@ fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
 fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
     let nv = topo.num_vertices();
     let fp0 = nv + topo.num_edges();
+    let mut pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
-        let c = catmull_clark::face_point(&face_points(topo, f)?)?;
+        face_points_into(topo, f, &mut pts)?;
+        let c = catmull_clark::face_point(&pts)?;
         set(pos, fp0 + f as usize, c)?;
     }
     for e in 0..topo.num_edges() as u32 {
@@ -189,6 +207,8 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
         };
         set(pos, nv + e as usize, q)?;
     }
+    let mut ring = Ring::new();
+    let mut faces = Ring::new();
     for v in 0..nv as u32 {
         let p = topo.position(v)?;
         let q = if topo.is_isolated(v)? {
@@ -197,8 +217,8 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
             let (b0, b1) = topo.boundary_neighbours(v)?;
             catmull_clark::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
         } else {
-            let mut ring = Ring::new();
-            let mut faces = Ring::new();
+            ring.clear();
+            faces.clear();
             for s in topo.star(v) {
                 ring.try_push(topo.position(s.neighbour)?)
                     .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
@@ -377,8 +397,9 @@ fn kobbelt_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
 // ---- Doo–Sabin, Simplest, Akleman ----
 
 fn doo_sabin_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let mut pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
-        let pts = face_points(topo, f)?;
+        face_points_into(topo, f, &mut pts)?;
         for (i, h) in topo.face_half_edges(f)?.enumerate() {
             set(pos, h as usize, doo_sabin::corner_point(&pts, i)?)?;
         }
@@ -413,8 +434,10 @@ fn simplest_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> 
 }
 
 fn face_centroids(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
+    let mut pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
-        let c = akleman::face_point(&face_points(topo, f)?)?;
+        face_points_into(topo, f, &mut pts)?;
+        let c = akleman::face_point(&pts)?;
         set(pos, start + f as usize, c)?;
     }
     Ok(())
@@ -442,12 +465,14 @@ fn vertex_insertion_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Res
 }
 
 fn dual_truncation_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let mut ring = Ring::new();
     for v in 0..topo.num_vertices() as u32 {
         let p = topo.position(v)?;
         let q = if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
             p
         } else {
-            akleman::truncated_vertex(p, &ring_points(topo, v)?)?
+            ring_points_into(topo, v, &mut ring)?;
+            akleman::truncated_vertex(p, &ring)?
         };
         set(pos, v as usize, q)?;
     }

@@ -30,12 +30,12 @@
 
 use arrayvec::ArrayVec;
 
-use super::linear::{face_points, ring_points};
+use super::linear::{face_points, face_points_into, ring_points, ring_points_into};
 use super::Scheme;
 use crate::blend::{self, f4, f4_hinted};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::mesh::refine::write_pattern;
-use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Topology, NONE};
+use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::quat::{point_is_finite, Point};
 use crate::stencil::{
@@ -407,28 +407,53 @@ pub fn subdivide(
 }
 
 /// A vertex's canonical form with a small cache of mapped 1-ring points.
+///
+/// About 19 KB (the cache and a ring buffer): each driver loop keeps one and re-targets it
+/// per vertex with [`Driver::local_into`] instead of returning a fresh one, which moved it
+/// several times per vertex (memcpy was half of Möbius Catmull–Clark's instructions).
 struct Local {
     v: u32,
     cf: CanonicalForm,
     cache: ArrayVec<(u32, Point), { 4 * MAX_VALENCE }>,
+    ring: Ring,
 }
 
+type Ring = ArrayVec<Point, MAX_VALENCE>;
+type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
+type Spokes = ArrayVec<Spoke, MAX_VALENCE>;
+
 impl Local {
-    /// The canonical form of `v`'s star: [`StarKind::Interior`] for a closed star,
-    /// [`StarKind::Boundary`] for an open one (ring from one boundary neighbour to the other).
-    fn new(topo: &Topology<'_, '_>, v: u32) -> Result<Local> {
-        let ring = ring_points(topo, v)?;
+    /// A memo holding no form yet (`v = NONE`).
+    fn blank() -> Local {
+        Local {
+            v: NONE,
+            cf: CanonicalForm {
+                v: ORIGIN,
+                c: ORIGIN,
+                r: 0.0,
+                kind: StarKind::Interior,
+            },
+            cache: ArrayVec::new(),
+            ring: ArrayVec::new(),
+        }
+    }
+
+    /// Re-targets the memo to the canonical form of `v`'s star: [`StarKind::Interior`] for
+    /// a closed star, [`StarKind::Boundary`] for an open one (ring from one boundary
+    /// neighbour to the other). `Err` when the form does not exist; the memo then holds no
+    /// form (`v = NONE`).
+    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32) -> Result<()> {
+        self.v = NONE;
+        self.cache.clear();
+        ring_points_into(topo, v, &mut self.ring)?;
         let kind = if topo.is_boundary_vertex(v)? {
             StarKind::Boundary
         } else {
             StarKind::Interior
         };
-        let cf = CanonicalForm::new(topo.position(v)?, &ring, kind)?;
-        Ok(Local {
-            v,
-            cf,
-            cache: ArrayVec::new(),
-        })
+        self.cf = CanonicalForm::new(topo.position(v)?, &self.ring, kind)?;
+        self.v = v;
+        Ok(())
     }
 
     /// The image of vertex `u` in the canonical form, in its normalised frame
@@ -445,14 +470,26 @@ impl Local {
         Ok(p)
     }
 
-    /// The canonical images of the corners of face `f`, in face order.
-    fn face(&mut self, topo: &Topology<'_, '_>, f: u32) -> Result<ArrayVec<Point, MAX_FACE_SIZE>> {
-        let mut pts = ArrayVec::new();
+    /// The canonical images of the corners of face `f`, in face order, into `pts`.
+    fn face(&mut self, topo: &Topology<'_, '_>, f: u32, pts: &mut FacePts) -> Result<()> {
+        pts.clear();
         for &u in topo.face_vertices(f)? {
             pts.try_push(self.canon(topo, u)?)
                 .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
         }
-        Ok(pts)
+        Ok(())
+    }
+
+    /// The centroid of face `f` taken in the canonical form (normalised frame); `pts` is
+    /// scratch.
+    fn face_centroid(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        f: u32,
+        pts: &mut FacePts,
+    ) -> Result<Point> {
+        self.face(topo, f, pts)?;
+        centroid(pts)
     }
 
     fn back(&self, p: Point) -> Result<Point> {
@@ -522,13 +559,16 @@ impl Driver<'_, '_, '_, '_> {
         Ok(self.topo.is_boundary_vertex(v)? && self.topo.vertex_face_count(v)? == 1)
     }
 
-    /// The canonical form of a non-ear, non-isolated vertex, or `None` when it does not exist
+    /// Re-targets `l` to the canonical form of a non-ear, non-isolated vertex; `false` (and
+    /// `l` holds no form) when `v` is isolated or an ear or its form does not exist
     /// (degenerate star).
-    fn local(&self, v: u32) -> Result<Option<Local>> {
+    fn local_into(&self, v: u32, l: &mut Local) -> Result<bool> {
         if self.topo.is_isolated(v)? || self.is_ear(v)? {
-            return Ok(None);
+            l.v = NONE;
+            l.cache.clear();
+            return Ok(false);
         }
-        Ok(Local::new(self.topo, v).ok())
+        Ok(l.reset(self.topo, v).is_ok())
     }
 
     /// The vertex whose canonical form evaluates corner `i` of face `f`: the corner's own
@@ -560,20 +600,21 @@ impl Driver<'_, '_, '_, '_> {
     /// [`Self::form_vertex`]).
     fn face_candidates(&mut self, non_ears: bool) -> Result<()> {
         let topo = self.topo;
+        let mut l = Local::blank();
+        let mut pts = FacePts::new();
         for v in 0..topo.num_vertices() as u32 {
             if !non_ears {
                 break;
             }
-            let Some(mut l) = self.local(v)? else {
+            if !self.local_into(v, &mut l)? {
                 continue;
-            };
+            }
             for s in topo.star(v) {
                 if s.face == NONE {
                     continue;
                 }
                 if let Ok(c) = l
-                    .face(topo, s.face)
-                    .and_then(|p| centroid(&p))
+                    .face_centroid(topo, s.face, &mut pts)
                     .and_then(|c| l.back(c))
                 {
                     set(self.face_c, s.half_edge as usize, c)?;
@@ -590,14 +631,10 @@ impl Driver<'_, '_, '_, '_> {
                 let Some(u) = self.form_vertex(f, i)? else {
                     continue;
                 };
-                let Some(mut l) = self.local(u)? else {
+                if !self.local_into(u, &mut l)? {
                     continue;
-                };
-                if let Ok(c) = l
-                    .face(topo, f)
-                    .and_then(|p| centroid(&p))
-                    .and_then(|c| l.back(c))
-                {
+                }
+                if let Ok(c) = l.face_centroid(topo, f, &mut pts).and_then(|c| l.back(c)) {
                     set(self.face_c, h as usize, c)?;
                 }
             }
@@ -608,9 +645,11 @@ impl Driver<'_, '_, '_, '_> {
     /// Blends the face candidates into face points written at `start + f`.
     fn blend_faces(&mut self, start: usize) -> Result<()> {
         let topo = self.topo;
+        let mut verts = FacePts::new();
+        let mut cands = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
-            let verts = face_points(topo, f)?;
-            let mut cands: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            face_points_into(topo, f, &mut verts)?;
+            cands.clear();
             for h in topo.face_half_edges(f)? {
                 cands
                     .try_push(get(self.face_c, h as usize)?)
@@ -642,19 +681,25 @@ impl Driver<'_, '_, '_, '_> {
         self.blend_faces(start)?;
         if truncate {
             let topo = self.topo;
+            let mut l = Local::blank();
+            let mut ring = Ring::new();
             for v in 0..topo.num_vertices() as u32 {
                 let p = topo.position(v)?;
                 let q = if topo.is_isolated(v)? || (keep_boundary && topo.is_boundary_vertex(v)?) {
                     p
                 } else {
-                    let m = self.local(v)?.and_then(|mut l| {
-                        let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-                        for u in topo.ring(v).ok()? {
-                            ring.try_push(l.canon(topo, u).ok()?).ok()?;
-                        }
-                        let t = akleman::truncated_vertex(ORIGIN, &ring).ok()?;
-                        l.back(t).ok()
-                    });
+                    let m = if self.local_into(v, &mut l)? {
+                        (|| {
+                            ring.clear();
+                            for s in topo.star(v) {
+                                ring.try_push(l.canon(topo, s.neighbour).ok()?).ok()?;
+                            }
+                            let t = akleman::truncated_vertex(ORIGIN, &ring).ok()?;
+                            l.back(t).ok()
+                        })()
+                    } else {
+                        None
+                    };
                     match m {
                         Some(q) => q,
                         None => {
@@ -817,18 +862,22 @@ impl Driver<'_, '_, '_, '_> {
     fn run_loop(&mut self) -> Result<()> {
         let topo = self.topo;
         let nv = topo.num_vertices();
+        let mut l = Local::blank();
+        let mut spokes = Spokes::new();
+        let mut ring = Ring::new();
+        let mut cands = [MISSING; MAX_VALENCE];
         for v in 0..nv as u32 {
             let p = topo.position(v)?;
             if topo.is_isolated(v)? {
                 set(self.pos, v as usize, p)?;
                 continue;
             }
-            let local = self.local(v)?;
+            let has_form = self.local_into(v, &mut l)?;
             let boundary = topo.is_boundary_vertex(v)?;
             let mut vertex = None;
-            if let Some(mut l) = local {
-                let spokes = topo.spokes(v)?;
-                let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            if has_form {
+                topo.spokes_into(v, &mut spokes)?;
+                ring.clear();
                 let mut ok = true;
                 for s in &spokes {
                     match l.canon(topo, s.neighbour) {
@@ -838,7 +887,6 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 if ok {
                     // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
-                    let mut cands = [MISSING; MAX_VALENCE];
                     vertex = loop_star_in_form(&ring, !boundary, |q| l.back(q), &mut cands)?;
                     for (s, c) in spokes.iter().zip(cands) {
                         if s.half_edge != NONE && present(&c) {
@@ -882,6 +930,12 @@ impl Driver<'_, '_, '_, '_> {
         // Ears first (substitute forms); every other corner's candidate comes from the
         // vertex pass below, which maps each face into the corner's form once.
         self.face_candidates(false)?;
+        let mut l = Local::blank();
+        let mut spokes = Spokes::new();
+        let mut ring = Ring::new();
+        let mut fc = Ring::new();
+        let mut pts = FacePts::new();
+        let mut cands = [MISSING; MAX_VALENCE];
         for v in 0..nv as u32 {
             let p = topo.position(v)?;
             if topo.is_isolated(v)? {
@@ -890,19 +944,17 @@ impl Driver<'_, '_, '_, '_> {
             }
             let boundary = topo.is_boundary_vertex(v)?;
             let mut vertex = None;
-            if let Some(mut l) = self.local(v)? {
-                let spokes = topo.spokes(v)?;
+            if self.local_into(v, &mut l)? {
+                topo.spokes_into(v, &mut spokes)?;
                 // Images of the neighbours and canonical centroids of the faces after each
                 // spoke ([`MISSING`] when unavailable).
-                let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-                let mut fc: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                ring.clear();
+                fc.clear();
                 for s in &spokes {
                     let c = if s.face == NONE {
                         MISSING
                     } else {
-                        l.face(topo, s.face)
-                            .and_then(|pts| centroid(&pts))
-                            .unwrap_or(MISSING)
+                        l.face_centroid(topo, s.face, &mut pts).unwrap_or(MISSING)
                     };
                     if present(&c) {
                         if let Ok(b) = l.back(c) {
@@ -913,7 +965,6 @@ impl Driver<'_, '_, '_, '_> {
                     let r = l.canon(topo, s.neighbour).unwrap_or(MISSING);
                     ring.try_push(r).map_err(|_| internal())?;
                 }
-                let mut cands = [MISSING; MAX_VALENCE];
                 vertex =
                     catmull_clark_star_in_form(&ring, &fc, !boundary, |q| l.back(q), &mut cands)?;
                 for (s, c) in spokes.iter().zip(cands) {
@@ -964,10 +1015,11 @@ impl Driver<'_, '_, '_, '_> {
     /// boundary edges use the interpolating curve rule.
     fn run_simplest(&mut self) -> Result<()> {
         let topo = self.topo;
+        let mut l = Local::blank();
         for v in 0..topo.num_vertices() as u32 {
-            let Some(mut l) = self.local(v)? else {
+            if !self.local_into(v, &mut l)? {
                 continue;
-            };
+            }
             for s in topo.star(v) {
                 if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
                     continue;
@@ -1005,18 +1057,20 @@ impl Driver<'_, '_, '_, '_> {
             *p = MISSING;
         }
         // One canonical form per vertex: all its corners.
+        let mut l = Local::blank();
+        let mut pts = FacePts::new();
         for v in 0..topo.num_vertices() as u32 {
-            let Some(mut l) = self.local(v)? else {
+            if !self.local_into(v, &mut l)? {
                 continue;
-            };
+            }
             for s in topo.star(v) {
                 if s.face == NONE {
                     continue;
                 }
                 let i = (s.half_edge - topo.face_half_edges(s.face)?.start) as usize;
                 let q = l
-                    .face(topo, s.face)
-                    .and_then(|pts| doo_sabin::corner_point(&pts, i))
+                    .face(topo, s.face, &mut pts)
+                    .and_then(|()| doo_sabin::corner_point(&pts, i))
                     .and_then(|c| l.back(c));
                 if let Ok(q) = q {
                     set(self.pos, s.half_edge as usize, q)?;
@@ -1024,16 +1078,19 @@ impl Driver<'_, '_, '_, '_> {
             }
         }
         // Ears in a substitute's form; anything still missing takes the linear rule.
+        let mut linear_pts = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
-            let linear_pts = face_points(topo, f)?;
+            face_points_into(topo, f, &mut linear_pts)?;
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
                 if present(&get(self.pos, h as usize)?) {
                     continue;
                 }
                 let q = if self.is_ear(topo.origin(h)?)? {
                     self.form_vertex(f, i)?.and_then(|u| {
-                        let mut l = self.local(u).ok()??;
-                        let pts = l.face(topo, f).ok()?;
+                        if !self.local_into(u, &mut l).ok()? {
+                            return None;
+                        }
+                        l.face(topo, f, &mut pts).ok()?;
                         let c = doo_sabin::corner_point(&pts, i).ok()?;
                         l.back(c).ok()
                     })
@@ -1059,13 +1116,16 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let nv = topo.num_vertices();
         self.copy_old()?;
+        let mut l = Local::blank();
+        let mut spokes = Spokes::new();
+        let mut ring = Ring::new();
         for v in 0..nv as u32 {
-            let Some(mut l) = self.local(v)? else {
+            if !self.local_into(v, &mut l)? {
                 continue;
-            };
+            }
             let boundary = topo.is_boundary_vertex(v)?;
             let irregular = !boundary && topo.valence(v)? != 6;
-            let spokes = topo.spokes(v)?;
+            topo.spokes_into(v, &mut spokes)?;
             let n = spokes.len();
             for (j, s) in spokes.iter().enumerate() {
                 let h = s.half_edge;
@@ -1077,7 +1137,7 @@ impl Driver<'_, '_, '_, '_> {
                 let cand = (|| -> Result<Option<Point>> {
                     if irregular {
                         // Zorin's stencil of v, ring starting at the other endpoint.
-                        let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+                        ring.clear();
                         for k in 0..n {
                             let sk = spokes.get((j + k) % n).ok_or(internal())?;
                             ring.try_push(l.canon(topo, sk.neighbour)?)
@@ -1146,13 +1206,17 @@ impl Driver<'_, '_, '_, '_> {
         self.copy_old()?;
         // Virtual points: per half-edge h = (v → u), the point beyond v away from u, from
         // v's canonical form (regular interior vertices give the actual grid neighbour).
+        let mut l = Local::blank();
+        let mut spokes = Spokes::new();
+        let mut q = Ring::new();
+        let mut dg = Ring::new();
         for v in 0..nv as u32 {
             if topo.is_isolated(v)? {
                 continue;
             }
-            let Some(mut l) = self.local(v)? else {
+            if !self.local_into(v, &mut l)? {
                 continue;
-            };
+            }
             if topo.is_boundary_vertex(v)? {
                 // The linear boundary extrapolation 2v − u, evaluated in v's boundary form.
                 for s in topo.star(v) {
@@ -1168,9 +1232,9 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 continue;
             }
-            let spokes = topo.spokes(v)?;
-            let mut q: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-            let mut dg: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            topo.spokes_into(v, &mut spokes)?;
+            q.clear();
+            dg.clear();
             let mut ok = true;
             for s in &spokes {
                 match (
