@@ -7,6 +7,7 @@
  * reads it; docs/bad-input-catalogue.md). */
 #ifndef NLS_CHECK_H
 #define NLS_CHECK_H
+#include "nlsubdiv.h" /* nls_status_str, used by nls_summary */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -965,7 +965,7 @@ static void test_star_rules_match_the_driver(int cc) {
                 for (j = 0; j < rules[u].n; j++)
                     if (face_of(&m, rules[u].spokes[j]) == f) memcpy(cands + 3 * k, rules[u].faces + 3 * j, 3 * sizeof(double));
             }
-            CHECK_STATUS(nls_face_point(verts, cands, d, fp), NLS_STATUS_OK);
+            CHECK_STATUS(nls_face_point_with_ids(verts, cands, m.idx + m.off[f], d, fp), NLS_STATUS_OK);
             CHECK(memcmp(fp, o.p + 3 * (m.nv + ne + f), sizeof fp) == 0);
             nsame++;
         }

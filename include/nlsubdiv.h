@@ -1119,7 +1119,7 @@ nls_status nls_face_point_with_ids(const double *vertices, const double *candida
  *    Catmull–Clark face candidates);
  * 2. every interior edge `a → b` (`a` the smaller index): `nls_f4_hinted(a, e_a, e_b, b, x)`
  *    of the candidates of both end points; the one candidate when the other is NaN;
- * 3. every face (Catmull–Clark, Akleman schemes): `nls_face_point` of its corners and their
+ * 3. every face (Catmull–Clark, Akleman schemes): `nls_face_point_with_ids` of its corners and their
  *    stars' face candidates; a boundary vertex with a single face (an *ear*) lends the
  *    candidate of the first non-ear corner at offset `h, h+1, h−1, …` (`h = ⌊d/2⌋`);
  * 4. boundary loops as closed curves: edge points `nls_f4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`,
@@ -1160,7 +1160,7 @@ nls_status nls_mobius_loop_star(const double v[3],
  * edges and when it does not exist) and `out_face_candidates[3j..3j+3]` (the centroid of
  * face `j` taken in this star's canonical form; NaN when it does not exist); they hold 3,
  * `3*ring_len` and `3*face_count` doubles and must not overlap the inputs. Face points are
- * `nls_face_point` of a face's corners and the face candidates of the corners' stars (the
+ * `nls_face_point_with_ids` of a face's corners (with the host's vertex indices) and the face candidates of the corners' stars (the
  * Akleman schemes use the same face candidates); edge points as in
  * `nls_f4_hinted` (hint: the corner after `b` in the face on the left
  * of `a → b`).

@@ -12,7 +12,7 @@
 // * tier 1, MobiusLoopT, MobiusButterflyT and MobiusCatmullClarkT: the rules are evaluated
 //   at each vertex star with OpenMesh's own connectivity (circulators over the half-edges),
 //   through the tier-1 exports nls_mobius_loop_star / nls_mobius_butterfly_star /
-//   nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and nls_face_point; the new connectivity is written in the driver's layout, so the result
+//   nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and nls_face_point_with_ids; the new connectivity is written in the driver's layout, so the result
 //   equals nls_mesh_subdivide on the same mesh (bit for bit where the stars start at the
 //   driver's spokes, which this header arranges);
 // * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
@@ -646,7 +646,8 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   }
 
   /// Catmull–Clark face points: ears borrow the face candidate of the first non-ear corner at
-  /// offset h, h+1, h-1, h+2, ... (h = d/2), as the driver does; then nls_face_point.
+  /// offset h, h+1, h-1, h+2, ... (h = d/2), as the driver does; then nls_face_point_with_ids
+  /// with OpenMesh's vertex indices (the driver's tie-break, independent of the face start).
   bool faces_pass(const mesh_t& m, std::size_t start) {
     for (auto f : m.faces()) {
       const std::vector<P3> verts = face_points(f);
@@ -654,8 +655,10 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
       std::vector<HH> hs;
       for (std::size_t i = 0; i < d; ++i) hs.push_back(corner_halfedge(m, f, i));
       std::vector<double> vx, cx;
+      std::vector<uint32_t> ids;
       bool all = true;
       for (std::size_t i = 0; i < d; ++i) {
+        ids.push_back(static_cast<uint32_t>(m.from_vertex_handle(hs[i]).idx()));
         P3 c = face_c_[static_cast<std::size_t>(hs[i].idx())];
         if (is_ear(m, m.from_vertex_handle(hs[i]))) {
           c = detail::nan3();
@@ -676,7 +679,7 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
       }
       P3 p = detail::nan3();
       const std::size_t k = start + static_cast<std::size_t>(f.idx());
-      if (!(all && nls_face_point(vx.data(), cx.data(), d, p.data()) == NLS_STATUS_OK)) {
+      if (!(all && nls_face_point_with_ids(vx.data(), cx.data(), ids.data(), d, p.data()) == NLS_STATUS_OK)) {
         if (!fallback(k)) return false;
         p = detail::centroid(verts);
       }

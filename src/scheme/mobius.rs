@@ -657,7 +657,9 @@ impl Driver<'_, '_, '_, '_> {
             }
             let k = start + f as usize;
             let p = if cands.iter().all(present) {
-                blend::face_point(&verts, &cands).ok()
+                // Ties of the §4.4.3 sort go by vertex id, so the face point does not depend
+                // on which corner the face is listed from (docs/DECISIONS.md).
+                blend::face_point_with_ids(&verts, &cands, topo.face_vertices(f)?).ok()
             } else {
                 None
             };
@@ -1287,7 +1289,7 @@ impl Driver<'_, '_, '_, '_> {
         // of new edge points through the face (Fig. 14).
         for f in 0..topo.num_faces() as u32 {
             let r = topo.face_half_edges(f)?;
-            let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
+            let (h0, h1, h2, h3) = kobbelt_lines(topo, r.start)?;
             let k = nv + ne + f as usize;
             let line = |d: &Self, hx: u32, hy: u32| -> Result<[Point; 4]> {
                 Ok([
@@ -1371,4 +1373,24 @@ fn butterfly_linear_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
 /// The linear Kobbelt edge point (fallback), as the linear driver computes it.
 fn kobbelt_linear_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
     super::linear::kobbelt_edge(topo, e)
+}
+
+/// The half-edges `(h0, h1, h2, h3)` of the quad whose first half-edge is `first`, arranged so
+/// that Kobbelt's face point `F6(w1, F4(w), w2, x1, F4(x), x2)` over the grid lines `(h0, h2)`
+/// and `(h1, h3)` does not depend on where the face starts: F6 is symmetric neither in its two
+/// lines nor in their directions, so each line runs from its edge of smaller id, and the line
+/// holding the smallest edge id comes first. Edge ids are untouched by Möbius maps, so the
+/// rule keeps Möbius equivariance (docs/DECISIONS.md).
+fn kobbelt_lines(topo: &Topology<'_, '_>, first: u32) -> Result<(u32, u32, u32, u32)> {
+    let edge_of = |h: u32| topo.edge(h).map(|e| (e, h));
+    let [p, q, r, t] = [first, first + 1, first + 2, first + 3];
+    let (e0, e1, e2, e3) = (edge_of(p)?, edge_of(q)?, edge_of(r)?, edge_of(t)?);
+    // Each line from its edge of smaller id; (edge id, half-edge) pairs compare by id first.
+    let (a0, a1) = (e0.min(e2), e0.max(e2));
+    let (b0, b1) = (e1.min(e3), e1.max(e3));
+    Ok(if a0 <= b0 {
+        (a0.1, b0.1, a1.1, b1.1)
+    } else {
+        (b0.1, a0.1, b1.1, a1.1)
+    })
 }
