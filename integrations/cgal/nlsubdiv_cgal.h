@@ -21,7 +21,9 @@
 //   corner, as the driver's quad pattern does, so levels chain like the driver's);
 // * free functions for every scheme, in CGAL's named-parameter style
 //   (number_of_iterations, vertex_point_map): mask + host where a mask fits, otherwise the
-//   bulk path (flat copy -> nls_mesh_subdivide_levels -> mesh rebuilt).
+//   bulk path (flat copy -> nls_mesh_subdivide_levels -> mesh rebuilt); spherelike_subdivision
+//   (bulk) and differential_{loop,butterfly,dirmag}_subdivision (flat copy -> one
+//   nls_differential_subdivide call for all levels -> mesh rebuilt).
 //
 // Masks compute the whole level when it is first touched and record any error in their
 // Report (CGAL's callbacks return void; nothing throws or aborts). The free functions
@@ -60,6 +62,16 @@ struct Options {
   bool strict = false;
 };
 
+/// Options of the differential functions (nls_differential_options; seed 001 §3): the
+/// reconstruction's iteration cap (reaching it is NLS_STATUS_NOT_CONVERGED, mesh unchanged),
+/// its relative residual tolerance, and for DirMag the number of DirMag levels (at least 1).
+struct DifferentialOptions {
+  uint32_t max_iterations = 100;
+  double tolerance = 1e-10;
+  uint32_t dirmag_levels = 1;
+  bool strict = false;  ///< the strict input checks (nlsubdiv::flat::strict_check) first
+};
+
 /// What a call did: `status` (NLS_STATUS_OK on success), the element it names (a face or
 /// vertex of the level's flat copy, or an output vertex; NLS_NO_ELEMENT), the 1-based level,
 /// the fallbacks (elements that took the documented linear rule), and the path taken.
@@ -68,7 +80,11 @@ struct Report {
   uint32_t element = NLS_NO_ELEMENT;
   uint32_t level = 0;
   uint32_t fallbacks = 0;
-  const char* path = "";  ///< "star rules", "driver mask" or "bulk"
+  const char* path = "";  ///< "star rules", "driver mask", "bulk" or "differential"
+  /// Differential schemes only: the reconstruction's iterations and relative residual
+  /// (nls_differential_report; also set on NLS_STATUS_NOT_CONVERGED).
+  uint32_t iterations = 0;
+  double residual = 0.0;
   bool ok() const { return status == NLS_STATUS_OK; }
   std::string message() const {
     if (ok()) return "ok";
@@ -645,6 +661,35 @@ unsigned int iterations(const NP& np) {
   return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::number_of_iterations), 1);
 }
 
+/// Replaces `pm` by `out` (old vertices first, in order; the mesh's internal point map
+/// receives the positions). On failure (add_face refuses a face, which the driver's output
+/// cannot cause) the mesh is restored and false returned.
+template <class PM, class Vpm>
+bool rebuild(PM& pm, const FlatMesh& out) {
+  typedef typename boost::property_traits<Vpm>::value_type Point;
+  typedef typename boost::graph_traits<PM>::vertex_descriptor vertex_descriptor;
+  PM backup(pm);
+  CGAL::clear(pm);
+  auto ppm = get(CGAL::vertex_point, pm);
+  std::vector<vertex_descriptor> vs;
+  vs.reserve(out.vertex_count());
+  for (std::size_t i = 0; i < out.vertex_count(); ++i) {
+    vertex_descriptor v = add_vertex(pm);
+    put(ppm, v, Point(out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]));
+    vs.push_back(v);
+  }
+  std::vector<vertex_descriptor> corners;
+  for (std::size_t fi = 0; fi + 1 < out.offsets.size(); ++fi) {
+    corners.clear();
+    for (uint32_t c = out.offsets[fi]; c < out.offsets[fi + 1]; ++c) corners.push_back(vs[out.indices[c]]);
+    if (CGAL::Euler::add_face(corners, pm) == boost::graph_traits<PM>::null_face()) {
+      pm = backup;
+      return false;
+    }
+  }
+  return true;
+}
+
 /// The bulk path: flat copy -> nls_mesh_subdivide_levels -> the mesh rebuilt (old vertices
 /// first, in order; the mesh's internal point map receives the positions).
 template <class PM, class NP>
@@ -672,28 +717,51 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
     return r;
   }
   r.fallbacks = fallbacks;
-  typedef typename boost::property_traits<Vpm>::value_type Point;
-  typedef typename boost::graph_traits<PM>::vertex_descriptor vertex_descriptor;
-  PM backup(pm);
-  CGAL::clear(pm);
-  auto ppm = get(CGAL::vertex_point, pm);
-  std::vector<vertex_descriptor> vs;
-  vs.reserve(out.vertex_count());
-  for (std::size_t i = 0; i < out.vertex_count(); ++i) {
-    vertex_descriptor v = add_vertex(pm);
-    put(ppm, v, Point(out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]));
-    vs.push_back(v);
+  if (!rebuild<PM, Vpm>(pm, out)) {
+    r.status = NLS_STATUS_NON_MANIFOLD_EDGE;  // cannot happen for the driver's output
+    r.level = iterations<PM>(np);
   }
-  std::vector<vertex_descriptor> corners;
-  for (std::size_t fi = 0; fi + 1 < out.offsets.size(); ++fi) {
-    corners.clear();
-    for (uint32_t c = out.offsets[fi]; c < out.offsets[fi + 1]; ++c) corners.push_back(vs[out.indices[c]]);
-    if (CGAL::Euler::add_face(corners, pm) == boost::graph_traits<PM>::null_face()) {
-      pm = backup;
-      r.status = NLS_STATUS_NON_MANIFOLD_EDGE;  // cannot happen for the driver's output
-      r.level = iterations<PM>(np);
-      return r;
-    }
+  return r;
+}
+
+/// The differential path: flat copy -> one nls_differential_subdivide call with levels =
+/// number_of_iterations (the reconstruction is global: k levels are one solve) -> rebuilt.
+template <class PM, class NP>
+Report differential(PM& pm, uint32_t stencil, const NP& np, const DifferentialOptions& dopts) {
+  typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
+  Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                               get_property_map(CGAL::vertex_point, pm));
+  Report r;
+  r.path = "differential";
+  Level<PM> lv;
+  lv.build(pm, vpm, SIZE_MAX);
+  nls_differential_options o{};
+  nls_differential_default_options(&o);
+  o.scheme = stencil;
+  o.levels = iterations<PM>(np);
+  o.dirmag_levels = stencil == NLS_DIFFERENTIAL_DIRMAG ? dopts.dirmag_levels : 0u;
+  o.max_iterations = dopts.max_iterations;
+  o.tolerance = dopts.tolerance;
+  uint32_t el = NLS_NO_ELEMENT;
+  nls_status s = NLS_STATUS_OK;
+  if (dopts.strict) {
+    s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, 0, lv.flat, el);
+    if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(lv.flat, el);
+  }
+  FlatMesh out;
+  nls_differential_report rep{};
+  if (s == NLS_STATUS_OK) s = nlsubdiv::flat::run_differential(o, lv.flat, out, el, rep);
+  r.iterations = rep.iterations;
+  r.residual = rep.relative_residual;
+  if (s != NLS_STATUS_OK) {
+    r.status = s;
+    r.element = el;
+    r.level = o.levels;
+    return r;
+  }
+  if (!rebuild<PM, Vpm>(pm, out)) {
+    r.status = NLS_STATUS_NON_MANIFOLD_EDGE;
+    r.level = o.levels;
   }
   return r;
 }
@@ -776,7 +844,26 @@ NLSUBDIV_CGAL_FN(simplest_subdivision, (detail::bulk(pm, NLS_SCHEME_SIMPLEST, 0,
 NLSUBDIV_CGAL_FN(dual_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL, 0, np, opts)))
 NLSUBDIV_CGAL_FN(vertex_insertion_subdivision, (detail::bulk(pm, NLS_SCHEME_VERTEX_INSERTION, 0, np, opts)))
 NLSUBDIV_CGAL_FN(dual_truncation_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL_TRUNCATION, 0, np, opts)))
+/// Spherelike interpolating subdivision (seed 003 §3; any polygons -> quads; no Möbius form;
+/// bulk path). Coincident points or a spike: NLS_STATUS_DEGENERATE_GEOMETRY, mesh unchanged.
+NLSUBDIV_CGAL_FN(spherelike_subdivision, (detail::bulk(pm, NLS_SCHEME_SPHERELIKE, 0, np, opts)))
 #undef NLSUBDIV_CGAL_FN
+
+/// Differential-space subdivision (seed 001 §3; triangle meshes; number_of_iterations =
+/// levels, reconstructed ONCE for all levels: not the same as repeated 1-level calls). The
+/// Report carries the solver's iterations and residual. Non-triangles:
+/// NLS_STATUS_UNSUPPORTED_FACE_TYPE; max_iterations reached: NLS_STATUS_NOT_CONVERGED; the
+/// mesh is unchanged on every error.
+#define NLSUBDIV_CGAL_DIFF_FN(name, stencil)                                                                                       \
+  template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>                                 \
+  Report name(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), DifferentialOptions dopts = {}) { \
+    return detail::differential(pm, stencil, np, dopts);                                                                          \
+  }
+NLSUBDIV_CGAL_DIFF_FN(differential_loop_subdivision, NLS_DIFFERENTIAL_LOOP)
+NLSUBDIV_CGAL_DIFF_FN(differential_butterfly_subdivision, NLS_DIFFERENTIAL_BUTTERFLY)
+/// DirMag (seed 001 §3.4): DifferentialOptions::dirmag_levels levels of DirMag, then Butterfly.
+NLSUBDIV_CGAL_DIFF_FN(differential_dirmag_subdivision, NLS_DIFFERENTIAL_DIRMAG)
+#undef NLSUBDIV_CGAL_DIFF_FN
 
 /// Any scheme (NLS_SCHEME_*) with flags (NLS_SUBDIVIDE_MOBIUS or 0) through the bulk path.
 template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>

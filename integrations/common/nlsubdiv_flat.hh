@@ -114,6 +114,40 @@ inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in
   return NLS_STATUS_OK;
 }
 
+/// Differential-space subdivision of `in` (triangles) with `opt` (its `levels` levels in one
+/// call: the reconstruction is global, so k levels are one solve, not k solves of one level)
+/// through nls_differential_plan + nls_differential_subdivide. `out` receives the result on
+/// success; `rep` is written on success and on NLS_STATUS_NOT_CONVERGED (then `out` is
+/// untouched). `element` the element of a failure.
+inline nls_status run_differential(const nls_differential_options& opt, const FlatMesh& in, FlatMesh& out, uint32_t& element,
+                                   nls_differential_report& rep) {
+  std::size_t su0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  element = NLS_NO_ELEMENT;
+  nls_status s = nls_differential_scratch_size(in.vertex_count(), in.indices.size(), &su0);
+  if (s != NLS_STATUS_OK) return s;
+  std::vector<uint32_t> scratch(su0 + 1);
+  s = nls_differential_plan(in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(), in.indices.data(), in.indices.size(),
+                            &opt, scratch.data(), scratch.size(), &nv, &nf, &ni, &su, &sp, &element);
+  if (s != NLS_STATUS_OK) return s;
+  scratch.assign(std::max(su, su0) + 1, 0);
+  std::vector<double> spts(3 * sp + 3);
+  std::vector<double> pos(3 * nv + 3, 0.0);
+  std::vector<uint32_t> offs(nf + 1, 0), idx(ni + 1, 0);
+  nls_differential_report r{};
+  s = nls_differential_subdivide(in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(), in.indices.data(),
+                                 in.indices.size(), &opt, scratch.data(), scratch.size(), spts.data(), sp, pos.data(), nv, offs.data(), nf,
+                                 idx.data(), ni, &nv, &nf, &ni, &r, &element);
+  if (s == NLS_STATUS_OK || s == NLS_STATUS_NOT_CONVERGED) rep = r;
+  if (s != NLS_STATUS_OK) return s;
+  pos.resize(3 * nv);
+  offs.resize(nf + 1);
+  idx.resize(ni);
+  out.positions = std::move(pos);
+  out.offsets = std::move(offs);
+  out.indices = std::move(idx);
+  return NLS_STATUS_OK;
+}
+
 }  // namespace flat
 }  // namespace nlsubdiv
 

@@ -16,8 +16,10 @@
 //   equals nls_mesh_subdivide on the same mesh (bit for bit where the stars start at the
 //   driver's spokes, which this header arranges);
 // * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
-//   LinearLoopT, ...): the mesh is copied to flat arrays, subdivided with
-//   nls_mesh_subdivide_levels and the connectivity rebuilt.
+//   LinearLoopT, SpherelikeT, ...): the mesh is copied to flat arrays, subdivided with
+//   nls_mesh_subdivide_levels and the connectivity rebuilt;
+// * differential (DifferentialT and DifferentialLoopT / ButterflyT / DirMagT, triangles):
+//   one nls_differential_subdivide call for all k levels of sd(k), the connectivity rebuilt.
 //
 // In both, the mesh is validated (nls_mesh_subdivide_size: manifold, oriented, finite, face
 // types of the scheme) before anything is computed, and on any error the mesh is left exactly
@@ -254,9 +256,9 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
 
   const char* name() const override {
     static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
-                                        "Simplest", "Dual", "Vertex insertion", "Dual truncation"};
+                                        "Simplest", "Dual", "Vertex insertion", "Dual truncation", "Spherelike"};
     static const std::string n = std::string((Flags & NLS_SUBDIVIDE_MOBIUS) ? "Uniform nlsubdiv Moebius " : "Uniform nlsubdiv ") +
-                                 (Scheme < 9 ? names[Scheme] : "?");
+                                 (Scheme < 10 ? names[Scheme] : "?");
     return n.c_str();
   }
 
@@ -323,6 +325,112 @@ template <typename M> using LinearCatmullClarkT = BulkSubdividerT<M, NLS_SCHEME_
 template <typename M> using LinearButterflyT = BulkSubdividerT<M, NLS_SCHEME_MODIFIED_BUTTERFLY, 0>;
 template <typename M> using LinearKobbeltT = BulkSubdividerT<M, NLS_SCHEME_KOBBELT, 0>;
 template <typename M> using LinearDooSabinT = BulkSubdividerT<M, NLS_SCHEME_DOO_SABIN, 0>;
+/// Spherelike interpolating subdivision (seed 003 §3; any polygons -> quads, so use a
+/// PolyMesh; no Möbius form). Coincident points of one circle or a spike are
+/// NLS_STATUS_DEGENERATE_GEOMETRY naming the output vertex (it has no fallback).
+template <typename M> using SpherelikeT = BulkSubdividerT<M, NLS_SCHEME_SPHERELIKE, 0>;
+
+// ---------------------------------------------------------------------------------------
+// Differential-space subdivision (seed 001 §3): nls_differential_subdivide.
+// ---------------------------------------------------------------------------------------
+
+/// Differential-space subdivision of a triangle mesh: the differential coordinates are
+/// subdivided with the stencil (set_stencil: NLS_DIFFERENTIAL_LOOP, _BUTTERFLY or _DIRMAG)
+/// and the mesh is reconstructed from them by a least-squares solve (nls_differential_subdivide).
+///
+/// The reconstruction is global and done once for all levels: `sd(k)` is ONE
+/// nls_differential_subdivide call with levels = k, which is not the same as k calls of
+/// `sd(1)` (each would reconstruct from a re-estimated differential mesh). For the same
+/// reason update_points = false is refused (NLS_STATUS_INVALID_ARGUMENT).
+///
+/// Transactional like the other classes: on any error, including NLS_STATUS_NOT_CONVERGED
+/// (the solver reached max_iterations; iterations() and residual() then say how far it got),
+/// the mesh is unchanged, operator() returns false and status() / message() say why. Faces
+/// that are not triangles are NLS_STATUS_UNSUPPORTED_FACE_TYPE naming the face. set_strict(true)
+/// adds the strict input checks (detail::strict_check); the kernel has no fallbacks here.
+template <typename MeshType, typename RealType = double>
+class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
+ public:
+  typedef SubdividerBaseT<MeshType, RealType> base_t;
+  typedef MeshType mesh_t;
+  DifferentialT() { nls_differential_default_options(&opt_); }
+  explicit DifferentialT(uint32_t stencil) : DifferentialT() { set_stencil(stencil); }
+  ~DifferentialT() override { this->detach(); }
+
+  /// NLS_DIFFERENTIAL_LOOP (default), NLS_DIFFERENTIAL_BUTTERFLY or NLS_DIFFERENTIAL_DIRMAG
+  /// (then dirmag_levels() levels use DirMag, default 1).
+  void set_stencil(uint32_t stencil) { stencil_ = stencil; }
+  uint32_t stencil() const { return stencil_; }
+  /// DirMag only: the first this many levels use DirMag (at least 1; seed 001 uses 1 or 2).
+  void set_dirmag_levels(uint32_t n) { dirmag_levels_ = n; }
+  uint32_t dirmag_levels() const { return dirmag_levels_; }
+  /// Relative residual of the reconstruction to reach (default 1e-10).
+  void set_tolerance(double t) { opt_.tolerance = t; }
+  double tolerance() const { return opt_.tolerance; }
+  /// Iteration cap of the reconstruction (default 100); reaching it is NLS_STATUS_NOT_CONVERGED.
+  void set_max_iterations(uint32_t n) { opt_.max_iterations = n; }
+  uint32_t max_iterations() const { return opt_.max_iterations; }
+
+  /// The solver report of the last call (success or NLS_STATUS_NOT_CONVERGED; zero otherwise).
+  const nls_differential_report& report() const { return rep_; }
+  uint32_t iterations() const { return rep_.iterations; }
+  double residual() const { return rep_.relative_residual; }
+
+  const char* name() const override {
+    return stencil_ == NLS_DIFFERENTIAL_BUTTERFLY ? "Uniform nlsubdiv differential Butterfly"
+           : stencil_ == NLS_DIFFERENTIAL_DIRMAG  ? "Uniform nlsubdiv differential DirMag"
+                                                  : "Uniform nlsubdiv differential Loop";
+  }
+
+ protected:
+  bool subdivide(mesh_t& m, size_t n, const bool update_points = true) override {
+    this->reset();
+    rep_ = nls_differential_report{};
+    if (n > NLS_MAX_LEVELS || !update_points) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+    FlatMesh in, out;
+    nls_status s = detail::export_flat(m, in);
+    if (s != NLS_STATUS_OK) return this->fail(s, NLS_NO_ELEMENT, 0);
+    uint32_t el = NLS_NO_ELEMENT;
+    nls_differential_options o = opt_;
+    o.scheme = stencil_;
+    o.levels = static_cast<uint32_t>(n);
+    o.dirmag_levels = stencil_ == NLS_DIFFERENTIAL_DIRMAG ? dirmag_levels_ : 0u;
+    o.curvature_scale = nullptr;
+    o.normals = nullptr;
+    if (this->strict_) {
+      // The kernel's validation first (its statuses win: plan), then the strict checks.
+      s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, 0, in, el);
+      if (s == NLS_STATUS_OK) s = detail::strict_check(in, el);
+      if (s != NLS_STATUS_OK) return this->fail(s, el, 1);
+    }
+    s = nlsubdiv::flat::run_differential(o, in, out, el, rep_);
+    if (s != NLS_STATUS_OK) return this->fail(s, el, static_cast<uint32_t>(n));
+    if (out.vertex_count() < in.vertex_count()) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+    mesh_t backup = m;
+    if (!detail::rebuild(m, out)) {
+      m = backup;
+      return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, static_cast<uint32_t>(n));
+    }
+    return true;
+  }
+
+ private:
+  nls_differential_options opt_{};
+  uint32_t stencil_ = NLS_DIFFERENTIAL_LOOP;
+  uint32_t dirmag_levels_ = 1;
+  nls_differential_report rep_{};
+};
+
+/// The three stencils as their own types (same options and report as DifferentialT).
+template <typename M> struct DifferentialLoopT : DifferentialT<M> {
+  DifferentialLoopT() : DifferentialT<M>(NLS_DIFFERENTIAL_LOOP) {}
+};
+template <typename M> struct DifferentialButterflyT : DifferentialT<M> {
+  DifferentialButterflyT() : DifferentialT<M>(NLS_DIFFERENTIAL_BUTTERFLY) {}
+};
+template <typename M> struct DifferentialDirMagT : DifferentialT<M> {
+  DifferentialDirMagT() : DifferentialT<M>(NLS_DIFFERENTIAL_DIRMAG) {}
+};
 
 // ---------------------------------------------------------------------------------------
 // Tier 1: Möbius Loop and Catmull–Clark from the star rules, with OpenMesh's connectivity.

@@ -55,6 +55,41 @@ inline nls_status driver(uint32_t scheme, uint32_t flags, const Flat& in, uint32
   return NLS_STATUS_OK;
 }
 
+/// The differential driver (nls_differential_plan + nls_differential_subdivide, called here
+/// directly): `levels` levels with `stencil` (NLS_DIFFERENTIAL_*), DirMag levels, iteration
+/// cap and tolerance; status, the result in `out`, the solver report in `rep`.
+inline nls_status driver_differential(uint32_t stencil, uint32_t dirmag, uint32_t max_it, double tol, const Flat& in, uint32_t levels, Flat& out,
+                                      nls_differential_report& rep) {
+  nls_differential_options o{};
+  nls_differential_default_options(&o);
+  o.scheme = stencil;
+  o.levels = levels;
+  o.dirmag_levels = dirmag;
+  o.max_iterations = max_it;
+  o.tolerance = tol;
+  std::size_t su0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  uint32_t el = 0;
+  nls_status s = nls_differential_scratch_size(in.nv(), in.idx.size(), &su0);
+  if (s) return s;
+  std::vector<uint32_t> scratch(su0 + 1);
+  s = nls_differential_plan(in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), &o, scratch.data(), scratch.size(), &nv,
+                            &nf, &ni, &su, &sp, &el);
+  if (s) return s;
+  scratch.assign(std::max(su, su0) + 1, 0);
+  std::vector<double> spts(3 * sp + 3);
+  out.pos.assign(3 * nv + 3, 0);
+  out.off.assign(nf + 1, 0);
+  out.idx.assign(ni + 1, 0);
+  rep = nls_differential_report{};
+  s = nls_differential_subdivide(in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), &o, scratch.data(), scratch.size(),
+                                 spts.data(), sp, out.pos.data(), nv, out.off.data(), nf, out.idx.data(), ni, &nv, &nf, &ni, &rep, &el);
+  if (s) return s;
+  out.pos.resize(3 * nv);
+  out.off.resize(nf + 1);
+  out.idx.resize(ni);
+  return NLS_STATUS_OK;
+}
+
 struct Cmp {
   double max_rel = 0.0;
   bool counts = true, faces = true, bits = false;

@@ -6,6 +6,8 @@
 //    mesh), order-independent, <= 1e-12 relative, on every mesh of MESH_DIR that CGAL's OFF
 //    reader loads whole into a Surface_mesh (1 or 2 levels by size); where the driver refuses
 //    a mesh, the function must refuse it with the same status and leave it unchanged;
+//    the differential functions equal the differential driver on the triangle meshes of
+//    <= 3000 faces, refuse non-triangles and report NOT_CONVERGED (max_iterations = 1);
 // 2. Mobius_loop_mask_3 and Mobius_catmull_clark_mask_3 driven by CGAL's own hosts (PTQ,
 //    PQQ with number_of_iterations(2)) equal the driver too, and the functions work on
 //    Polyhedron_3;
@@ -72,7 +74,8 @@ std::vector<Fn<PM>> functions() {
           FN(catmull_clark_subdivision, NLS_SCHEME_CATMULL_CLARK, 0),
           FN(butterfly_subdivision, NLS_SCHEME_MODIFIED_BUTTERFLY, 0),
           FN(kobbelt_subdivision, NLS_SCHEME_KOBBELT, 0),
-          FN(doo_sabin_subdivision, NLS_SCHEME_DOO_SABIN, 0)};
+          FN(doo_sabin_subdivision, NLS_SCHEME_DOO_SABIN, 0),
+          FN(spherelike_subdivision, NLS_SCHEME_SPHERELIKE, 0)};
 }
 
 static const double TOL = 1e-12;
@@ -188,6 +191,79 @@ static void check_masks_with_cgal_hosts(itest::Tally& t, const std::string& mesh
   }
 }
 
+/// The differential functions against the differential driver on a triangle mesh (<= 3000
+/// faces; 2 levels up to 400 faces, else 1); max_iterations = 1 -> NOT_CONVERGED, unchanged.
+template <class PM>
+void check_differential(itest::Tally& t, const std::string& mesh, const PM& pm0) {
+  const Flat in = flat_of(pm0);
+  const unsigned levels = num_faces(pm0) <= 400 ? 2 : 1;
+  typedef std::function<nc::Report(PM&, unsigned, nc::DifferentialOptions)> F;
+  struct S {
+    const char* name;
+    uint32_t stencil;
+    F run;
+  };
+  const S cases[] = {
+      {"differential_loop_subdivision", NLS_DIFFERENTIAL_LOOP,
+       [](PM& m, unsigned n, nc::DifferentialOptions o) { return nc::differential_loop_subdivision(m, CGAL::parameters::number_of_iterations(n), o); }},
+      {"differential_butterfly_subdivision", NLS_DIFFERENTIAL_BUTTERFLY,
+       [](PM& m, unsigned n, nc::DifferentialOptions o) { return nc::differential_butterfly_subdivision(m, CGAL::parameters::number_of_iterations(n), o); }},
+      {"differential_dirmag_subdivision", NLS_DIFFERENTIAL_DIRMAG,
+       [](PM& m, unsigned n, nc::DifferentialOptions o) { return nc::differential_dirmag_subdivision(m, CGAL::parameters::number_of_iterations(n), o); }}};
+  for (const S& c : cases) {
+    const std::string where = std::string(c.name) + " on " + mesh + " (" + std::to_string(levels) + " levels)";
+    const uint32_t dm = c.stencil == NLS_DIFFERENTIAL_DIRMAG ? 1 : 0;
+    Flat ref;
+    nls_differential_report drep{};
+    nls_status ds = itest::driver_differential(c.stencil, dm, 100, 1e-10, in, levels, ref, drep);
+    PM pm = pm0;
+    nc::Report r = c.run(pm, levels, nc::DifferentialOptions());
+    if (ds != NLS_STATUS_OK) {
+      if (!r.ok() && r.status == ds && flat_of(pm) == in)
+        t.pass(std::string(c.name) + " refuses what the driver refuses", 0);
+      else
+        t.fail(where + ": driver says " + nls_status_str(ds) + ", function " + r.message());
+    } else if (!r.ok()) {
+      t.fail(where + ": refused (" + r.message() + ") but the driver accepts");
+    } else {
+      itest::Cmp cmp = itest::compare(flat_of(pm), ref);
+      if (cmp.ok(TOL) && r.iterations == drep.iterations && r.residual == drep.relative_residual)
+        t.pass(std::string(c.name) + " = differential driver", cmp.max_rel);
+      else
+        t.fail(where + ": " + cmp.summary() + " iterations " + std::to_string(r.iterations) + " vs " + std::to_string(drep.iterations));
+    }
+    Flat r1;
+    nls_differential_report rep1{};
+    nls_status d1 = itest::driver_differential(c.stencil, dm, 1, 0.0, in, levels, r1, rep1);
+    PM pm1 = pm0;
+    nc::DifferentialOptions o1;
+    o1.max_iterations = 1;
+    o1.tolerance = 0.0;
+    nc::Report q = c.run(pm1, levels, o1);
+    if (d1 == NLS_STATUS_NOT_CONVERGED && q.status == NLS_STATUS_NOT_CONVERGED && flat_of(pm1) == in && q.iterations == rep1.iterations)
+      t.pass(std::string(c.name) + ": max_iterations = 1 -> NOT_CONVERGED, mesh unchanged", 0);
+    else
+      t.fail(where + " max_iterations 1: driver " + nls_status_str(d1) + ", function " + q.message() + (flat_of(pm1) == in ? "" : ", mesh changed"));
+  }
+}
+
+/// The differential functions refuse a mesh with a quad (the face named), unchanged.
+static void differential_refuses_non_triangles(itest::Tally& t) {
+  SM m;
+  std::vector<SM::Vertex_index> v;
+  for (int k = 0; k < 6; ++k) v.push_back(m.add_vertex(K::Point_3(k % 3, k / 3, 0.1 * k)));
+  m.add_face(v[0], v[1], v[4]);
+  m.add_face(v[0], v[4], v[3]);
+  m.add_face(v[1], v[2], v[5], v[4]);
+  const Flat before = flat_of(m);
+  const nc::Report rs[] = {nc::differential_loop_subdivision(m), nc::differential_butterfly_subdivision(m), nc::differential_dirmag_subdivision(m)};
+  for (const nc::Report& r : rs)
+    if (r.status == NLS_STATUS_UNSUPPORTED_FACE_TYPE && r.element == 2 && flat_of(m) == before)
+      t.pass("differential_*_subdivision refuse a quad (face named), mesh unchanged", 0);
+    else
+      t.fail("differential function on a mesh with a quad: " + r.message());
+}
+
 static int bad_child(const std::string& path, int fd, bool valid) {
   SM pm0;
   if (!load(path, pm0)) {
@@ -231,6 +307,7 @@ int main(int argc, char** argv) {
       continue;
     }
     check_functions(t, f, pm, "Surface_mesh");
+    if (itest::all_faces(flat_of(pm), 3) && num_faces(pm) <= 3000) check_differential(t, f, pm);
     if (num_faces(pm) <= 3000 && CGAL::is_valid_polygon_mesh(pm)) check_masks_with_cgal_hosts(t, f, pm);
     if (num_faces(pm) <= 400) {
       Poly ph;
@@ -276,6 +353,7 @@ int main(int argc, char** argv) {
   }
   std::printf("bad meshes: %zu files, %d loaded as they are by CGAL (format_* included), %d broken ones refused by every function with the mesh unchanged\n",
               bad.size(), loaded, refused);
+  differential_refuses_non_triangles(t);
   for (const auto& w : t.worst) std::printf("  %-70s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_cgal: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);

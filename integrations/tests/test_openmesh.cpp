@@ -6,6 +6,8 @@
 //    scheme and flags), order-independent, <= 1e-12 relative, on every mesh of MESH_DIR that
 //    OpenMesh loads whole (1 or 2 levels by size); where the driver refuses a mesh the
 //    subdivider must refuse it with the same status and leave it unchanged;
+//    the differential classes equal the differential driver on the triangle meshes of <= 3000
+//    faces, refuse non-triangles and report NOT_CONVERGED (max_iterations = 1), unchanged;
 // 2. LinearLoopT / LinearButterflyT equal OpenMesh's LoopT / ModifiedButterflyT (and
 //    LinearCatmullClarkT equals CatmullClarkT on closed meshes, peer-rules.md);
 // 3. every mesh of MESH_DIR/bad that OpenMesh can load (in a child process: OpenMesh's own
@@ -24,6 +26,7 @@
 #include <chrono>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include <nlsubdiv/openmesh/nlsubdiv_openmesh.hh>  // installed header (scripts/install.sh)
@@ -91,6 +94,7 @@ std::vector<Plugin<M>> plugins(const std::string& tag) {
         make<M, nom::LinearCatmullClarkT<M>>("LinearCatmullClarkT<" + tag + ">", NLS_SCHEME_CATMULL_CLARK, 0, true),
         make<M, nom::LinearKobbeltT<M>>("LinearKobbeltT<" + tag + ">", NLS_SCHEME_KOBBELT, 0, false),
         make<M, nom::LinearDooSabinT<M>>("LinearDooSabinT<" + tag + ">", NLS_SCHEME_DOO_SABIN, 0, true),
+        make<M, nom::SpherelikeT<M>>("SpherelikeT<" + tag + ">", NLS_SCHEME_SPHERELIKE, 0, true),
     };
     p.insert(p.end(), q.begin(), q.end());
   }
@@ -207,6 +211,84 @@ void check_openmesh_peer(itest::Tally& t, const std::string& mesh, const M& m0, 
     t.pass(what, c.max_rel);
   else
     t.fail(std::string(what) + " on " + mesh + ": " + c.summary());
+}
+
+/// The differential classes against the differential driver on a triangle mesh (<= 3000
+/// faces; 2 levels up to 400 faces, else 1): the same mesh, order-independent, <= TOL, with
+/// the same iterations and residual; sd(k) is one call of k levels. With max_iterations = 1
+/// both must say NLS_STATUS_NOT_CONVERGED, the mesh unchanged.
+template <class M>
+void check_differential(itest::Tally& t, const std::string& mesh, const M& m0) {
+  const Flat in = flat_of(m0);
+  const uint32_t levels = m0.n_faces() <= 400 ? 2 : 1;
+  struct S {
+    const char* name;
+    uint32_t stencil;
+    std::function<nom::DifferentialT<M>*()> make;
+  };
+  const S cases[] = {{"DifferentialLoopT", NLS_DIFFERENTIAL_LOOP, [] { return new nom::DifferentialLoopT<M>(); }},
+                     {"DifferentialButterflyT", NLS_DIFFERENTIAL_BUTTERFLY, [] { return new nom::DifferentialButterflyT<M>(); }},
+                     {"DifferentialDirMagT", NLS_DIFFERENTIAL_DIRMAG, [] { return new nom::DifferentialDirMagT<M>(); }}};
+  for (const S& c : cases) {
+    const std::string where = std::string(c.name) + " on " + mesh + " (" + std::to_string(levels) + " levels)";
+    Flat ref;
+    nls_differential_report drep{};
+    nls_status ds = itest::driver_differential(c.stencil, c.stencil == NLS_DIFFERENTIAL_DIRMAG ? 1 : 0, 100, 1e-10, in, levels, ref, drep);
+    std::unique_ptr<nom::DifferentialT<M>> sd(c.make());
+    M m = m0;
+    sd->attach(m);
+    bool ok = (*sd)(levels);
+    sd->detach();
+    if (ds != NLS_STATUS_OK) {
+      if (!ok && sd->status() == ds && flat_of(m) == in)
+        t.pass(std::string(c.name) + " refuses what the driver refuses", 0);
+      else
+        t.fail(where + ": driver says " + nls_status_str(ds) + ", plugin " + (ok ? "succeeded" : sd->message()));
+    } else if (!ok) {
+      t.fail(where + ": refused (" + sd->message() + ") but the driver accepts");
+    } else {
+      itest::Cmp cmp = itest::compare(flat_of(m), ref);
+      if (cmp.ok(TOL) && sd->iterations() == drep.iterations && sd->residual() == drep.relative_residual)
+        t.pass(std::string(c.name) + " = differential driver", cmp.max_rel);
+      else
+        t.fail(where + ": " + cmp.summary() + " iterations " + std::to_string(sd->iterations()) + " vs " + std::to_string(drep.iterations));
+      if (std::getenv("NLS_ITEST_VERBOSE")) std::printf("  %s: %s\n", where.c_str(), cmp.summary().c_str());
+    }
+    // NOT_CONVERGED: max_iterations = 1 (tolerance 0 so one iteration cannot reach it).
+    Flat r1;
+    nls_differential_report rep1{};
+    nls_status d1 = itest::driver_differential(c.stencil, c.stencil == NLS_DIFFERENTIAL_DIRMAG ? 1 : 0, 1, 0.0, in, levels, r1, rep1);
+    M m1 = m0;
+    std::unique_ptr<nom::DifferentialT<M>> sd1(c.make());
+    sd1->set_max_iterations(1);
+    sd1->set_tolerance(0.0);
+    bool ok1 = (*sd1)(m1, levels);
+    if (d1 == NLS_STATUS_NOT_CONVERGED && !ok1 && sd1->status() == NLS_STATUS_NOT_CONVERGED && flat_of(m1) == in && sd1->iterations() == rep1.iterations)
+      t.pass(std::string(c.name) + ": max_iterations = 1 -> NOT_CONVERGED, mesh unchanged", 0);
+    else
+      t.fail(where + " max_iterations 1: driver " + nls_status_str(d1) + ", plugin " + (ok1 ? "succeeded" : sd1->message()) +
+             (flat_of(m1) == in ? "" : ", mesh changed"));
+  }
+}
+
+/// The differential classes refuse a mesh with a non-triangle (the face named), unchanged.
+static void differential_refuses_non_triangles(itest::Tally& t) {
+  Poly m;
+  std::vector<Poly::VertexHandle> v;
+  for (int k = 0; k < 6; ++k) v.push_back(m.add_vertex(Poly::Point(k % 3, k / 3, 0.1 * k)));
+  m.add_face(v[0], v[1], v[4]);
+  m.add_face(v[0], v[4], v[3]);
+  m.add_face(std::vector<Poly::VertexHandle>{v[1], v[2], v[5], v[4]});
+  const Flat before = flat_of(m);
+  for (uint32_t st : {NLS_DIFFERENTIAL_LOOP, NLS_DIFFERENTIAL_BUTTERFLY, NLS_DIFFERENTIAL_DIRMAG}) {
+    nom::DifferentialT<Poly> sd(st);
+    Poly mm = m;
+    bool ok = sd(mm, 1);
+    if (!ok && sd.status() == NLS_STATUS_UNSUPPORTED_FACE_TYPE && sd.element() == 2 && flat_of(mm) == before)
+      t.pass("DifferentialT refuses a quad (face named), mesh unchanged", 0);
+    else
+      t.fail(std::string(sd.name()) + " on a mesh with a quad: " + (ok ? "accepted" : sd.message()));
+  }
 }
 
 /// Child process: load `path`, run every plugin in strict mode; exit 3 if OpenMesh cannot
@@ -329,6 +411,7 @@ int main(int argc, char** argv) {
     }
     check_plugins(t, f, pm, "PolyMesh");
     const Flat fl = flat_of(pm);
+    if (itest::all_faces(fl, 3) && pm.n_faces() <= 3000) check_differential(t, f, pm);
     if (itest::all_faces(fl, 3)) {
       Tri tm;
       if (load(path, tm) && tm.n_faces() == pm.n_faces()) {
@@ -390,6 +473,7 @@ int main(int argc, char** argv) {
   std::printf("bad meshes: %zu files, %d loaded as they are by OpenMesh (format_* included), %d broken ones refused by every subdivider with the mesh unchanged\n",
               bad.size(), loaded, refused);
   synthetic(t);
+  differential_refuses_non_triangles(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_openmesh: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);
