@@ -824,8 +824,12 @@ Report with_mask(PM& pm, const NP& np, Options opts) {
 NLSUBDIV_CGAL_FN(mobius_loop_subdivision, (detail::with_mask<Mobius_loop_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
 /// Möbius Modified Butterfly: PTQ host + Mobius_butterfly_mask_3 (star rules).
 NLSUBDIV_CGAL_FN(mobius_butterfly_subdivision, (detail::with_mask<Mobius_butterfly_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
-/// Möbius Catmull–Clark: PQQ host + Mobius_catmull_clark_mask_3 (driver mask).
-NLSUBDIV_CGAL_FN(mobius_catmull_clark_subdivision, (detail::with_mask<Mobius_catmull_clark_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
+/// Möbius Catmull–Clark: bulk path, all levels in one driver call. (Mobius_catmull_clark_mask_3
+/// in CGAL's PQQ host gives the driver's level for the host's mesh as CGAL numbers it; in
+/// exact ties of the §4.4.3 face-point sort the kernel breaks ties by vertex id, and CGAL
+/// numbers refined levels differently from the driver, so only the bulk path gives the
+/// driver's multi-level result bit for bit. docs/integrations.md §5.)
+NLSUBDIV_CGAL_FN(mobius_catmull_clark_subdivision, (detail::bulk(pm, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, np, opts)))
 /// Möbius Kobbelt: PQQ host + Mobius_kobbelt_mask_3 (driver mask).
 NLSUBDIV_CGAL_FN(mobius_kobbelt_subdivision, (detail::with_mask<Mobius_kobbelt_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
 /// The other Möbius schemes: bulk path (their connectivity is not a CGAL host's).
