@@ -190,6 +190,46 @@ fuzz_target!(|data: &[u8]| {
                 let k = n / 2;
                 let s = nls_face_point(ring.as_ptr(), ring[3 * k..].as_ptr(), k, out.as_mut_ptr());
                 check("face_point", s, &out[..3], false);
+                // With distinct vertex ids the face point does not depend on the corner the
+                // face starts at, bit for bit (blend::face_point_with_ids).
+                let ids: Vec<u32> = (0..k as u32)
+                    .map(|i| i.wrapping_mul(2_654_435_761).wrapping_add(n as u32))
+                    .collect();
+                let (v, c) = (&ring[..3 * k], &ring[3 * k..6 * k]);
+                let mut o1 = f64_sentinels(3);
+                let s1 = nls_face_point_with_ids(
+                    v.as_ptr(),
+                    c.as_ptr(),
+                    ids.as_ptr(),
+                    k,
+                    o1.as_mut_ptr(),
+                );
+                check("face_point_with_ids", s1, &o1, false);
+                if k > 0 {
+                    let rot = |x: &[f64]| -> Vec<f64> {
+                        (0..3 * k).map(|j| x[(j + 3) % (3 * k)]).collect()
+                    };
+                    let (rv, rc) = (rot(v), rot(c));
+                    let rid: Vec<u32> = (0..k).map(|i| ids[(i + 1) % k]).collect();
+                    let mut o2 = f64_sentinels(3);
+                    let s2 = nls_face_point_with_ids(
+                        rv.as_ptr(),
+                        rc.as_ptr(),
+                        rid.as_ptr(),
+                        k,
+                        o2.as_mut_ptr(),
+                    );
+                    assert_eq!(
+                        s1, s2,
+                        "face_point_with_ids: status depends on the face start"
+                    );
+                    if s1 == Status::Ok {
+                        assert!(
+                            o1.iter().zip(&o2).all(|(x, y)| x.to_bits() == y.to_bits()),
+                            "face_point_with_ids depends on the face start"
+                        );
+                    }
+                }
             }
             15 => {
                 let mut m = mobius_sentinel();
