@@ -14,7 +14,9 @@
 //! * the spectrum of the local subdivision matrix (3-ring, Fourier blocks): `λ = 1/2` for
 //!   valence 4 (the 4-point scheme), and for `n ≠ 4` a real subdominant pair from the
 //!   `k = ±1` blocks above every other eigenvalue with a regular characteristic net (the
-//!   necessary conditions of Reif's C¹ criterion).
+//!   necessary conditions of Reif's C¹ criterion);
+//! * on open nets, boundary edge points depend on the boundary polygon alone (the paper's
+//!   abstract: boundary curves that "allow a C0-join of several subdivision patches").
 // Test code: indexing and unwrap are fine here.
 #![allow(
     clippy::indexing_slicing,
@@ -644,4 +646,61 @@ fn local_subdivision_matrix_has_the_c1_eigenstructure() {
             }
         }
     }
+}
+
+// ------------------------------------------------------------------ open nets
+
+#[test]
+fn boundary_edge_points_depend_on_the_boundary_polygon_only() {
+    // Kobbelt 1996 (abstract): on open nets the scheme "generates boundary curves that allow a
+    // C0-join of several subdivision patches" — so a boundary edge point must be a function of
+    // the boundary polygon alone. Here: the 4-point rule along the boundary loop, and moving
+    // every interior vertex changes no boundary edge point by a single bit.
+    let (m_, n_) = (6usize, 4usize);
+    let g = jitter(&quad_grid(m_, n_), 0.1, 3).map_positions(|p| [p[0], p[1], 0.2 * p[0] * p[1]]);
+    let interior = |p: Point| {
+        let (i, j) = (p[0].round() as usize, p[1].round() as usize);
+        i > 0 && i < m_ && j > 0 && j < n_
+    };
+    let base = quad_grid(m_, n_);
+    let moved = OwnedMesh {
+        positions: g
+            .positions
+            .iter()
+            .zip(&base.positions)
+            .map(|(&p, &b)| {
+                if interior(b) {
+                    add(p, [0.3, -0.2, 0.7])
+                } else {
+                    p
+                }
+            })
+            .collect(),
+        ..g.clone()
+    };
+    let a = subdivide(Scheme::Kobbelt, &g).unwrap();
+    let b = subdivide(Scheme::Kobbelt, &moved).unwrap();
+    let eidx = edge_index(&g);
+    let nv = g.positions.len();
+    // The boundary loop, counter-clockwise: bottom row, right column, top row, left column.
+    let id = |i: usize, j: usize| (j * (m_ + 1) + i) as u32;
+    let mut lp: Vec<u32> = (0..m_).map(|i| id(i, 0)).collect();
+    lp.extend((0..n_).map(|j| id(m_, j)));
+    lp.extend((1..=m_).rev().map(|i| id(i, n_)));
+    lp.extend((1..=n_).rev().map(|j| id(0, j)));
+    let l = lp.len();
+    let mut checked = 0;
+    for k in 0..l {
+        let (u, v) = (lp[k], lp[(k + 1) % l]);
+        let e = nv + eidx[&(u.min(v), u.max(v))];
+        assert_eq!(
+            a.positions[e], b.positions[e],
+            "boundary edge {u}-{v} moved"
+        );
+        let pt = |x: u32| g.positions[x as usize];
+        let want = f4(pt(lp[(k + l - 1) % l]), pt(u), pt(v), pt(lp[(k + 2) % l]));
+        assert!(dist(a.positions[e], want) < 1e-14, "boundary edge {u}-{v}");
+        checked += 1;
+    }
+    assert_eq!(checked, 2 * (m_ + n_));
 }
