@@ -9,7 +9,10 @@ Seeds, encoded exactly in the input layouts documented at the top of fuzz_target
   the executions per second high; the fuzzer grows them);
 - curve: polygons of those meshes' first faces and boundary-like point rows, every scheme,
   open and closed;
-- primitives: vertex stars (a vertex and its neighbours) of those meshes for every function.
+- primitives: vertex stars (a vertex and its neighbours) of those meshes for every function;
+- differential: the all-triangle shared meshes with at most 200 vertices and a 16-face crop of
+  every all-triangle mesh, each with Loop, Modified Butterfly and DirMag (1 and 2 levels), a
+  few with curvature-scale and normal edits; every mesh of bad/ once (Loop).
 
 Usage: fuzz/make_corpus.py [MESH_DIR]   (default: ../shared/data/meshes relative to the repo)
 """
@@ -122,6 +125,27 @@ def mesh_input(scheme, flags, levels, pos, faces):
     return b
 
 
+DIFF_MAX_VERTICES = 200
+
+
+def differential_input(scheme, levels, dirmag, pos, faces, edits=0):
+    """The differential target's layout: scheme, levels, dirmag, iterations, tolerance, edits,
+    shrink, amount, tweak u8, tweak_at u16, vertex_count u16, face_count u16, face sizes u8,
+    indices u16, positions f64, then the edit arrays (curvature scales f64 × V when edits bit
+    0, normals f64 × 3V when bit 1)."""
+    level_byte = {1: 0, 2: 3, 0: 4, 3: 6}[levels]  # the target maps b % 8 to 1,1,1,2,0,2,3,17
+    b = struct.pack("<9BH", scheme, level_byte, dirmag, 0, 0, edits, 0, 0, 0, 0)
+    b += struct.pack("<HH", len(pos), len(faces))
+    b += bytes(min(len(f), 255) for f in faces)
+    b += b"".join(struct.pack("<H", v & 0xFFFF) for f in faces for v in f[:255])
+    b += b"".join(struct.pack("<3d", *p) for p in pos)
+    if edits & 1:
+        b += b"".join(struct.pack("<d", 1.0 + 0.5 * (i % 3)) for i in range(len(pos)))
+    if edits & 2:
+        b += b"".join(struct.pack("<3d", 0.0, 0.0, 1.0 if i % 2 else 0.0) for i in range(len(pos)))
+    return b
+
+
 def curve_input(scheme, closed, levels, pts):
     b = struct.pack("<8B", scheme, closed, levels, 0, 0, 0, 0, len(pts))
     return b + b"".join(struct.pack("<3d", *p) for p in pts)
@@ -190,6 +214,16 @@ def main():
             for s in range(7):
                 write("curve", f"{name}-c{s}-closed", curve_input(s, 1, 1 + s % 4, poly), counts)
                 write("curve", f"{name}-c{s}-open", curve_input(s, 0, 1 + s % 4, row), counts)
+        # Differential: triangle meshes only (other faces are refused at once).
+        if path in bad_files:
+            write("differential", f"{name}-d0", differential_input(0, 1, 0, pos, faces), counts)
+        elif faces and all(len(f) == 3 for f in faces):
+            if len(pos) <= DIFF_MAX_VERTICES:
+                for s, dm in ((0, 0), (1, 0), (2, 1)):
+                    write("differential", f"{name}-d{s}", differential_input(s, 1, dm, pos, faces), counts)
+            cpos, cfaces = crop(pos, faces)
+            for s, dm, lv, ed in ((0, 0, 2, 0), (1, 0, 1, 1), (2, 2, 2, 2), (2, 1, 1, 3), (0, 0, 0, 0)):
+                write("differential", f"{name}-crop-d{s}-l{lv}-e{ed}", differential_input(s, lv, dm, cpos, cfaces, ed), counts)
         for centre, ring in stars(pos, faces):
             for fn in range(23):
                 write("primitives", f"{name}-f{fn}", primitives_input(fn, centre, ring, 1), counts)

@@ -499,7 +499,7 @@ pub fn subdivide(
                    topo_buf: &mut [u32]|
          -> Result<()> {
             let m = Mesh::new(field.get(..sj.vertices).ok_or(internal())?, src_o, src_i);
-            let topo = Topology::build(m, topo_buf)?;
+            let topo = Topology::build(m, topo_buf).map_err(non_finite_intermediate)?;
             let mut o = MeshOut::new(dst, offs, idx);
             crate::scheme::subdivide(scheme, &topo, &mut o)?;
             Ok(())
@@ -666,6 +666,20 @@ pub fn subdivide(
         *p = q;
     }
     Ok(out_sizes)
+}
+
+/// The fields subdivided here (`Δ`, `H`, `n`, the warm start) are intermediates: the input
+/// was validated by [`plan`], so a non-finite value met while building their topology is an
+/// overflow of the computation (`Δ` of a vertex near `1e231` overflows), reported as
+/// [`Status::NumericalFailure`] naming the vertex (docs/bad-input-catalogue.md row 15), not
+/// as bad input. Found by the `differential` fuzz target
+/// (`fuzz/regressions/differential/laplacian-overflow`).
+fn non_finite_intermediate(e: Error) -> Error {
+    if e.status == Status::NonFiniteInput {
+        Error::at(Status::NumericalFailure, e.element)
+    } else {
+        e
+    }
 }
 
 fn set_faces(mesh: Mesh<'_>, offs: &mut [u32], idx: &mut [u32]) -> Result<()> {

@@ -15,15 +15,32 @@
 //! * Interior vertex of valence `n ≠ 4` (neighbours `q_i`, diagonal vertices `d_i` between
 //!   `q_i` and `q_{i+1}`): the virtual point opposite `q_j` is [`virtual_point`],
 //!   `r_j = 4/n Σ q_i − (q_{j−1} + q_j + q_{j+1}) + ŵ (d_{j−2} + d_{j−1} + d_j + d_{j+1})
-//!   − 4ŵ/n Σ d_i` with `ŵ = w / (4 + w)`: the regular relation `q_{j+2} = Σ q − q_{j−1} − q_j
-//!   − q_{j+1}` with the ring sums rescaled to four terms, plus a diagonal correction that
-//!   vanishes on regular rings. It equals `q_{j+2}` for `n = 4`, is affine (weights sum to 1),
-//!   symmetric about `q_j`, and `mean_j r_j = mean_i q_i`. **Provenance**: Kobbelt 1996 was not
-//!   at hand; this form is the one of a public implementation of the scheme, and the sign of
-//!   the diagonal term was kept because it made the two directional face points (below) agree
-//!   better at valences 3, 6, 7 in a numerical experiment. Check it against the paper before
-//!   relying on bit-compatibility with another Kobbelt implementation at extraordinary
-//!   vertices; regular regions are exact either way.
+//!   − 4ŵ/n Σ d_i` with **`ŵ = w / (1/2 + w)`** (`= 1/9` at `w = 1/16`).
+//!
+//!   *Why this rule.* Kobbelt designs the virtual points "in such a way that the face point
+//!   can be computed in either direction of the quad mesh, horizontally or vertically (i.e.,
+//!   as tensor product of the 4-point scheme)" (seed 000 §4.3, "Blending face points",
+//!   describing Kobbelt 1996). Writing out the two directional face points of a face
+//!   `(v, q_j, d_j, q_{j+1})` (Fig. 14) with everything else regular, all points cancel
+//!   except `w(1/2 + w)(r_{j+1} − r_j + q_{j+2} − q_{j−1}) − w² (d_{j+2} − d_{j−2})`, so the
+//!   two agree exactly iff `r_{j+1} − r_j = q_{j−1} − q_{j+2} + ŵ (d_{j+2} − d_{j−2})` with
+//!   `ŵ = w/(1/2 + w)`. The cyclic sum of the right side vanishes, so this fixes the `r_j` up
+//!   to one common offset; the rule above is the solution with `mean_j r_j = mean_i q_i`.
+//!   It equals `q_{j+2}` for `n = 4` (the real opposite neighbour), is affine (its weights
+//!   sum to one) and symmetric about `q_j`; `tests/kobbelt_virtual_points.rs` checks the direction
+//!   independence on meshes, the planar `n`-star, and the eigenvalues of the local
+//!   subdivision matrix.
+//!
+//!   *Provenance.* Kobbelt, L., "Interpolatory subdivision on open quadrilateral nets with
+//!   arbitrary topology", Computer Graphics Forum 15(3) (Eurographics '96), 409–420,
+//!   doi:10.1111/1467-8659.1530409. Its text was not available to us (docs/DECISIONS.md lists
+//!   what was searched): the rule is *derived* from the property above, not transcribed. A
+//!   public geometry-central-based C++ implementation of the same form used `ŵ = ω/(4 + ω)` with its 4-point rule
+//!   written `(8 + ω)/16, −ω/16` (`ω = 16 w`), i.e. `1/5`; an earlier version here used
+//!   `w/(4 + w) = 1/65`. Neither makes the two directions agree (mismatch `∝ d_{j+2} −
+//!   d_{j−2}`), so both were dropped. The common offset (`mean r = mean q`) is the one of
+//!   that implementation and is not pinned by the property; it only moves the rotation-
+//!   invariant (`k = 0`) eigenvalues of the local subdivision matrix.
 //! * Boundary vertex (any valence): the line through `(v, x)` ends at `v`; the virtual point
 //!   is the 4-point curve's end extrapolation `2v − x` (DESIGN.md, "Open ends": `P_−1 = 2P_0 −
 //!   P_1`).
@@ -38,6 +55,11 @@ use crate::quat::Point;
 
 /// The tension of the 4-point rule, `w = 1/16` (weights `−w, 1/2 + w, 1/2 + w, −w`).
 pub const W: f64 = 1.0 / 16.0;
+
+/// The weight of the diagonal correction of [`virtual_point`], `ŵ = w/(1/2 + w) = 1/9`: the
+/// one value for which both directional face points next to an extraordinary vertex agree
+/// (module docs).
+pub const W_HAT: f64 = W / (0.5 + W);
 
 /// The 4-point rule `(1/2 + w)(b + c) − w (a + d)` with `w = 1/16`.
 pub fn four_point(a: Point, b: Point, c: Point, d: Point) -> Point {
@@ -68,7 +90,7 @@ pub fn virtual_point(ring: &[Point], diagonals: &[Point], j: usize) -> Result<Po
         return cyclic(ring, j, 2);
     }
     let nf = n as f64;
-    let wh = W / (4.0 + W);
+    let wh = W_HAT;
     let near_q = add(
         add(cyclic(ring, j, -1)?, cyclic(ring, j, 0)?),
         cyclic(ring, j, 1)?,
