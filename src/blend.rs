@@ -8,7 +8,9 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mobius::{add, norm, scale, sub};
-use crate::quat::{cross_ratio, point_is_finite, Point, Quat};
+use crate::quat::{
+    cross_ratio, cross_ratio_from_prefix, point_is_finite, CrossRatio, Point, Quat, SAFE_MIN,
+};
 
 /// Relative distance below which two inputs count as coincident (DESIGN.md).
 pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
@@ -24,8 +26,31 @@ struct Frame {
     size: f64,
 }
 
+/// `|p − q|²` as [`norm`] forms it (so that its square root is `norm(sub(p, q))` bit for bit).
+fn dist_sq(p: Point, q: Point) -> f64 {
+    Quat::from_point(sub(p, q)).norm_sq()
+}
+
+/// `norm(sub(p, q))` bit for bit from `sq = dist_sq(p, q)`: its fast path is the square root
+/// of the same sum.
+fn dist_from_sq(p: Point, q: Point, sq: f64) -> f64 {
+    if sq.is_finite() && sq > SAFE_MIN {
+        libm::sqrt(sq)
+    } else {
+        norm(sub(p, q))
+    }
+}
+
+/// Above this largest squared distance the size is the square root of the largest squared
+/// distance. A distance in the scaled range of [`norm`] (squares up to `SAFE_MIN` = 1e-250)
+/// is then below 1.1e-125 < 1e-120, so it cannot be the maximum, and the square root being
+/// monotone and correctly rounded, the result equals the largest of the distances bit for bit.
+const SIZE_BY_SQUARES_MIN: f64 = 1e-240;
+
 impl Frame {
-    fn of(points: &[Point]) -> Frame {
+    /// The frame of `points` whose pairwise squared distances (`dist_sq`, pairs `(i, j)`,
+    /// `i < j`, in that order) are `sq`: centroid and diameter.
+    fn from_squares(points: &[Point], sq: &[f64]) -> Frame {
         let inv_n = 1.0 / points.len() as f64;
         let mut centre = [0.0; 3];
         for p in points {
@@ -39,12 +64,20 @@ impl Frame {
                 centre = add(centre, scale(*p, inv_n));
             }
         }
-        let mut size: f64 = 0.0;
-        for (i, p) in points.iter().enumerate() {
-            for q in points.iter().skip(i + 1) {
-                size = size.max(norm(sub(*p, *q)));
+        // One square root of the largest square instead of one per pair (same bits, see
+        // SIZE_BY_SQUARES_MIN); the pairwise loop where that argument does not hold.
+        let max_sq = sq.iter().fold(0.0, |m: f64, &x| m.max(x));
+        let size = if max_sq.is_finite() && max_sq > SIZE_BY_SQUARES_MIN {
+            libm::sqrt(max_sq)
+        } else {
+            let mut size: f64 = 0.0;
+            for (i, p) in points.iter().enumerate() {
+                for q in points.iter().skip(i + 1) {
+                    size = size.max(norm(sub(*p, *q)));
+                }
             }
-        }
+            size
+        };
         Frame { centre, size }
     }
     fn to_local(self, p: Point) -> Point {
@@ -55,9 +88,26 @@ impl Frame {
     fn to_world(self, p: Point) -> Point {
         add(self.centre, scale(p, self.size))
     }
-    fn coincide(self, p: Point, q: Point) -> bool {
-        norm(sub(p, q)) <= COINCIDENT_TOLERANCE * self.size
+    /// Whether `p`, `q` with `sq = dist_sq(p, q)` are coincident: `|p − q| ≤ 1e-13 size`.
+    fn coincide_sq(self, p: Point, q: Point, sq: f64) -> bool {
+        dist_from_sq(p, q, sq) <= COINCIDENT_TOLERANCE * self.size
     }
+}
+
+/// The pairwise squared distances of `N` points, pairs `(i, j)` with `i < j` in
+/// lexicographic order (`M = N (N − 1) / 2`).
+fn pair_squares<const N: usize, const M: usize>(p: &[Point; N]) -> [f64; M] {
+    let mut out = [0.0; M];
+    let mut k = 0;
+    for (i, a) in p.iter().enumerate() {
+        for b in p.iter().skip(i + 1) {
+            if let Some(o) = out.get_mut(k) {
+                *o = dist_sq(*a, *b);
+            }
+            k += 1;
+        }
+    }
+    out
 }
 
 /// Whether `q` is a negative real in the sense of DESIGN.md: `Re q < 0` and
@@ -149,6 +199,7 @@ fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
 }
 
 /// Solves `cr[e, a, b, p] = χ` for `p` (local frame).
+#[cfg(test)]
 fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     let (qa, qb, qe) = (
@@ -157,6 +208,14 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
         Quat::from_point(e),
     );
     let m = (qa - qe) * (qb - qa).inverse().ok_or(degenerate)?;
+    solve_with_m(m, b, e, chi)
+}
+
+/// [`solve_cross_ratio`] with `M = (a − e)(b − a)⁻¹` given: that is the prefix
+/// `q_ea q_ab⁻¹` of every `cr[e, a, b, ·]` ([`CrossRatio::prefix`]), the same bits.
+fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    let (qb, qe) = (Quat::from_point(b), Quat::from_point(e));
     let p = (m + chi).inverse().ok_or(degenerate)? * (chi * qe + m * qb);
     let p = p.to_point();
     if point_is_finite(&p) {
@@ -210,53 +269,71 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let frame = Frame::of(&[a, b, c, d]);
+    let pts = [a, b, c, d];
+    // Pairs ab, ac, ad, bc, bd, cd.
+    let sq: [f64; 6] = pair_squares(&pts);
+    let [ab, ac, _, bc, bd, cd] = sq;
+    let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
-    if frame.size == 0.0 || frame.coincide(b, c) || frame.coincide(a, b) {
+    if frame.size == 0.0 || frame.coincide_sq(b, c, bc) || frame.coincide_sq(a, b, ab) {
         return Ok(b);
     }
-    if frame.coincide(c, d) || frame.coincide(a, c) {
+    if frame.coincide_sq(c, d, cd) || frame.coincide_sq(a, c, ac) {
         return Ok(c);
     }
-    if frame.coincide(b, d) {
+    if frame.coincide_sq(b, d, bd) {
         return Ok(b);
     }
-    let (mut la, mut lb, mut lc, mut ld) = (
+    let (mut la, mut lb, mut lc, ld) = (
         frame.to_local(a),
         frame.to_local(b),
         frame.to_local(c),
         frame.to_local(d),
     );
-    let mut rho = cross_ratio(lc, la, lb, ld)?;
+    let cr = CrossRatio::new(lc, la, lb, ld)?;
+    let mut rho = cr.value()?;
+    // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
+    let mut m = cr.prefix;
     // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
     // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
     // the negative-real case, whose printed rule depends on the order.) Both orders give
-    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric.
+    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric. The
+    // mirrored cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same
+    // differences and inverses.
     if !is_negative_real(rho) && norm(sub(lb, la)) < norm(sub(lc, ld)) {
-        (la, lb, lc, ld) = (ld, lc, lb, la);
-        rho = cross_ratio(lc, la, lb, ld)?;
+        (la, lb, lc) = (ld, lc, lb);
+        rho = cr.transposed()?;
+        m = cr.transposed_prefix();
     }
-    let mut axis = plane_normal(la, lb, lc);
+    let mut axis = None;
     let mut snap = false;
     if let Some(x) = hint {
         if rho.w < 0.0 {
             // The sphere's axis at c from the fifth point (Lemma A.1): decides the
-            // negative-real case and cleans the direction of Im ρ near it.
-            if let Ok(q) = cross_ratio(lc, la, lb, frame.to_local(x)) {
+            // negative-real case and cleans the direction of Im ρ near it. cr[c, a, b, x]
+            // shares its prefix with ρ.
+            if let Ok(q) = cross_ratio_from_prefix(m, lc, lb, frame.to_local(x)) {
                 let im = q.abs_im();
                 if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
-                    axis = [q.x / im, q.y / im, q.z / im];
+                    axis = Some([q.x / im, q.y / im, q.z / im]);
                     snap = true;
                 }
             }
         }
     }
+    let negative_real = is_negative_real(rho);
+    // The plane's normal is only read for a negative real (after snapping).
+    let axis = match axis {
+        Some(n) => n,
+        None if rho.w < 0.0 => plane_normal(la, lb, lc),
+        None => [0.0, 0.0, 1.0],
+    };
     let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
     // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
-    let chi = if is_negative_real(rho) { root } else { -root };
-    let p = solve_cross_ratio(la, lb, lc, chi)?;
+    let chi = if negative_real { root } else { -root };
+    let p = solve_with_m(m, lb, lc, chi)?;
     let out = frame.to_world(p);
     if point_is_finite(&out) {
         Ok(out)
@@ -305,17 +382,25 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     if ![a, b, c, d, e, f].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let frame = Frame::of(&[a, b, c, d, e, f]);
+    let pts = [a, b, c, d, e, f];
+    let sq: [f64; 15] = pair_squares(&pts);
+    let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
-    if frame.size == 0.0 || frame.coincide(b, e) {
+    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
+    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
+    if frame.size == 0.0 || frame.coincide_sq(b, e, be) {
         return Ok(b);
     }
     let degenerate = Error::new(Status::DegenerateGeometry);
-    let [la, lb, lc, ld, le, lf] = [a, b, c, d, e, f].map(|p| frame.to_local(p));
-    let x = cross_ratio(le, la, lb, ld)?;
-    let y = cross_ratio(le, la, lb, lf)?;
+    let [la, lb, lc, ld, le, lf] = pts.map(|p| frame.to_local(p));
+    // X = cr[e, a, b, d], Y = cr[e, a, b, f] share the prefix (a − e)(b − a)⁻¹, which is also
+    // the M of the solve; Z = cr[e, c, b, f] shares q_bf and (f − e)⁻¹ with Y. Evaluated in
+    // the order and with the checks of three `cross_ratio` calls, the same bits.
+    let cx = CrossRatio::new(le, la, lb, ld)?;
+    let x = cx.value()?;
+    let y = cross_ratio_from_prefix(cx.prefix, le, lb, lf)?;
     let z = cross_ratio(le, lc, lb, lf)?;
     let axis = imaginary_axis(&[x, y, z]);
     let snap = axis.is_some();
@@ -325,7 +410,7 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
     let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
     let chi = -(sx * sr);
-    let p = solve_cross_ratio(la, lb, le, chi)?;
+    let p = solve_with_m(cx.prefix, lb, le, chi)?;
     let out = frame.to_world(p);
     if point_is_finite(&out) {
         Ok(out)

@@ -17,7 +17,7 @@ pub type Point = [f64; 3];
 
 /// Below this sum of squares the fast paths of [`Quat::abs`] and [`Quat::inverse`] give way to
 /// scaled evaluation (far above the subnormal range, so no precision is lost).
-const SAFE_MIN: f64 = 1e-250;
+pub(crate) const SAFE_MIN: f64 = 1e-250;
 /// Above this sum of squares [`Quat::inverse`] scales first (its result would be tiny).
 const SAFE_MAX: f64 = 1e250;
 
@@ -133,13 +133,15 @@ impl Quat {
     /// The inverse `q⁻¹ = q̄ / |q|²`, or `None` when `q` is zero, not finite, or so small or
     /// large that the inverse is not a finite, non-zero quaternion.
     pub fn inverse(self) -> Option<Quat> {
+        let n = self.norm_sq();
+        if n > SAFE_MIN && n < SAFE_MAX {
+            // Fast path: q̄ / |q|² with a result far from overflow and underflow. A finite
+            // |q|² in range implies finite components (a NaN or ∞ component makes |q|² NaN or
+            // ∞, which fails both comparisons), so the finiteness test waits for the slow path.
+            return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
+        }
         if !self.is_finite() {
             return None;
-        }
-        let n = self.norm_sq();
-        if n.is_finite() && n > SAFE_MIN && n < SAFE_MAX {
-            // Fast path: q̄ / |q|² with a result far from overflow and underflow.
-            return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
         }
         let m = self
             .w
@@ -298,18 +300,89 @@ fn diff(a: Point, b: Point) -> Quat {
 /// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`]
 /// when `qj = qk` or `ql = qi` (an inverse of zero) or the result is not finite.
 pub fn cross_ratio(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<Quat> {
-    if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+    CrossRatio::new(qi, qj, qk, ql)?.value()
+}
+
+/// The factors of `cr[qi, qj, qk, ql] = ((q_ij q_jk⁻¹) q_kl) q_li⁻¹`, evaluated in that
+/// order by [`cross_ratio`], kept so that the blends can reuse them bit for bit: the prefix
+/// `q_ij q_jk⁻¹` is the `M` of the solve of Eq. (3) and starts every cross-ratio with the
+/// same first three points; the double transposition `cr[qk, ql, qi, qj]` (F4's mirrored
+/// order) is the same four factors in another order.
+#[derive(Clone, Copy)]
+pub(crate) struct CrossRatio {
+    /// `q_ij q_jk⁻¹`.
+    pub(crate) prefix: Quat,
+    /// `q_ij`.
+    pub(crate) ij: Quat,
+    /// `q_jk⁻¹`.
+    pub(crate) inv_jk: Quat,
+    /// `q_kl`.
+    pub(crate) kl: Quat,
+    /// `q_li⁻¹`.
+    pub(crate) inv_li: Quat,
+}
+
+impl CrossRatio {
+    /// The factors, with the checks of [`cross_ratio`] in its order (all but the finiteness
+    /// of the product, which [`CrossRatio::value`] checks).
+    pub(crate) fn new(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<CrossRatio> {
+        if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+            return Err(Error::new(Status::NonFiniteInput));
+        }
+        let inv_jk = diff(qj, qk)
+            .inverse()
+            .ok_or(Error::new(Status::DegenerateGeometry))?;
+        let inv_li = diff(ql, qi)
+            .inverse()
+            .ok_or(Error::new(Status::DegenerateGeometry))?;
+        let ij = diff(qi, qj);
+        Ok(CrossRatio {
+            prefix: ij * inv_jk,
+            ij,
+            inv_jk,
+            kl: diff(qk, ql),
+            inv_li,
+        })
+    }
+
+    /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
+    pub(crate) fn value(&self) -> Result<Quat> {
+        finite_or_degenerate(self.prefix * self.kl * self.inv_li)
+    }
+
+    /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
+    /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
+    pub(crate) fn transposed(&self) -> Result<Quat> {
+        finite_or_degenerate(self.kl * self.inv_li * self.ij * self.inv_jk)
+    }
+
+    /// `q_kl q_li⁻¹`, the prefix of [`CrossRatio::transposed`].
+    pub(crate) fn transposed_prefix(&self) -> Quat {
+        self.kl * self.inv_li
+    }
+}
+
+/// `cr[qi, qj, qk, ql]` from its prefix `q_ij q_jk⁻¹` (computed for another cross-ratio that
+/// starts with the same `qi, qj, qk`, whose checks passed), bit for bit [`cross_ratio`]: the
+/// remaining checks in its order.
+pub(crate) fn cross_ratio_from_prefix(
+    prefix: Quat,
+    qi: Point,
+    qk: Point,
+    ql: Point,
+) -> Result<Quat> {
+    if !point_is_finite(&ql) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let inv_jk = diff(qj, qk)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
     let inv_li = diff(ql, qi)
         .inverse()
         .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let cr = diff(qi, qj) * inv_jk * diff(qk, ql) * inv_li;
-    if cr.is_finite() {
-        Ok(cr)
+    finite_or_degenerate(prefix * diff(qk, ql) * inv_li)
+}
+
+fn finite_or_degenerate(q: Quat) -> Result<Quat> {
+    if q.is_finite() {
+        Ok(q)
     } else {
         Err(Error::new(Status::DegenerateGeometry))
     }
