@@ -19,6 +19,9 @@ pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
 /// negative real (DESIGN.md).
 pub const NEGATIVE_REAL_TOLERANCE: f64 = 1e-12;
 
+/// Coordinates within ±`BOUNDED` are less than `f64::MAX` apart (`2√3 · 1e300`).
+const BOUNDED: f64 = 1e300;
+
 /// A similarity frame: `x ↦ (x − centre) / size`.
 #[derive(Clone, Copy)]
 struct Frame {
@@ -27,12 +30,14 @@ struct Frame {
 }
 
 /// `|p − q|²` as [`norm`] forms it (so that its square root is `norm(sub(p, q))` bit for bit).
+#[inline]
 fn dist_sq(p: Point, q: Point) -> f64 {
     Quat::from_point(sub(p, q)).norm_sq()
 }
 
 /// `norm(sub(p, q))` bit for bit from `sq = dist_sq(p, q)`: its fast path is the square root
 /// of the same sum.
+#[inline]
 fn dist_from_sq(p: Point, q: Point, sq: f64) -> f64 {
     if sq.is_finite() && sq > SAFE_MIN {
         libm::sqrt(sq)
@@ -213,6 +218,7 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 
 /// [`solve_cross_ratio`] with `M = (a − e)(b − a)⁻¹` given: that is the prefix
 /// `q_ea q_ab⁻¹` of every `cr[e, a, b, ·]` ([`CrossRatio::prefix`]), the same bits.
+#[inline]
 fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     let (qb, qe) = (Quat::from_point(b), Quat::from_point(e));
@@ -244,7 +250,7 @@ fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
 /// the new point is at infinity; [`Status::NumericalFailure`] when finite inputs overflow
 /// (points more than `f64::MAX` apart, or a result beyond it).
 pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
-    f4_impl(a, b, c, d, None)
+    f4_impl(a, b, c, d, None).map(|r| r.point)
 }
 
 /// [`f4`] with a fifth point `x` of the surface that decides the negative-real case: when
@@ -262,10 +268,24 @@ pub fn f4_hinted(a: Point, b: Point, c: Point, d: Point, x: Point) -> Result<Poi
     if !point_is_finite(&x) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    f4_impl(a, b, c, d, Some(x))
+    f4_impl(a, b, c, d, Some(x)).map(|r| r.point)
 }
 
-fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<Point> {
+/// What [`f4_impl`] found besides the point.
+#[derive(Clone, Copy)]
+struct F4Eval {
+    /// `F4(a, b, c, d)`.
+    point: Point,
+    /// The noncircularity `1 − |Re ρ|/|ρ|` of `ρ = cr[c, a, b, d]` (in the local frame, the
+    /// same number up to rounding: similarities keep cross-ratios), when the formula ran.
+    noncircularity: Option<f64>,
+    /// Whether the point is also `F4(d, c, b, a)` by Lemma 4.1: the formula ran (no
+    /// coincidence rule, which prefers `b` or `c` by position) and `ρ` is not a negative real
+    /// (whose printed rule depends on the order).
+    reversible: bool,
+}
+
+fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<F4Eval> {
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
@@ -277,14 +297,21 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
+    let early = |point: Point| {
+        Ok(F4Eval {
+            point,
+            noncircularity: None,
+            reversible: false,
+        })
+    };
     if frame.size == 0.0 || frame.coincide_sq(b, c, bc) || frame.coincide_sq(a, b, ab) {
-        return Ok(b);
+        return early(b);
     }
     if frame.coincide_sq(c, d, cd) || frame.coincide_sq(a, c, ac) {
-        return Ok(c);
+        return early(c);
     }
     if frame.coincide_sq(b, d, bd) {
-        return Ok(b);
+        return early(b);
     }
     let (mut la, mut lb, mut lc, ld) = (
         frame.to_local(a),
@@ -294,6 +321,13 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     );
     let cr = CrossRatio::new(lc, la, lb, ld)?;
     let mut rho = cr.value()?;
+    let rho_abs = rho.abs();
+    let noncircularity = if rho_abs == 0.0 {
+        0.0
+    } else {
+        1.0 - rho.w.abs() / rho_abs
+    };
+    let reversible = !is_negative_real(rho);
     // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
     let mut m = cr.prefix;
     // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
@@ -302,7 +336,7 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     // the same point in exact arithmetic, and the choice makes F4 bit-symmetric. The
     // mirrored cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same
     // differences and inverses.
-    if !is_negative_real(rho) && norm(sub(lb, la)) < norm(sub(lc, ld)) {
+    if reversible && norm(sub(lb, la)) < norm(sub(lc, ld)) {
         (la, lb, lc) = (ld, lc, lb);
         rho = cr.transposed()?;
         m = cr.transposed_prefix();
@@ -336,7 +370,11 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     let p = solve_with_m(m, lb, lc, chi)?;
     let out = frame.to_world(p);
     if point_is_finite(&out) {
-        Ok(out)
+        Ok(F4Eval {
+            point: out,
+            noncircularity: Some(noncircularity),
+            reversible,
+        })
     } else {
         Err(Error::new(Status::NumericalFailure))
     }
@@ -383,6 +421,12 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
         return Err(Error::new(Status::NonFiniteInput));
     }
     let pts = [a, b, c, d, e, f];
+    if b == e && pts.iter().all(|p| p.iter().all(|x| x.abs() <= BOUNDED)) {
+        // The rule `b = e → b` below, without the frame: coordinates within ±1e300 put every
+        // pair less than f64::MAX apart, so the frame's size is finite and the rule applies.
+        // (The face-point chain meets this whenever a quadruplet's F4 is reused.)
+        return Ok(b);
+    }
     let sq: [f64; 15] = pair_squares(&pts);
     let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
@@ -484,31 +528,81 @@ fn face_point_ordered(
             .and_then(|k| s.get(k).copied())
             .ok_or(Error::new(Status::InvalidArgument))
     };
+    let quad = |i: usize| -> Result<[Point; 4]> {
+        Ok([
+            at(vertices, i)?,
+            at(candidates, i)?,
+            at(candidates, i + h)?,
+            at(vertices, i + h)?,
+        ])
+    };
+    let id = |i: usize| -> Result<u32> {
+        match ids {
+            Some(ids) => ids
+                .get(i)
+                .copied()
+                .ok_or(Error::new(Status::InvalidArgument)),
+            None => Ok(0),
+        }
+    };
+    // p_l = F4(quadruplet l) and its rounded sort key, per quadruplet in face order.
+    let mut p: arrayvec::ArrayVec<(Point, i64), { crate::MAX_FACE_SIZE }> =
+        arrayvec::ArrayVec::new();
+    let eval = |i: usize| -> Result<(Point, i64, bool)> {
+        let [a, b, c, e] = quad(i)?;
+        let r = f4_impl(a, b, c, e, None)?;
+        // The key is the noncircularity of the cross-ratio F4 uses; when a coincidence rule
+        // answered (F4 computed no ρ), that of the input points. A quadruplet whose
+        // cross-ratio is undefined (coincident candidates) is as circular as it gets.
+        let key = match r.noncircularity {
+            Some(k) => k,
+            None => noncircularity(a, b, c, e).unwrap_or(0.0),
+        };
+        Ok((r.point, libm::round(key * 1e12) as i64, r.reversible))
+    };
+    for _ in 0..d {
+        p.try_push(([0.0; 3], 0))
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    }
+    let mut put = |i: usize, v: (Point, i64)| -> Result<()> {
+        *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
+        Ok(())
+    };
+    if d % 2 == 0 {
+        // Quadruplet i + h is quadruplet i reversed, and F4(a, b, c, d) = F4(d, c, b, a)
+        // (Lemma 4.1), noncircularity included: one evaluation serves both. It is the one
+        // whose v_i has the smaller id (then the first in face order), so the face point
+        // stays independent of the face start bit for bit. Where F4 is not symmetric (a
+        // coincidence rule or a negative-real ρ) both are evaluated.
+        for i in 0..h {
+            let (first, second) = if id(i + h)? < id(i)? {
+                (i + h, i)
+            } else {
+                (i, i + h)
+            };
+            let (pt, key, reversible) = eval(first)?;
+            put(first, (pt, key))?;
+            if reversible {
+                put(second, (pt, key))?;
+            } else {
+                let (pt2, key2, _) = eval(second)?;
+                put(second, (pt2, key2))?;
+            }
+        }
+    } else {
+        for i in 0..d {
+            let (pt, key, _) = eval(i)?;
+            put(i, (pt, key))?;
+        }
+    }
     // (quadruplet start i, (rounded key, tie-break)), sorted stably with an insertion sort (d
     // is small, and the sort must be stable and panic-free). The tie-break is the id of `v_i`
     // when given, else 0 (face order).
     let mut order: arrayvec::ArrayVec<(usize, (i64, u32)), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
-    for i in 0..d {
-        let (a, b, c, e) = (
-            at(vertices, i)?,
-            at(candidates, i)?,
-            at(candidates, i + h)?,
-            at(vertices, i + h)?,
-        );
-        // A quadruplet whose cross-ratio is undefined (coincident candidates) is as circular
-        // as it gets: F4 returns a defined point for it.
-        let key = noncircularity(a, b, c, e).unwrap_or(0.0);
-        let key = libm::round(key * 1e12) as i64;
-        let tie = match ids {
-            Some(ids) => ids
-                .get(i)
-                .copied()
-                .ok_or(Error::new(Status::InvalidArgument))?,
-            None => 0,
-        };
+    for (i, &(_, key)) in p.iter().enumerate() {
         order
-            .try_push((i, (key, tie)))
+            .try_push((i, (key, id(i)?)))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         let mut j = order.len() - 1;
         while j > 0 {
@@ -522,23 +616,18 @@ fn face_point_ordered(
             }
         }
     }
-    let quad = |i: usize| -> Result<[Point; 4]> {
-        Ok([
-            at(vertices, i)?,
-            at(candidates, i)?,
-            at(candidates, i + h)?,
-            at(vertices, i + h)?,
-        ])
+    let point = |i: usize| {
+        p.get(i)
+            .map(|x| x.0)
+            .ok_or(Error::new(Status::InvalidArgument))
     };
     let mut it = order.iter();
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
-    let [a0, b0, c0, d0] = quad(first)?;
-    let mut vf = f4(a0, b0, c0, d0)?;
-    let (mut a_prev, mut d_prev) = (a0, d0);
+    let mut vf = point(first)?;
+    let (mut a_prev, mut d_prev) = (at(vertices, first)?, at(vertices, first + h)?);
     for &(i, _) in it {
-        let [a, b, c, e] = quad(i)?;
-        let p = f4(a, b, c, e)?;
-        vf = f6(a_prev, vf, d_prev, a, p, e)?;
+        let (a, e) = (at(vertices, i)?, at(vertices, i + h)?);
+        vf = f6(a_prev, vf, d_prev, a, point(i)?, e)?;
         (a_prev, d_prev) = (a, e);
     }
     Ok(vf)
