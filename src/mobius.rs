@@ -8,7 +8,7 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point, Quat};
+use crate::quat::{inverse_point, point_is_finite, Point, Quat};
 use crate::MAX_VALENCE;
 
 /// A Möbius transformation of R³ ∪ {∞}, `q ↦ (aq + b)(cq + d)⁻¹` (seed 000 Eq. (1)).
@@ -309,10 +309,7 @@ impl CanonicalForm {
             return Ok(self.v);
         }
         let t = invert_in_sphere(p, self.c, self.r)?;
-        let back = Quat::from_point(t)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let back = inverse_point(t).ok_or(Error::new(Status::DegenerateGeometry))?;
         let x = add(self.v, back);
         if point_is_finite(&x) {
             Ok(x)
@@ -338,10 +335,7 @@ impl CanonicalForm {
             return Ok([0.0; 3]);
         }
         let t = crate::quat::tangent_polygon_vertex(self.v, x)?;
-        let inv = Quat::from_point(sub(t, self.c))
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let inv = inverse_point(sub(t, self.c)).ok_or(Error::new(Status::DegenerateGeometry))?;
         let y = scale(inv, -self.r);
         if point_is_finite(&y) {
             Ok(y)
@@ -362,15 +356,9 @@ impl CanonicalForm {
         if p == [0.0; 3] {
             return Ok(self.v);
         }
-        let pinv = Quat::from_point(p)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let pinv = inverse_point(p).ok_or(Error::new(Status::DegenerateGeometry))?;
         let t = sub(self.c, scale(pinv, self.r));
-        let back = Quat::from_point(t)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let back = inverse_point(t).ok_or(Error::new(Status::DegenerateGeometry))?;
         let x = add(self.v, back);
         if point_is_finite(&x) {
             Ok(x)
@@ -399,10 +387,7 @@ impl CanonicalForm {
 
 /// The inversion `x ↦ c − r² (x − c)⁻¹ = c + r² (x − c)/|x − c|²`.
 fn invert_in_sphere(x: Point, c: Point, r: f64) -> Result<Point> {
-    let inv = Quat::from_point(sub(x, c))
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?
-        .to_point();
+    let inv = inverse_point(sub(x, c)).ok_or(Error::new(Status::DegenerateGeometry))?;
     let y = sub(c, scale(inv, r * r));
     if point_is_finite(&y) {
         Ok(y)

@@ -132,6 +132,7 @@ impl Quat {
 
     /// The inverse `q⁻¹ = q̄ / |q|²`, or `None` when `q` is zero, not finite, or so small or
     /// large that the inverse is not a finite, non-zero quaternion.
+    #[inline]
     pub fn inverse(self) -> Option<Quat> {
         let n = self.norm_sq();
         if n > SAFE_MIN && n < SAFE_MAX {
@@ -291,6 +292,26 @@ fn diff(a: Point, b: Point) -> Quat {
     Quat::new(0.0, b[0] - a[0], b[1] - a[1], b[2] - a[2])
 }
 
+/// `Quat::from_point(p).inverse().map(Quat::to_point)` bit for bit, for the inverse of an
+/// imaginary quaternion `[0, p]⁻¹ = [0, −p/|p|²]` that nearly every Möbius rule takes: with a
+/// zero real part `|q|²` is the same sum of three squares (`0 + x² = x²` exactly) and the real
+/// part of the result is `+0`, so the fast path needs three divisions instead of four and no
+/// quaternion.
+#[inline]
+pub(crate) fn inverse_point(p: Point) -> Option<Point> {
+    let n = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    if n > SAFE_MIN && n < SAFE_MAX {
+        return Some([-p[0] / n, -p[1] / n, -p[2] / n]);
+    }
+    Quat::from_point(p).inverse().map(Quat::to_point)
+}
+
+/// `diff(a, b).inverse()` bit for bit ([`inverse_point`]).
+#[inline]
+fn diff_inverse(a: Point, b: Point) -> Option<Quat> {
+    inverse_point([b[0] - a[0], b[1] - a[1], b[2] - a[2]]).map(Quat::from_point)
+}
+
 /// The quaternionic cross-ratio `cr[qi, qj, qk, ql] = q_ij q_jk⁻¹ q_kl q_li⁻¹` with
 /// `q_ij = q_j − q_i` (seed 000 §3.2), exactly as printed.
 ///
@@ -325,16 +346,13 @@ pub(crate) struct CrossRatio {
 impl CrossRatio {
     /// The factors, with the checks of [`cross_ratio`] in its order (all but the finiteness
     /// of the product, which [`CrossRatio::value`] checks).
+    #[inline]
     pub(crate) fn new(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<CrossRatio> {
         if ![qi, qj, qk, ql].iter().all(point_is_finite) {
             return Err(Error::new(Status::NonFiniteInput));
         }
-        let inv_jk = diff(qj, qk)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?;
-        let inv_li = diff(ql, qi)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?;
+        let inv_jk = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
+        let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
         let ij = diff(qi, qj);
         Ok(CrossRatio {
             prefix: ij * inv_jk,
@@ -346,12 +364,14 @@ impl CrossRatio {
     }
 
     /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
+    #[inline]
     pub(crate) fn value(&self) -> Result<Quat> {
         finite_or_degenerate(self.prefix * self.kl * self.inv_li)
     }
 
     /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
     /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
+    #[inline]
     pub(crate) fn transposed(&self) -> Result<Quat> {
         finite_or_degenerate(self.kl * self.inv_li * self.ij * self.inv_jk)
     }
@@ -365,6 +385,7 @@ impl CrossRatio {
 /// `cr[qi, qj, qk, ql]` from its prefix `q_ij q_jk⁻¹` (computed for another cross-ratio that
 /// starts with the same `qi, qj, qk`, whose checks passed), bit for bit [`cross_ratio`]: the
 /// remaining checks in its order.
+#[inline]
 pub(crate) fn cross_ratio_from_prefix(
     prefix: Quat,
     qi: Point,
@@ -374,12 +395,11 @@ pub(crate) fn cross_ratio_from_prefix(
     if !point_is_finite(&ql) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let inv_li = diff(ql, qi)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
     finite_or_degenerate(prefix * diff(qk, ql) * inv_li)
 }
 
+#[inline]
 fn finite_or_degenerate(q: Quat) -> Result<Quat> {
     if q.is_finite() {
         Ok(q)
@@ -398,12 +418,8 @@ pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
     if ![qi, qj, qk].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let a = diff(qi, qj)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let b = diff(qj, qk)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
+    let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
     let t = (a + b).to_point();
     if point_is_finite(&t) {
         Ok(t)
@@ -422,8 +438,7 @@ pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
     if !point_is_finite(&v) || !point_is_finite(&u) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    diff(v, u)
-        .inverse()
+    diff_inverse(v, u)
         .map(Quat::to_point)
         .ok_or(Error::new(Status::DegenerateGeometry))
 }

@@ -462,7 +462,7 @@ impl Local {
         if u == self.v {
             return Ok(ORIGIN);
         }
-        if let Some(&(_, p)) = self.cache.iter().find(|(k, _)| *k == u) {
+        if let Some(&(_, p)) = self.cache.iter().rev().find(|(k, _)| *k == u) {
             return Ok(p);
         }
         let p = self.cf.to_normalised(topo.position(u)?)?;
