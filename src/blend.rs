@@ -221,8 +221,7 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 #[inline]
 fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
-    let (qb, qe) = (Quat::from_point(b), Quat::from_point(e));
-    let p = (m + chi).inverse().ok_or(degenerate)? * (chi * qe + m * qb);
+    let p = (m + chi).inverse().ok_or(degenerate)? * (chi.mul_im(e) + m.mul_im(b));
     let p = p.to_point();
     if point_is_finite(&p) {
         Ok(p)

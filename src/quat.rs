@@ -282,14 +282,38 @@ impl Mul for Quat {
     }
 }
 
+impl Quat {
+    /// `self · [0, p]`, the Hamilton product with an imaginary quaternion, without the
+    /// products by its zero real part: `[w, v]·[0, p] = [−⟨v, p⟩, w p + v × p]`. The remaining
+    /// terms are summed in the order of [`Mul`], so the result equals `self * [0, p]` bit for
+    /// bit except possibly the sign of a component that is exactly zero (adding the dropped
+    /// `±0` terms changes nothing else).
+    #[inline]
+    pub(crate) fn mul_im(self, p: Point) -> Quat {
+        Quat::new(
+            -(self.x * p[0]) - self.y * p[1] - self.z * p[2],
+            self.w * p[0] + self.y * p[2] - self.z * p[1],
+            self.w * p[1] - self.x * p[2] + self.z * p[0],
+            self.w * p[2] + self.x * p[1] - self.y * p[0],
+        )
+    }
+}
+
+/// `[0, a]·[0, b] = [−⟨a, b⟩, a × b]`, as [`Quat::mul_im`] (the same bits as the full product
+/// up to the sign of an exactly zero component).
+#[inline]
+pub(crate) fn im_mul_im(a: Point, b: Point) -> Quat {
+    Quat::new(
+        -(a[0] * b[0]) - a[1] * b[1] - a[2] * b[2],
+        a[1] * b[2] - a[2] * b[1],
+        -(a[0] * b[2]) + a[2] * b[0],
+        a[0] * b[1] - a[1] * b[0],
+    )
+}
+
 /// Whether every coordinate of `p` is finite.
 pub fn point_is_finite(p: &Point) -> bool {
     p.iter().all(|c| c.is_finite())
-}
-
-fn diff(a: Point, b: Point) -> Quat {
-    // q_ab = b − a, an imaginary quaternion.
-    Quat::new(0.0, b[0] - a[0], b[1] - a[1], b[2] - a[2])
 }
 
 /// `Quat::from_point(p).inverse().map(Quat::to_point)` bit for bit, for the inverse of an
@@ -306,10 +330,16 @@ pub(crate) fn inverse_point(p: Point) -> Option<Point> {
     Quat::from_point(p).inverse().map(Quat::to_point)
 }
 
-/// `diff(a, b).inverse()` bit for bit ([`inverse_point`]).
+/// `b − a`: the difference quaternion `q_ab = [0, b − a]` of seed 000 §3.2 as a point.
 #[inline]
-fn diff_inverse(a: Point, b: Point) -> Option<Quat> {
-    inverse_point([b[0] - a[0], b[1] - a[1], b[2] - a[2]]).map(Quat::from_point)
+fn diff_point(a: Point, b: Point) -> Point {
+    [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
+}
+
+/// `q_ab⁻¹` ([`inverse_point`] of [`diff_point`]).
+#[inline]
+fn diff_inverse(a: Point, b: Point) -> Option<Point> {
+    inverse_point(diff_point(a, b))
 }
 
 /// The quaternionic cross-ratio `cr[qi, qj, qk, ql] = q_ij q_jk⁻¹ q_kl q_li⁻¹` with
@@ -333,14 +363,14 @@ pub fn cross_ratio(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<Quat> {
 pub(crate) struct CrossRatio {
     /// `q_ij q_jk⁻¹`.
     pub(crate) prefix: Quat,
-    /// `q_ij`.
-    pub(crate) ij: Quat,
-    /// `q_jk⁻¹`.
-    pub(crate) inv_jk: Quat,
-    /// `q_kl`.
-    pub(crate) kl: Quat,
-    /// `q_li⁻¹`.
-    pub(crate) inv_li: Quat,
+    /// `q_ij` (imaginary).
+    ij: Point,
+    /// `q_jk⁻¹` (imaginary).
+    inv_jk: Point,
+    /// `q_kl` (imaginary).
+    kl: Point,
+    /// `q_li⁻¹` (imaginary).
+    inv_li: Point,
 }
 
 impl CrossRatio {
@@ -353,12 +383,12 @@ impl CrossRatio {
         }
         let inv_jk = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
         let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
-        let ij = diff(qi, qj);
+        let ij = diff_point(qi, qj);
         Ok(CrossRatio {
-            prefix: ij * inv_jk,
+            prefix: im_mul_im(ij, inv_jk),
             ij,
             inv_jk,
-            kl: diff(qk, ql),
+            kl: diff_point(qk, ql),
             inv_li,
         })
     }
@@ -366,19 +396,20 @@ impl CrossRatio {
     /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
     #[inline]
     pub(crate) fn value(&self) -> Result<Quat> {
-        finite_or_degenerate(self.prefix * self.kl * self.inv_li)
+        finite_or_degenerate(self.prefix.mul_im(self.kl).mul_im(self.inv_li))
     }
 
     /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
     /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
     #[inline]
     pub(crate) fn transposed(&self) -> Result<Quat> {
-        finite_or_degenerate(self.kl * self.inv_li * self.ij * self.inv_jk)
+        finite_or_degenerate(self.transposed_prefix().mul_im(self.ij).mul_im(self.inv_jk))
     }
 
     /// `q_kl q_li⁻¹`, the prefix of [`CrossRatio::transposed`].
+    #[inline]
     pub(crate) fn transposed_prefix(&self) -> Quat {
-        self.kl * self.inv_li
+        im_mul_im(self.kl, self.inv_li)
     }
 }
 
@@ -396,7 +427,7 @@ pub(crate) fn cross_ratio_from_prefix(
         return Err(Error::new(Status::NonFiniteInput));
     }
     let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
-    finite_or_degenerate(prefix * diff(qk, ql) * inv_li)
+    finite_or_degenerate(prefix.mul_im(diff_point(qk, ql)).mul_im(inv_li))
 }
 
 #[inline]
@@ -420,7 +451,7 @@ pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
     }
     let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
     let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
-    let t = (a + b).to_point();
+    let t = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
     if point_is_finite(&t) {
         Ok(t)
     } else {
@@ -438,9 +469,7 @@ pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
     if !point_is_finite(&v) || !point_is_finite(&u) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    diff_inverse(v, u)
-        .map(Quat::to_point)
-        .ok_or(Error::new(Status::DegenerateGeometry))
+    diff_inverse(v, u).ok_or(Error::new(Status::DegenerateGeometry))
 }
 
 /// Writes the tangent polygon `T_i = (u_i − v)⁻¹` of the star `v u_1 … u_n` into `out`
