@@ -506,6 +506,23 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
     face_point_ordered(vertices, candidates, Some(ids))
 }
 
+/// `F6(a, b, c, c, e, a)`: F6 whose second chain joins the ends of the first in reverse, as
+/// the chain of an even face meets when quadruplet `i + h` follows quadruplet `i`.
+///
+/// There `X = cr[e, a, b, c]`, `Y = cr[e, a, b, a] = q_ea q_ab⁻¹ (−q_ab)(−q_ea)⁻¹ = 1` and
+/// `Z = cr[e, c, b, a] = X⁻¹` (the four factors of `X⁻¹` are those of `Z`, each negated), so
+/// `r = (√X)⁻¹ (√(X⁻¹))⁻¹ = 1` for the principal root (`√(X⁻¹) = (√X)⁻¹` off the negative
+/// reals) and `χ = −√X`: the point with `cr[e, a, b, p] = −√cr[e, a, b, c]`, which is
+/// `F4(a, b, e, c)` — one cross-ratio instead of three, and no rounding of `Y` away from 1.
+/// Where F4 does not run its formula (a coincidence rule) or `X` is a negative real (where
+/// F6 takes `√r = n`, not 1) this is F6 itself.
+fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point> {
+    match f4_impl(a, b, e, c, None) {
+        Ok(r) if r.reversible => Ok(r.point),
+        _ => f6(a, b, c, c, e, a),
+    }
+}
+
 fn face_point_ordered(
     vertices: &[Point],
     candidates: &[Point],
@@ -623,11 +640,17 @@ fn face_point_ordered(
     let mut it = order.iter();
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
     let mut vf = point(first)?;
+    let mut prev = first;
     let (mut a_prev, mut d_prev) = (at(vertices, first)?, at(vertices, first + h)?);
     for &(i, _) in it {
         let (a, e) = (at(vertices, i)?, at(vertices, i + h)?);
-        vf = f6(a_prev, vf, d_prev, a, point(i)?, e)?;
-        (a_prev, d_prev) = (a, e);
+        let p = point(i)?;
+        vf = if d % 2 == 0 && i == (prev + h) % d {
+            f6_of_reversed_chain(a_prev, vf, d_prev, p)?
+        } else {
+            f6(a_prev, vf, d_prev, a, p, e)?
+        };
+        (a_prev, d_prev, prev) = (a, e, i);
     }
     Ok(vf)
 }
