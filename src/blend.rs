@@ -71,7 +71,13 @@ impl Frame {
         }
         // One square root of the largest square instead of one per pair (same bits, see
         // SIZE_BY_SQUARES_MIN); the pairwise loop where that argument does not hold.
-        let max_sq = sq.iter().fold(0.0, |m: f64, &x| m.max(x));
+        // (The squares of finite points are never NaN, so `>` is `f64::max` here.)
+        let mut max_sq = 0.0;
+        for &x in sq {
+            if x > max_sq {
+                max_sq = x;
+            }
+        }
         let size = if max_sq.is_finite() && max_sq > SIZE_BY_SQUARES_MIN {
             libm::sqrt(max_sq)
         } else {
@@ -177,11 +183,13 @@ fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
     } else {
         q
     };
-    if is_negative_real(q) {
-        let t = libm::sqrt(q.abs());
+    // is_negative_real(q), then q.sqrt(), with |q| and |Im q| computed once.
+    let (r, vi) = (q.abs(), q.abs_im());
+    if q.w < 0.0 && vi <= NEGATIVE_REAL_TOLERANCE * r {
+        let t = libm::sqrt(r);
         return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
     }
-    q.sqrt()
+    q.sqrt_given(r, vi)
 }
 
 /// The unit imaginary part of the quaternion of `qs` farthest from real (largest

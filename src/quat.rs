@@ -184,21 +184,28 @@ impl Quat {
         if !self.is_finite() {
             return None;
         }
-        let r = self.abs();
-        let vi = self.abs_im();
+        self.sqrt_given(self.abs(), self.abs_im())
+    }
+
+    /// [`Quat::sqrt`] of a finite `self` with `r = self.abs()` and `vi = self.abs_im()`
+    /// already computed by the caller (the blends test for a negative real with them first).
+    pub(crate) fn sqrt_given(self, r: f64, vi: f64) -> Option<Quat> {
+        if !self.is_finite() {
+            return None;
+        }
         if vi == 0.0 {
             if self.w >= 0.0 {
                 return Some(Quat::real(libm::sqrt(self.w)));
             }
             return None;
         }
-        let n = self.im() / vi;
         if self.w >= 0.0 {
             // Re √q = √((r + w)/2) is accurate; Im = v / (2 Re).
             let s = libm::sqrt(0.5 * (r + self.w));
             Some(Quat::from_parts(s, self.im() / (2.0 * s)))
         } else {
             // |Im √q| = √((r − w)/2) is accurate; Re = |v| / (2 |Im|).
+            let n = self.im() / vi;
             let t = libm::sqrt(0.5 * (r - self.w));
             Some(Quat::from_parts(vi / (2.0 * t), n * t))
         }
