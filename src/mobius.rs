@@ -219,6 +219,19 @@ impl CanonicalForm {
     /// a neighbour coincides with `v` (element = ring index) or the tangent polygon has zero
     /// radius about `c`.
     pub fn new(v: Point, ring: &[Point], kind: StarKind) -> Result<CanonicalForm> {
+        let mut t: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        CanonicalForm::new_with_tangents(v, ring, kind, &mut t)
+    }
+
+    /// [`CanonicalForm::new`], leaving the tangent polygon `T_i = (ring[i] − v)⁻¹` in `t`
+    /// (the drivers map the ring into the form from it: [`CanonicalForm::to_normalised`]
+    /// computes the same `T_i` again).
+    pub(crate) fn new_with_tangents(
+        v: Point,
+        ring: &[Point],
+        kind: StarKind,
+        t: &mut ArrayVec<Point, MAX_VALENCE>,
+    ) -> Result<CanonicalForm> {
         let n = ring.len();
         // Two neighbours suffice for every kind: an interior valence-2 vertex (two faces
         // glued along two edges) has a digon as tangent polygon, centred at its midpoint.
@@ -231,7 +244,7 @@ impl CanonicalForm {
         if !point_is_finite(&v) {
             return Err(Error::new(Status::NonFiniteInput));
         }
-        let mut t: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        t.clear();
         for (i, u) in ring.iter().enumerate() {
             let ti =
                 crate::quat::tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
@@ -241,7 +254,7 @@ impl CanonicalForm {
         let c = match kind {
             StarKind::Interior => {
                 let mut s = [0.0; 3];
-                for ti in &t {
+                for ti in t.iter() {
                     s = add(s, *ti);
                 }
                 scale(s, 1.0 / n as f64)
@@ -252,7 +265,7 @@ impl CanonicalForm {
             },
         };
         let mut r = 0.0;
-        for ti in &t {
+        for ti in t.iter() {
             r += norm(sub(*ti, c));
         }
         r /= n as f64;
@@ -335,6 +348,12 @@ impl CanonicalForm {
             return Ok([0.0; 3]);
         }
         let t = crate::quat::tangent_polygon_vertex(self.v, x)?;
+        self.normalised_from_tangent(t)
+    }
+
+    /// [`CanonicalForm::to_normalised`] of the point whose tangent-polygon vertex
+    /// `(x − v)⁻¹` is `t`: `−r (t − c)⁻¹`.
+    pub(crate) fn normalised_from_tangent(&self, t: Point) -> Result<Point> {
         let inv = inverse_point(sub(t, self.c)).ok_or(Error::new(Status::DegenerateGeometry))?;
         let y = scale(inv, -self.r);
         if point_is_finite(&y) {
