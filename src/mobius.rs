@@ -340,6 +340,7 @@ impl CanonicalForm {
     ///
     /// # Errors
     /// As [`CanonicalForm::to_canonical`].
+    #[inline]
     pub fn to_normalised(&self, x: Point) -> Result<Point> {
         if !point_is_finite(&x) {
             return Err(Error::new(Status::NonFiniteInput));
@@ -353,6 +354,7 @@ impl CanonicalForm {
 
     /// [`CanonicalForm::to_normalised`] of the point whose tangent-polygon vertex
     /// `(x − v)⁻¹` is `t`: `−r (t − c)⁻¹`.
+    #[inline]
     pub(crate) fn normalised_from_tangent(&self, t: Point) -> Result<Point> {
         let inv = inverse_point(sub(t, self.c)).ok_or(Error::new(Status::DegenerateGeometry))?;
         let y = scale(inv, -self.r);
@@ -368,6 +370,7 @@ impl CanonicalForm {
     ///
     /// # Errors
     /// As [`CanonicalForm::from_canonical`].
+    #[inline]
     pub fn from_normalised(&self, p: Point) -> Result<Point> {
         if !point_is_finite(&p) {
             return Err(Error::new(Status::NonFiniteInput));

@@ -484,6 +484,7 @@ impl Local {
 
     /// The image of vertex `u` in the canonical form, in its normalised frame
     /// ([`CanonicalForm::to_normalised`]: `v` itself goes to the origin).
+    #[inline]
     fn canon(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         if u == self.v {
             return Ok(ORIGIN);
@@ -518,6 +519,7 @@ impl Local {
         centroid(pts)
     }
 
+    #[inline]
     fn back(&self, p: Point) -> Result<Point> {
         self.cf.from_normalised(p)
     }
