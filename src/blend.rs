@@ -525,6 +525,11 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
 /// Where F4 does not run its formula (a coincidence rule) or `X` is a negative real (where
 /// F6 takes `√r = n`, not 1) this is F6 itself.
 fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point> {
+    if b == e {
+        // A reused F4 (the step onto the partner of the previous quadruplet): F6's `b = e`
+        // rule, before F4's coincidence rule would decline.
+        return f6(a, b, c, c, e, a);
+    }
     match f4_impl(a, b, e, c, None) {
         Ok(r) if r.reversible => Ok(r.point),
         _ => f6(a, b, c, c, e, a),
