@@ -484,6 +484,13 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 /// case). When all candidates agree (a Möbius-regular neighbourhood) every F4 and F6 returns
 /// that point, so `v_f` equals it.
 ///
+/// Evaluation (docs/RESULTS.md, "Möbius arithmetic"): steps 2 and 3 share their cross-ratio
+/// (the key is the noncircularity of the `ρ` F4 computes, in F4's normalised frame); for an
+/// even face quadruplet `i + h` is quadruplet `i` reversed and takes its F4 point and key
+/// (Lemma 4.1; both are evaluated where F4 is not symmetric); a step onto the reversed
+/// partner of the previous quadruplet is F6 with `Y = 1`, `Z = X⁻¹`, evaluated as the F4 it
+/// equals (`f6_of_reversed_chain`).
+///
 /// Ties of the sort (equal rounded keys) keep face order, as the paper's stable sort does. The
 /// F6 chain depends on the order, and for an even face quadruplets `i` and `i + h` always tie
 /// (the same four points reversed), so the result depends on which corner the face lists
