@@ -8,7 +8,9 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mobius::{add, norm, scale, sub};
-use crate::quat::{cross_ratio, point_is_finite, Point, Quat};
+use crate::quat::{
+    cross_ratio, cross_ratio_from_prefix, point_is_finite, CrossRatio, Point, Quat, SAFE_MIN,
+};
 
 /// Relative distance below which two inputs count as coincident (DESIGN.md).
 pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
@@ -17,6 +19,9 @@ pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
 /// negative real (DESIGN.md).
 pub const NEGATIVE_REAL_TOLERANCE: f64 = 1e-12;
 
+/// Coordinates within ±`BOUNDED` are less than `f64::MAX` apart (`2√3 · 1e300`).
+const BOUNDED: f64 = 1e300;
+
 /// A similarity frame: `x ↦ (x − centre) / size`.
 #[derive(Clone, Copy)]
 struct Frame {
@@ -24,8 +29,33 @@ struct Frame {
     size: f64,
 }
 
+/// `|p − q|²` as [`norm`] forms it (so that its square root is `norm(sub(p, q))` bit for bit).
+#[inline]
+fn dist_sq(p: Point, q: Point) -> f64 {
+    Quat::from_point(sub(p, q)).norm_sq()
+}
+
+/// `norm(sub(p, q))` bit for bit from `sq = dist_sq(p, q)`: its fast path is the square root
+/// of the same sum.
+#[inline]
+fn dist_from_sq(p: Point, q: Point, sq: f64) -> f64 {
+    if sq.is_finite() && sq > SAFE_MIN {
+        libm::sqrt(sq)
+    } else {
+        norm(sub(p, q))
+    }
+}
+
+/// Above this largest squared distance the size is the square root of the largest squared
+/// distance. A distance in the scaled range of [`norm`] (squares up to `SAFE_MIN` = 1e-250)
+/// is then below 1.1e-125 < 1e-120, so it cannot be the maximum, and the square root being
+/// monotone and correctly rounded, the result equals the largest of the distances bit for bit.
+const SIZE_BY_SQUARES_MIN: f64 = 1e-240;
+
 impl Frame {
-    fn of(points: &[Point]) -> Frame {
+    /// The frame of `points` whose pairwise squared distances (`dist_sq`, pairs `(i, j)`,
+    /// `i < j`, in that order) are `sq`: centroid and diameter.
+    fn from_squares(points: &[Point], sq: &[f64]) -> Frame {
         let inv_n = 1.0 / points.len() as f64;
         let mut centre = [0.0; 3];
         for p in points {
@@ -39,12 +69,26 @@ impl Frame {
                 centre = add(centre, scale(*p, inv_n));
             }
         }
-        let mut size: f64 = 0.0;
-        for (i, p) in points.iter().enumerate() {
-            for q in points.iter().skip(i + 1) {
-                size = size.max(norm(sub(*p, *q)));
+        // One square root of the largest square instead of one per pair (same bits, see
+        // SIZE_BY_SQUARES_MIN); the pairwise loop where that argument does not hold.
+        // (The squares of finite points are never NaN, so `>` is `f64::max` here.)
+        let mut max_sq = 0.0;
+        for &x in sq {
+            if x > max_sq {
+                max_sq = x;
             }
         }
+        let size = if max_sq.is_finite() && max_sq > SIZE_BY_SQUARES_MIN {
+            libm::sqrt(max_sq)
+        } else {
+            let mut size: f64 = 0.0;
+            for (i, p) in points.iter().enumerate() {
+                for q in points.iter().skip(i + 1) {
+                    size = size.max(norm(sub(*p, *q)));
+                }
+            }
+            size
+        };
         Frame { centre, size }
     }
     fn to_local(self, p: Point) -> Point {
@@ -55,9 +99,26 @@ impl Frame {
     fn to_world(self, p: Point) -> Point {
         add(self.centre, scale(p, self.size))
     }
-    fn coincide(self, p: Point, q: Point) -> bool {
-        norm(sub(p, q)) <= COINCIDENT_TOLERANCE * self.size
+    /// Whether `p`, `q` with `sq = dist_sq(p, q)` are coincident: `|p − q| ≤ 1e-13 size`.
+    fn coincide_sq(self, p: Point, q: Point, sq: f64) -> bool {
+        dist_from_sq(p, q, sq) <= COINCIDENT_TOLERANCE * self.size
     }
+}
+
+/// The pairwise squared distances of `N` points, pairs `(i, j)` with `i < j` in
+/// lexicographic order (`M = N (N − 1) / 2`).
+fn pair_squares<const N: usize, const M: usize>(p: &[Point; N]) -> [f64; M] {
+    let mut out = [0.0; M];
+    let mut k = 0;
+    for (i, a) in p.iter().enumerate() {
+        for b in p.iter().skip(i + 1) {
+            if let Some(o) = out.get_mut(k) {
+                *o = dist_sq(*a, *b);
+            }
+            k += 1;
+        }
+    }
+    out
 }
 
 /// Whether `q` is a negative real in the sense of DESIGN.md: `Re q < 0` and
@@ -122,11 +183,13 @@ fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
     } else {
         q
     };
-    if is_negative_real(q) {
-        let t = libm::sqrt(q.abs());
+    // is_negative_real(q), then q.sqrt(), with |q| and |Im q| computed once.
+    let (r, vi) = (q.abs(), q.abs_im());
+    if q.w < 0.0 && vi <= NEGATIVE_REAL_TOLERANCE * r {
+        let t = libm::sqrt(r);
         return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
     }
-    q.sqrt()
+    q.sqrt_given(r, vi)
 }
 
 /// The unit imaginary part of the quaternion of `qs` farthest from real (largest
@@ -149,6 +212,7 @@ fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
 }
 
 /// Solves `cr[e, a, b, p] = χ` for `p` (local frame).
+#[cfg(test)]
 fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     let (qa, qb, qe) = (
@@ -157,7 +221,15 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
         Quat::from_point(e),
     );
     let m = (qa - qe) * (qb - qa).inverse().ok_or(degenerate)?;
-    let p = (m + chi).inverse().ok_or(degenerate)? * (chi * qe + m * qb);
+    solve_with_m(m, b, e, chi)
+}
+
+/// [`solve_cross_ratio`] with `M = (a − e)(b − a)⁻¹` given: that is the prefix
+/// `q_ea q_ab⁻¹` of every `cr[e, a, b, ·]` ([`CrossRatio::prefix`]), the same bits.
+#[inline]
+fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    let p = (m + chi).inverse().ok_or(degenerate)? * (chi.mul_im(e) + m.mul_im(b));
     let p = p.to_point();
     if point_is_finite(&p) {
         Ok(p)
@@ -185,7 +257,7 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
 /// the new point is at infinity; [`Status::NumericalFailure`] when finite inputs overflow
 /// (points more than `f64::MAX` apart, or a result beyond it).
 pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
-    f4_impl(a, b, c, d, None)
+    f4_impl(a, b, c, d, None).map(|r| r.point)
 }
 
 /// [`f4`] with a fifth point `x` of the surface that decides the negative-real case: when
@@ -203,63 +275,113 @@ pub fn f4_hinted(a: Point, b: Point, c: Point, d: Point, x: Point) -> Result<Poi
     if !point_is_finite(&x) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    f4_impl(a, b, c, d, Some(x))
+    f4_impl(a, b, c, d, Some(x)).map(|r| r.point)
 }
 
-fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<Point> {
+/// What [`f4_impl`] found besides the point.
+#[derive(Clone, Copy)]
+struct F4Eval {
+    /// `F4(a, b, c, d)`.
+    point: Point,
+    /// The noncircularity `1 − |Re ρ|/|ρ|` of `ρ = cr[c, a, b, d]` (in the local frame, the
+    /// same number up to rounding: similarities keep cross-ratios), when the formula ran.
+    noncircularity: Option<f64>,
+    /// Whether the point is also `F4(d, c, b, a)` by Lemma 4.1: the formula ran (no
+    /// coincidence rule, which prefers `b` or `c` by position) and `ρ` is not a negative real
+    /// (whose printed rule depends on the order).
+    reversible: bool,
+}
+
+fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<F4Eval> {
     if ![a, b, c, d].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let frame = Frame::of(&[a, b, c, d]);
+    let pts = [a, b, c, d];
+    // Pairs ab, ac, ad, bc, bd, cd.
+    let sq: [f64; 6] = pair_squares(&pts);
+    let [ab, ac, _, bc, bd, cd] = sq;
+    let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
-    if frame.size == 0.0 || frame.coincide(b, c) || frame.coincide(a, b) {
-        return Ok(b);
+    let early = |point: Point| {
+        Ok(F4Eval {
+            point,
+            noncircularity: None,
+            reversible: false,
+        })
+    };
+    if frame.size == 0.0 || frame.coincide_sq(b, c, bc) || frame.coincide_sq(a, b, ab) {
+        return early(b);
     }
-    if frame.coincide(c, d) || frame.coincide(a, c) {
-        return Ok(c);
+    if frame.coincide_sq(c, d, cd) || frame.coincide_sq(a, c, ac) {
+        return early(c);
     }
-    if frame.coincide(b, d) {
-        return Ok(b);
+    if frame.coincide_sq(b, d, bd) {
+        return early(b);
     }
-    let (mut la, mut lb, mut lc, mut ld) = (
+    let (mut la, mut lb, mut lc, ld) = (
         frame.to_local(a),
         frame.to_local(b),
         frame.to_local(c),
         frame.to_local(d),
     );
-    let mut rho = cross_ratio(lc, la, lb, ld)?;
+    let cr = CrossRatio::new(lc, la, lb, ld)?;
+    let mut rho = cr.value()?;
+    let rho_abs = rho.abs();
+    let noncircularity = if rho_abs == 0.0 {
+        0.0
+    } else {
+        1.0 - rho.w.abs() / rho_abs
+    };
+    let reversible = !is_negative_real(rho);
+    // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
+    let mut m = cr.prefix;
     // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
     // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
     // the negative-real case, whose printed rule depends on the order.) Both orders give
-    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric.
-    if !is_negative_real(rho) && norm(sub(lb, la)) < norm(sub(lc, ld)) {
-        (la, lb, lc, ld) = (ld, lc, lb, la);
-        rho = cross_ratio(lc, la, lb, ld)?;
+    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric. The
+    // mirrored cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same
+    // differences and inverses.
+    if reversible && norm(sub(lb, la)) < norm(sub(lc, ld)) {
+        (la, lb, lc) = (ld, lc, lb);
+        rho = cr.transposed()?;
+        m = cr.transposed_prefix();
     }
-    let mut axis = plane_normal(la, lb, lc);
+    let mut axis = None;
     let mut snap = false;
     if let Some(x) = hint {
         if rho.w < 0.0 {
             // The sphere's axis at c from the fifth point (Lemma A.1): decides the
-            // negative-real case and cleans the direction of Im ρ near it.
-            if let Ok(q) = cross_ratio(lc, la, lb, frame.to_local(x)) {
+            // negative-real case and cleans the direction of Im ρ near it. cr[c, a, b, x]
+            // shares its prefix with ρ.
+            if let Ok(q) = cross_ratio_from_prefix(m, lc, lb, frame.to_local(x)) {
                 let im = q.abs_im();
                 if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
-                    axis = [q.x / im, q.y / im, q.z / im];
+                    axis = Some([q.x / im, q.y / im, q.z / im]);
                     snap = true;
                 }
             }
         }
     }
+    let negative_real = is_negative_real(rho);
+    // The plane's normal is only read for a negative real (after snapping).
+    let axis = match axis {
+        Some(n) => n,
+        None if rho.w < 0.0 => plane_normal(la, lb, lc),
+        None => [0.0, 0.0, 1.0],
+    };
     let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
     // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
-    let chi = if is_negative_real(rho) { root } else { -root };
-    let p = solve_cross_ratio(la, lb, lc, chi)?;
+    let chi = if negative_real { root } else { -root };
+    let p = solve_with_m(m, lb, lc, chi)?;
     let out = frame.to_world(p);
     if point_is_finite(&out) {
-        Ok(out)
+        Ok(F4Eval {
+            point: out,
+            noncircularity: Some(noncircularity),
+            reversible,
+        })
     } else {
         Err(Error::new(Status::NumericalFailure))
     }
@@ -305,17 +427,31 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     if ![a, b, c, d, e, f].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let frame = Frame::of(&[a, b, c, d, e, f]);
+    let pts = [a, b, c, d, e, f];
+    if b == e && pts.iter().all(|p| p.iter().all(|x| x.abs() <= BOUNDED)) {
+        // The rule `b = e → b` below, without the frame: coordinates within ±1e300 put every
+        // pair less than f64::MAX apart, so the frame's size is finite and the rule applies.
+        // (The face-point chain meets this whenever a quadruplet's F4 is reused.)
+        return Ok(b);
+    }
+    let sq: [f64; 15] = pair_squares(&pts);
+    let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
-    if frame.size == 0.0 || frame.coincide(b, e) {
+    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
+    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
+    if frame.size == 0.0 || frame.coincide_sq(b, e, be) {
         return Ok(b);
     }
     let degenerate = Error::new(Status::DegenerateGeometry);
-    let [la, lb, lc, ld, le, lf] = [a, b, c, d, e, f].map(|p| frame.to_local(p));
-    let x = cross_ratio(le, la, lb, ld)?;
-    let y = cross_ratio(le, la, lb, lf)?;
+    let [la, lb, lc, ld, le, lf] = pts.map(|p| frame.to_local(p));
+    // X = cr[e, a, b, d], Y = cr[e, a, b, f] share the prefix (a − e)(b − a)⁻¹, which is also
+    // the M of the solve; Z = cr[e, c, b, f] shares q_bf and (f − e)⁻¹ with Y. Evaluated in
+    // the order and with the checks of three `cross_ratio` calls, the same bits.
+    let cx = CrossRatio::new(le, la, lb, ld)?;
+    let x = cx.value()?;
+    let y = cross_ratio_from_prefix(cx.prefix, le, lb, lf)?;
     let z = cross_ratio(le, lc, lb, lf)?;
     let axis = imaginary_axis(&[x, y, z]);
     let snap = axis.is_some();
@@ -325,7 +461,7 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
     let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
     let chi = -(sx * sr);
-    let p = solve_cross_ratio(la, lb, le, chi)?;
+    let p = solve_with_m(cx.prefix, lb, le, chi)?;
     let out = frame.to_world(p);
     if point_is_finite(&out) {
         Ok(out)
@@ -347,6 +483,13 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 /// `c_{l−1}, c_l` are candidates, with which F6 is singular exactly in the Möbius-regular
 /// case). When all candidates agree (a Möbius-regular neighbourhood) every F4 and F6 returns
 /// that point, so `v_f` equals it.
+///
+/// Evaluation (docs/RESULTS.md, "Möbius arithmetic"): steps 2 and 3 share their cross-ratio
+/// (the key is the noncircularity of the `ρ` F4 computes, in F4's normalised frame); for an
+/// even face quadruplet `i + h` is quadruplet `i` reversed and takes its F4 point and key
+/// (Lemma 4.1; both are evaluated where F4 is not symmetric); a step onto the reversed
+/// partner of the previous quadruplet is F6 with `Y = 1`, `Z = X⁻¹`, evaluated as the F4 it
+/// equals (`f6_of_reversed_chain`).
 ///
 /// Ties of the sort (equal rounded keys) keep face order, as the paper's stable sort does. The
 /// F6 chain depends on the order, and for an even face quadruplets `i` and `i + h` always tie
@@ -378,6 +521,28 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
     face_point_ordered(vertices, candidates, Some(ids))
 }
 
+/// `F6(a, b, c, c, e, a)`: F6 whose second chain joins the ends of the first in reverse, as
+/// the chain of an even face meets when quadruplet `i + h` follows quadruplet `i`.
+///
+/// There `X = cr[e, a, b, c]`, `Y = cr[e, a, b, a] = q_ea q_ab⁻¹ (−q_ab)(−q_ea)⁻¹ = 1` and
+/// `Z = cr[e, c, b, a] = X⁻¹` (the four factors of `X⁻¹` are those of `Z`, each negated), so
+/// `r = (√X)⁻¹ (√(X⁻¹))⁻¹ = 1` for the principal root (`√(X⁻¹) = (√X)⁻¹` off the negative
+/// reals) and `χ = −√X`: the point with `cr[e, a, b, p] = −√cr[e, a, b, c]`, which is
+/// `F4(a, b, e, c)` — one cross-ratio instead of three, and no rounding of `Y` away from 1.
+/// Where F4 does not run its formula (a coincidence rule) or `X` is a negative real (where
+/// F6 takes `√r = n`, not 1) this is F6 itself.
+fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point> {
+    if b == e {
+        // A reused F4 (the step onto the partner of the previous quadruplet): F6's `b = e`
+        // rule, before F4's coincidence rule would decline.
+        return f6(a, b, c, c, e, a);
+    }
+    match f4_impl(a, b, e, c, None) {
+        Ok(r) if r.reversible => Ok(r.point),
+        _ => f6(a, b, c, c, e, a),
+    }
+}
+
 fn face_point_ordered(
     vertices: &[Point],
     candidates: &[Point],
@@ -399,31 +564,81 @@ fn face_point_ordered(
             .and_then(|k| s.get(k).copied())
             .ok_or(Error::new(Status::InvalidArgument))
     };
+    let quad = |i: usize| -> Result<[Point; 4]> {
+        Ok([
+            at(vertices, i)?,
+            at(candidates, i)?,
+            at(candidates, i + h)?,
+            at(vertices, i + h)?,
+        ])
+    };
+    let id = |i: usize| -> Result<u32> {
+        match ids {
+            Some(ids) => ids
+                .get(i)
+                .copied()
+                .ok_or(Error::new(Status::InvalidArgument)),
+            None => Ok(0),
+        }
+    };
+    // p_l = F4(quadruplet l) and its rounded sort key, per quadruplet in face order.
+    let mut p: arrayvec::ArrayVec<(Point, i64), { crate::MAX_FACE_SIZE }> =
+        arrayvec::ArrayVec::new();
+    let eval = |i: usize| -> Result<(Point, i64, bool)> {
+        let [a, b, c, e] = quad(i)?;
+        let r = f4_impl(a, b, c, e, None)?;
+        // The key is the noncircularity of the cross-ratio F4 uses; when a coincidence rule
+        // answered (F4 computed no ρ), that of the input points. A quadruplet whose
+        // cross-ratio is undefined (coincident candidates) is as circular as it gets.
+        let key = match r.noncircularity {
+            Some(k) => k,
+            None => noncircularity(a, b, c, e).unwrap_or(0.0),
+        };
+        Ok((r.point, libm::round(key * 1e12) as i64, r.reversible))
+    };
+    for _ in 0..d {
+        p.try_push(([0.0; 3], 0))
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    }
+    let mut put = |i: usize, v: (Point, i64)| -> Result<()> {
+        *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
+        Ok(())
+    };
+    if d % 2 == 0 {
+        // Quadruplet i + h is quadruplet i reversed, and F4(a, b, c, d) = F4(d, c, b, a)
+        // (Lemma 4.1), noncircularity included: one evaluation serves both. It is the one
+        // whose v_i has the smaller id (then the first in face order), so the face point
+        // stays independent of the face start bit for bit. Where F4 is not symmetric (a
+        // coincidence rule or a negative-real ρ) both are evaluated.
+        for i in 0..h {
+            let (first, second) = if id(i + h)? < id(i)? {
+                (i + h, i)
+            } else {
+                (i, i + h)
+            };
+            let (pt, key, reversible) = eval(first)?;
+            put(first, (pt, key))?;
+            if reversible {
+                put(second, (pt, key))?;
+            } else {
+                let (pt2, key2, _) = eval(second)?;
+                put(second, (pt2, key2))?;
+            }
+        }
+    } else {
+        for i in 0..d {
+            let (pt, key, _) = eval(i)?;
+            put(i, (pt, key))?;
+        }
+    }
     // (quadruplet start i, (rounded key, tie-break)), sorted stably with an insertion sort (d
     // is small, and the sort must be stable and panic-free). The tie-break is the id of `v_i`
     // when given, else 0 (face order).
     let mut order: arrayvec::ArrayVec<(usize, (i64, u32)), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
-    for i in 0..d {
-        let (a, b, c, e) = (
-            at(vertices, i)?,
-            at(candidates, i)?,
-            at(candidates, i + h)?,
-            at(vertices, i + h)?,
-        );
-        // A quadruplet whose cross-ratio is undefined (coincident candidates) is as circular
-        // as it gets: F4 returns a defined point for it.
-        let key = noncircularity(a, b, c, e).unwrap_or(0.0);
-        let key = libm::round(key * 1e12) as i64;
-        let tie = match ids {
-            Some(ids) => ids
-                .get(i)
-                .copied()
-                .ok_or(Error::new(Status::InvalidArgument))?,
-            None => 0,
-        };
+    for (i, &(_, key)) in p.iter().enumerate() {
         order
-            .try_push((i, (key, tie)))
+            .try_push((i, (key, id(i)?)))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         let mut j = order.len() - 1;
         while j > 0 {
@@ -437,24 +652,25 @@ fn face_point_ordered(
             }
         }
     }
-    let quad = |i: usize| -> Result<[Point; 4]> {
-        Ok([
-            at(vertices, i)?,
-            at(candidates, i)?,
-            at(candidates, i + h)?,
-            at(vertices, i + h)?,
-        ])
+    let point = |i: usize| {
+        p.get(i)
+            .map(|x| x.0)
+            .ok_or(Error::new(Status::InvalidArgument))
     };
     let mut it = order.iter();
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
-    let [a0, b0, c0, d0] = quad(first)?;
-    let mut vf = f4(a0, b0, c0, d0)?;
-    let (mut a_prev, mut d_prev) = (a0, d0);
+    let mut vf = point(first)?;
+    let mut prev = first;
+    let (mut a_prev, mut d_prev) = (at(vertices, first)?, at(vertices, first + h)?);
     for &(i, _) in it {
-        let [a, b, c, e] = quad(i)?;
-        let p = f4(a, b, c, e)?;
-        vf = f6(a_prev, vf, d_prev, a, p, e)?;
-        (a_prev, d_prev) = (a, e);
+        let (a, e) = (at(vertices, i)?, at(vertices, i + h)?);
+        let p = point(i)?;
+        vf = if d % 2 == 0 && i == (prev + h) % d {
+            f6_of_reversed_chain(a_prev, vf, d_prev, p)?
+        } else {
+            f6(a_prev, vf, d_prev, a, p, e)?
+        };
+        (a_prev, d_prev, prev) = (a, e, i);
     }
     Ok(vf)
 }

@@ -8,7 +8,7 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point, Quat};
+use crate::quat::{inverse_point, point_is_finite, Point, Quat};
 use crate::MAX_VALENCE;
 
 /// A Möbius transformation of R³ ∪ {∞}, `q ↦ (aq + b)(cq + d)⁻¹` (seed 000 Eq. (1)).
@@ -219,6 +219,19 @@ impl CanonicalForm {
     /// a neighbour coincides with `v` (element = ring index) or the tangent polygon has zero
     /// radius about `c`.
     pub fn new(v: Point, ring: &[Point], kind: StarKind) -> Result<CanonicalForm> {
+        let mut t: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        CanonicalForm::new_with_tangents(v, ring, kind, &mut t)
+    }
+
+    /// [`CanonicalForm::new`], leaving the tangent polygon `T_i = (ring[i] − v)⁻¹` in `t`
+    /// (the drivers map the ring into the form from it: [`CanonicalForm::to_normalised`]
+    /// computes the same `T_i` again).
+    pub(crate) fn new_with_tangents(
+        v: Point,
+        ring: &[Point],
+        kind: StarKind,
+        t: &mut ArrayVec<Point, MAX_VALENCE>,
+    ) -> Result<CanonicalForm> {
         let n = ring.len();
         // Two neighbours suffice for every kind: an interior valence-2 vertex (two faces
         // glued along two edges) has a digon as tangent polygon, centred at its midpoint.
@@ -231,7 +244,7 @@ impl CanonicalForm {
         if !point_is_finite(&v) {
             return Err(Error::new(Status::NonFiniteInput));
         }
-        let mut t: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        t.clear();
         for (i, u) in ring.iter().enumerate() {
             let ti =
                 crate::quat::tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
@@ -241,7 +254,7 @@ impl CanonicalForm {
         let c = match kind {
             StarKind::Interior => {
                 let mut s = [0.0; 3];
-                for ti in &t {
+                for ti in t.iter() {
                     s = add(s, *ti);
                 }
                 scale(s, 1.0 / n as f64)
@@ -252,7 +265,7 @@ impl CanonicalForm {
             },
         };
         let mut r = 0.0;
-        for ti in &t {
+        for ti in t.iter() {
             r += norm(sub(*ti, c));
         }
         r /= n as f64;
@@ -309,10 +322,7 @@ impl CanonicalForm {
             return Ok(self.v);
         }
         let t = invert_in_sphere(p, self.c, self.r)?;
-        let back = Quat::from_point(t)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let back = inverse_point(t).ok_or(Error::new(Status::DegenerateGeometry))?;
         let x = add(self.v, back);
         if point_is_finite(&x) {
             Ok(x)
@@ -330,6 +340,7 @@ impl CanonicalForm {
     ///
     /// # Errors
     /// As [`CanonicalForm::to_canonical`].
+    #[inline]
     pub fn to_normalised(&self, x: Point) -> Result<Point> {
         if !point_is_finite(&x) {
             return Err(Error::new(Status::NonFiniteInput));
@@ -338,10 +349,14 @@ impl CanonicalForm {
             return Ok([0.0; 3]);
         }
         let t = crate::quat::tangent_polygon_vertex(self.v, x)?;
-        let inv = Quat::from_point(sub(t, self.c))
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        self.normalised_from_tangent(t)
+    }
+
+    /// [`CanonicalForm::to_normalised`] of the point whose tangent-polygon vertex
+    /// `(x − v)⁻¹` is `t`: `−r (t − c)⁻¹`.
+    #[inline]
+    pub(crate) fn normalised_from_tangent(&self, t: Point) -> Result<Point> {
+        let inv = inverse_point(sub(t, self.c)).ok_or(Error::new(Status::DegenerateGeometry))?;
         let y = scale(inv, -self.r);
         if point_is_finite(&y) {
             Ok(y)
@@ -355,6 +370,7 @@ impl CanonicalForm {
     ///
     /// # Errors
     /// As [`CanonicalForm::from_canonical`].
+    #[inline]
     pub fn from_normalised(&self, p: Point) -> Result<Point> {
         if !point_is_finite(&p) {
             return Err(Error::new(Status::NonFiniteInput));
@@ -362,15 +378,9 @@ impl CanonicalForm {
         if p == [0.0; 3] {
             return Ok(self.v);
         }
-        let pinv = Quat::from_point(p)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let pinv = inverse_point(p).ok_or(Error::new(Status::DegenerateGeometry))?;
         let t = sub(self.c, scale(pinv, self.r));
-        let back = Quat::from_point(t)
-            .inverse()
-            .ok_or(Error::new(Status::DegenerateGeometry))?
-            .to_point();
+        let back = inverse_point(t).ok_or(Error::new(Status::DegenerateGeometry))?;
         let x = add(self.v, back);
         if point_is_finite(&x) {
             Ok(x)
@@ -399,10 +409,7 @@ impl CanonicalForm {
 
 /// The inversion `x ↦ c − r² (x − c)⁻¹ = c + r² (x − c)/|x − c|²`.
 fn invert_in_sphere(x: Point, c: Point, r: f64) -> Result<Point> {
-    let inv = Quat::from_point(sub(x, c))
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?
-        .to_point();
+    let inv = inverse_point(sub(x, c)).ok_or(Error::new(Status::DegenerateGeometry))?;
     let y = sub(c, scale(inv, r * r));
     if point_is_finite(&y) {
         Ok(y)

@@ -17,7 +17,7 @@ pub type Point = [f64; 3];
 
 /// Below this sum of squares the fast paths of [`Quat::abs`] and [`Quat::inverse`] give way to
 /// scaled evaluation (far above the subnormal range, so no precision is lost).
-const SAFE_MIN: f64 = 1e-250;
+pub(crate) const SAFE_MIN: f64 = 1e-250;
 /// Above this sum of squares [`Quat::inverse`] scales first (its result would be tiny).
 const SAFE_MAX: f64 = 1e250;
 
@@ -132,14 +132,17 @@ impl Quat {
 
     /// The inverse `q⁻¹ = q̄ / |q|²`, or `None` when `q` is zero, not finite, or so small or
     /// large that the inverse is not a finite, non-zero quaternion.
+    #[inline]
     pub fn inverse(self) -> Option<Quat> {
+        let n = self.norm_sq();
+        if n > SAFE_MIN && n < SAFE_MAX {
+            // Fast path: q̄ / |q|² with a result far from overflow and underflow. A finite
+            // |q|² in range implies finite components (a NaN or ∞ component makes |q|² NaN or
+            // ∞, which fails both comparisons), so the finiteness test waits for the slow path.
+            return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
+        }
         if !self.is_finite() {
             return None;
-        }
-        let n = self.norm_sq();
-        if n.is_finite() && n > SAFE_MIN && n < SAFE_MAX {
-            // Fast path: q̄ / |q|² with a result far from overflow and underflow.
-            return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
         }
         let m = self
             .w
@@ -181,21 +184,28 @@ impl Quat {
         if !self.is_finite() {
             return None;
         }
-        let r = self.abs();
-        let vi = self.abs_im();
+        self.sqrt_given(self.abs(), self.abs_im())
+    }
+
+    /// [`Quat::sqrt`] of a finite `self` with `r = self.abs()` and `vi = self.abs_im()`
+    /// already computed by the caller (the blends test for a negative real with them first).
+    pub(crate) fn sqrt_given(self, r: f64, vi: f64) -> Option<Quat> {
+        if !self.is_finite() {
+            return None;
+        }
         if vi == 0.0 {
             if self.w >= 0.0 {
                 return Some(Quat::real(libm::sqrt(self.w)));
             }
             return None;
         }
-        let n = self.im() / vi;
         if self.w >= 0.0 {
             // Re √q = √((r + w)/2) is accurate; Im = v / (2 Re).
             let s = libm::sqrt(0.5 * (r + self.w));
             Some(Quat::from_parts(s, self.im() / (2.0 * s)))
         } else {
             // |Im √q| = √((r − w)/2) is accurate; Re = |v| / (2 |Im|).
+            let n = self.im() / vi;
             let t = libm::sqrt(0.5 * (r - self.w));
             Some(Quat::from_parts(vi / (2.0 * t), n * t))
         }
@@ -279,14 +289,64 @@ impl Mul for Quat {
     }
 }
 
+impl Quat {
+    /// `self · [0, p]`, the Hamilton product with an imaginary quaternion, without the
+    /// products by its zero real part: `[w, v]·[0, p] = [−⟨v, p⟩, w p + v × p]`. The remaining
+    /// terms are summed in the order of [`Mul`], so the result equals `self * [0, p]` bit for
+    /// bit except possibly the sign of a component that is exactly zero (adding the dropped
+    /// `±0` terms changes nothing else).
+    #[inline]
+    pub(crate) fn mul_im(self, p: Point) -> Quat {
+        Quat::new(
+            -(self.x * p[0]) - self.y * p[1] - self.z * p[2],
+            self.w * p[0] + self.y * p[2] - self.z * p[1],
+            self.w * p[1] - self.x * p[2] + self.z * p[0],
+            self.w * p[2] + self.x * p[1] - self.y * p[0],
+        )
+    }
+}
+
+/// `[0, a]·[0, b] = [−⟨a, b⟩, a × b]`, as [`Quat::mul_im`] (the same bits as the full product
+/// up to the sign of an exactly zero component).
+#[inline]
+pub(crate) fn im_mul_im(a: Point, b: Point) -> Quat {
+    Quat::new(
+        -(a[0] * b[0]) - a[1] * b[1] - a[2] * b[2],
+        a[1] * b[2] - a[2] * b[1],
+        -(a[0] * b[2]) + a[2] * b[0],
+        a[0] * b[1] - a[1] * b[0],
+    )
+}
+
 /// Whether every coordinate of `p` is finite.
 pub fn point_is_finite(p: &Point) -> bool {
     p.iter().all(|c| c.is_finite())
 }
 
-fn diff(a: Point, b: Point) -> Quat {
-    // q_ab = b − a, an imaginary quaternion.
-    Quat::new(0.0, b[0] - a[0], b[1] - a[1], b[2] - a[2])
+/// `Quat::from_point(p).inverse().map(Quat::to_point)` bit for bit, for the inverse of an
+/// imaginary quaternion `[0, p]⁻¹ = [0, −p/|p|²]` that nearly every Möbius rule takes: with a
+/// zero real part `|q|²` is the same sum of three squares (`0 + x² = x²` exactly) and the real
+/// part of the result is `+0`, so the fast path needs three divisions instead of four and no
+/// quaternion.
+#[inline]
+pub(crate) fn inverse_point(p: Point) -> Option<Point> {
+    let n = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    if n > SAFE_MIN && n < SAFE_MAX {
+        return Some([-p[0] / n, -p[1] / n, -p[2] / n]);
+    }
+    Quat::from_point(p).inverse().map(Quat::to_point)
+}
+
+/// `b − a`: the difference quaternion `q_ab = [0, b − a]` of seed 000 §3.2 as a point.
+#[inline]
+fn diff_point(a: Point, b: Point) -> Point {
+    [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
+}
+
+/// `q_ab⁻¹` ([`inverse_point`] of [`diff_point`]).
+#[inline]
+fn diff_inverse(a: Point, b: Point) -> Option<Point> {
+    inverse_point(diff_point(a, b))
 }
 
 /// The quaternionic cross-ratio `cr[qi, qj, qk, ql] = q_ij q_jk⁻¹ q_kl q_li⁻¹` with
@@ -298,18 +358,89 @@ fn diff(a: Point, b: Point) -> Quat {
 /// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`]
 /// when `qj = qk` or `ql = qi` (an inverse of zero) or the result is not finite.
 pub fn cross_ratio(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<Quat> {
-    if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+    CrossRatio::new(qi, qj, qk, ql)?.value()
+}
+
+/// The factors of `cr[qi, qj, qk, ql] = ((q_ij q_jk⁻¹) q_kl) q_li⁻¹`, evaluated in that
+/// order by [`cross_ratio`], kept so that the blends can reuse them bit for bit: the prefix
+/// `q_ij q_jk⁻¹` is the `M` of the solve of Eq. (3) and starts every cross-ratio with the
+/// same first three points; the double transposition `cr[qk, ql, qi, qj]` (F4's mirrored
+/// order) is the same four factors in another order.
+#[derive(Clone, Copy)]
+pub(crate) struct CrossRatio {
+    /// `q_ij q_jk⁻¹`.
+    pub(crate) prefix: Quat,
+    /// `q_ij` (imaginary).
+    ij: Point,
+    /// `q_jk⁻¹` (imaginary).
+    inv_jk: Point,
+    /// `q_kl` (imaginary).
+    kl: Point,
+    /// `q_li⁻¹` (imaginary).
+    inv_li: Point,
+}
+
+impl CrossRatio {
+    /// The factors, with the checks of [`cross_ratio`] in its order (all but the finiteness
+    /// of the product, which [`CrossRatio::value`] checks).
+    #[inline]
+    pub(crate) fn new(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<CrossRatio> {
+        if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+            return Err(Error::new(Status::NonFiniteInput));
+        }
+        let inv_jk = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
+        let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
+        let ij = diff_point(qi, qj);
+        Ok(CrossRatio {
+            prefix: im_mul_im(ij, inv_jk),
+            ij,
+            inv_jk,
+            kl: diff_point(qk, ql),
+            inv_li,
+        })
+    }
+
+    /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
+    #[inline]
+    pub(crate) fn value(&self) -> Result<Quat> {
+        finite_or_degenerate(self.prefix.mul_im(self.kl).mul_im(self.inv_li))
+    }
+
+    /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
+    /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
+    #[inline]
+    pub(crate) fn transposed(&self) -> Result<Quat> {
+        finite_or_degenerate(self.transposed_prefix().mul_im(self.ij).mul_im(self.inv_jk))
+    }
+
+    /// `q_kl q_li⁻¹`, the prefix of [`CrossRatio::transposed`].
+    #[inline]
+    pub(crate) fn transposed_prefix(&self) -> Quat {
+        im_mul_im(self.kl, self.inv_li)
+    }
+}
+
+/// `cr[qi, qj, qk, ql]` from its prefix `q_ij q_jk⁻¹` (computed for another cross-ratio that
+/// starts with the same `qi, qj, qk`, whose checks passed), bit for bit [`cross_ratio`]: the
+/// remaining checks in its order.
+#[inline]
+pub(crate) fn cross_ratio_from_prefix(
+    prefix: Quat,
+    qi: Point,
+    qk: Point,
+    ql: Point,
+) -> Result<Quat> {
+    if !point_is_finite(&ql) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let inv_jk = diff(qj, qk)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let inv_li = diff(ql, qi)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let cr = diff(qi, qj) * inv_jk * diff(qk, ql) * inv_li;
-    if cr.is_finite() {
-        Ok(cr)
+    let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
+    finite_or_degenerate(prefix.mul_im(diff_point(qk, ql)).mul_im(inv_li))
+}
+
+#[inline]
+fn finite_or_degenerate(q: Quat) -> Result<Quat> {
+    if q.is_finite() {
+        Ok(q)
     } else {
         Err(Error::new(Status::DegenerateGeometry))
     }
@@ -325,13 +456,9 @@ pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
     if ![qi, qj, qk].iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let a = diff(qi, qj)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let b = diff(qj, qk)
-        .inverse()
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    let t = (a + b).to_point();
+    let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let t = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
     if point_is_finite(&t) {
         Ok(t)
     } else {
@@ -349,10 +476,7 @@ pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
     if !point_is_finite(&v) || !point_is_finite(&u) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    diff(v, u)
-        .inverse()
-        .map(Quat::to_point)
-        .ok_or(Error::new(Status::DegenerateGeometry))
+    diff_inverse(v, u).ok_or(Error::new(Status::DegenerateGeometry))
 }
 
 /// Writes the tangent polygon `T_i = (u_i − v)⁻¹` of the star `v u_1 … u_n` into `out`

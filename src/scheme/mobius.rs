@@ -30,7 +30,7 @@
 
 use arrayvec::ArrayVec;
 
-use super::linear::{face_points, face_points_into, ring_points, ring_points_into};
+use super::linear::{face_points, face_points_into, ring_points};
 use super::Scheme;
 use crate::blend::{self, f4, f4_hinted};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
@@ -416,6 +416,9 @@ struct Local {
     cf: CanonicalForm,
     cache: ArrayVec<(u32, Point), { 4 * MAX_VALENCE }>,
     ring: Ring,
+    /// The tangent polygon of the form (`(ring[i] − v)⁻¹`), from which the ring's images are
+    /// put in the cache when the form is made.
+    tangents: Ring,
 }
 
 type Ring = ArrayVec<Point, MAX_VALENCE>;
@@ -435,34 +438,58 @@ impl Local {
             },
             cache: ArrayVec::new(),
             ring: ArrayVec::new(),
+            tangents: ArrayVec::new(),
         }
     }
 
     /// Re-targets the memo to the canonical form of `v`'s star: [`StarKind::Interior`] for
     /// a closed star, [`StarKind::Boundary`] for an open one (ring from one boundary
     /// neighbour to the other). `Err` when the form does not exist; the memo then holds no
-    /// form (`v = NONE`).
-    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32) -> Result<()> {
+    /// form (`v = NONE`). `spokes` receives the star of `v` (as [`Topology::spokes_into`]),
+    /// which the drivers then walk instead of walking the star again.
+    ///
+    /// The images of the ring neighbours are cached at once, from the tangent polygon the
+    /// form was made of: [`CanonicalForm::to_normalised`] would compute the same `T_i` again
+    /// (bit for bit the same images; a neighbour whose image fails is left to `canon`, which
+    /// fails the same way).
+    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32, spokes: &mut Spokes) -> Result<()> {
         self.v = NONE;
         self.cache.clear();
-        ring_points_into(topo, v, &mut self.ring)?;
+        topo.spokes_into(v, spokes)?;
+        self.ring.clear();
+        for s in spokes.iter() {
+            self.ring
+                .try_push(topo.position(s.neighbour)?)
+                .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        }
         let kind = if topo.is_boundary_vertex(v)? {
             StarKind::Boundary
         } else {
             StarKind::Interior
         };
-        self.cf = CanonicalForm::new(topo.position(v)?, &self.ring, kind)?;
+        self.cf = CanonicalForm::new_with_tangents(
+            topo.position(v)?,
+            &self.ring,
+            kind,
+            &mut self.tangents,
+        )?;
         self.v = v;
+        for (s, t) in spokes.iter().zip(self.tangents.iter()) {
+            if let Ok(p) = self.cf.normalised_from_tangent(*t) {
+                let _ = self.cache.try_push((s.neighbour, p));
+            }
+        }
         Ok(())
     }
 
     /// The image of vertex `u` in the canonical form, in its normalised frame
     /// ([`CanonicalForm::to_normalised`]: `v` itself goes to the origin).
+    #[inline]
     fn canon(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         if u == self.v {
             return Ok(ORIGIN);
         }
-        if let Some(&(_, p)) = self.cache.iter().find(|(k, _)| *k == u) {
+        if let Some(&(_, p)) = self.cache.iter().rev().find(|(k, _)| *k == u) {
             return Ok(p);
         }
         let p = self.cf.to_normalised(topo.position(u)?)?;
@@ -492,6 +519,7 @@ impl Local {
         centroid(pts)
     }
 
+    #[inline]
     fn back(&self, p: Point) -> Result<Point> {
         self.cf.from_normalised(p)
     }
@@ -561,14 +589,14 @@ impl Driver<'_, '_, '_, '_> {
 
     /// Re-targets `l` to the canonical form of a non-ear, non-isolated vertex; `false` (and
     /// `l` holds no form) when `v` is isolated or an ear or its form does not exist
-    /// (degenerate star).
-    fn local_into(&self, v: u32, l: &mut Local) -> Result<bool> {
+    /// (degenerate star). With a form, `spokes` holds `v`'s star.
+    fn local_into(&self, v: u32, l: &mut Local, spokes: &mut Spokes) -> Result<bool> {
         if self.topo.is_isolated(v)? || self.is_ear(v)? {
             l.v = NONE;
             l.cache.clear();
             return Ok(false);
         }
-        Ok(l.reset(self.topo, v).is_ok())
+        Ok(l.reset(self.topo, v, spokes).is_ok())
     }
 
     /// The vertex whose canonical form evaluates corner `i` of face `f`: the corner's own
@@ -601,15 +629,16 @@ impl Driver<'_, '_, '_, '_> {
     fn face_candidates(&mut self, non_ears: bool) -> Result<()> {
         let topo = self.topo;
         let mut l = Local::blank();
+        let mut spokes = Spokes::new();
         let mut pts = FacePts::new();
         for v in 0..topo.num_vertices() as u32 {
             if !non_ears {
                 break;
             }
-            if !self.local_into(v, &mut l)? {
+            if !self.local_into(v, &mut l, &mut spokes)? {
                 continue;
             }
-            for s in topo.star(v) {
+            for s in spokes.iter() {
                 if s.face == NONE {
                     continue;
                 }
@@ -631,7 +660,7 @@ impl Driver<'_, '_, '_, '_> {
                 let Some(u) = self.form_vertex(f, i)? else {
                     continue;
                 };
-                if !self.local_into(u, &mut l)? {
+                if !self.local_into(u, &mut l, &mut spokes)? {
                     continue;
                 }
                 if let Ok(c) = l.face_centroid(topo, f, &mut pts).and_then(|c| l.back(c)) {
@@ -684,16 +713,17 @@ impl Driver<'_, '_, '_, '_> {
         if truncate {
             let topo = self.topo;
             let mut l = Local::blank();
+            let mut spokes = Spokes::new();
             let mut ring = Ring::new();
             for v in 0..topo.num_vertices() as u32 {
                 let p = topo.position(v)?;
                 let q = if topo.is_isolated(v)? || (keep_boundary && topo.is_boundary_vertex(v)?) {
                     p
                 } else {
-                    let m = if self.local_into(v, &mut l)? {
+                    let m = if self.local_into(v, &mut l, &mut spokes)? {
                         (|| {
                             ring.clear();
-                            for s in topo.star(v) {
+                            for s in spokes.iter() {
                                 ring.try_push(l.canon(topo, s.neighbour).ok()?).ok()?;
                             }
                             let t = akleman::truncated_vertex(ORIGIN, &ring).ok()?;
@@ -874,11 +904,10 @@ impl Driver<'_, '_, '_, '_> {
                 set(self.pos, v as usize, p)?;
                 continue;
             }
-            let has_form = self.local_into(v, &mut l)?;
+            let has_form = self.local_into(v, &mut l, &mut spokes)?;
             let boundary = topo.is_boundary_vertex(v)?;
             let mut vertex = None;
             if has_form {
-                topo.spokes_into(v, &mut spokes)?;
                 ring.clear();
                 let mut ok = true;
                 for s in &spokes {
@@ -946,8 +975,7 @@ impl Driver<'_, '_, '_, '_> {
             }
             let boundary = topo.is_boundary_vertex(v)?;
             let mut vertex = None;
-            if self.local_into(v, &mut l)? {
-                topo.spokes_into(v, &mut spokes)?;
+            if self.local_into(v, &mut l, &mut spokes)? {
                 // Images of the neighbours and canonical centroids of the faces after each
                 // spoke ([`MISSING`] when unavailable).
                 ring.clear();
@@ -1018,11 +1046,12 @@ impl Driver<'_, '_, '_, '_> {
     fn run_simplest(&mut self) -> Result<()> {
         let topo = self.topo;
         let mut l = Local::blank();
+        let mut spokes = Spokes::new();
         for v in 0..topo.num_vertices() as u32 {
-            if !self.local_into(v, &mut l)? {
+            if !self.local_into(v, &mut l, &mut spokes)? {
                 continue;
             }
-            for s in topo.star(v) {
+            for s in spokes.iter() {
                 if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
                     continue;
                 }
@@ -1060,12 +1089,13 @@ impl Driver<'_, '_, '_, '_> {
         }
         // One canonical form per vertex: all its corners.
         let mut l = Local::blank();
+        let mut spokes = Spokes::new();
         let mut pts = FacePts::new();
         for v in 0..topo.num_vertices() as u32 {
-            if !self.local_into(v, &mut l)? {
+            if !self.local_into(v, &mut l, &mut spokes)? {
                 continue;
             }
-            for s in topo.star(v) {
+            for s in spokes.iter() {
                 if s.face == NONE {
                     continue;
                 }
@@ -1089,7 +1119,7 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 let q = if self.is_ear(topo.origin(h)?)? {
                     self.form_vertex(f, i)?.and_then(|u| {
-                        if !self.local_into(u, &mut l).ok()? {
+                        if !self.local_into(u, &mut l, &mut spokes).ok()? {
                             return None;
                         }
                         l.face(topo, f, &mut pts).ok()?;
@@ -1122,12 +1152,11 @@ impl Driver<'_, '_, '_, '_> {
         let mut spokes = Spokes::new();
         let mut ring = Ring::new();
         for v in 0..nv as u32 {
-            if !self.local_into(v, &mut l)? {
+            if !self.local_into(v, &mut l, &mut spokes)? {
                 continue;
             }
             let boundary = topo.is_boundary_vertex(v)?;
             let irregular = !boundary && topo.valence(v)? != 6;
-            topo.spokes_into(v, &mut spokes)?;
             let n = spokes.len();
             for (j, s) in spokes.iter().enumerate() {
                 let h = s.half_edge;
@@ -1216,12 +1245,12 @@ impl Driver<'_, '_, '_, '_> {
             if topo.is_isolated(v)? {
                 continue;
             }
-            if !self.local_into(v, &mut l)? {
+            if !self.local_into(v, &mut l, &mut spokes)? {
                 continue;
             }
             if topo.is_boundary_vertex(v)? {
                 // The linear boundary extrapolation 2v − u, evaluated in v's boundary form.
-                for s in topo.star(v) {
+                for s in spokes.iter() {
                     if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
                         continue;
                     }
@@ -1234,7 +1263,6 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 continue;
             }
-            topo.spokes_into(v, &mut spokes)?;
             q.clear();
             dg.clear();
             let mut ok = true;
