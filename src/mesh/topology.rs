@@ -46,6 +46,8 @@
 
 use arrayvec::ArrayVec;
 
+mod derive;
+
 use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
@@ -82,6 +84,21 @@ pub struct Topology<'m, 's> {
     vert_he: &'s [u32],
     valence: &'s [u32],
     bnd_rank: &'s [u32],
+    n_boundary_edges: usize,
+    n_boundary_vertices: usize,
+    n_isolated: usize,
+    interior_spokes: usize,
+    boundary_spokes: usize,
+    max_face: usize,
+    min_face: usize,
+}
+
+/// The scalar part of a [`Topology`] (its arrays live in the scratch): with the scratch of a
+/// built or derived topology it rebuilds the same view in `O(1)` ([`Topology::from_parts`]),
+/// so a multi-level call can keep a topology across loop iterations without borrowing it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Counts {
+    n_edges: usize,
     n_boundary_edges: usize,
     n_boundary_vertices: usize,
     n_isolated: usize,
@@ -561,6 +578,53 @@ impl<'m, 's> Topology<'m, 's> {
             boundary_spokes,
             max_face,
             min_face,
+        })
+    }
+
+    /// The scalar part of this topology, for [`Topology::from_parts`].
+    pub(crate) fn counts(&self) -> Counts {
+        Counts {
+            n_edges: self.edge_he.len(),
+            n_boundary_edges: self.n_boundary_edges,
+            n_boundary_vertices: self.n_boundary_vertices,
+            n_isolated: self.n_isolated,
+            interior_spokes: self.interior_spokes,
+            boundary_spokes: self.boundary_spokes,
+            max_face: self.max_face,
+            min_face: self.min_face,
+        }
+    }
+
+    /// The topology of `mesh` whose arrays [`Topology::build`] (or a derivation of
+    /// [`derive`]) left in `scratch`, with the `counts` it returned: the same view again in
+    /// `O(1)`, nothing re-validated. Only the regions' lengths are checked.
+    pub(crate) fn from_parts(mesh: Mesh<'m>, scratch: &'s [u32], counts: Counts) -> Result<Self> {
+        let nv = mesh.num_vertices();
+        let nh = mesh.num_corners();
+        let need = topology_scratch_len(nv, nh)?;
+        let scratch = scratch.get(..need).ok_or(internal())?;
+        let (face_of, rest) = scratch.split_at_checked(nh).ok_or(internal())?;
+        let (twin, rest) = rest.split_at_checked(nh).ok_or(internal())?;
+        let (edge_of, rest) = rest.split_at_checked(nh).ok_or(internal())?;
+        let (edge_he, rest) = rest.split_at_checked(nh).ok_or(internal())?;
+        let (vert_he, rest) = rest.split_at_checked(nv).ok_or(internal())?;
+        let (valence, bnd_rank) = rest.split_at_checked(nv).ok_or(internal())?;
+        Ok(Topology {
+            mesh,
+            face_of,
+            twin,
+            edge_of,
+            edge_he: edge_he.get(..counts.n_edges).ok_or(internal())?,
+            vert_he,
+            valence,
+            bnd_rank,
+            n_boundary_edges: counts.n_boundary_edges,
+            n_boundary_vertices: counts.n_boundary_vertices,
+            n_isolated: counts.n_isolated,
+            interior_spokes: counts.interior_spokes,
+            boundary_spokes: counts.boundary_spokes,
+            max_face: counts.max_face,
+            min_face: counts.min_face,
         })
     }
 
