@@ -48,6 +48,8 @@ use arrayvec::ArrayVec;
 
 mod derive;
 
+pub(crate) use derive::derivable;
+
 use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
