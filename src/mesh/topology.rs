@@ -110,6 +110,36 @@ pub(crate) struct Counts {
     min_face: usize,
 }
 
+/// The arrays of a [`Topology`] ([`Topology::raw`]); see the module docs for their meaning.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Raw<'m, 's> {
+    pub(crate) offsets: &'m [u32],
+    pub(crate) indices: &'m [u32],
+    pub(crate) face_of: &'s [u32],
+    pub(crate) twin: &'s [u32],
+    pub(crate) edge_of: &'s [u32],
+    pub(crate) edge_he: &'s [u32],
+    pub(crate) vert_he: &'s [u32],
+    pub(crate) valence: &'s [u32],
+}
+
+impl Raw<'_, '_> {
+    /// `(next(h), prev(h), face(h))` from one face lookup.
+    #[inline]
+    pub(crate) fn next_prev_face(&self, h: u32) -> Result<(u32, u32, u32)> {
+        let f = get(self.face_of, h as usize)?;
+        let start = get(self.offsets, f as usize)?;
+        let end = get(self.offsets, f as usize + 1)?;
+        let next = if h + 1 == end { start } else { h + 1 };
+        let prev = if h == start {
+            end.wrapping_sub(1)
+        } else {
+            h.wrapping_sub(1)
+        };
+        Ok((next, prev, f))
+    }
+}
+
 /// One spoke of a vertex star: an edge from the centre to a neighbour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Spoke {
@@ -581,6 +611,21 @@ impl<'m, 's> Topology<'m, 's> {
             max_face,
             min_face,
         })
+    }
+
+    /// The arrays of this topology, read-only, for the hot loops of the patterns and the
+    /// linear drivers (the same data the queries read, without a call per lookup).
+    pub(crate) fn raw(&self) -> Raw<'m, 's> {
+        Raw {
+            offsets: self.mesh.offsets,
+            indices: self.mesh.indices,
+            face_of: self.face_of,
+            twin: self.twin,
+            edge_of: self.edge_of,
+            edge_he: self.edge_he,
+            vert_he: self.vert_he,
+            valence: self.valence,
+        }
     }
 
     /// The scalar part of this topology, for [`Topology::from_parts`].
