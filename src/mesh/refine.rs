@@ -124,7 +124,10 @@ pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSiz
     let iso = topo.num_isolated_vertices();
     let sizes = match pattern {
         Pattern::Split1To4 => {
-            for face in 0..f as u32 {
+            // All triangles when the smallest and largest face are; otherwise name the first
+            // face that is not.
+            let all = topo.min_face_size() == 3 && topo.max_face_size() == 3;
+            for face in (0..f as u32).filter(|_| !all) {
                 if topo.face_size(face)? != 3 {
                     return Err(Error::at(Status::UnsupportedFaceType, face));
                 }
@@ -302,7 +305,9 @@ pub fn write_pattern(
     }
     // The output numbering must stay within the vertex count (checked, never trusted).
     let used = indices.get(..sizes.indices).ok_or(super::internal())?;
-    if used.iter().any(|&i| i as usize >= sizes.vertices) {
+    // One branch-free pass (the largest index), vectorised by the compiler.
+    let largest = used.iter().fold(0u32, |m, &i| m.max(i));
+    if !used.is_empty() && largest as usize >= sizes.vertices {
         return Err(super::internal());
     }
     let _ = get(offsets, sizes.faces)?;

@@ -121,12 +121,35 @@ pub(crate) struct Raw<'m, 's> {
     pub(crate) edge_he: &'s [u32],
     pub(crate) vert_he: &'s [u32],
     pub(crate) valence: &'s [u32],
+    /// Every face is a quad, so face `f` is corners `4f..4f + 4` (every level of
+    /// Catmull–Clark and Kobbelt after the first).
+    pub(crate) quads: bool,
+    /// Every face is a triangle, so face `f` is corners `3f..3f + 3` (Loop, Butterfly).
+    pub(crate) triangles: bool,
 }
 
 impl Raw<'_, '_> {
-    /// `(next(h), prev(h), face(h))` from one face lookup.
+    /// `(next(h), prev(h), face(h))` from one face lookup (none on an all-quad mesh).
     #[inline]
     pub(crate) fn next_prev_face(&self, h: u32) -> Result<(u32, u32, u32)> {
+        if self.quads {
+            let base = h & !3;
+            return Ok((
+                base | (h.wrapping_add(1) & 3),
+                base | (h.wrapping_add(3) & 3),
+                h >> 2,
+            ));
+        }
+        if self.triangles {
+            let f = h / 3;
+            let base = 3 * f;
+            let (next, prev) = match h - base {
+                0 => (h + 1, h + 2),
+                1 => (h + 1, h - 1),
+                _ => (base, h - 1),
+            };
+            return Ok((next, prev, f));
+        }
         let f = get(self.face_of, h as usize)?;
         let start = get(self.offsets, f as usize)?;
         let end = get(self.offsets, f as usize + 1)?;
@@ -625,6 +648,8 @@ impl<'m, 's> Topology<'m, 's> {
             edge_he: self.edge_he,
             vert_he: self.vert_he,
             valence: self.valence,
+            quads: self.min_face == 4 && self.max_face == 4,
+            triangles: self.min_face == 3 && self.max_face == 3,
         }
     }
 

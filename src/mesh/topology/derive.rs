@@ -84,20 +84,10 @@ fn expect(a: u32, b: u32) -> Result<()> {
 }
 
 impl<'m, 's> Topology<'m, 's> {
-    /// `(start, end)` of the face of half-edge `h`.
-    #[inline]
-    fn face_range(&self, h: u32) -> Result<(u32, u32, u32)> {
-        let f = get(self.face_of, h as usize)?;
-        let a = get(self.mesh.offsets, f as usize)?;
-        let b = get(self.mesh.offsets, f as usize + 1)?;
-        Ok((f, a, b))
-    }
-
-    /// `next(h)` from the face range.
+    /// `next(h)` ([`super::Raw::next_prev_face`]: no lookup on an all-quad mesh).
     #[inline]
     fn next_fast(&self, h: u32) -> Result<u32> {
-        let (_, a, b) = self.face_range(h)?;
-        Ok(if h + 1 == b { a } else { h + 1 })
+        Ok(self.raw().next_prev_face(h)?.0)
     }
 
     /// Writes the first group of child edges (module docs): for every parent edge `e`, the
