@@ -84,7 +84,8 @@ fn expect(a: u32, b: u32) -> Result<()> {
 }
 
 impl<'m, 's> Topology<'m, 's> {
-    /// `next(h)` ([`super::Raw::next_prev_face`]: no lookup on an all-quad mesh).
+    /// `next(h)` ([`super::Raw::next_prev_face`]: no lookup on an all-quad or all-triangle
+    /// mesh).
     #[inline]
     fn next_fast(&self, h: u32) -> Result<u32> {
         Ok(self.raw().next_prev_face(h)?.0)
@@ -92,7 +93,8 @@ impl<'m, 's> Topology<'m, 's> {
 
     /// Writes the first group of child edges (module docs): for every parent edge `e`, the
     /// edges `(a, V + e)` and `(b, V + e)` from its ends to its edge point, numbered by a
-    /// cursor per old vertex (kept in `cursor`, `V` entries). `image(h)` is the child
+    /// cursor per old vertex (kept in the first `V` entries of the child's boundary-rank
+    /// region, which [`Topology::old_vertices`] overwrites afterwards). `image(h)` is the child
     /// half-edge from `origin(h)` to the edge point of `h`'s edge, `back(h)` the one from the
     /// edge point of `h`'s edge to `dest(h)`. Returns the number of edges written (`2E`).
     fn spoke_edges(
