@@ -227,16 +227,28 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
     let ne = topo.num_edges();
     let (vpos, rest) = pos.split_at_mut_checked(nv).ok_or(internal())?;
     let (epos, fpos) = rest.split_at_mut_checked(ne).ok_or(internal())?;
-    let mut pts = FacePts::new();
-    for (w, out) in r.offsets.windows(2).zip(fpos.iter_mut()) {
-        let &[a, b] = w else {
-            return Err(internal());
-        };
-        pts.clear();
-        for &v in r.indices.get(a as usize..b as usize).ok_or(internal())? {
-            pts.try_push(position(v)?).map_err(|_| internal())?;
+    if r.quads {
+        // Every face a quad: corners 4f..4f + 4, gathered without a growing buffer.
+        let quads = r.indices.chunks_exact(4);
+        for (q, out) in quads.zip(fpos.iter_mut()) {
+            let &[a, b, c, d] = q else {
+                return Err(internal());
+            };
+            let pts = [position(a)?, position(b)?, position(c)?, position(d)?];
+            *out = catmull_clark::face_point(&pts)?;
         }
-        *out = catmull_clark::face_point(&pts)?;
+    } else {
+        let mut pts = FacePts::new();
+        for (w, out) in r.offsets.windows(2).zip(fpos.iter_mut()) {
+            let &[a, b] = w else {
+                return Err(internal());
+            };
+            pts.clear();
+            for &v in r.indices.get(a as usize..b as usize).ok_or(internal())? {
+                pts.try_push(position(v)?).map_err(|_| internal())?;
+            }
+            *out = catmull_clark::face_point(&pts)?;
+        }
     }
     let fpos: &[Point] = fpos;
     for (&h, out) in r.edge_he.iter().zip(epos.iter_mut()) {
