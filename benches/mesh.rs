@@ -39,8 +39,7 @@ fn levels_call(s: Scheme, m: &OwnedMesh, levels: usize, mobius: bool) -> OwnedMe
     } else {
         p.scratch_points
     };
-    // A 0-level plan asks for no scratch, but the call still validates into the topology.
-    su.resize(p.scratch_u32.max(su.len()), 0);
+    su.resize(p.scratch_u32, 0);
     let mut sp = vec![[0.0f64; 3]; np];
     let mut out = OwnedMesh {
         positions: vec![[0.0; 3]; o.vertices],

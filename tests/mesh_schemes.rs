@@ -729,6 +729,21 @@ fn plans_are_exact_and_multi_level_equals_single_steps() {
             assert_eq!(got, o);
             assert_eq!(hash(&out), hash(&cur), "{name} {s:?}");
             // Short scratch is reported with the needed size.
+            let mut su_short = vec![0u32; plan.scratch_u32 - 1];
+            let e = scheme::subdivide_levels(
+                s,
+                m.view(),
+                levels,
+                &mut su_short,
+                &mut sp,
+                &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+            )
+            .unwrap_err();
+            assert_eq!(
+                e,
+                nlsubdiv::Error::too_small(plan.scratch_u32),
+                "{name} {s:?}"
+            );
             if plan.scratch_points > 0 {
                 let mut sp = vec![[0.0; 3]; plan.scratch_points - 1];
                 let e = scheme::subdivide_levels(
@@ -755,6 +770,56 @@ fn plans_are_exact_and_multi_level_equals_single_steps() {
     );
     let plan = scheme::plan(Scheme::CatmullClark, m.view(), 0, &mut scratch).unwrap();
     assert_eq!(plan.output(), sizes_of(&m));
+}
+
+/// Zero levels copy the input, but the call still validates it into the `u32` scratch: the
+/// plan reports exactly that scratch (the input's topology), an exact-size buffer is enough
+/// and one entry less is refused with the same size.
+#[test]
+fn zero_level_plan_reports_the_validation_scratch() {
+    for (name, m) in all_meshes() {
+        for s in Scheme::ALL {
+            if !accepts(s, &m) {
+                continue;
+            }
+            let need = scheme::plan_scratch_len(&m.view()).unwrap();
+            let mut scratch = vec![0u32; need];
+            let plan = scheme::plan(s, m.view(), 0, &mut scratch).unwrap();
+            assert_eq!(plan.scratch_u32, need, "{name} {s:?}");
+            assert_eq!(plan.scratch_points, 0, "{name} {s:?}");
+            assert_eq!(plan.mobius_scratch_points().unwrap(), 0, "{name} {s:?}");
+            let o = plan.output();
+            assert_eq!(o, sizes_of(&m));
+            let mut out = OwnedMesh {
+                positions: vec![[0.0; 3]; o.vertices],
+                offsets: vec![0; o.faces + 1],
+                indices: vec![0; o.indices],
+            };
+            let mut su = vec![0u32; plan.scratch_u32];
+            let got = scheme::subdivide_levels(
+                s,
+                m.view(),
+                0,
+                &mut su,
+                &mut [],
+                &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+            )
+            .unwrap();
+            assert_eq!(got, o);
+            assert_eq!(hash(&out), hash(&m), "{name} {s:?}: level 0 is the input");
+            let mut su = vec![0u32; plan.scratch_u32 - 1];
+            let e = scheme::subdivide_levels(
+                s,
+                m.view(),
+                0,
+                &mut su,
+                &mut [],
+                &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+            )
+            .unwrap_err();
+            assert_eq!(e, nlsubdiv::Error::too_small(need), "{name} {s:?}");
+        }
+    }
 }
 
 #[test]

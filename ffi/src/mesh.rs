@@ -1022,6 +1022,88 @@ mod tests {
         assert_eq!(s, Status::BufferTooSmall);
         assert_eq!((nv, nf, ni, element), (9, 4, 16, NLS_MESH_BUFFER_OFFSETS));
     }
+
+    /// Zero levels copy the mesh but validate it into the `u32` scratch: the size query
+    /// reports that scratch (the topology, `4·corners + 3·vertices`, as
+    /// `nls_mesh_scratch_size`), an exact-size buffer is enough, one entry less is refused.
+    #[test]
+    fn zero_levels_scratch_through_the_abi() {
+        let p: [f64; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+        let (off, idx) = ([0u32, 4], [0u32, 1, 2, 3]);
+        for flags in [0, NLS_SUBDIVIDE_MOBIUS] {
+            let (mut su0, mut sp0) = (0usize, 0usize);
+            let s = unsafe {
+                nls_mesh_scratch_size(NLS_SCHEME_CATMULL_CLARK, flags, 4, 4, &mut su0, &mut sp0)
+            };
+            assert_eq!((s, su0), (Status::Ok, 28));
+            let mut scratch = vec![0u32; su0];
+            let (mut nv, mut nf, mut ni, mut su, mut sp) = (0usize, 0usize, 0usize, 9usize, 9usize);
+            let s = unsafe {
+                nls_mesh_subdivide_levels_size(
+                    NLS_SCHEME_CATMULL_CLARK,
+                    flags,
+                    p.as_ptr(),
+                    4,
+                    off.as_ptr(),
+                    1,
+                    idx.as_ptr(),
+                    4,
+                    0,
+                    scratch.as_mut_ptr(),
+                    su0,
+                    &mut nv,
+                    &mut nf,
+                    &mut ni,
+                    &mut su,
+                    &mut sp,
+                    core::ptr::null_mut(),
+                )
+            };
+            assert_eq!(s, Status::Ok);
+            assert_eq!((nv, nf, ni, su, sp), (4, 1, 4, su0, 0), "flags {flags}");
+            for (cap, want) in [(su, Status::Ok), (su - 1, Status::BufferTooSmall)] {
+                let mut scratch = vec![0u32; cap];
+                let (mut op, mut oo, mut oi) = (vec![9.0; 12], vec![9u32; 2], vec![9u32; 4]);
+                let (mut nv, mut nf, mut ni) = (0usize, 0usize, 0usize);
+                let mut element = 7u32;
+                let s = unsafe {
+                    nls_mesh_subdivide_levels(
+                        NLS_SCHEME_CATMULL_CLARK,
+                        flags,
+                        p.as_ptr(),
+                        4,
+                        off.as_ptr(),
+                        1,
+                        idx.as_ptr(),
+                        4,
+                        0,
+                        scratch.as_mut_ptr(),
+                        cap,
+                        core::ptr::null_mut(),
+                        0,
+                        op.as_mut_ptr(),
+                        4,
+                        oo.as_mut_ptr(),
+                        1,
+                        oi.as_mut_ptr(),
+                        4,
+                        &mut nv,
+                        &mut nf,
+                        &mut ni,
+                        core::ptr::null_mut(),
+                        &mut element,
+                    )
+                };
+                assert_eq!(s, want, "flags {flags}, scratch {cap}");
+                if want == Status::Ok {
+                    assert_eq!((nv, nf, ni), (4, 1, 4));
+                    assert_eq!((&op[..], &oo[..], &oi[..]), (&p[..], &off[..], &idx[..]));
+                } else {
+                    assert_eq!(element, NLS_MESH_BUFFER_SCRATCH_U32);
+                }
+            }
+        }
+    }
 }
 
 // Differential-space subdivision (seed 001) shares this module's buffer checks.

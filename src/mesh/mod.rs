@@ -125,14 +125,19 @@ impl<'a> Mesh<'a> {
     }
 
     /// The position of vertex `v`.
+    #[inline]
     pub fn position(&self, v: u32) -> Option<Point> {
         let v = v as usize;
         if v >= self.num_vertices {
             return None;
         }
-        let a = v.checked_mul(self.stride)?;
-        let c = self.coords.get(a..a.checked_add(3)?)?;
-        Some([*c.first()?, *c.get(1)?, *c.get(2)?])
+        // No overflow: v ≤ num_vertices − 1 and (num_vertices − 1)·stride + 3 ≤ coords.len()
+        // (checked by `with_stride`; `new` has stride 3 over the flattened points).
+        let a = v * self.stride;
+        match self.coords.get(a..a + 3)? {
+            &[x, y, z] => Some([x, y, z]),
+            _ => None,
+        }
     }
 
     /// The positions of all vertices, in order.

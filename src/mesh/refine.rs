@@ -124,7 +124,10 @@ pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSiz
     let iso = topo.num_isolated_vertices();
     let sizes = match pattern {
         Pattern::Split1To4 => {
-            for face in 0..f as u32 {
+            // All triangles when the smallest and largest face are; otherwise name the first
+            // face that is not.
+            let all = topo.min_face_size() == 3 && topo.max_face_size() == 3;
+            for face in (0..f as u32).filter(|_| !all) {
                 if topo.face_size(face)? != 3 {
                     return Err(Error::at(Status::UnsupportedFaceType, face));
                 }
@@ -295,31 +298,114 @@ pub fn write_pattern(
     let nv = idx(topo.num_vertices())?;
     let ne = idx(topo.num_edges())?;
     let nf = topo.num_faces() as u32;
+    match pattern {
+        Pattern::Quads => write_quads(topo, nv, ne, offsets, indices)?,
+        Pattern::Split1To4 => write_split(topo, nv, offsets, indices)?,
+        _ => write_faces(pattern, topo, nv, ne, nf, &sizes, offsets, indices)?,
+    }
+    // The output numbering must stay within the vertex count (checked, never trusted).
+    let used = indices.get(..sizes.indices).ok_or(super::internal())?;
+    // One branch-free pass (the largest index), vectorised by the compiler.
+    let largest = used.iter().fold(0u32, |m, &i| m.max(i));
+    if !used.is_empty() && largest as usize >= sizes.vertices {
+        return Err(super::internal());
+    }
+    let _ = get(offsets, sizes.faces)?;
+    Ok(sizes)
+}
+
+/// [`Pattern::Quads`] (module table) without a call per corner: corner `h` of face `f` is
+/// quad `h` = `(v, E(h), F(f), E(prev h))`, corners `4h..4h + 4`.
+fn write_quads(
+    topo: &Topology<'_, '_>,
+    nv: u32,
+    ne: u32,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+) -> Result<()> {
+    let r = topo.raw();
+    let nh = r.indices.len();
+    for (f, w) in r.offsets.windows(2).enumerate() {
+        let &[a, b] = w else {
+            return Err(super::internal());
+        };
+        let (a, b) = (a as usize, b as usize);
+        let fp = nv + ne + f as u32;
+        let corners = r.indices.get(a..b).ok_or(super::internal())?;
+        let edges = r.edge_of.get(a..b).ok_or(super::internal())?;
+        let mut prev = nv + *edges.last().ok_or(super::internal())?;
+        let out = indices.get_mut(4 * a..4 * b).ok_or(super::internal())?;
+        for ((q, &v), &e) in out.chunks_exact_mut(4).zip(corners).zip(edges) {
+            let cur = nv + e;
+            if let [q0, q1, q2, q3] = q {
+                (*q0, *q1, *q2, *q3) = (v, cur, fp, prev);
+            }
+            prev = cur;
+        }
+    }
+    let offs = offsets.get_mut(..nh + 1).ok_or(super::internal())?;
+    for (h, o) in offs.iter_mut().enumerate() {
+        *o = idx(4 * h)?;
+    }
+    Ok(())
+}
+
+/// [`Pattern::Split1To4`] (module table) without a call per face: triangle `f` (corners
+/// `3f..3f + 3`, every face a triangle) is faces `4f..4f + 4`, corners `12f..12f + 12`.
+fn write_split(
+    topo: &Topology<'_, '_>,
+    nv: u32,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+) -> Result<()> {
+    let r = topo.raw();
+    let nf = r.offsets.len().saturating_sub(1);
+    let corners = r.indices.get(..3 * nf).ok_or(super::internal())?;
+    let edges = r.edge_of.get(..3 * nf).ok_or(super::internal())?;
+    let out = indices.get_mut(..12 * nf).ok_or(super::internal())?;
+    for ((q, c), e) in out
+        .chunks_exact_mut(12)
+        .zip(corners.chunks_exact(3))
+        .zip(edges.chunks_exact(3))
+    {
+        let (&[v0, v1, v2], &[e0, e1, e2]) = (c, e) else {
+            return Err(super::internal());
+        };
+        let (e0, e1, e2) = (nv + e0, nv + e1, nv + e2);
+        let face = [v0, e0, e2, v1, e1, e0, v2, e2, e1, e0, e1, e2];
+        for (d, s) in q.iter_mut().zip(face) {
+            *d = s;
+        }
+    }
+    // Every face a triangle (checked by `pattern_size`): face f is corners 3f..3f + 3.
+    for (f, w) in r.offsets.windows(2).enumerate() {
+        if w != [3 * f as u32, 3 * f as u32 + 3] {
+            return Err(super::internal());
+        }
+    }
+    let offs = offsets.get_mut(..4 * nf + 1).ok_or(super::internal())?;
+    for (k, o) in offs.iter_mut().enumerate() {
+        *o = idx(3 * k)?;
+    }
+    Ok(())
+}
+
+/// The other patterns, face by face through a [`FaceWriter`].
+#[allow(clippy::too_many_arguments)]
+fn write_faces(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    nv: u32,
+    ne: u32,
+    nf: u32,
+    sizes: &MeshSizes,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+) -> Result<()> {
     let mut w = FaceWriter::new(offsets, indices)?;
     match pattern {
-        Pattern::Split1To4 => {
-            for f in 0..nf {
-                let r = topo.face_half_edges(f)?;
-                let (h0, h1, h2) = (r.start, r.start + 1, r.start + 2);
-                let (v0, v1, v2) = (topo.origin(h0)?, topo.origin(h1)?, topo.origin(h2)?);
-                let e0 = nv + topo.edge(h0)?;
-                let e1 = nv + topo.edge(h1)?;
-                let e2 = nv + topo.edge(h2)?;
-                w.face(&[v0, e0, e2])?;
-                w.face(&[v1, e1, e0])?;
-                w.face(&[v2, e2, e1])?;
-                w.face(&[e0, e1, e2])?;
-            }
-        }
-        Pattern::Quads => {
-            for f in 0..nf {
-                let fp = nv + ne + f;
-                for h in topo.face_half_edges(f)? {
-                    let p = topo.prev(h)?;
-                    w.face(&[topo.origin(h)?, nv + topo.edge(h)?, fp, nv + topo.edge(p)?])?;
-                }
-            }
-        }
+        // Written by `write_quads` and `write_split`.
+        Pattern::Quads | Pattern::Split1To4 => return Err(super::internal()),
         Pattern::CornerCut => {
             for f in 0..nf {
                 for h in topo.face_half_edges(f)? {
@@ -416,12 +502,5 @@ pub fn write_pattern(
             }
         }
     }
-    w.finish(&sizes)?;
-    // The output numbering must stay within the vertex count (checked, never trusted).
-    let used = indices.get(..sizes.indices).ok_or(super::internal())?;
-    if used.iter().any(|&i| i as usize >= sizes.vertices) {
-        return Err(super::internal());
-    }
-    let _ = get(offsets, sizes.faces)?;
-    Ok(sizes)
+    w.finish(sizes)
 }

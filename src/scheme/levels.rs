@@ -15,6 +15,7 @@ use super::mobius::MobiusOptions;
 use super::{subdivide, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::Pattern;
+use crate::mesh::topology::{derivable, Counts};
 use crate::mesh::{
     cadd, cmul, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
 };
@@ -31,8 +32,13 @@ pub struct LevelPlan {
     pub levels: usize,
     /// `sizes[0]` is the input, `sizes[k]` level `k` (entries above `levels` are zero).
     pub sizes: [MeshSizes; MAX_LEVELS + 1],
-    /// `u32` scratch of [`subdivide_levels`]: the topology of the largest input level plus
-    /// the offsets and indices of the intermediate levels (two alternating buffers).
+    /// `u32` scratch of [`subdivide_levels`]: the topologies of the input levels plus the
+    /// offsets and indices of the intermediate levels (two alternating buffers). The
+    /// topology buffer is one (the largest input level) for most patterns; for the patterns
+    /// whose child topology is derived from the parent's (Catmull–Clark, Kobbelt, Loop,
+    /// Modified Butterfly) two alternate (the two largest input levels: a derivation reads
+    /// one while writing the other). With zero levels it is the input's topology: the call
+    /// still validates the input ([`plan_scratch_len`]).
     pub scratch_u32: usize,
     /// Point scratch of [`subdivide_levels`]: the positions of the intermediate levels (two
     /// alternating buffers).
@@ -311,10 +317,22 @@ pub fn plan(
     levels: usize,
     scratch: &mut [u32],
 ) -> Result<LevelPlan> {
+    plan_with_topology(scheme, mesh, levels, scratch).map(|(p, _)| p)
+}
+
+/// [`plan`], also returning the counts of the input's topology, which stays in
+/// `scratch[..topology_scratch_len(input)]` for the first step of [`run_levels`].
+fn plan_with_topology(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch: &mut [u32],
+) -> Result<(LevelPlan, Counts)> {
     if levels > MAX_LEVELS {
         return Err(Error::new(Status::InvalidArgument));
     }
     let topo = Topology::build(mesh, scratch)?;
+    let counts = topo.counts();
     let mut stats = Stats::of(&topo)?;
     let mut p = LevelPlan {
         levels,
@@ -323,37 +341,77 @@ pub fn plan(
         scratch_points: 0,
     };
     *p.sizes.get_mut(0).ok_or(internal())? = stats.sizes();
-    if levels == 0 {
-        return Ok(p);
-    }
     let pattern = scheme.pattern();
-    // Level 1 exactly as the single step computes it (face types, per-vertex valences).
-    let first = subdivide_size(scheme, &topo)?;
-    let mut topo_max = topology_scratch_len(stats.v, stats.h)?;
-    let (mut pts, mut u32s) = ([0usize; 2], [0usize; 2]);
-    for k in 1..=levels {
-        stats = stats.next(pattern)?;
-        let sz = stats.sizes();
-        if k == 1 && sz != first {
-            return Err(internal());
-        }
-        *p.sizes.get_mut(k).ok_or(internal())? = sz;
-        if k < levels {
-            // Intermediate level k lives in buffer k % 2 and is the input of step k + 1.
-            let slot = k % 2;
-            let buf_pts = pts.get_mut(slot).ok_or(internal())?;
-            *buf_pts = (*buf_pts).max(sz.vertices);
-            let buf_u = u32s.get_mut(slot).ok_or(internal())?;
-            *buf_u = (*buf_u).max(cadd(sz.offsets()?, sz.indices)?);
-            topo_max = topo_max.max(topology_scratch_len(sz.vertices, sz.indices)?);
+    if levels > 0 {
+        // Level 1 exactly as the single step computes it (face types, per-vertex valences).
+        let first = subdivide_size(scheme, &topo)?;
+        for k in 1..=levels {
+            stats = stats.next(pattern)?;
+            let sz = stats.sizes();
+            if k == 1 && sz != first {
+                return Err(internal());
+            }
+            *p.sizes.get_mut(k).ok_or(internal())? = sz;
         }
     }
-    p.scratch_points = cadd(pts[0], pts[1])?;
-    p.scratch_u32 = cadd(cadd(topo_max, u32s[0])?, u32s[1])?;
+    let lay = Layout::of(&p, pattern)?;
+    p.scratch_points = cadd(lay.points[0], lay.points[1])?;
+    p.scratch_u32 = lay.total_u32()?;
     if p.scratch_u32 > MAX_COUNT.saturating_mul(8) {
         return Err(Error::new(Status::SizeOverflow));
     }
-    Ok(p)
+    Ok((p, counts))
+}
+
+/// Where [`run_levels`] keeps what it needs, computed from the plan's sizes by [`plan`] (for
+/// the sizes it reports) and by [`run_levels`] (for the split), so the two always agree.
+///
+/// `u32` scratch: `[topology A | topology B | level slot 0 | level slot 1]`. Level `k`'s
+/// topology is needed by step `k` (`k < levels`); level 0's is the one [`plan`] built at the
+/// start of the scratch (in A). When the pattern's child topology is derived from its parent
+/// ([`derivable`]), level `k`'s lives in A for even `k` and in B for odd `k` (a derivation
+/// reads the parent while writing the child); otherwise every level is built in A and B is
+/// empty. Intermediate level `k` (`1 ≤ k < levels`: offsets, indices, positions) lives in
+/// slot `k % 2`. With no levels, A holds the input's topology (the validation).
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    topo: [usize; 2],
+    levels_u32: [usize; 2],
+    points: [usize; 2],
+}
+
+impl Layout {
+    fn of(p: &LevelPlan, pattern: Pattern) -> Result<Layout> {
+        let two = derivable(pattern);
+        let mut l = Layout {
+            topo: [0; 2],
+            levels_u32: [0; 2],
+            points: [0; 2],
+        };
+        for k in 0..p.levels.max(1) {
+            let sz = p.sizes.get(k).copied().ok_or(internal())?;
+            let t = l
+                .topo
+                .get_mut(if two { k % 2 } else { 0 })
+                .ok_or(internal())?;
+            *t = (*t).max(topology_scratch_len(sz.vertices, sz.indices)?);
+            if k >= 1 {
+                let slot = k % 2;
+                let pts = l.points.get_mut(slot).ok_or(internal())?;
+                *pts = (*pts).max(sz.vertices);
+                let u = l.levels_u32.get_mut(slot).ok_or(internal())?;
+                *u = (*u).max(cadd(sz.offsets()?, sz.indices)?);
+            }
+        }
+        Ok(l)
+    }
+
+    fn total_u32(&self) -> Result<usize> {
+        cadd(
+            cadd(self.topo[0], self.topo[1])?,
+            cadd(self.levels_u32[0], self.levels_u32[1])?,
+        )
+    }
 }
 
 /// The `u32` scratch that [`plan`] needs (the input topology).
@@ -449,7 +507,7 @@ fn run_levels(
     if scratch_u32.len() < need_plan {
         return Err(Error::too_small(need_plan));
     }
-    let p = plan(scheme, mesh, levels, scratch_u32)?;
+    let (p, input_counts) = plan_with_topology(scheme, mesh, levels, scratch_u32)?;
     let final_sizes = p.output();
     out.check(&final_sizes)?;
     if scratch_u32.len() < p.scratch_u32 {
@@ -464,38 +522,36 @@ fn run_levels(
         copy_mesh(mesh, out)?;
         return Ok(final_sizes);
     }
-    // Buffer sizes per slot, as in `plan`.
-    let mut slot_pts = [0usize; 2];
-    let mut slot_u32 = [0usize; 2];
-    let mut topo_len = 0usize;
-    for k in 0..levels {
-        let sz = p.sizes.get(k).copied().ok_or(internal())?;
-        topo_len = topo_len.max(topology_scratch_len(sz.vertices, sz.indices)?);
-        if k >= 1 {
-            let slot = k % 2;
-            if let (Some(a), Some(b)) = (slot_pts.get_mut(slot), slot_u32.get_mut(slot)) {
-                *a = (*a).max(sz.vertices);
-                *b = (*b).max(cadd(sz.offsets()?, sz.indices)?);
-            }
-        }
-    }
-    let (topo_scratch, rest) = scratch_u32
-        .split_at_mut_checked(topo_len)
+    let pattern = scheme.pattern();
+    let derive = derivable(pattern);
+    let lay = Layout::of(&p, pattern)?;
+    let (t_a, rest) = scratch_u32
+        .split_at_mut_checked(lay.topo[0])
         .ok_or(internal())?;
-    let (u_a, rest) = rest.split_at_mut_checked(slot_u32[0]).ok_or(internal())?;
-    let (u_b, _) = rest.split_at_mut_checked(slot_u32[1]).ok_or(internal())?;
+    let (t_b, rest) = rest.split_at_mut_checked(lay.topo[1]).ok_or(internal())?;
+    let (u_a, rest) = rest
+        .split_at_mut_checked(lay.levels_u32[0])
+        .ok_or(internal())?;
+    let (u_b, _) = rest
+        .split_at_mut_checked(lay.levels_u32[1])
+        .ok_or(internal())?;
     let (p_a, rest) = scratch_points
-        .split_at_mut_checked(slot_pts[0])
+        .split_at_mut_checked(lay.points[0])
         .ok_or(internal())?;
-    let (p_b, rest) = rest.split_at_mut_checked(slot_pts[1]).ok_or(internal())?;
+    let (p_b, rest) = rest.split_at_mut_checked(lay.points[1]).ok_or(internal())?;
     let step_scratch = rest.get_mut(..extra).ok_or(internal())?;
-    // Slot 0 holds even levels, slot 1 odd levels.
+    // Slot 0 holds even levels, slot 1 odd levels; topology A even (or all), B odd.
+    let mut bufs_t: [&mut [u32]; 2] = [t_a, t_b];
     let mut bufs_u: [&mut [u32]; 2] = [u_a, u_b];
     let mut bufs_p: [&mut [Point]; 2] = [p_a, p_b];
+    // The counts of level k's topology when it is already in its buffer (level 0: built by
+    // the plan; later levels: derived by the previous step).
+    let mut ready = Some(input_counts);
     for k in 0..levels {
         let out_sizes = p.sizes.get(k + 1).copied().ok_or(internal())?;
         let [ua, ub] = &mut bufs_u;
         let [pa, pb] = &mut bufs_p;
+        let [ta, tb] = &mut bufs_t;
         // Input of step k: the mesh (k = 0) or level k in slot k % 2; output: level k + 1
         // in the other slot, or `out` for the last step.
         let (in_u, out_u, in_p, out_p): (&[u32], &mut [u32], &[Point], &mut [Point]) = if k % 2 == 0
@@ -503,6 +559,11 @@ fn run_levels(
             (&**ua, &mut **ub, &**pa, &mut **pb)
         } else {
             (&**ub, &mut **ua, &**pb, &mut **pa)
+        };
+        let (in_t, out_t): (&mut [u32], &mut [u32]) = if derive && k % 2 == 1 {
+            (&mut **tb, &mut **ta)
+        } else {
+            (&mut **ta, &mut **tb)
         };
         let input = if k == 0 {
             mesh
@@ -513,17 +574,30 @@ fn run_levels(
             let idx = in_u.get(no..no + sz.indices).ok_or(internal())?;
             Mesh::new(in_p.get(..sz.vertices).ok_or(internal())?, offs, idx)
         };
-        let topo = Topology::build(input, topo_scratch)?;
+        let topo = match ready.take() {
+            Some(c) => Topology::from_parts(input, in_t, c)?,
+            None => Topology::build(input, in_t)?,
+        };
         let written = if k + 1 == levels {
             step(k, &topo, out, step_scratch)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
-            let mut step_out = MeshOut::new(out_p, o, rest);
+            let mut step_out = MeshOut::new(&mut *out_p, o, rest);
             step(k, &topo, &mut step_out, step_scratch)?
         };
         if written != out_sizes {
             return Err(internal());
+        }
+        if derive && k + 1 < levels {
+            // Level k + 1 as the step wrote it, and its topology derived from level k's.
+            let no = out_sizes.offsets()?;
+            let out_u: &[u32] = out_u;
+            let offs = out_u.get(..no).ok_or(internal())?;
+            let idx = out_u.get(no..no + out_sizes.indices).ok_or(internal())?;
+            let pts: &[Point] = out_p;
+            let child = Mesh::new(pts.get(..out_sizes.vertices).ok_or(internal())?, offs, idx);
+            ready = Some(topo.refined(pattern, child, out_t)?.counts());
         }
     }
     Ok(final_sizes)

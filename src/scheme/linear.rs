@@ -69,12 +69,23 @@ pub fn subdivide(
         // Not linear, but it shares this entry point (and so the level loop and the C ABI).
         Scheme::Spherelike => super::spherelike::positions(topo, pos)?,
     }
-    for (i, p) in pos.iter().enumerate() {
-        if !point_is_finite(p) {
-            return Err(Error::at(Status::NumericalFailure, i as u32));
-        }
+    if let Some(i) = first_non_finite(pos) {
+        return Err(Error::at(Status::NumericalFailure, i as u32));
     }
     Ok(sizes)
+}
+
+/// The index of the first point with a NaN or infinite coordinate. A branch-free pass first
+/// (`|x| ≤ f64::MAX` is false exactly for NaN and ±∞), the search only when it fails.
+fn first_non_finite(pos: &[Point]) -> Option<usize> {
+    let finite = pos
+        .as_flattened()
+        .iter()
+        .fold(true, |ok, x| ok & (x.abs() <= f64::MAX));
+    if finite {
+        return None;
+    }
+    pos.iter().position(|p| !point_is_finite(p))
 }
 
 // ---- gathering neighbourhoods ----
@@ -149,86 +160,140 @@ fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
 
 // ---- Loop ----
 
+/// Loop: vertex points (vertex order), then edge points (edge order), each rule of
+/// [`loop_scheme`] on its neighbourhood; the loops read the topology's arrays directly
+/// ([`Topology::raw`]) and hand the rules the points of the queries (`star`, `apex`), in
+/// their order.
 fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let r = topo.raw();
+    let mesh = topo.mesh();
+    let position = |v: u32| mesh.position(v).ok_or(internal());
     let nv = topo.num_vertices();
+    let (vpos, epos) = pos.split_at_mut_checked(nv).ok_or(internal())?;
     let mut ring = Ring::new();
-    for v in 0..nv as u32 {
-        let p = topo.position(v)?;
-        let q = if topo.is_isolated(v)? {
+    for (v, out) in (0u32..).zip(vpos.iter_mut()) {
+        let p = position(v)?;
+        let start = get(r.vert_he, v as usize)?;
+        *out = if start == NONE {
             p
-        } else if topo.is_boundary_vertex(v)? {
+        } else if get(r.twin, start as usize)? == NONE {
             let (b0, b1) = topo.boundary_neighbours(v)?;
-            loop_scheme::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
+            loop_scheme::vertex_boundary(p, position(b0)?, position(b1)?)
         } else {
-            ring_points_into(topo, v, &mut ring)?;
+            // The interior star from its first spoke (`Topology::star`): h -> twin(prev(h)).
+            ring.clear();
+            let mut h = start;
+            for _ in 0..get(r.valence, v as usize)? {
+                let (next, prev, _) = r.next_prev_face(h)?;
+                ring.try_push(position(get(r.indices, next as usize)?)?)
+                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+                h = get(r.twin, prev as usize)?;
+            }
+            if h != start {
+                return Err(internal());
+            }
             loop_scheme::vertex_interior(p, &ring)?
         };
-        set(pos, v as usize, q)?;
     }
-    for e in 0..topo.num_edges() as u32 {
-        let h = topo.edge_half_edge(e)?;
-        let a = topo.position(topo.origin(h)?)?;
-        let b = topo.position(topo.dest(h)?)?;
-        let t = topo.twin(h)?;
-        let q = if t == NONE {
+    for (&h, out) in r.edge_he.iter().zip(epos.iter_mut()) {
+        // Triangles: the apex of h (`apex`, the end of next(h)) is the origin of prev(h).
+        let (next, prev, _) = r.next_prev_face(h)?;
+        let a = position(get(r.indices, h as usize)?)?;
+        let b = position(get(r.indices, next as usize)?)?;
+        let t = get(r.twin, h as usize)?;
+        *out = if t == NONE {
             loop_scheme::edge_boundary(a, b)
         } else {
-            let c = topo.position(apex(topo, h)?)?;
-            let d = topo.position(apex(topo, t)?)?;
+            let c = position(get(r.indices, prev as usize)?)?;
+            let (_, prev_t, _) = r.next_prev_face(t)?;
+            let d = position(get(r.indices, prev_t as usize)?)?;
             loop_scheme::edge_interior(a, b, c, d)
         };
-        set(pos, nv + e as usize, q)?;
     }
     Ok(())
 }
 
 // ---- Catmull–Clark ----
 
+/// Catmull–Clark: face points (face order), edge points (edge order), vertex points (vertex
+/// order), each rule of [`catmull_clark`] on its neighbourhood gathered in the star's order.
+/// The loops read the topology's arrays directly ([`Topology::raw`]); the points handed to
+/// the rules, and their order, are those of the queries (`face_vertices`, `star`).
 fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+    let r = topo.raw();
+    let mesh = topo.mesh();
+    let position = |v: u32| mesh.position(v).ok_or(internal());
     let nv = topo.num_vertices();
-    let fp0 = nv + topo.num_edges();
-    let mut pts = FacePts::new();
-    for f in 0..topo.num_faces() as u32 {
-        face_points_into(topo, f, &mut pts)?;
-        let c = catmull_clark::face_point(&pts)?;
-        set(pos, fp0 + f as usize, c)?;
+    let ne = topo.num_edges();
+    let (vpos, rest) = pos.split_at_mut_checked(nv).ok_or(internal())?;
+    let (epos, fpos) = rest.split_at_mut_checked(ne).ok_or(internal())?;
+    if r.quads {
+        // Every face a quad: corners 4f..4f + 4, gathered without a growing buffer.
+        let quads = r.indices.chunks_exact(4);
+        for (q, out) in quads.zip(fpos.iter_mut()) {
+            let &[a, b, c, d] = q else {
+                return Err(internal());
+            };
+            let pts = [position(a)?, position(b)?, position(c)?, position(d)?];
+            *out = catmull_clark::face_point(&pts)?;
+        }
+    } else {
+        let mut pts = FacePts::new();
+        for (w, out) in r.offsets.windows(2).zip(fpos.iter_mut()) {
+            let &[a, b] = w else {
+                return Err(internal());
+            };
+            pts.clear();
+            for &v in r.indices.get(a as usize..b as usize).ok_or(internal())? {
+                pts.try_push(position(v)?).map_err(|_| internal())?;
+            }
+            *out = catmull_clark::face_point(&pts)?;
+        }
     }
-    for e in 0..topo.num_edges() as u32 {
-        let h = topo.edge_half_edge(e)?;
-        let a = topo.position(topo.origin(h)?)?;
-        let b = topo.position(topo.dest(h)?)?;
-        let t = topo.twin(h)?;
-        let q = if t == NONE {
+    let fpos: &[Point] = fpos;
+    for (&h, out) in r.edge_he.iter().zip(epos.iter_mut()) {
+        let (next, _, f) = r.next_prev_face(h)?;
+        let a = position(get(r.indices, h as usize)?)?;
+        let b = position(get(r.indices, next as usize)?)?;
+        let t = get(r.twin, h as usize)?;
+        *out = if t == NONE {
             catmull_clark::edge_boundary(a, b)
         } else {
-            let f0 = get(pos, fp0 + topo.face(h)? as usize)?;
-            let f1 = get(pos, fp0 + topo.face(t)? as usize)?;
+            let f0 = get(fpos, f as usize)?;
+            let f1 = get(fpos, get(r.face_of, t as usize)? as usize)?;
             catmull_clark::edge_interior(a, b, f0, f1)
         };
-        set(pos, nv + e as usize, q)?;
     }
     let mut ring = Ring::new();
     let mut faces = Ring::new();
-    for v in 0..nv as u32 {
-        let p = topo.position(v)?;
-        let q = if topo.is_isolated(v)? {
+    for (v, out) in (0u32..).zip(vpos.iter_mut()) {
+        let p = position(v)?;
+        let start = get(r.vert_he, v as usize)?;
+        *out = if start == NONE {
             p
-        } else if topo.is_boundary_vertex(v)? {
+        } else if get(r.twin, start as usize)? == NONE {
             let (b0, b1) = topo.boundary_neighbours(v)?;
-            catmull_clark::vertex_boundary(p, topo.position(b0)?, topo.position(b1)?)
+            catmull_clark::vertex_boundary(p, position(b0)?, position(b1)?)
         } else {
+            // The interior star, counter-clockwise from its first spoke (`Topology::star`):
+            // h -> twin(prev(h)), one spoke per neighbour.
             ring.clear();
             faces.clear();
-            for s in topo.star(v) {
-                ring.try_push(topo.position(s.neighbour)?)
+            let mut h = start;
+            for _ in 0..get(r.valence, v as usize)? {
+                let (next, prev, f) = r.next_prev_face(h)?;
+                ring.try_push(position(get(r.indices, next as usize)?)?)
                     .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
                 faces
-                    .try_push(get(pos, fp0 + s.face as usize)?)
+                    .try_push(get(fpos, f as usize)?)
                     .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+                h = get(r.twin, prev as usize)?;
+            }
+            if h != start {
+                return Err(internal());
             }
             catmull_clark::vertex_interior(p, &ring, &faces)?
         };
-        set(pos, v as usize, q)?;
     }
     Ok(())
 }
