@@ -36,7 +36,8 @@ fn levels_call(
     } else {
         p.scratch_points
     };
-    // A 0-level plan asks for no scratch, but the call still validates into the topology.
+    // The call needs the plan's `scratch_u32` (the topologies of the levels), which is never
+    // less than what `plan` itself used.
     su.resize(p.scratch_u32.max(su.len()), 0);
     let mut sp = vec![[0.0f64; 3]; np];
     let mut out = OwnedMesh {
