@@ -95,6 +95,40 @@ pub struct Topology<'m, 's> {
     min_face: usize,
 }
 
+/// The seven regions of a topology scratch ([`Topology::build`]'s layout).
+struct Regions<'s> {
+    face_of: &'s mut [u32],
+    twin: &'s mut [u32],
+    edge_of: &'s mut [u32],
+    edge_he: &'s mut [u32],
+    vert_he: &'s mut [u32],
+    valence: &'s mut [u32],
+    bnd_rank: &'s mut [u32],
+}
+
+fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
+    let need = topology_scratch_len(nv, nh)?;
+    if scratch.len() < need {
+        return Err(Error::too_small(need));
+    }
+    let (face_of, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
+    let (twin, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let (edge_of, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let (edge_he, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let (vert_he, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+    let (valence, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+    let (bnd_rank, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+    Ok(Regions {
+        face_of,
+        twin,
+        edge_of,
+        edge_he,
+        vert_he,
+        valence,
+        bnd_rank,
+    })
+}
+
 /// The scalar part of a [`Topology`] (its arrays live in the scratch): with the scratch of a
 /// built or derived topology it rebuilds the same view in `O(1)` ([`Topology::from_parts`]),
 /// so a multi-level call can keep a topology across loop iterations without borrowing it.
@@ -389,17 +423,15 @@ impl<'m, 's> Topology<'m, 's> {
         check_offsets(&mesh)?;
         check_faces(&mesh)?;
         let nf = mesh.num_faces();
-        let need = topology_scratch_len(nv, nh)?;
-        if scratch.len() < need {
-            return Err(Error::too_small(need));
-        }
-        let (face_of, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
-        let (twin, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-        let (edge_of, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-        let (edge_he, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-        let (vert_he, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-        let (valence, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-        let (bnd_rank, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+        let Regions {
+            face_of,
+            twin,
+            edge_of,
+            edge_he,
+            vert_he,
+            valence,
+            bnd_rank,
+        } = regions(scratch, nv, nh)?;
 
         let offsets = mesh.offsets;
         let indices = mesh.indices;

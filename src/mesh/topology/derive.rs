@@ -28,49 +28,14 @@
 //! against the pattern while deriving (every corner the derivation relies on): a mismatch
 //! is an internal error, never a wrong topology.
 
-use super::{internal, Counts, Mesh, Result, Topology, NONE};
-use crate::error::Error;
+use super::{internal, regions, Counts, Mesh, Regions, Result, Topology, NONE};
 use crate::mesh::refine::Pattern;
-use crate::mesh::{get, set, topology_scratch_len, MAX_COUNT};
+use crate::mesh::{get, set, MAX_COUNT};
 use crate::MAX_VALENCE;
 
 /// Whether [`Topology::refined`] derives the child topology of `pattern`.
 pub(crate) fn derivable(pattern: Pattern) -> bool {
     matches!(pattern, Pattern::Quads | Pattern::Split1To4)
-}
-
-/// The seven regions of a topology scratch ([`Topology::build`]'s layout).
-struct Regions<'s> {
-    face_of: &'s mut [u32],
-    twin: &'s mut [u32],
-    edge_of: &'s mut [u32],
-    edge_he: &'s mut [u32],
-    vert_he: &'s mut [u32],
-    valence: &'s mut [u32],
-    bnd_rank: &'s mut [u32],
-}
-
-fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
-    let need = topology_scratch_len(nv, nh)?;
-    if scratch.len() < need {
-        return Err(Error::too_small(need));
-    }
-    let (face_of, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
-    let (twin, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-    let (edge_of, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-    let (edge_he, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-    let (vert_he, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-    let (valence, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-    let (bnd_rank, _) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-    Ok(Regions {
-        face_of,
-        twin,
-        edge_of,
-        edge_he,
-        vert_he,
-        valence,
-        bnd_rank,
-    })
 }
 
 /// `a == b`, or an internal error (the refined mesh is not the pattern's).
@@ -155,7 +120,7 @@ impl<'m, 's> Topology<'m, 's> {
 
     /// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that
     /// [`crate::mesh::refine::write_pattern`] wrote from this topology, in `scratch`
-    /// ([`topology_scratch_len`] of the child): the same arrays as [`Topology::build`] on
+    /// ([`crate::mesh::topology_scratch_len`] of the child): the same arrays as [`Topology::build`] on
     /// `mesh` (module docs).
     ///
     /// # Errors
@@ -461,7 +426,9 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
+    use crate::error::Error;
     use crate::mesh::refine::{pattern_size, write_pattern};
+    use crate::mesh::topology_scratch_len;
     use crate::quat::Point;
 
     fn leak<T>(v: Vec<T>) -> &'static [T] {
