@@ -68,3 +68,61 @@ pub fn untouched_u32(v: &[u32]) -> bool {
 pub fn same_bits(a: &[f64], b: &[f64]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
+
+/// The size caps of a decoded mesh (each target keeps its executions fast).
+#[derive(Clone, Copy)]
+pub struct Limits {
+    pub vertices: usize,
+    pub faces: usize,
+    pub indices: u32,
+}
+
+/// A mesh decoded from the fuzz input, in the C ABI's layout (positions xyz, CSR faces).
+#[derive(Clone)]
+pub struct Mesh {
+    pub pos: Vec<f64>,
+    pub off: Vec<u32>,
+    pub idx: Vec<u32>,
+}
+
+impl Mesh {
+    pub fn nv(&self) -> usize {
+        self.pos.len() / 3
+    }
+    pub fn nf(&self) -> usize {
+        self.off.len() - 1
+    }
+}
+
+/// Decodes a mesh within `limits`; `tweak` plants an out-of-contract value the byte mutations
+/// rarely reach (malformed offsets or a special coordinate at `tweak_at`).
+pub fn decode_mesh(r: &mut Reader<'_>, tweak: u8, tweak_at: u16, limits: Limits) -> Mesh {
+    let nv = usize::from(r.u16()).min(limits.vertices);
+    // No more faces than bytes left and at most `limits.indices` corners: a mutated count must
+    // not turn the missing bytes into a huge mesh of zeros (that made every execution
+    // allocate megabytes and ran at ~100 exec/s).
+    let nf = usize::from(r.u16()).min(limits.faces).min(r.left());
+    let mut off = Vec::with_capacity(nf + 1);
+    off.push(0u32);
+    let mut total = 0u32;
+    for _ in 0..nf {
+        total = (total + u32::from(r.u8())).min(limits.indices);
+        off.push(total);
+    }
+    let idx: Vec<u32> = (0..total).map(|_| u32::from(r.u16())).collect();
+    let mut pos: Vec<f64> = (0..3 * nv).map(|_| r.f64()).collect();
+    // Out-of-contract inputs the byte mutations rarely reach: malformed offsets and special
+    // coordinates (in any vertex, referenced or not).
+    match tweak & 3 {
+        1 => {
+            let k = usize::from(tweak_at) % off.len();
+            off[k] ^= u32::from(tweak >> 2);
+        }
+        2 if !pos.is_empty() => {
+            let k = usize::from(tweak_at) % pos.len();
+            pos[k] = SPECIALS[usize::from(tweak >> 2) % SPECIALS.len()];
+        }
+        _ => {}
+    }
+    Mesh { pos, off, idx }
+}

@@ -44,9 +44,11 @@ use nlsubdiv_ffi::mesh::*;
 use nlsubdiv_ffi::Status;
 
 /// Caps that keep one execution short (the solve is iterative).
-const MAX_VERTICES: usize = 200;
-const MAX_FACES: usize = 400;
-const MAX_INDICES: u32 = 1600;
+const LIMITS: Limits = Limits {
+    vertices: 200,
+    faces: 400,
+    indices: 1600,
+};
 /// The solve runs only when the last level stays below this many vertices.
 const MAX_OUT_VERTICES: usize = 3000;
 /// Elements of guard zone after every writable buffer.
@@ -88,48 +90,6 @@ fn mode_of(b: u8) -> Mode {
         7 => Mode::NullOptionalOutputs,
         _ => Mode::Plain,
     }
-}
-
-#[derive(Clone)]
-struct Mesh {
-    pos: Vec<f64>,
-    off: Vec<u32>,
-    idx: Vec<u32>,
-}
-
-impl Mesh {
-    fn nv(&self) -> usize {
-        self.pos.len() / 3
-    }
-    fn nf(&self) -> usize {
-        self.off.len() - 1
-    }
-}
-
-fn decode(r: &mut Reader<'_>, tweak: u8, tweak_at: u16) -> Mesh {
-    let nv = usize::from(r.u16()).min(MAX_VERTICES);
-    let nf = usize::from(r.u16()).min(MAX_FACES).min(r.left());
-    let mut off = Vec::with_capacity(nf + 1);
-    off.push(0u32);
-    let mut total = 0u32;
-    for _ in 0..nf {
-        total = (total + u32::from(r.u8())).min(MAX_INDICES);
-        off.push(total);
-    }
-    let idx: Vec<u32> = (0..total).map(|_| u32::from(r.u16())).collect();
-    let mut pos: Vec<f64> = (0..3 * nv).map(|_| r.f64()).collect();
-    match tweak & 3 {
-        1 => {
-            let k = usize::from(tweak_at) % off.len();
-            off[k] ^= u32::from(tweak >> 2);
-        }
-        2 if !pos.is_empty() => {
-            let k = usize::from(tweak_at) % pos.len();
-            pos[k] = SPECIALS[usize::from(tweak >> 2) % SPECIALS.len()];
-        }
-        _ => {}
-    }
-    Mesh { pos, off, idx }
 }
 
 /// A writable buffer of `cap` elements followed by a guard zone, all sentinels.
@@ -552,7 +512,7 @@ fuzz_target!(|data: &[u8]| {
     let amount = usize::from(r.u8());
     let tweak = r.u8();
     let tweak_at = r.u16();
-    let m = decode(&mut r, tweak, tweak_at);
+    let m = decode_mesh(&mut r, tweak, tweak_at, LIMITS);
     let opts = decode_options(&mut r, &m, head, edits, mode);
     let raw = opts.raw();
 

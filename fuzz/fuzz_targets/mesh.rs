@@ -31,9 +31,11 @@ use nlsubdiv_ffi::Status;
 /// Scheme codes tried: the known ones and a few above (must give `INVALID_ARGUMENT`).
 const SCHEME_CODES: u8 = 12;
 /// Caps that keep one execution short (the seeds have at most 400 vertices).
-const MAX_VERTICES: usize = 400;
-const MAX_FACES: usize = 800;
-const MAX_INDICES: u32 = 3200;
+const LIMITS: Limits = Limits {
+    vertices: 400,
+    faces: 800,
+    indices: 3200,
+};
 /// Multi-level comparisons only when the last level stays below this many vertices.
 const MAX_LEVEL_VERTICES: usize = 1500;
 /// Interpolating schemes (old vertices kept bit for bit), by code.
@@ -43,53 +45,6 @@ const INTERPOLATING: [u32; 4] = [
     NLS_SCHEME_VERTEX_INSERTION,
     NLS_SCHEME_SPHERELIKE,
 ];
-
-#[derive(Clone)]
-struct Mesh {
-    pos: Vec<f64>,
-    off: Vec<u32>,
-    idx: Vec<u32>,
-}
-
-impl Mesh {
-    fn nv(&self) -> usize {
-        self.pos.len() / 3
-    }
-    fn nf(&self) -> usize {
-        self.off.len() - 1
-    }
-}
-
-fn decode(r: &mut Reader<'_>, tweak: u8, tweak_at: u16) -> Mesh {
-    let nv = usize::from(r.u16()).min(MAX_VERTICES);
-    // No more faces than bytes left and at most MAX_INDICES corners: a mutated count must
-    // not turn the missing bytes into a huge mesh of zeros (that made every execution
-    // allocate megabytes and ran at ~100 exec/s).
-    let nf = usize::from(r.u16()).min(MAX_FACES).min(r.left());
-    let mut off = Vec::with_capacity(nf + 1);
-    off.push(0u32);
-    let mut total = 0u32;
-    for _ in 0..nf {
-        total = (total + u32::from(r.u8())).min(MAX_INDICES);
-        off.push(total);
-    }
-    let idx: Vec<u32> = (0..total).map(|_| u32::from(r.u16())).collect();
-    let mut pos: Vec<f64> = (0..3 * nv).map(|_| r.f64()).collect();
-    // Out-of-contract inputs the byte mutations rarely reach: malformed offsets and special
-    // coordinates (in any vertex, referenced or not).
-    match tweak & 3 {
-        1 => {
-            let k = usize::from(tweak_at) % off.len();
-            off[k] ^= u32::from(tweak >> 2);
-        }
-        2 if !pos.is_empty() => {
-            let k = usize::from(tweak_at) % pos.len();
-            pos[k] = SPECIALS[usize::from(tweak >> 2) % SPECIALS.len()];
-        }
-        _ => {}
-    }
-    Mesh { pos, off, idx }
-}
 
 /// What one `nls_mesh_subdivide` call returned, with its buffers.
 struct Call {
@@ -474,7 +429,7 @@ fuzz_target!(|data: &[u8]| {
     let amount = usize::from(r.u8());
     let tweak = r.u8();
     let tweak_at = r.u16();
-    let m = decode(&mut r, tweak, tweak_at);
+    let m = decode_mesh(&mut r, tweak, tweak_at, LIMITS);
 
     // 1. Size queries and the call agree on refusals of the arguments.
     let (s0, su, sp) = scratch_size(scheme, flags, &m);
