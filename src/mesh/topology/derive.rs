@@ -421,30 +421,35 @@ impl<'m, 's> Topology<'m, 's> {
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
-    extern crate std;
-    use std::vec;
-    use std::vec::Vec;
-
     use super::*;
     use crate::error::Error;
     use crate::mesh::refine::{pattern_size, write_pattern};
     use crate::mesh::topology_scratch_len;
     use crate::quat::Point;
+    use arrayvec::ArrayVec;
 
-    fn leak<T>(v: Vec<T>) -> &'static [T] {
-        v.leak()
+    /// `u32` and point arenas the levels of one test are carved from (no allocation in the
+    /// core, not even in its tests): every level keeps its buffers while the next is built.
+    const ARENA_U32: usize = 1 << 16;
+    const ARENA_POINTS: usize = 1 << 12;
+
+    /// Takes the first `n` elements of `*arena`, leaving the rest there.
+    fn take<'a, T>(arena: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+        let (head, rest) = core::mem::take(arena).split_at_mut(n);
+        *arena = rest;
+        head
     }
 
     /// Every array and count of two topologies of the same mesh.
-    fn assert_same(a: &Topology<'_, '_>, b: &Topology<'_, '_>, what: &str) {
-        assert_eq!(a.face_of, b.face_of, "{what}: faces of half-edges");
-        assert_eq!(a.twin, b.twin, "{what}: twins");
-        assert_eq!(a.edge_of, b.edge_of, "{what}: edge numbers");
-        assert_eq!(a.edge_he, b.edge_he, "{what}: edge representatives");
-        assert_eq!(a.vert_he, b.vert_he, "{what}: star starts");
-        assert_eq!(a.valence, b.valence, "{what}: valences");
-        assert_eq!(a.bnd_rank, b.bnd_rank, "{what}: boundary ranks");
-        assert_eq!(a.counts(), b.counts(), "{what}: counts");
+    fn assert_same(a: &Topology<'_, '_>, b: &Topology<'_, '_>, what: (Pattern, usize)) {
+        assert_eq!(a.face_of, b.face_of, "{what:?}: faces of half-edges");
+        assert_eq!(a.twin, b.twin, "{what:?}: twins");
+        assert_eq!(a.edge_of, b.edge_of, "{what:?}: edge numbers");
+        assert_eq!(a.edge_he, b.edge_he, "{what:?}: edge representatives");
+        assert_eq!(a.vert_he, b.vert_he, "{what:?}: star starts");
+        assert_eq!(a.valence, b.valence, "{what:?}: valences");
+        assert_eq!(a.bnd_rank, b.bnd_rank, "{what:?}: boundary ranks");
+        assert_eq!(a.counts(), b.counts(), "{what:?}: counts (pattern, level)");
     }
 
     /// `levels` refinements of `pattern`, each level's topology derived from the previous
@@ -460,57 +465,65 @@ mod tests {
         levels: usize,
     ) {
         for rot in 0..4 {
-            let mut rotated = Vec::new();
+            let mut rotated: ArrayVec<u32, 64> = ArrayVec::new();
             for (f, w) in offs.windows(2).enumerate() {
                 let face = &idx[w[0] as usize..w[1] as usize];
                 let r = (rot + f) % face.len();
-                rotated.extend(face[r..].iter().chain(&face[..r]));
+                rotated
+                    .try_extend_from_slice(&face[r..])
+                    .and_then(|()| rotated.try_extend_from_slice(&face[..r]))
+                    .unwrap();
             }
             derive_levels(pattern, pos, offs, &rotated, levels);
         }
     }
 
     fn derive_levels(pattern: Pattern, pos: &[Point], offs: &[u32], idx: &[u32], levels: usize) {
-        let (pos, offs, idx) = (leak(pos.to_vec()), leak(offs.to_vec()), leak(idx.to_vec()));
+        let mut store_u32 = [0u32; ARENA_U32];
+        let mut store_points = [[0.0f64; 3]; ARENA_POINTS];
+        let mut arena_u32: &mut [u32] = &mut store_u32;
+        let mut arena_points: &mut [Point] = &mut store_points;
         let mesh = Mesh::new(pos, offs, idx);
         let need = topology_scratch_len(mesh.num_vertices(), mesh.num_corners()).unwrap();
-        let sc: &'static mut [u32] = vec![0u32; need].leak();
-        let mut topo = Topology::build(mesh, sc).unwrap();
+        let mut topo = Topology::build(mesh, take(&mut arena_u32, need)).unwrap();
+        let mut short = [0u32; 1 << 14];
         for k in 1..=levels {
             let sz = pattern_size(pattern, &topo).unwrap();
-            let o: &'static mut [u32] = vec![0u32; sz.faces + 1].leak();
-            let i: &'static mut [u32] = vec![0u32; sz.indices].leak();
+            let o = take(&mut arena_u32, sz.faces + 1);
+            let i = take(&mut arena_u32, sz.indices);
             write_pattern(pattern, &topo, o, i).unwrap();
+            let (o, i): (&[u32], &[u32]) = (o, i);
             // Any finite positions: the topology does not read them.
-            let p: Vec<Point> = (0..sz.vertices).map(|v| [v as f64, 0.5, -1.0]).collect();
-            let child = Mesh::new(leak(p), o, i);
+            let p = take(&mut arena_points, sz.vertices);
+            for (v, q) in p.iter_mut().enumerate() {
+                *q = [v as f64, 0.5, -1.0];
+            }
+            let child = Mesh::new(p, o, i);
             let need = topology_scratch_len(sz.vertices, sz.indices).unwrap();
             // Garbage in the derived scratch: every entry the topology uses must be written.
-            let sd: &'static mut [u32] = vec![0xdead_beefu32; need].leak();
-            let sb: &'static mut [u32] = vec![0u32; need].leak();
-            let short = &mut vec![0u32; need - 1];
+            let sd = take(&mut arena_u32, need);
+            sd.fill(0xdead_beef);
+            let sb = take(&mut arena_u32, need);
             assert_eq!(
-                topo.refined(pattern, child, short).unwrap_err(),
+                topo.refined(pattern, child, &mut short[..need - 1])
+                    .unwrap_err(),
                 Error::too_small(need)
             );
             let derived = topo.refined(pattern, child, sd).unwrap();
             let built = Topology::build(child, sb).unwrap();
-            assert_same(&derived, &built, &std::format!("{pattern:?} level {k}"));
+            assert_same(&derived, &built, (pattern, k));
             topo = derived;
         }
     }
 
-    fn grid_positions(n: usize) -> Vec<Point> {
-        (0..n)
-            .map(|v| [(v % 4) as f64, (v / 4) as f64, 0.0])
-            .collect()
+    fn grid_positions<const N: usize>() -> [Point; N] {
+        core::array::from_fn(|v| [(v % 4) as f64, (v / 4) as f64, 0.0])
     }
 
     #[test]
     fn quads_cube() {
-        let pos: Vec<Point> = (0..8)
-            .map(|v| [(v & 1) as f64, ((v >> 1) & 1) as f64, (v >> 2) as f64])
-            .collect();
+        let pos: [Point; 8] =
+            core::array::from_fn(|v| [(v & 1) as f64, ((v >> 1) & 1) as f64, (v >> 2) as f64]);
         let idx = [
             0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
         ];
@@ -521,7 +534,7 @@ mod tests {
     /// Quads, triangles and a pentagon with a boundary and an isolated vertex.
     #[test]
     fn quads_mixed_open_with_isolated_vertex() {
-        let pos = grid_positions(16);
+        let pos = grid_positions::<16>();
         let idx = [
             0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 2, 7, 6, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 9, 10,
             14, 13, 12,
@@ -532,7 +545,7 @@ mod tests {
 
     #[test]
     fn split_octahedron() {
-        let pos: Vec<Point> = vec![
+        let pos: [Point; 6] = [
             [1.0, 0.0, 0.0],
             [-1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
@@ -543,50 +556,52 @@ mod tests {
         let idx = [
             0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
         ];
-        let offs: Vec<u32> = (0..=8).map(|f| 3 * f).collect();
+        let offs: [u32; 9] = core::array::from_fn(|f| 3 * f as u32);
         derive_equals_build(Pattern::Split1To4, &pos, &offs, &idx, 3);
     }
 
     /// A triangulated open grid, a second component and an isolated vertex.
     #[test]
     fn split_open_two_components_with_isolated_vertex() {
-        let pos = grid_positions(16);
-        let mut idx: Vec<u32> = Vec::new();
+        let pos = grid_positions::<16>();
+        let mut idx: ArrayVec<u32, 64> = ArrayVec::new();
         for j in 0..2u32 {
             for i in 0..3u32 {
                 let a = 4 * j + i;
                 let (b, c, d) = (a + 1, a + 5, a + 4);
                 if (i + j) % 2 == 0 {
-                    idx.extend([a, b, c, a, c, d]);
+                    idx.try_extend_from_slice(&[a, b, c, a, c, d]).unwrap();
                 } else {
-                    idx.extend([a, b, d, b, c, d]);
+                    idx.try_extend_from_slice(&[a, b, d, b, c, d]).unwrap();
                 }
             }
         }
-        idx.extend([13, 12, 14]);
-        let offs: Vec<u32> = (0..=idx.len() as u32 / 3).map(|f| 3 * f).collect();
+        idx.try_extend_from_slice(&[13, 12, 14]).unwrap();
+        let offs: ArrayVec<u32, 32> = (0..=idx.len() as u32 / 3).map(|f| 3 * f).collect();
         derive_equals_build(Pattern::Split1To4, &pos, &offs, &idx, 3);
     }
 
     /// A child that is not the pattern's is refused, never described wrongly.
     #[test]
     fn wrong_child_is_an_error() {
-        let pos = grid_positions(4);
+        let pos = grid_positions::<4>();
         let (offs, idx) = ([0u32, 3, 6], [0u32, 1, 2, 0, 2, 3]);
         let mesh = Mesh::new(&pos, &offs, &idx);
-        let mut sc = vec![0u32; topology_scratch_len(4, 6).unwrap()];
-        let topo = Topology::build(mesh, &mut sc).unwrap();
+        let mut sc = [0u32; 64];
+        let need = topology_scratch_len(4, 6).unwrap();
+        let topo = Topology::build(mesh, &mut sc[..need]).unwrap();
         let sz = pattern_size(Pattern::Split1To4, &topo).unwrap();
-        let mut o = vec![0u32; sz.faces + 1];
-        let mut i = vec![0u32; sz.indices];
-        write_pattern(Pattern::Split1To4, &topo, &mut o, &mut i).unwrap();
+        let (mut o, mut i) = ([0u32; 64], [0u32; 64]);
+        let (o, i) = (&mut o[..sz.faces + 1], &mut i[..sz.indices]);
+        write_pattern(Pattern::Split1To4, &topo, o, i).unwrap();
         i.swap(0, 1);
-        let p = vec![[0.0; 3]; sz.vertices];
-        let child = Mesh::new(&p, &o, &i);
-        let mut s2 = vec![0u32; topology_scratch_len(sz.vertices, sz.indices).unwrap()];
-        assert!(topo.refined(Pattern::Split1To4, child, &mut s2).is_err());
-        assert!(topo.refined(Pattern::Quads, child, &mut s2).is_err());
-        assert!(topo.refined(Pattern::Dual, child, &mut s2).is_err());
+        let p = [[0.0; 3]; 64];
+        let child = Mesh::new(&p[..sz.vertices], o, i);
+        let mut s2 = [0u32; 512];
+        let s2 = &mut s2[..topology_scratch_len(sz.vertices, sz.indices).unwrap()];
+        assert!(topo.refined(Pattern::Split1To4, child, s2).is_err());
+        assert!(topo.refined(Pattern::Quads, child, s2).is_err());
+        assert!(topo.refined(Pattern::Dual, child, s2).is_err());
         assert!(!derivable(Pattern::CornerCut) && derivable(Pattern::Quads));
     }
 }
