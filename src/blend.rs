@@ -543,6 +543,17 @@ fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point>
     }
 }
 
+/// The order in which [`face_point_ordered`] reports the failures of its quadruplets' F4s
+/// (lowest first): a fixed order of statuses, so the report does not depend on evaluation order.
+fn failure_rank(status: Status) -> u8 {
+    match status {
+        Status::NonFiniteInput => 0,
+        Status::NumericalFailure => 1,
+        Status::DegenerateGeometry => 2,
+        _ => 3,
+    }
+}
+
 fn face_point_ordered(
     vertices: &[Point],
     candidates: &[Point],
@@ -557,6 +568,11 @@ fn face_point_ordered(
     }
     if d > crate::MAX_FACE_SIZE {
         return Err(Error::new(Status::ValenceTooHigh));
+    }
+    // A non-finite corner or candidate is `NonFiniteInput` whichever quadruplet meets it
+    // first (the quadruplets are evaluated in face order).
+    if !vertices.iter().chain(candidates).all(point_is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
     }
     let h = d / 2;
     let at = |s: &[Point], i: usize| {
@@ -604,6 +620,21 @@ fn face_point_ordered(
         *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
         Ok(())
     };
+    // The quadruplets are evaluated in face order, so the first failing one depends on where
+    // the face starts: every one is evaluated and the failure reported is the one of
+    // `failure_rank` (then the first), the same for every start.
+    let mut failure: Option<Error> = None;
+    let mut eval = |i: usize| -> (Point, i64, bool) {
+        match eval(i) {
+            Ok(r) => r,
+            Err(e) => {
+                if failure.is_none_or(|f| failure_rank(e.status) < failure_rank(f.status)) {
+                    failure = Some(e);
+                }
+                ([0.0; 3], 0, false)
+            }
+        }
+    };
     if d % 2 == 0 {
         // Quadruplet i + h is quadruplet i reversed, and F4(a, b, c, d) = F4(d, c, b, a)
         // (Lemma 4.1), noncircularity included: one evaluation serves both. It is the one
@@ -616,20 +647,23 @@ fn face_point_ordered(
             } else {
                 (i, i + h)
             };
-            let (pt, key, reversible) = eval(first)?;
+            let (pt, key, reversible) = eval(first);
             put(first, (pt, key))?;
             if reversible {
                 put(second, (pt, key))?;
             } else {
-                let (pt2, key2, _) = eval(second)?;
+                let (pt2, key2, _) = eval(second);
                 put(second, (pt2, key2))?;
             }
         }
     } else {
         for i in 0..d {
-            let (pt, key, _) = eval(i)?;
+            let (pt, key, _) = eval(i);
             put(i, (pt, key))?;
         }
+    }
+    if let Some(e) = failure {
+        return Err(e);
     }
     // (quadruplet start i, (rounded key, tie-break)), sorted stably with an insertion sort (d
     // is small, and the sort must be stable and panic-free). The tie-break is the id of `v_i`
@@ -792,6 +826,46 @@ mod tests {
                 .status,
             Status::InvalidArgument
         );
+    }
+
+    #[test]
+    fn face_point_failure_does_not_depend_on_the_face_start() {
+        // One candidate is NaN and another quadruplet overflows (points f64::MAX apart): the
+        // status must be the same from every start (found by the primitives fuzz target,
+        // fuzz/regressions/primitives/face-point-status-start). Then two finite failures:
+        // an overflowing quadruplet and well-behaved ones.
+        let m = f64::MAX;
+        let verts = [
+            [0.9 * m, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-0.9 * m, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+        ];
+        let mut cands = [
+            [0.1, 0.0, 0.0],
+            [0.0, 0.1, 0.0],
+            [-0.1, 0.0, 0.0],
+            [0.0, -0.1, 0.0],
+        ];
+        let ids = [3u32, 1, 2, 0];
+        for (nan, want) in [
+            (true, Status::NonFiniteInput),
+            (false, Status::NumericalFailure),
+        ] {
+            if nan {
+                cands[1] = [f64::NAN, 0.0, 0.0];
+            } else {
+                cands[1] = [0.0, 0.1, 0.0];
+            }
+            for s in 0..4 {
+                let rot = |a: &[Point]| -> [Point; 4] { core::array::from_fn(|i| a[(i + s) % 4]) };
+                let rid: [u32; 4] = core::array::from_fn(|i| ids[(i + s) % 4]);
+                let got = face_point_with_ids(&rot(&verts), &rot(&cands), &rid)
+                    .unwrap_err()
+                    .status;
+                assert_eq!(got, want, "start {s}, NaN candidate: {nan}");
+            }
+        }
     }
 
     #[test]
