@@ -288,7 +288,8 @@ struct F4Eval {
     noncircularity: Option<f64>,
     /// Whether the point is also `F4(d, c, b, a)` by Lemma 4.1: the formula ran (no
     /// coincidence rule, which prefers `b` or `c` by position) and `ρ` is not a negative real
-    /// (whose printed rule depends on the order).
+    /// (whose printed rule depends on the order). Read only for evaluations without a hint:
+    /// [`f4_hinted`]'s axis snapping depends on the order.
     reversible: bool,
 }
 
@@ -486,8 +487,9 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 ///
 /// Evaluation (docs/RESULTS.md, "Möbius arithmetic"): steps 2 and 3 share their cross-ratio
 /// (the key is the noncircularity of the `ρ` F4 computes, in F4's normalised frame); for an
-/// even face quadruplet `i + h` is quadruplet `i` reversed and takes its F4 point and key
-/// (Lemma 4.1; both are evaluated where F4 is not symmetric); a step onto the reversed
+/// even face quadruplet `i + h` is quadruplet `i` reversed: the one of the pair whose `v_i`
+/// has the smaller id (then the earlier in face order) is evaluated and its partner takes its
+/// F4 point and key (Lemma 4.1; both are evaluated where F4 is not symmetric); a step onto the reversed
 /// partner of the previous quadruplet is F6 with `Y = 1`, `Z = X⁻¹`, evaluated as the F4 it
 /// equals (`f6_of_reversed_chain`).
 ///
@@ -499,8 +501,11 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 ///
 /// # Errors
 /// [`Status::InvalidArgument`] when the slices differ in length; [`Status::TooFewPoints`] for
-/// fewer than 3 corners; [`Status::ValenceTooHigh`] above [`crate::MAX_FACE_SIZE`]; the errors
-/// of [`f4`] and [`f6`] (the caller's degenerate-neighbourhood policy decides what to do).
+/// fewer than 3 corners; [`Status::ValenceTooHigh`] above [`crate::MAX_FACE_SIZE`];
+/// [`Status::NonFiniteInput`] for a non-finite corner or candidate; the errors of [`f4`] and
+/// [`f6`] (the caller's degenerate-neighbourhood policy decides what to do). When several
+/// quadruplets' F4s fail, the one reported is `NumericalFailure` before `DegenerateGeometry`,
+/// so it does not depend on where the face starts.
 pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
     face_point_ordered(vertices, candidates, None)
 }
@@ -550,6 +555,7 @@ fn failure_rank(status: Status) -> u8 {
         Status::NonFiniteInput => 0,
         Status::NumericalFailure => 1,
         Status::DegenerateGeometry => 2,
+        // F4 returns none of the other statuses today; they would tie here.
         _ => 3,
     }
 }
@@ -569,8 +575,8 @@ fn face_point_ordered(
     if d > crate::MAX_FACE_SIZE {
         return Err(Error::new(Status::ValenceTooHigh));
     }
-    // A non-finite corner or candidate is `NonFiniteInput` whichever quadruplet meets it
-    // first (the quadruplets are evaluated in face order).
+    // A shortcut: a non-finite corner or candidate is `NonFiniteInput` (the ranking below
+    // would report it too, after evaluating every quadruplet).
     if !vertices.iter().chain(candidates).all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }

@@ -73,7 +73,8 @@ pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<u
 
 /// A validated mesh with its half-edge topology, held in caller scratch.
 ///
-/// Built once by [`Topology::build`]; every query is `O(1)` except star walks (`O(valence)`).
+/// Built by [`Topology::build`] (validating) or derived from a parent level's by
+/// `Topology::refined` (multi-level calls); every query is `O(1)` except star walks (`O(valence)`).
 /// Queries return `Result` only to stay panic-free: on a built topology they cannot fail for
 /// indices in range.
 #[derive(Clone, Copy, Debug)]

@@ -35,8 +35,8 @@ pub struct LevelPlan {
     /// `u32` scratch of [`subdivide_levels`]: the topologies of the input levels plus the
     /// offsets and indices of the intermediate levels (two alternating buffers). The
     /// topology buffer is one (the largest input level) for most patterns; for the patterns
-    /// whose child topology is derived from the parent's (Catmull–Clark, Kobbelt, Loop,
-    /// Modified Butterfly) two alternate (the two largest input levels: a derivation reads
+    /// whose child topology is derived from the parent's (Catmull–Clark, Kobbelt, Spherelike,
+    /// Loop, Modified Butterfly) two alternate (the two largest input levels: a derivation reads
     /// one while writing the other). With zero levels it is the input's topology: the call
     /// still validates the input ([`plan_scratch_len`]).
     pub scratch_u32: usize,

@@ -444,15 +444,17 @@ impl Local {
 
     /// Re-targets the memo to the canonical form of `v`'s star: [`StarKind::Interior`] for
     /// a closed star, [`StarKind::Boundary`] for an open one (ring from one boundary
-    /// neighbour to the other). `Err` when the form does not exist; the memo then holds no
-    /// form (`v = NONE`). `spokes` receives the star of `v` (as [`Topology::spokes_into`]),
-    /// which the drivers then walk instead of walking the star again.
+    /// neighbour to the other). `Ok(false)` when the form does not exist (a degenerate
+    /// star: the caller's fallback); the memo then holds no form (`v = NONE`). `Err` only for
+    /// a failure of the topology queries, which is an error, never a fallback. `spokes`
+    /// receives the star of `v` (as [`Topology::spokes_into`]), which the drivers then walk
+    /// instead of walking the star again.
     ///
     /// The images of the ring neighbours are cached at once, from the tangent polygon the
     /// form was made of: [`CanonicalForm::to_normalised`] would compute the same `T_i` again
     /// (bit for bit the same images; a neighbour whose image fails is left to `canon`, which
     /// fails the same way).
-    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32, spokes: &mut Spokes) -> Result<()> {
+    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32, spokes: &mut Spokes) -> Result<bool> {
         self.v = NONE;
         self.cache.clear();
         topo.spokes_into(v, spokes)?;
@@ -467,19 +469,19 @@ impl Local {
         } else {
             StarKind::Interior
         };
-        self.cf = CanonicalForm::new_with_tangents(
-            topo.position(v)?,
-            &self.ring,
-            kind,
-            &mut self.tangents,
-        )?;
+        let centre = topo.position(v)?;
+        self.cf =
+            match CanonicalForm::new_with_tangents(centre, &self.ring, kind, &mut self.tangents) {
+                Ok(cf) => cf,
+                Err(_) => return Ok(false),
+            };
         self.v = v;
         for (s, t) in spokes.iter().zip(self.tangents.iter()) {
             if let Ok(p) = self.cf.normalised_from_tangent(*t) {
                 let _ = self.cache.try_push((s.neighbour, p));
             }
         }
-        Ok(())
+        Ok(true)
     }
 
     /// The image of vertex `u` in the canonical form, in its normalised frame
@@ -596,7 +598,7 @@ impl Driver<'_, '_, '_, '_> {
             l.cache.clear();
             return Ok(false);
         }
-        Ok(l.reset(self.topo, v, spokes).is_ok())
+        l.reset(self.topo, v, spokes)
     }
 
     /// The vertex whose canonical form evaluates corner `i` of face `f`: the corner's own

@@ -19,7 +19,7 @@
 //!
 //!   *Why this rule.* Kobbelt designs the virtual points "in such a way that the face point
 //!   can be computed in either direction of the quad mesh, horizontally or vertically (i.e.,
-//!   as tensor product of the 4-point scheme)" (seed 000 §4.3, "Blending face points",
+//!   as tensor product of the 4-point scheme)" (seed 000 §4.4.3, "Blending face points",
 //!   describing Kobbelt 1996). Writing out the two directional face points of a face
 //!   `(v, q_j, d_j, q_{j+1})` (Fig. 14) with everything else regular, all points cancel
 //!   except `w(1/2 + w)(r_{j+1} − r_j + q_{j+2} − q_{j−1}) − w² (d_{j+2} − d_{j−2})`, so the

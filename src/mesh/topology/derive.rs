@@ -40,7 +40,7 @@ pub(crate) fn derivable(pattern: Pattern) -> bool {
 
 /// `a == b`, or an internal error (the refined mesh is not the pattern's).
 #[inline]
-fn expect(a: u32, b: u32) -> Result<()> {
+fn check_eq(a: u32, b: u32) -> Result<()> {
     if a == b {
         Ok(())
     } else {
@@ -164,7 +164,7 @@ impl<'m, 's> Topology<'m, 's> {
         let offsets = self.mesh.offsets;
         let indices = self.mesh.indices;
         let (new_offsets, new_indices) = (mesh.offsets, mesh.indices);
-        expect(get(new_offsets, 0)?, 0)?;
+        check_eq(get(new_offsets, 0)?, 0)?;
         for f in 0..nf {
             let a = get(offsets, f)?;
             let b = get(offsets, f + 1)?;
@@ -191,11 +191,11 @@ impl<'m, 's> Topology<'m, 's> {
                 let Some(&[c0, c1, c2, c3]) = new_indices.get(q..q + 4) else {
                     return Err(internal());
                 };
-                expect(c0, get(indices, h as usize)?)?;
-                expect(c1, nv32 + get(self.edge_of, h as usize)?)?;
-                expect(c2, fp)?;
-                expect(c3, nv32 + get(self.edge_of, p as usize)?)?;
-                expect(get(new_offsets, h as usize + 1)?, 4 * h + 4)?;
+                check_eq(c0, get(indices, h as usize)?)?;
+                check_eq(c1, nv32 + get(self.edge_of, h as usize)?)?;
+                check_eq(c2, fp)?;
+                check_eq(c3, nv32 + get(self.edge_of, p as usize)?)?;
+                check_eq(get(new_offsets, h as usize + 1)?, 4 * h + 4)?;
             }
         }
         // Edges (v, E): v -> E is 4h, E -> dest(h) is 4 next(h) + 3.
@@ -296,9 +296,9 @@ impl<'m, 's> Topology<'m, 's> {
         let big_c = |h: u32| 12 * (h / 3) + 9 + h % 3;
         let next = |h: u32| if h % 3 == 2 { h - 2 } else { h + 1 };
         let prev = |h: u32| if h % 3 == 0 { h + 2 } else { h - 1 };
-        expect(get(new_offsets, 0)?, 0)?;
+        check_eq(get(new_offsets, 0)?, 0)?;
         for f in 0..nf as u32 {
-            expect(get(self.mesh.offsets, f as usize + 1)?, 3 * f + 3)?;
+            check_eq(get(self.mesh.offsets, f as usize + 1)?, 3 * f + 3)?;
             for i in 0..3u32 {
                 let h = 3 * f + i;
                 let (nx, p) = (next(h), prev(h));
@@ -321,16 +321,16 @@ impl<'m, 's> Topology<'m, 's> {
                     return Err(internal());
                 };
                 let eh = nv32 + get(self.edge_of, h as usize)?;
-                expect(c0, get(indices, h as usize)?)?;
-                expect(c1, eh)?;
-                expect(c2, nv32 + get(self.edge_of, p as usize)?)?;
-                expect(get(new_indices, c)?, eh)?;
-                expect(
+                check_eq(c0, get(indices, h as usize)?)?;
+                check_eq(c1, eh)?;
+                check_eq(c2, nv32 + get(self.edge_of, p as usize)?)?;
+                check_eq(get(new_indices, c)?, eh)?;
+                check_eq(
                     get(new_offsets, (4 * f + i) as usize + 1)?,
                     12 * f + 3 * i + 3,
                 )?;
             }
-            expect(get(new_offsets, 4 * f as usize + 4)?, 12 * f + 12)?;
+            check_eq(get(new_offsets, 4 * f as usize + 4)?, 12 * f + 12)?;
         }
         // Edges (v, E): v -> E is A(h), E -> dest(h) is A(next h) + 2.
         let mut id = self.spoke_edges(&mut r, |h| Ok(big_a(h)), |h| Ok(big_a(next(h)) + 2))?;
