@@ -39,11 +39,13 @@ def read(out, step):
 def find_log(out, prefix):
     """The log of the step whose name starts with `prefix` (names carry details)."""
     stem = log_name(prefix)[: -len(".log")]
-    for f in sorted(os.listdir(out)):
-        if f.startswith(stem) and f.endswith(".log"):
-            with open(os.path.join(out, f), encoding="utf-8", errors="replace") as fh:
-                return fh.read()
-    return None
+    found = [f for f in os.listdir(out) if f.startswith(stem) and f.endswith(".log")]
+    if not found:
+        return None
+    # The newest, should an older run's log under another step name still be there.
+    newest = max(found, key=lambda f: (os.path.getmtime(os.path.join(out, f)), f))
+    with open(os.path.join(out, newest), encoding="utf-8", errors="replace") as fh:
+        return fh.read()
 
 
 def status_names():

@@ -12,6 +12,9 @@ cd "$(dirname "$0")/.."
 ROOT=$PWD
 OUT=${NLS_TEST_OUT:-$ROOT/target/test-all}
 mkdir -p "$OUT"
+# Step logs of an earlier run (perhaps under an older step name) must not feed this run's
+# dashboard.
+rm -f "$OUT"/*.log
 export CARGO_TERM_COLOR=never
 
 passed=0; failed=0; skipped=0; failures=()
