@@ -703,17 +703,22 @@ impl<'m, 's> Topology<'m, 's> {
     /// The topology of `mesh` whose arrays [`Topology::build`] (or a derivation of
     /// [`derive`]) left in `scratch`, with the `counts` it returned: the same view again in
     /// `O(1)`, nothing re-validated. Only the regions' lengths are checked.
-    pub(crate) fn from_parts(mesh: Mesh<'m>, scratch: &'s [u32], counts: Counts) -> Result<Self> {
-        let nv = mesh.num_vertices();
-        let nh = mesh.num_corners();
-        let need = topology_scratch_len(nv, nh)?;
-        let scratch = scratch.get(..need).ok_or(internal())?;
-        let (face_of, rest) = scratch.split_at_checked(nh).ok_or(internal())?;
-        let (twin, rest) = rest.split_at_checked(nh).ok_or(internal())?;
-        let (edge_of, rest) = rest.split_at_checked(nh).ok_or(internal())?;
-        let (edge_he, rest) = rest.split_at_checked(nh).ok_or(internal())?;
-        let (vert_he, rest) = rest.split_at_checked(nv).ok_or(internal())?;
-        let (valence, bnd_rank) = rest.split_at_checked(nv).ok_or(internal())?;
+    pub(crate) fn from_parts(
+        mesh: Mesh<'m>,
+        scratch: &'s mut [u32],
+        counts: Counts,
+    ) -> Result<Self> {
+        // The scratch was sized for this mesh when the arrays were written: short is a bug.
+        let Regions {
+            face_of,
+            twin,
+            edge_of,
+            edge_he,
+            vert_he,
+            valence,
+            bnd_rank,
+        } = regions(scratch, mesh.num_vertices(), mesh.num_corners()).map_err(|_| internal())?;
+        let edge_he: &'s [u32] = edge_he;
         Ok(Topology {
             mesh,
             face_of,
