@@ -300,6 +300,10 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     let pts = [a, b, c, d];
     // Pairs ab, ac, ad, bc, bd, cd.
     let sq: [f64; 6] = pair_squares(&pts);
+    let max_sq = max_of(&sq);
+    if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
+        return f4_by_differences(pts, sq, max_sq, hint);
+    }
     let [ab, ac, _, bc, bd, cd] = sq;
     let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
@@ -388,6 +392,124 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
     }
 }
 
+/// Squared diameters between which the blends work on differences of the input points
+/// alone, without a frame: diameters in [1e-100, 1e100]. Every quantity of Eq. (3) except
+/// the final offset is a ratio of lengths (cross-ratios, `M`, `χ`), and an edge that is not
+/// coincident is at least 1e-13 × 1e-100 long, so no square, inverse or product leaves
+/// `[SAFE_MIN, SAFE_MAX]`; outside, the normalised frame below keeps intermediates in range.
+const DIFFERENCES_MIN_SQ: f64 = 1e-200;
+const DIFFERENCES_MAX_SQ: f64 = 1e200;
+
+/// The largest of `sq` (squares of finite points: never NaN, so `>` is `f64::max`).
+fn max_of(sq: &[f64]) -> f64 {
+    let mut m = 0.0;
+    for &x in sq {
+        if x > m {
+            m = x;
+        }
+    }
+    m
+}
+
+/// `p = e + (M + χ)⁻¹ M (b − e)`: the solution of `cr[e, a, b, p] = χ` with
+/// `M = (a − e)(b − a)⁻¹`, which is `(M + χ)⁻¹ (χ e + M b)` (Eq. (3)) with `χ e + M b`
+/// split as `(M + χ) e + M (b − e)`: it reads only the difference `b − e`, so it needs no
+/// frame. A new point at infinity is [`Status::DegenerateGeometry`]; a finite offset from a
+/// point so far out that the sum overflows is [`Status::NumericalFailure`].
+#[inline]
+fn solve_by_difference(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    let offset = ((m + chi).inverse().ok_or(degenerate)? * m.mul_im(sub(b, e))).to_point();
+    if !point_is_finite(&offset) {
+        return Err(degenerate);
+    }
+    let p = add(e, offset);
+    if point_is_finite(&p) {
+        Ok(p)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
+}
+
+/// [`f4_impl`] for four finite points of diameter² `max_sq` in
+/// `[DIFFERENCES_MIN_SQ, DIFFERENCES_MAX_SQ]` with pairwise squares `sq`: the same rules in
+/// the same order, evaluated on differences of the inputs (each rounded once) instead of on
+/// points moved to a normalised frame. Cross-ratios are invariant under translations and
+/// scalings, so this is the same computation in exact arithmetic; it saves the frame's
+/// twelve divisions and the square roots of the coincidence tests (which compare squares:
+/// `|p − q|² ≤ 1e-26 · diameter²`), and it rounds less.
+fn f4_by_differences(
+    [a, b, c, d]: [Point; 4],
+    sq: [f64; 6],
+    max_sq: f64,
+    hint: Option<Point>,
+) -> Result<F4Eval> {
+    let [ab, ac, _, bc, bd, cd] = sq;
+    let tol_sq = COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq;
+    let early = |point: Point| {
+        Ok(F4Eval {
+            point,
+            noncircularity: None,
+            reversible: false,
+        })
+    };
+    if bc <= tol_sq || ab <= tol_sq {
+        return early(b);
+    }
+    if cd <= tol_sq || ac <= tol_sq {
+        return early(c);
+    }
+    if bd <= tol_sq {
+        return early(b);
+    }
+    // ρ = cr[c, a, b, d] = q_ca q_ab⁻¹ q_bd q_dc⁻¹.
+    let cr = CrossRatio::from_differences(sub(a, c), sub(b, a), sub(d, b), sub(c, d))?;
+    let mut rho = cr.value()?;
+    let rho_abs = rho.abs();
+    let noncircularity = if rho_abs == 0.0 {
+        0.0
+    } else {
+        1.0 - rho.w.abs() / rho_abs
+    };
+    let reversible = !is_negative_real(rho);
+    let (mut la, mut lb, mut lc) = (a, b, c);
+    let mut m = cr.prefix;
+    // The mirrored order when it divides by the longer edge (see `f4_impl`); `|b − a|²` and
+    // `|c − d|²` are the same sums as in the mirrored call, so F4 stays bit-symmetric.
+    if reversible && ab < cd {
+        (la, lb, lc) = (d, c, b);
+        rho = cr.transposed()?;
+        m = cr.transposed_prefix();
+    }
+    let mut axis = None;
+    let mut snap = false;
+    if let Some(x) = hint {
+        if rho.w < 0.0 {
+            if let Ok(q) = cross_ratio_from_prefix(m, lc, lb, x) {
+                let im = q.abs_im();
+                if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
+                    axis = Some([q.x / im, q.y / im, q.z / im]);
+                    snap = true;
+                }
+            }
+        }
+    }
+    let negative_real = is_negative_real(rho);
+    let axis = match axis {
+        Some(n) => n,
+        None if rho.w < 0.0 => plane_normal(la, lb, lc),
+        None => [0.0, 0.0, 1.0],
+    };
+    let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let chi = if negative_real { root } else { -root };
+    let point = solve_by_difference(m, lb, lc, chi)?;
+    Ok(F4Eval {
+        point,
+        noncircularity: Some(noncircularity),
+        reversible,
+    })
+}
+
 /// The noncircularity `1 − |Re ρ| / |ρ|` of the quadruplet `(a, b, c, d)` with the cross-ratio
 /// `ρ = cr[c, a, b, d]` that [`f4`] uses: 0 for cocircular points (seed 000 §4.4.3 (ii)).
 ///
@@ -436,12 +558,16 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
         return Ok(b);
     }
     let sq: [f64; 15] = pair_squares(&pts);
+    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
+    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
+    let max_sq = max_of(&sq);
+    if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
+        return f6_by_differences(pts, be, max_sq);
+    }
     let frame = Frame::from_squares(&pts, &sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
-    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
-    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
     if frame.size == 0.0 || frame.coincide_sq(b, e, be) {
         return Ok(b);
     }
@@ -469,6 +595,32 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
     } else {
         Err(Error::new(Status::NumericalFailure))
     }
+}
+
+/// [`f6`] for six finite points of diameter² `max_sq` in
+/// `[DIFFERENCES_MIN_SQ, DIFFERENCES_MAX_SQ]` with `|b − e|² = be`: the same rules on
+/// differences of the inputs, without the normalised frame (as [`f4_by_differences`]; the
+/// cross-ratios and `χ` are ratios of lengths, and the solve reads `b − e` only).
+fn f6_by_differences([a, b, c, d, e, f]: [Point; 6], be: f64, max_sq: f64) -> Result<Point> {
+    if be <= COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq {
+        return Ok(b);
+    }
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    // X = cr[e, a, b, d] = q_ea q_ab⁻¹ q_bd q_de⁻¹; Y = cr[e, a, b, f] shares its prefix, the
+    // M of the solve; Z = cr[e, c, b, f].
+    let cx = CrossRatio::from_differences(sub(a, e), sub(b, a), sub(d, b), sub(e, d))?;
+    let x = cx.value()?;
+    let y = cross_ratio_from_prefix(cx.prefix, e, b, f)?;
+    let z = cross_ratio(e, c, b, f)?;
+    let axis = imaginary_axis(&[x, y, z]);
+    let snap = axis.is_some();
+    let n = axis.unwrap_or_else(|| plane_normal(a, b, e));
+    let sx = sqrt_snapped(x, n, snap).ok_or(degenerate)?;
+    let sz = sqrt_snapped(z, n, snap).ok_or(degenerate)?;
+    let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
+    let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
+    let chi = -(sx * sr);
+    solve_by_difference(cx.prefix, b, e, chi)
 }
 
 /// The face point of a `d`-gon from its vertices `v_i` and the candidates `v_{f,i}` computed

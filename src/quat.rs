@@ -400,6 +400,26 @@ impl CrossRatio {
         })
     }
 
+    /// The factors from the four differences `q_ij`, `q_jk`, `q_kl`, `q_li` (computed by the
+    /// caller, whose inputs are finite): the translation-free entry of the blends.
+    #[inline]
+    pub(crate) fn from_differences(
+        ij: Point,
+        jk: Point,
+        kl: Point,
+        li: Point,
+    ) -> Result<CrossRatio> {
+        let inv_jk = inverse_point(jk).ok_or(Error::new(Status::DegenerateGeometry))?;
+        let inv_li = inverse_point(li).ok_or(Error::new(Status::DegenerateGeometry))?;
+        Ok(CrossRatio {
+            prefix: im_mul_im(ij, inv_jk),
+            ij,
+            inv_jk,
+            kl,
+            inv_li,
+        })
+    }
+
     /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
     #[inline]
     pub(crate) fn value(&self) -> Result<Quat> {
