@@ -171,6 +171,7 @@ fn cross(a: Point, b: Point) -> Point {
 /// cross-ratio starting at the same point has its imaginary part along one axis). A component
 /// across `n` below `1e-12 |q|` is dropped; larger ones are kept, so nothing changes for
 /// points that are not cospherical.
+#[inline(always)]
 fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
     let q = if snap && q.w < 0.0 {
         let along = q.x * n[0] + q.y * n[1] + q.z * n[2];
@@ -416,7 +417,7 @@ fn max_of(sq: &[f64]) -> f64 {
 /// split as `(M + χ) e + M (b − e)`: it reads only the difference `b − e`, so it needs no
 /// frame. A new point at infinity is [`Status::DegenerateGeometry`]; a finite offset from a
 /// point so far out that the sum overflows is [`Status::NumericalFailure`].
-#[inline]
+#[inline(always)]
 fn solve_by_difference(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     let offset = ((m + chi).inverse().ok_or(degenerate)? * m.mul_im(sub(b, e))).to_point();

@@ -402,7 +402,7 @@ impl CrossRatio {
 
     /// The factors from the four differences `q_ij`, `q_jk`, `q_kl`, `q_li` (computed by the
     /// caller, whose inputs are finite): the translation-free entry of the blends.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn from_differences(
         ij: Point,
         jk: Point,
