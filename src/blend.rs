@@ -1055,6 +1055,59 @@ mod tests {
         assert!((norm(p) - 1.0).abs() < 1e-12, "{}", norm(p));
     }
 
+    /// Deterministic points in the unit cube (a 64-bit LCG; tests only).
+    fn lcg_points<const N: usize>(state: &mut u64) -> [Point; N] {
+        let mut next = || {
+            *state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (*state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        [[0.0; 3]; N].map(|_| [next(), next(), next()])
+    }
+
+    #[test]
+    fn difference_path_agrees_with_the_framed_path_and_scales_exactly() {
+        // Diameters inside [1e-100, 1e100] take the difference path, outside the normalised
+        // frame. Scaling by a power of two is exact, so (a) within the difference path the
+        // result scales bit for bit, and (b) the framed path on points scaled by 2^-400
+        // (diameter ~1e-120) must give the same point to rounding.
+        let scaled = |p: Point, k: i32| p.map(|x| libm::ldexp(x, k));
+        let mut state = 7;
+        let mut worst: f64 = 0.0;
+        for _ in 0..2000 {
+            let pts: [Point; 6] = lcg_points(&mut state);
+            let [a, b, c, d, e, f] = pts;
+            let cases: [(Result<Point>, &dyn Fn(i32) -> Result<Point>); 2] = [
+                (f4(a, b, c, d), &|k| {
+                    f4(scaled(a, k), scaled(b, k), scaled(c, k), scaled(d, k))
+                }),
+                (f6(a, b, c, d, e, f), &|k| {
+                    f6(
+                        scaled(a, k),
+                        scaled(b, k),
+                        scaled(c, k),
+                        scaled(d, k),
+                        scaled(e, k),
+                        scaled(f, k),
+                    )
+                }),
+            ];
+            for (base, at_scale) in cases {
+                let Ok(p) = base else {
+                    continue;
+                };
+                let p_up = at_scale(60).unwrap();
+                assert_eq!(scaled(p_up, -60), p, "difference path not scale-exact");
+                let framed = scaled(at_scale(-400).unwrap(), 400);
+                let size = 1.0 + norm(p);
+                worst = worst.max(dist(framed, p) / size);
+            }
+        }
+        // Both paths round a few times per step: observed 3.7e-15 of (1 + |p|).
+        assert!(worst <= 1e-13, "difference vs framed path: {worst:e}");
+    }
+
     #[test]
     fn f4_at_the_ends_of_the_f64_range() {
         // Subnormal coordinates: the frame size is subnormal and 1/size overflows; the inputs
