@@ -1078,7 +1078,8 @@ mod tests {
         for _ in 0..2000 {
             let pts: [Point; 6] = lcg_points(&mut state);
             let [a, b, c, d, e, f] = pts;
-            let cases: [(Result<Point>, &dyn Fn(i32) -> Result<Point>); 2] = [
+            type AtScale<'a> = &'a dyn Fn(i32) -> Result<Point>;
+            let cases: [(Result<Point>, AtScale); 2] = [
                 (f4(a, b, c, d), &|k| {
                     f4(scaled(a, k), scaled(b, k), scaled(c, k), scaled(d, k))
                 }),
