@@ -2,9 +2,13 @@
 //!
 //! Both solve `cr[e, a, b, p] = χ` for `p` (with `e = c` for F4):
 //! `p = (M + χ)⁻¹ (χ e + M b)` with `M = (a − e)(b − a)⁻¹`, which is Eq. (3) multiplied
-//! out (`M = ((a − b)(c − a)⁻¹)⁻¹`). The inputs are first moved to a normalised frame
-//! (centroid at the origin, unit diameter): similarities are Möbius maps, so this changes
-//! nothing in exact arithmetic and keeps intermediates far from overflow.
+//! out (`M = ((a − b)(c − a)⁻¹)⁻¹`). Every quantity but the last is a ratio of lengths, and
+//! the solve is evaluated as `p = e + (M + χ)⁻¹ M (b − e)`, so for inputs of diameter in
+//! [1e-100, 1e100] the blends read only differences of the inputs, each rounded once
+//! (`f4_by_differences`, `f6_by_differences`). Outside that range the inputs are first moved
+//! to a normalised frame (centroid at the origin, unit diameter; similarities are Möbius
+//! maps, so this changes nothing in exact arithmetic) that keeps intermediates far from
+//! overflow and underflow.
 
 use crate::error::{Error, Result, Status};
 use crate::mobius::{add, norm, scale, sub};
