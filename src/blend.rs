@@ -12,9 +12,7 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mobius::{add, norm, scale, sub};
-use crate::quat::{
-    cross_ratio, cross_ratio_from_prefix, point_is_finite, CrossRatio, Point, Quat, SAFE_MIN,
-};
+use crate::quat::{cross_ratio, cross_ratio_from_prefix, point_is_finite, CrossRatio, Point, Quat};
 
 /// Relative distance below which two inputs count as coincident (DESIGN.md).
 pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
@@ -37,17 +35,6 @@ struct Frame {
 #[inline]
 fn dist_sq(p: Point, q: Point) -> f64 {
     Quat::from_point(sub(p, q)).norm_sq()
-}
-
-/// `norm(sub(p, q))` bit for bit from `sq = dist_sq(p, q)`: its fast path is the square root
-/// of the same sum.
-#[inline]
-fn dist_from_sq(p: Point, q: Point, sq: f64) -> f64 {
-    if sq.is_finite() && sq > SAFE_MIN {
-        libm::sqrt(sq)
-    } else {
-        norm(sub(p, q))
-    }
 }
 
 /// Above this largest squared distance the size is the square root of the largest squared
@@ -102,10 +89,6 @@ impl Frame {
     }
     fn to_world(self, p: Point) -> Point {
         add(self.centre, scale(p, self.size))
-    }
-    /// Whether `p`, `q` with `sq = dist_sq(p, q)` are coincident: `|p − q| ≤ 1e-13 size`.
-    fn coincide_sq(self, p: Point, q: Point, sq: f64) -> bool {
-        dist_from_sq(p, q, sq) <= COINCIDENT_TOLERANCE * self.size
     }
 }
 
@@ -216,7 +199,7 @@ fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
     Some([q.x / im, q.y / im, q.z / im])
 }
 
-/// Solves `cr[e, a, b, p] = χ` for `p` (local frame).
+/// Solves `cr[e, a, b, p] = χ` for `p` (tests).
 #[cfg(test)]
 fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
@@ -226,21 +209,7 @@ fn solve_cross_ratio(a: Point, b: Point, e: Point, chi: Quat) -> Result<Point> {
         Quat::from_point(e),
     );
     let m = (qa - qe) * (qb - qa).inverse().ok_or(degenerate)?;
-    solve_with_m(m, b, e, chi)
-}
-
-/// [`solve_cross_ratio`] with `M = (a − e)(b − a)⁻¹` given: that is the prefix
-/// `q_ea q_ab⁻¹` of every `cr[e, a, b, ·]` ([`CrossRatio::prefix`]), the same bits.
-#[inline]
-fn solve_with_m(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
-    let degenerate = Error::new(Status::DegenerateGeometry);
-    let p = (m + chi).inverse().ok_or(degenerate)? * (chi.mul_im(e) + m.mul_im(b));
-    let p = p.to_point();
-    if point_is_finite(&p) {
-        Ok(p)
-    } else {
-        Err(degenerate)
-    }
+    solve_by_difference(m, b, e, chi)
 }
 
 /// The four-point blend `F4(a, b, c, d)`: the point `p` with `cr[c, a, b, p] = −√cr[c, a, b, d]`
@@ -299,109 +268,39 @@ struct F4Eval {
 }
 
 fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<F4Eval> {
-    if ![a, b, c, d].iter().all(point_is_finite) {
+    let pts = [a, b, c, d];
+    if !pts.iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let pts = [a, b, c, d];
-    // Pairs ab, ac, ad, bc, bd, cd.
-    let sq: [f64; 6] = pair_squares(&pts);
+    let sq = pair_squares(&pts);
     let max_sq = max_of(&sq);
     if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
-        return f4_by_differences(pts, sq, max_sq, hint);
+        return f4_in(pts, pts, sq, max_sq, hint);
     }
-    let [ab, ac, _, bc, bd, cd] = sq;
-    let frame = Frame::from_squares(&pts, &sq);
-    if !frame.size.is_finite() {
-        return Err(Error::new(Status::NumericalFailure));
-    }
-    let early = |point: Point| {
-        Ok(F4Eval {
-            point,
-            noncircularity: None,
-            reversible: false,
-        })
-    };
-    if frame.size == 0.0 || frame.coincide_sq(b, c, bc) || frame.coincide_sq(a, b, ab) {
-        return early(b);
-    }
-    if frame.coincide_sq(c, d, cd) || frame.coincide_sq(a, c, ac) {
-        return early(c);
-    }
-    if frame.coincide_sq(b, d, bd) {
-        return early(b);
-    }
-    let (mut la, mut lb, mut lc, ld) = (
-        frame.to_local(a),
-        frame.to_local(b),
-        frame.to_local(c),
-        frame.to_local(d),
-    );
-    let cr = CrossRatio::new(lc, la, lb, ld)?;
-    let mut rho = cr.value()?;
-    let rho_abs = rho.abs();
-    let noncircularity = if rho_abs == 0.0 {
-        0.0
-    } else {
-        1.0 - rho.w.abs() / rho_abs
-    };
-    let reversible = !is_negative_real(rho);
-    // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
-    let mut m = cr.prefix;
-    // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
-    // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
-    // the negative-real case, whose printed rule depends on the order.) Both orders give
-    // the same point in exact arithmetic, and the choice makes F4 bit-symmetric. The
-    // mirrored cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same
-    // differences and inverses.
-    if reversible && norm(sub(lb, la)) < norm(sub(lc, ld)) {
-        (la, lb, lc) = (ld, lc, lb);
-        rho = cr.transposed()?;
-        m = cr.transposed_prefix();
-    }
-    let mut axis = None;
-    let mut snap = false;
-    if let Some(x) = hint {
-        if rho.w < 0.0 {
-            // The sphere's axis at c from the fifth point (Lemma A.1): decides the
-            // negative-real case and cleans the direction of Im ρ near it. cr[c, a, b, x]
-            // shares its prefix with ρ.
-            if let Ok(q) = cross_ratio_from_prefix(m, lc, lb, frame.to_local(x)) {
-                let im = q.abs_im();
-                if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
-                    axis = Some([q.x / im, q.y / im, q.z / im]);
-                    snap = true;
-                }
+    match normalised(pts, sq)? {
+        None => f4_in(pts, pts, [0.0; 6], 0.0, hint),
+        Some(Normalised {
+            frame,
+            local,
+            local_sq,
+        }) => {
+            let hint = hint.map(|x| frame.to_local(x));
+            let mut r = f4_in(pts, local, local_sq, max_of(&local_sq), hint)?;
+            if r.noncircularity.is_some() {
+                r.point = to_world(Some(frame), r.point)?;
             }
+            Ok(r)
         }
-    }
-    let negative_real = is_negative_real(rho);
-    // The plane's normal is only read for a negative real (after snapping).
-    let axis = match axis {
-        Some(n) => n,
-        None if rho.w < 0.0 => plane_normal(la, lb, lc),
-        None => [0.0, 0.0, 1.0],
-    };
-    let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
-    // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
-    let chi = if negative_real { root } else { -root };
-    let p = solve_with_m(m, lb, lc, chi)?;
-    let out = frame.to_world(p);
-    if point_is_finite(&out) {
-        Ok(F4Eval {
-            point: out,
-            noncircularity: Some(noncircularity),
-            reversible,
-        })
-    } else {
-        Err(Error::new(Status::NumericalFailure))
     }
 }
 
-/// Squared diameters between which the blends work on differences of the input points
-/// alone, without a frame: diameters in [1e-100, 1e100]. Every quantity of Eq. (3) except
-/// the final offset is a ratio of lengths (cross-ratios, `M`, `χ`), and an edge that is not
-/// coincident is at least 1e-13 × 1e-100 long, so no square, inverse or product leaves
-/// `[SAFE_MIN, SAFE_MAX]`; outside, the normalised frame below keeps intermediates in range.
+/// Squared diameters between which the blends work on the input coordinates themselves:
+/// diameters in [1e-100, 1e100]. Every quantity of Eq. (3) except the final offset is a ratio
+/// of lengths (cross-ratios, `M`, `χ`), the solve reads only the difference `b − e`
+/// ([`solve_by_difference`]), and an edge that is not coincident is at least 1e-13 × 1e-100
+/// long, so no square, inverse or product leaves `[SAFE_MIN, SAFE_MAX]`. The blends then read
+/// only differences of the inputs, each rounded once. Outside, the inputs are moved to the
+/// normalised frame first.
 const DIFFERENCES_MIN_SQ: f64 = 1e-200;
 const DIFFERENCES_MAX_SQ: f64 = 1e200;
 
@@ -414,6 +313,53 @@ fn max_of(sq: &[f64]) -> f64 {
         }
     }
     m
+}
+
+/// The normalised frame of points whose diameter is outside
+/// `[DIFFERENCES_MIN_SQ, DIFFERENCES_MAX_SQ]`, with the points and their pairwise squares in
+/// it; `None` when all points are equal (the coincidence rules then answer on zero squares).
+/// Out of line and cold: the common path stays small.
+#[cold]
+#[inline(never)]
+fn normalised<const N: usize, const M: usize>(
+    pts: [Point; N],
+    sq: [f64; M],
+) -> Result<Option<Normalised<N, M>>> {
+    let frame = Frame::from_squares(&pts, &sq);
+    if !frame.size.is_finite() {
+        return Err(Error::new(Status::NumericalFailure));
+    }
+    if frame.size == 0.0 {
+        return Ok(None);
+    }
+    let local = pts.map(|p| frame.to_local(p));
+    Ok(Some(Normalised {
+        frame,
+        local,
+        local_sq: pair_squares(&local),
+    }))
+}
+
+/// Points in their normalised frame ([`normalised`]).
+struct Normalised<const N: usize, const M: usize> {
+    frame: Frame,
+    local: [Point; N],
+    local_sq: [f64; M],
+}
+
+/// A solved point in working coordinates back in the world: [`Status::NumericalFailure`] when
+/// it lies beyond the range of `f64`.
+#[inline]
+fn to_world(frame: Option<Frame>, p: Point) -> Result<Point> {
+    let out = match frame {
+        Some(frame) => frame.to_world(p),
+        None => p,
+    };
+    if point_is_finite(&out) {
+        Ok(out)
+    } else {
+        Err(Error::new(Status::NumericalFailure))
+    }
 }
 
 /// `p = e + (M + χ)⁻¹ M (b − e)`: the solution of `cr[e, a, b, p] = χ` with
@@ -436,14 +382,15 @@ fn solve_by_difference(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> 
     }
 }
 
-/// [`f4_impl`] for four finite points of diameter² `max_sq` in
-/// `[DIFFERENCES_MIN_SQ, DIFFERENCES_MAX_SQ]` with pairwise squares `sq`: the same rules in
-/// the same order, evaluated on differences of the inputs (each rounded once) instead of on
-/// points moved to a normalised frame. Cross-ratios are invariant under translations and
-/// scalings, so this is the same computation in exact arithmetic; it saves the frame's
-/// twelve divisions and the square roots of the coincidence tests (which compare squares:
-/// `|p − q|² ≤ 1e-26 · diameter²`), and it rounds less.
-fn f4_by_differences(
+/// F4 on four finite points `work` with pairwise squares `sq` (pairs ab, ac, ad, bc, bd, cd)
+/// whose largest is `max_sq`: the coincidence rules (`|p − q|² ≤ 1e-26 · diameter²`, in the
+/// order of [`f4`]), which answer with a point of `world` exactly, then Eq. (3) on
+/// differences of `work`, whose point is in `work`'s coordinates. Cross-ratios are invariant
+/// under translations and scalings, so `work` may be `world` itself or its image in the
+/// normalised frame.
+#[inline(always)]
+fn f4_in(
+    world: [Point; 4],
     [a, b, c, d]: [Point; 4],
     sq: [f64; 6],
     max_sq: f64,
@@ -451,6 +398,7 @@ fn f4_by_differences(
 ) -> Result<F4Eval> {
     let [ab, ac, _, bc, bd, cd] = sq;
     let tol_sq = COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq;
+    let [_, wb, wc, _] = world;
     let early = |point: Point| {
         Ok(F4Eval {
             point,
@@ -459,13 +407,13 @@ fn f4_by_differences(
         })
     };
     if bc <= tol_sq || ab <= tol_sq {
-        return early(b);
+        return early(wb);
     }
     if cd <= tol_sq || ac <= tol_sq {
-        return early(c);
+        return early(wc);
     }
     if bd <= tol_sq {
-        return early(b);
+        return early(wb);
     }
     // ρ = cr[c, a, b, d] = q_ca q_ab⁻¹ q_bd q_dc⁻¹.
     let cr = CrossRatio::from_differences(sub(a, c), sub(b, a), sub(d, b), sub(c, d))?;
@@ -478,9 +426,15 @@ fn f4_by_differences(
     };
     let reversible = !is_negative_real(rho);
     let (mut la, mut lb, mut lc) = (a, b, c);
+    // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
     let mut m = cr.prefix;
-    // The mirrored order when it divides by the longer edge (see `f4_impl`); `|b − a|²` and
-    // `|c − d|²` are the same sums as in the mirrored call, so F4 stays bit-symmetric.
+    // F4(a, b, c, d) = F4(d, c, b, a) (Lemma 4.1). The solve divides by b − a, so when b is
+    // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
+    // the negative-real case, whose printed rule depends on the order.) Both orders give
+    // the same point in exact arithmetic, and since `|b − a|²` and `|c − d|²` are the same
+    // sums in the mirrored call, the choice makes F4 bit-symmetric. The mirrored
+    // cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same differences and
+    // inverses.
     if reversible && ab < cd {
         (la, lb, lc) = (d, c, b);
         rho = cr.transposed()?;
@@ -490,6 +444,9 @@ fn f4_by_differences(
     let mut snap = false;
     if let Some(x) = hint {
         if rho.w < 0.0 {
+            // The sphere's axis at c from the fifth point (Lemma A.1): decides the
+            // negative-real case and cleans the direction of Im ρ near it. cr[c, a, b, x]
+            // shares its prefix with ρ.
             if let Ok(q) = cross_ratio_from_prefix(m, lc, lb, x) {
                 let im = q.abs_im();
                 if im > NEGATIVE_REAL_TOLERANCE * q.abs() && im.is_finite() {
@@ -500,16 +457,17 @@ fn f4_by_differences(
         }
     }
     let negative_real = is_negative_real(rho);
+    // The plane's normal is only read for a negative real (after snapping).
     let axis = match axis {
         Some(n) => n,
         None if rho.w < 0.0 => plane_normal(la, lb, lc),
         None => [0.0, 0.0, 1.0],
     };
     let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
+    // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
     let chi = if negative_real { root } else { -root };
-    let point = solve_by_difference(m, lb, lc, chi)?;
     Ok(F4Eval {
-        point,
+        point: solve_by_difference(m, lb, lc, chi)?,
         noncircularity: Some(noncircularity),
         reversible,
     })
@@ -552,67 +510,48 @@ pub fn noncircularity(a: Point, b: Point, c: Point, d: Point) -> Result<f64> {
 /// [`Status::NumericalFailure`] when finite inputs overflow (points more than `f64::MAX`
 /// apart, or a result beyond it).
 pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
-    if ![a, b, c, d, e, f].iter().all(point_is_finite) {
+    let pts = [a, b, c, d, e, f];
+    if !pts.iter().all(point_is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
-    let pts = [a, b, c, d, e, f];
     if b == e && pts.iter().all(|p| p.iter().all(|x| x.abs() <= BOUNDED)) {
-        // The rule `b = e → b` below, without the frame: coordinates within ±1e300 put every
-        // pair less than f64::MAX apart, so the frame's size is finite and the rule applies.
-        // (The face-point chain meets this whenever a quadruplet's F4 is reused.)
+        // The rule `b = e → b` below, without the squares: coordinates within ±1e300 put
+        // every pair less than f64::MAX apart, so the rule applies. (The face-point chain
+        // meets this whenever a quadruplet's F4 is reused.)
         return Ok(b);
     }
-    let sq: [f64; 15] = pair_squares(&pts);
-    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
-    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
+    let sq = pair_squares(&pts);
     let max_sq = max_of(&sq);
-    if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
-        return f6_by_differences(pts, be, max_sq);
-    }
-    let frame = Frame::from_squares(&pts, &sq);
-    if !frame.size.is_finite() {
-        return Err(Error::new(Status::NumericalFailure));
-    }
-    if frame.size == 0.0 || frame.coincide_sq(b, e, be) {
-        return Ok(b);
-    }
-    let degenerate = Error::new(Status::DegenerateGeometry);
-    let [la, lb, lc, ld, le, lf] = pts.map(|p| frame.to_local(p));
-    // X = cr[e, a, b, d], Y = cr[e, a, b, f] share the prefix (a − e)(b − a)⁻¹, which is also
-    // the M of the solve; Z = cr[e, c, b, f] shares q_bf and (f − e)⁻¹ with Y. Evaluated in
-    // the order and with the checks of three `cross_ratio` calls, the same bits.
-    let cx = CrossRatio::new(le, la, lb, ld)?;
-    let x = cx.value()?;
-    let y = cross_ratio_from_prefix(cx.prefix, le, lb, lf)?;
-    let z = cross_ratio(le, lc, lb, lf)?;
-    let axis = imaginary_axis(&[x, y, z]);
-    let snap = axis.is_some();
-    let n = axis.unwrap_or_else(|| plane_normal(la, lb, le));
-    let sx = sqrt_snapped(x, n, snap).ok_or(degenerate)?;
-    let sz = sqrt_snapped(z, n, snap).ok_or(degenerate)?;
-    let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
-    let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
-    let chi = -(sx * sr);
-    let p = solve_with_m(cx.prefix, lb, le, chi)?;
-    let out = frame.to_world(p);
-    if point_is_finite(&out) {
-        Ok(out)
+    let (found, frame) = if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
+        (f6_in(pts, sq, max_sq)?, None)
     } else {
-        Err(Error::new(Status::NumericalFailure))
+        match normalised(pts, sq)? {
+            None => (None, None),
+            Some(Normalised {
+                frame,
+                local,
+                local_sq,
+            }) => (f6_in(local, local_sq, max_of(&local_sq))?, Some(frame)),
+        }
+    };
+    match found {
+        None => Ok(b),
+        Some(p) => to_world(frame, p),
     }
 }
 
-/// [`f6`] for six finite points of diameter² `max_sq` in
-/// `[DIFFERENCES_MIN_SQ, DIFFERENCES_MAX_SQ]` with `|b − e|² = be`: the same rules on
-/// differences of the inputs, without the normalised frame (as [`f4_by_differences`]; the
-/// cross-ratios and `χ` are ratios of lengths, and the solve reads `b − e` only).
-fn f6_by_differences([a, b, c, d, e, f]: [Point; 6], be: f64, max_sq: f64) -> Result<Point> {
+/// F6 on six finite points with pairwise squares `sq` (pairs in lexicographic order) whose
+/// largest is `max_sq`, in world or normalised-frame coordinates (as [`f4_in`]): `None` for
+/// the rule `b = e → b`, else the solved point.
+fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<Option<Point>> {
+    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
+    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
     if be <= COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq {
-        return Ok(b);
+        return Ok(None);
     }
     let degenerate = Error::new(Status::DegenerateGeometry);
-    // X = cr[e, a, b, d] = q_ea q_ab⁻¹ q_bd q_de⁻¹; Y = cr[e, a, b, f] shares its prefix, the
-    // M of the solve; Z = cr[e, c, b, f].
+    // X = cr[e, a, b, d] = q_ea q_ab⁻¹ q_bd q_de⁻¹ and Y = cr[e, a, b, f] share the prefix
+    // (a − e)(b − a)⁻¹, which is also the M of the solve; Z = cr[e, c, b, f].
     let cx = CrossRatio::from_differences(sub(a, e), sub(b, a), sub(d, b), sub(e, d))?;
     let x = cx.value()?;
     let y = cross_ratio_from_prefix(cx.prefix, e, b, f)?;
@@ -625,7 +564,7 @@ fn f6_by_differences([a, b, c, d, e, f]: [Point; 6], be: f64, max_sq: f64) -> Re
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
     let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
     let chi = -(sx * sr);
-    solve_by_difference(cx.prefix, b, e, chi)
+    solve_by_difference(cx.prefix, b, e, chi).map(Some)
 }
 
 /// The face point of a `d`-gon from its vertices `v_i` and the candidates `v_{f,i}` computed
