@@ -644,6 +644,20 @@ fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point>
     }
 }
 
+/// `F4(a, b, c, d)` with its §4.4.3 sort key and [`F4Eval::reversible`]: the noncircularity
+/// of the cross-ratio F4 uses, rounded to 12 decimals (so that rounding noise cannot reorder
+/// ties); when a coincidence rule answered (F4 computed no ρ), that of the input points. A
+/// quadruplet whose cross-ratio is undefined (coincident candidates) is as circular as it
+/// gets (key 0). Kobbelt's face point orders its two grid lines by the same key.
+pub(crate) fn f4_keyed(a: Point, b: Point, c: Point, d: Point) -> Result<(Point, i64, bool)> {
+    let r = f4_impl(a, b, c, d, None)?;
+    let key = match r.noncircularity {
+        Some(k) => k,
+        None => noncircularity(a, b, c, d).unwrap_or(0.0),
+    };
+    Ok((r.point, libm::round(key * 1e12) as i64, r.reversible))
+}
+
 /// The order in which [`face_point_ordered`] reports the failures of its quadruplets' F4s
 /// (lowest first): a fixed order of statuses, so the report does not depend on evaluation order.
 fn failure_rank(status: Status) -> u8 {
@@ -699,26 +713,19 @@ fn face_point_ordered(
             None => Ok(0),
         }
     };
-    // p_l = F4(quadruplet l) and its rounded sort key, per quadruplet in face order.
-    let mut p: arrayvec::ArrayVec<(Point, i64), { crate::MAX_FACE_SIZE }> =
+    // p_l = F4(quadruplet l), its rounded sort key, and whether it is also the F4 of the
+    // reversed partner (even faces), per quadruplet in face order.
+    let mut p: arrayvec::ArrayVec<(Point, i64, bool), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
     let eval = |i: usize| -> Result<(Point, i64, bool)> {
         let [a, b, c, e] = quad(i)?;
-        let r = f4_impl(a, b, c, e, None)?;
-        // The key is the noncircularity of the cross-ratio F4 uses; when a coincidence rule
-        // answered (F4 computed no ρ), that of the input points. A quadruplet whose
-        // cross-ratio is undefined (coincident candidates) is as circular as it gets.
-        let key = match r.noncircularity {
-            Some(k) => k,
-            None => noncircularity(a, b, c, e).unwrap_or(0.0),
-        };
-        Ok((r.point, libm::round(key * 1e12) as i64, r.reversible))
+        f4_keyed(a, b, c, e)
     };
     for _ in 0..d {
-        p.try_push(([0.0; 3], 0))
+        p.try_push(([0.0; 3], 0, false))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
     }
-    let mut put = |i: usize, v: (Point, i64)| -> Result<()> {
+    let mut put = |i: usize, v: (Point, i64, bool)| -> Result<()> {
         *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
         Ok(())
     };
@@ -750,18 +757,18 @@ fn face_point_ordered(
                 (i, i + h)
             };
             let (pt, key, reversible) = eval(first);
-            put(first, (pt, key))?;
+            put(first, (pt, key, reversible))?;
             if reversible {
-                put(second, (pt, key))?;
+                put(second, (pt, key, true))?;
             } else {
                 let (pt2, key2, _) = eval(second);
-                put(second, (pt2, key2))?;
+                put(second, (pt2, key2, false))?;
             }
         }
     } else {
         for i in 0..d {
             let (pt, key, _) = eval(i);
-            put(i, (pt, key))?;
+            put(i, (pt, key, false))?;
         }
     }
     if let Some(e) = failure {
@@ -772,7 +779,7 @@ fn face_point_ordered(
     // when given, else 0 (face order).
     let mut order: arrayvec::ArrayVec<(usize, (i64, u32)), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
-    for (i, &(_, key)) in p.iter().enumerate() {
+    for (i, &(_, key, _)) in p.iter().enumerate() {
         order
             .try_push((i, (key, id(i)?)))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
@@ -790,23 +797,41 @@ fn face_point_ordered(
     }
     let point = |i: usize| {
         p.get(i)
-            .map(|x| x.0)
+            .map(|x| (x.0, x.2))
             .ok_or(Error::new(Status::InvalidArgument))
     };
     let mut it = order.iter();
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
-    let mut vf = point(first)?;
+    let mut vf = point(first)?.0;
     let mut prev = first;
     let (mut a_prev, mut d_prev) = (at(vertices, first)?, at(vertices, first + h)?);
     for &(i, _) in it {
-        let (a, e) = (at(vertices, i)?, at(vertices, i + h)?);
-        let p = point(i)?;
-        vf = if d % 2 == 0 && i == (prev + h) % d {
-            f6_of_reversed_chain(a_prev, vf, d_prev, p)?
+        let (p, shared) = point(i)?;
+        if d % 2 == 0 && h > 0 && i % h == prev % h {
+            // The reversed partner of the previous chain: F6(a, b, c, c, e, a), which is
+            // F6(a, b, c, a, e, c) too (both are F4(a, b, e, c)), so the step does not depend
+            // on how the chain is oriented, and the chain (with `prev`, its start) stays.
+            vf = f6_of_reversed_chain(a_prev, vf, d_prev, p)?;
+            continue;
+        }
+        // An even face's chain is oriented relative to the previous one by the face alone:
+        // of quadruplets i and i + h (the same F4 point), the one whose start follows the
+        // previous start in face order, less than half a turn on. F6 is unchanged when both of
+        // its chains are reversed (F6(a, b, c, d, e, f) = F6(c, b, a, f, e, d), to rounding),
+        // so only this relative orientation enters, and which member of a reversed pair the
+        // sort put first — by vertex id, as they always tie — no longer matters: the result
+        // does not depend on vertex numbering there. (The other relative orientation is
+        // worse conditioned: sphere reproduction on sphere_uv_mixed_pole16 4.3e-10 against
+        // < 1e-12; docs/DECISIONS.md.) Where F4 is not symmetric (`shared` false) the
+        // quadruplet keeps its own orientation.
+        let j = if d % 2 == 0 && shared && (i + d - prev) % d > h {
+            (i + h) % d
         } else {
-            f6(a_prev, vf, d_prev, a, p, e)?
+            i
         };
-        (a_prev, d_prev, prev) = (a, e, i);
+        let (a, e) = (at(vertices, j)?, at(vertices, j + h)?);
+        vf = f6(a_prev, vf, d_prev, a, p, e)?;
+        (a_prev, d_prev, prev) = (a, e, j);
     }
     Ok(vf)
 }

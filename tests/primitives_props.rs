@@ -893,6 +893,40 @@ fn f6_with_b_equal_e_returns_b() {
     println!("F6 with b = e: 10000 cases, all returned b bit for bit");
 }
 
+#[test]
+fn f6_is_unchanged_when_both_chains_are_reversed() {
+    // F6(a, b, c, d, e, f) = F6(c, b, a, f, e, d): with K = cr[e, c, b, ·] cr[e, a, b, ·]⁻¹
+    // (= q_ec q_cb⁻¹ q_ab q_ea⁻¹, the same for every last point) the reversed blend has
+    // X' = Z, Z' = X, Y' = K X with K = Z Y⁻¹, so r' = √Z Y⁻¹ √X = r⁻¹ and
+    // χ' = −√Z (√r)⁻¹ = K χ: its point solves cr[e, a, b, p] = χ too. The face-point chain
+    // of an even face relies on it (blend::face_point_ordered). Reversing one chain only is
+    // a different blend: that difference is printed to show the test can tell them apart.
+    let mut rng = Rng::new(0x0F6_0007);
+    let (mut worst, mut one_chain): (f64, f64) = (0.0, 0.0);
+    for i in 0..10_000 {
+        let p = if i % 2 == 0 {
+            crossing_chains(&mut rng)
+        } else {
+            general_points::<6>(&mut rng)
+        };
+        let [a, b, c, d, e, f] = p;
+        let (Ok(x), Ok(y)) = (f6(a, b, c, d, e, f), f6(c, b, a, f, e, d)) else {
+            continue;
+        };
+        let size = diameter(&p);
+        worst = worst.max(dist(x, y) / size);
+        if let Ok(z) = f6(c, b, a, d, e, f) {
+            one_chain = one_chain.max(dist(x, z) / size);
+        }
+    }
+    println!(
+        "F6 with both chains reversed: worst relative difference {worst:.2e} (one chain \
+         reversed: {one_chain:.2e})"
+    );
+    assert!(worst < 1e-12, "{worst:e}");
+    assert!(one_chain > 1e-3, "{one_chain:e}");
+}
+
 // ---------------------------------------------------------------------------------------------
 // 7. Canonical forms of Möbius-equivalent stars are similar.
 
