@@ -579,10 +579,13 @@ fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<O
 /// Step 4 chains the *opposite vertices* `a`, `d` of the quadruplets (DESIGN.md: the printed
 /// `c_{l−1}, c_l` are candidates, with which F6 is singular exactly in the Möbius-regular
 /// case). When all candidates agree (a Möbius-regular neighbourhood) every F4 and F6 returns
-/// that point, so `v_f` equals it.
+/// that point, so `v_f` equals it. In an even face, where quadruplets `i` and `i + h` are the
+/// same points reversed, each chain `(a_l, d_l)` is oriented by the face: its start follows
+/// the previous chain's start in face order, less than half a turn on (F6 is unchanged when
+/// both chains reverse, so this relative orientation is all that enters; docs/DECISIONS.md).
 ///
 /// Evaluation (docs/RESULTS.md, "Möbius arithmetic"): steps 2 and 3 share their cross-ratio
-/// (the key is the noncircularity of the `ρ` F4 computes, in F4's normalised frame); for an
+/// (the key is the noncircularity of the `ρ` F4 computes); for an
 /// even face quadruplet `i + h` is quadruplet `i` reversed: the one of the pair whose `v_i`
 /// has the smaller id (then the earlier in face order) is evaluated and its partner takes its
 /// F4 point and key (Lemma 4.1; both are evaluated where F4 is not symmetric); a step onto the reversed
@@ -590,10 +593,10 @@ fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<O
 /// equals (`f6_of_reversed_chain`).
 ///
 /// Ties of the sort (equal rounded keys) keep face order, as the paper's stable sort does. The
-/// F6 chain depends on the order, and for an even face quadruplets `i` and `i + h` always tie
-/// (the same four points reversed), so the result depends on which corner the face lists
-/// first — by up to 4 % of the face on a regular tetrahedron. Drivers use
-/// [`face_point_with_ids`], whose ties go by vertex id and so do not depend on the start.
+/// F6 chain depends on the order of different quadruplets, which tie in symmetric faces, so
+/// the result can depend on which corner the face lists first — by up to 4 % of the face on a
+/// regular tetrahedron. Drivers use [`face_point_with_ids`], whose ties go by vertex id and so
+/// do not depend on the start.
 ///
 /// # Errors
 /// [`Status::InvalidArgument`] when the slices differ in length; [`Status::TooFewPoints`] for
@@ -648,8 +651,8 @@ fn f6_of_reversed_chain(a: Point, b: Point, c: Point, e: Point) -> Result<Point>
 /// of the cross-ratio F4 uses, rounded to 12 decimals (so that rounding noise cannot reorder
 /// ties); when a coincidence rule answered (F4 computed no ρ), that of the input points. A
 /// quadruplet whose cross-ratio is undefined (coincident candidates) is as circular as it
-/// gets (key 0). Kobbelt's face point orders its two grid lines by the same key.
-pub(crate) fn f4_keyed(a: Point, b: Point, c: Point, d: Point) -> Result<(Point, i64, bool)> {
+/// gets (key 0).
+fn f4_keyed(a: Point, b: Point, c: Point, d: Point) -> Result<(Point, i64, bool)> {
     let r = f4_impl(a, b, c, d, None)?;
     let key = match r.noncircularity {
         Some(k) => k,

@@ -791,8 +791,8 @@ fn mobius_schemes_versus_vertex_renumbering() {
     // (blend::face_point_ordered), which takes the numbering out of those ties. What remains
     // are exact ties between different quadruplets, which only exactly symmetric faces have
     // (a regular tetrahedron's: the F6 chain breaks their symmetry whatever the order), and
-    // ties of Kobbelt's two grid lines, which go by edge id (on the open grid's boundary
-    // faces their keys tie even when jittered). So: every mesh jittered by 1e-3 of its
+    // Kobbelt's two grid lines, ordered and directed by edge id. So: every mesh jittered
+    // by 1e-3 of its
     // diameter must give the same result under a random renumbering (Kobbelt printed, not
     // asserted), and the unjittered meshes' figures are printed. Relative to the diameter,
     // 2 levels.

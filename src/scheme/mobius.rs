@@ -1316,9 +1316,10 @@ impl Driver<'_, '_, '_, '_> {
             set(self.pos, k, q)?;
         }
         // Face points: F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7) over the two grid lines
-        // of new edge points through the face (Fig. 14), in the order of `kobbelt_face`.
+        // of new edge points through the face (Fig. 14).
         for f in 0..topo.num_faces() as u32 {
             let r = topo.face_half_edges(f)?;
+            let (h0, h1, h2, h3) = kobbelt_lines(topo, r.start)?;
             let k = nv + ne + f as usize;
             let line = |d: &Self, hx: u32, hy: u32| -> Result<[Point; 4]> {
                 Ok([
@@ -1328,10 +1329,14 @@ impl Driver<'_, '_, '_, '_> {
                     d.outer_edge_point(hy, hx)?,
                 ])
             };
-            let [p0, p1, p2, p3] = [r.start, r.start + 1, r.start + 2, r.start + 3];
-            let w = line(self, p0, p2)?;
-            let x = line(self, p1, p3)?;
-            let q = kobbelt_face(topo, [p0, p1, p2, p3], w, x).ok();
+            let w = line(self, h0, h2)?;
+            let x = line(self, h1, h3)?;
+            let q = f4(w[0], w[1], w[2], w[3])
+                .and_then(|pa| {
+                    let pb = f4(x[0], x[1], x[2], x[3])?;
+                    blend::f6(w[1], pa, w[2], x[1], pb, x[2])
+                })
+                .ok();
             let q = match q {
                 Some(q) => q,
                 None => {
@@ -1400,30 +1405,22 @@ fn kobbelt_linear_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
     super::linear::kobbelt_edge(topo, e)
 }
 
-/// Kobbelt's face point `F6(w1, F4(w), w2, x1, F4(x), x2)` of the quad with half-edges `h`
-/// (face order) from its grid lines `w` (edges `h[0] → h[2]`, points as `line`) and `x`
-/// (`h[1] → h[3]`), in an order that depends on neither the face start nor the vertex
-/// numbering where it can: F6 is not symmetric in its two lines, so the line with the more
-/// circular quadruplet goes first (the §4.4.3 sort key; ties: the line holding the smaller
-/// edge id, as ids are untouched by Möbius maps). F6 is unchanged when both lines are
-/// reversed (`blend::face_point_ordered`), so only their relative direction enters: the
-/// second line starts at the edge that follows the first line's start in face order.
-fn kobbelt_face(
-    topo: &Topology<'_, '_>,
-    h: [u32; 4],
-    w: [Point; 4],
-    x: [Point; 4],
-) -> Result<Point> {
-    let (pw, kw, _) = blend::f4_keyed(w[0], w[1], w[2], w[3])?;
-    let (px, kx, _) = blend::f4_keyed(x[0], x[1], x[2], x[3])?;
-    let [e0, e1, e2, e3] = h.map(|h| topo.edge(h));
-    let id_w = e0?.min(e2?);
-    let id_x = e1?.min(e3?);
-    if (kw, id_w) <= (kx, id_x) {
-        // w from h[0] to h[2], then x from h[1] (the edge after h[0]) to h[3].
-        blend::f6(w[1], pw, w[2], x[1], px, x[2])
+/// The half-edges `(h0, h1, h2, h3)` of the quad whose first half-edge is `first`, arranged so
+/// that Kobbelt's face point `F6(w1, F4(w), w2, x1, F4(x), x2)` over the grid lines `(h0, h2)`
+/// and `(h1, h3)` does not depend on where the face starts: F6 is symmetric neither in its two
+/// lines nor in their directions, so each line runs from its edge of smaller id, and the line
+/// holding the smallest edge id comes first. Edge ids are untouched by Möbius maps, so the
+/// rule keeps Möbius equivariance (docs/DECISIONS.md).
+fn kobbelt_lines(topo: &Topology<'_, '_>, first: u32) -> Result<(u32, u32, u32, u32)> {
+    let edge_of = |h: u32| topo.edge(h).map(|e| (e, h));
+    let [p, q, r, t] = [first, first + 1, first + 2, first + 3];
+    let (e0, e1, e2, e3) = (edge_of(p)?, edge_of(q)?, edge_of(r)?, edge_of(t)?);
+    // Each line from its edge of smaller id; (edge id, half-edge) pairs compare by id first.
+    let (a0, a1) = (e0.min(e2), e0.max(e2));
+    let (b0, b1) = (e1.min(e3), e1.max(e3));
+    Ok(if a0 <= b0 {
+        (a0.1, b0.1, a1.1, b1.1)
     } else {
-        // x from h[1] to h[3], then w from h[2] (the edge after h[1]) to h[0].
-        blend::f6(x[1], px, x[2], w[2], pw, w[1])
-    }
+        (b0.1, a0.1, b1.1, a1.1)
+    })
 }
