@@ -246,12 +246,32 @@ impl CanonicalForm {
         }
         t.clear();
         for (i, u) in ring.iter().enumerate() {
-            // `tangent_polygon_vertex(v, u)` bit for bit, with `v` checked once above and `u`
-            // only when the inverse fails (a non-finite `u − v` never passes it).
-            let ti = inverse_point(sub(*u, v))
+            let ti = CanonicalForm::tangent(v, *u)
                 .ok_or_else(|| tangent_error(*u).with_element(i as u32))?;
             t.try_push(ti)
                 .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+        }
+        CanonicalForm::from_tangents(v, t, kind)
+    }
+
+    /// The tangent-polygon vertex `(u − v)⁻¹`: `tangent_polygon_vertex(v, u)` bit for bit for
+    /// a finite `v`, `None` where it fails. Its inverse only succeeds for a finite non-zero
+    /// `u − v`, so `u` needs no check of its own (the callers check `v` once per star).
+    #[inline]
+    pub(crate) fn tangent(v: Point, u: Point) -> Option<Point> {
+        inverse_point(sub(u, v))
+    }
+
+    /// The canonical form of the star of the finite point `v` whose tangent polygon is `t`
+    /// (`t[i] = (ring[i] − v)⁻¹`, [`CanonicalForm::tangent`]); the errors of
+    /// [`CanonicalForm::new`] for a ring too short or too long and for a zero radius.
+    pub(crate) fn from_tangents(v: Point, t: &[Point], kind: StarKind) -> Result<CanonicalForm> {
+        let n = t.len();
+        if n < 2 {
+            return Err(Error::new(Status::TooFewPoints));
+        }
+        if n > MAX_VALENCE {
+            return Err(Error::new(Status::ValenceTooHigh));
         }
         let c = match kind {
             StarKind::Interior => {
