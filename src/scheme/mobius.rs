@@ -406,19 +406,78 @@ pub fn subdivide(
     Ok((sizes, d.report))
 }
 
-/// A vertex's canonical form with a small cache of mapped 1-ring points.
+/// A vertex's canonical form with a small cache of mapped points of its neighbourhood.
 ///
-/// About 19 KB (the cache and a ring buffer): each driver loop keeps one and re-targets it
-/// per vertex with [`Driver::local_into`] instead of returning a fresh one, which moved it
+/// About 10 KB (the memo and the tangent polygon): each driver loop keeps one and re-targets
+/// it per vertex with [`Driver::local_into`] instead of returning a fresh one, which moved it
 /// several times per vertex (memcpy was half of Möbius Catmull–Clark's instructions).
 struct Local {
     v: u32,
     cf: CanonicalForm,
-    cache: ArrayVec<(u32, Point), { 4 * MAX_VALENCE }>,
-    ring: Ring,
-    /// The tangent polygon of the form (`(ring[i] − v)⁻¹`), from which the ring's images are
-    /// put in the cache when the form is made.
+    /// Direct-mapped memo of [`Local::canon`]: vertex `u` lives in slot [`memo_slot`]`(u)`,
+    /// valid while its stamp is `stamp` (re-targeting bumps the stamp instead of clearing the
+    /// slots). A collision only overwrites: the evicted image is recomputed bit for bit.
+    memo: [(u32, u32, Point); MEMO_SLOTS],
+    stamp: u32,
+    /// The tangent polygon of the form (`(u_i − v)⁻¹` over the star's neighbours), from
+    /// which the ring's images are put in the memo when the form is made.
     tangents: Ring,
+}
+
+/// Slots of [`Local::memo`]: at least twice the vertices a driver maps in one star (the 1-ring
+/// and the faces' other corners; Butterfly's wings) for the usual valences.
+const MEMO_SLOTS: usize = 256;
+
+/// The memo slot of vertex `u`: Fibonacci hashing, whose top bits spread the nearby ids of
+/// one star over the table.
+#[inline]
+fn memo_slot(u: u32) -> usize {
+    (u.wrapping_mul(0x9E37_79B9) >> 24) as usize
+}
+
+/// [`Topology::spokes_into`] spoke for spoke, walked on the topology's arrays: one
+/// `next_prev_face` per spoke (arithmetic on all-triangle and all-quad meshes, every level of
+/// Loop, Butterfly, Catmull–Clark and Doo–Sabin after the first) instead of the star
+/// iterator's face lookups. `v` is not isolated. The same errors: [`Status::ValenceTooHigh`]
+/// naming `v`, an internal error for arrays that disagree with the valence.
+fn star_into(topo: &Topology<'_, '_>, v: u32, out: &mut Spokes) -> Result<()> {
+    let r = topo.raw();
+    out.clear();
+    let n = get(r.valence, v as usize)? as usize;
+    let mut cur = get(r.vert_he, v as usize)?;
+    for _ in 0..n {
+        if cur == NONE {
+            // Only for arrays that disagree (the walk stops at a boundary below).
+            return Err(internal());
+        }
+        let (next, prev, f) = r.next_prev_face(cur)?;
+        out.try_push(Spoke {
+            neighbour: get(r.indices, next as usize)?,
+            edge: get(r.edge_of, cur as usize)?,
+            half_edge: cur,
+            face: f,
+        })
+        .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        let tw = get(r.twin, prev as usize)?;
+        if tw == NONE {
+            // Closing spoke of a boundary star: the incoming boundary half-edge `prev`.
+            if out.len() < n {
+                out.try_push(Spoke {
+                    neighbour: get(r.indices, prev as usize)?,
+                    edge: get(r.edge_of, prev as usize)?,
+                    half_edge: NONE,
+                    face: NONE,
+                })
+                .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+            }
+            break;
+        }
+        cur = tw;
+    }
+    if out.len() != n {
+        return Err(internal());
+    }
+    Ok(())
 }
 
 type Ring = ArrayVec<Point, MAX_VALENCE>;
@@ -436,49 +495,76 @@ impl Local {
                 r: 0.0,
                 kind: StarKind::Interior,
             },
-            cache: ArrayVec::new(),
-            ring: ArrayVec::new(),
+            memo: [(NONE, 0, ORIGIN); MEMO_SLOTS],
+            stamp: 0,
             tangents: ArrayVec::new(),
         }
     }
 
+    /// Forgets the form and every memo entry (`v = NONE`).
+    fn clear(&mut self) {
+        self.v = NONE;
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            // Stamps wrapped: entries of 2³² re-targets ago would look valid again.
+            for e in self.memo.iter_mut() {
+                e.1 = 0;
+            }
+            self.stamp = 1;
+        }
+    }
+
     /// Re-targets the memo to the canonical form of `v`'s star: [`StarKind::Interior`] for
-    /// a closed star, [`StarKind::Boundary`] for an open one (ring from one boundary
-    /// neighbour to the other). `Ok(false)` when the form does not exist (a degenerate
-    /// star: the caller's fallback); the memo then holds no form (`v = NONE`). `Err` only for
-    /// a failure of the topology queries, which is an error, never a fallback. `spokes`
-    /// receives the star of `v` (as [`Topology::spokes_into`]), which the drivers then walk
-    /// instead of walking the star again.
+    /// a closed star, [`StarKind::Boundary`] for an open one (`boundary`; ring from one
+    /// boundary neighbour to the other). `Ok(false)` when the form does not exist (a
+    /// degenerate star: the caller's fallback); the memo then holds no form (`v = NONE`).
+    /// `Err` only for a failure of the topology queries, which is an error, never a fallback.
+    /// `spokes` receives the star of `v` (as [`Topology::spokes_into`]), which the drivers
+    /// then walk instead of walking the star again.
     ///
     /// The images of the ring neighbours are cached at once, from the tangent polygon the
     /// form was made of: [`CanonicalForm::to_normalised`] would compute the same `T_i` again
     /// (bit for bit the same images; a neighbour whose image fails is left to `canon`, which
     /// fails the same way).
-    fn reset(&mut self, topo: &Topology<'_, '_>, v: u32, spokes: &mut Spokes) -> Result<bool> {
-        self.v = NONE;
-        self.cache.clear();
-        topo.spokes_into(v, spokes)?;
-        self.ring.clear();
-        for s in spokes.iter() {
-            self.ring
-                .try_push(topo.position(s.neighbour)?)
-                .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
-        }
-        let kind = if topo.is_boundary_vertex(v)? {
+    fn reset(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        v: u32,
+        boundary: bool,
+        spokes: &mut Spokes,
+    ) -> Result<bool> {
+        self.clear();
+        star_into(topo, v, spokes)?;
+        let kind = if boundary {
             StarKind::Boundary
         } else {
             StarKind::Interior
         };
         let centre = topo.position(v)?;
-        self.cf =
-            match CanonicalForm::new_with_tangents(centre, &self.ring, kind, &mut self.tangents) {
-                Ok(cf) => cf,
-                Err(_) => return Ok(false),
-            };
+        // The tangent polygon straight from the mesh: `CanonicalForm::new` of the ring's
+        // positions bit for bit (same checks: a finite centre, every `T_i` defined).
+        let mut ok = point_is_finite(&centre);
+        self.tangents.clear();
+        for s in spokes.iter() {
+            match CanonicalForm::tangent(centre, topo.position(s.neighbour)?) {
+                Some(t) => self.tangents.try_push(t).map_err(|_| internal())?,
+                None => ok = false,
+            }
+        }
+        if !ok {
+            return Ok(false);
+        }
+        self.cf = match CanonicalForm::from_tangents(centre, &self.tangents, kind) {
+            Ok(cf) => cf,
+            Err(_) => return Ok(false),
+        };
         self.v = v;
+        let stamp = self.stamp;
         for (s, t) in spokes.iter().zip(self.tangents.iter()) {
             if let Ok(p) = self.cf.normalised_from_tangent(*t) {
-                let _ = self.cache.try_push((s.neighbour, p));
+                if let Some(e) = self.memo.get_mut(memo_slot(s.neighbour)) {
+                    *e = (s.neighbour, stamp, p);
+                }
             }
         }
         Ok(true)
@@ -491,11 +577,16 @@ impl Local {
         if u == self.v {
             return Ok(ORIGIN);
         }
-        if let Some(&(_, p)) = self.cache.iter().rev().find(|(k, _)| *k == u) {
-            return Ok(p);
+        let slot = memo_slot(u);
+        if let Some(&(k, st, p)) = self.memo.get(slot) {
+            if k == u && st == self.stamp {
+                return Ok(p);
+            }
         }
         let p = self.cf.to_normalised(topo.position(u)?)?;
-        let _ = self.cache.try_push((u, p)); // a full cache only costs recomputation
+        if let Some(e) = self.memo.get_mut(slot) {
+            *e = (u, self.stamp, p);
+        }
         Ok(p)
     }
 
@@ -585,20 +676,28 @@ impl Driver<'_, '_, '_, '_> {
         Ok(())
     }
 
+    /// A boundary vertex with one face (valence 2), from two lookups: its first spoke has no
+    /// twin exactly when it is on the boundary (`Topology::is_boundary_vertex`), and a
+    /// boundary vertex has one face fewer than neighbours.
     fn is_ear(&self, v: u32) -> Result<bool> {
-        Ok(self.topo.is_boundary_vertex(v)? && self.topo.vertex_face_count(v)? == 1)
+        let topo = self.topo;
+        let h = topo.vertex_half_edge(v)?;
+        Ok(h != NONE && topo.twin(h)? == NONE && topo.valence(v)? == 2)
     }
 
     /// Re-targets `l` to the canonical form of a non-ear, non-isolated vertex; `false` (and
     /// `l` holds no form) when `v` is isolated or an ear or its form does not exist
     /// (degenerate star). With a form, `spokes` holds `v`'s star.
     fn local_into(&self, v: u32, l: &mut Local, spokes: &mut Spokes) -> Result<bool> {
-        if self.topo.is_isolated(v)? || self.is_ear(v)? {
-            l.v = NONE;
-            l.cache.clear();
+        let topo = self.topo;
+        // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
+        let h = topo.vertex_half_edge(v)?;
+        let boundary = h != NONE && topo.twin(h)? == NONE;
+        if h == NONE || (boundary && topo.valence(v)? == 2) {
+            l.clear();
             return Ok(false);
         }
-        l.reset(self.topo, v, spokes)
+        l.reset(topo, v, boundary, spokes)
     }
 
     /// The vertex whose canonical form evaluates corner `i` of face `f`: the corner's own
@@ -1423,4 +1522,70 @@ fn kobbelt_lines(topo: &Topology<'_, '_>, first: u32) -> Result<(u32, u32, u32, 
     } else {
         (b0.1, a0.1, b1.1, a1.1)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{topology_scratch_len, Mesh};
+
+    /// The drivers' star walk is [`Topology::spokes_into`] spoke for spoke, on all-triangle,
+    /// all-quad and mixed meshes with boundaries and on a closed one (the walk's arithmetic
+    /// fast paths and the general one).
+    #[test]
+    fn star_walk_matches_the_topology() {
+        // A 3×3 grid of vertices: four quads; eight triangles; three quads and two triangles.
+        let mut grid = [[0.0; 3]; 9];
+        for (i, p) in grid.iter_mut().enumerate() {
+            *p = [(i % 3) as f64, (i / 3) as f64, 0.0];
+        }
+        let octa = [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        let tri_offs = [0, 3, 6, 9, 12, 15, 18, 21, 24];
+        let cases: [(&[Point], &[u32], &[u32]); 4] = [
+            (
+                &grid,
+                &[0, 4, 8, 12, 16],
+                &[0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7],
+            ),
+            (
+                &grid,
+                &tri_offs,
+                &[
+                    0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6, 4, 5, 8, 4, 8, 7,
+                ],
+            ),
+            (
+                &grid,
+                &[0, 4, 8, 12, 15, 18],
+                &[0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 4, 8, 7],
+            ),
+            (
+                &octa,
+                &tri_offs,
+                &[
+                    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+                ],
+            ),
+        ];
+        let mut buf = [0u32; 1024];
+        for (p, offs, idx) in cases {
+            let mesh = Mesh::new(p, offs, idx);
+            let scratch = &mut buf[..topology_scratch_len(p.len(), idx.len()).unwrap()];
+            let topo = Topology::build(mesh, scratch).unwrap();
+            let (mut a, mut b) = (Spokes::new(), Spokes::new());
+            for v in 0..p.len() as u32 {
+                topo.spokes_into(v, &mut a).unwrap();
+                star_into(&topo, v, &mut b).unwrap();
+                assert_eq!(a, b, "vertex {v}");
+                assert!(!b.is_empty());
+            }
+        }
+    }
 }
