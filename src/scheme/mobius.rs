@@ -1020,9 +1020,10 @@ impl Driver<'_, '_, '_, '_> {
                 if ok {
                     // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
                     vertex = loop_star_in_form(&ring, !boundary, |q| l.back(q), &mut cands)?;
-                    for (s, c) in spokes.iter().zip(cands) {
-                        if s.half_edge != NONE && present(&c) {
-                            set(self.edge_c, s.half_edge as usize, c)?;
+                    // By reference: `zip(cands)` would copy the whole array per vertex.
+                    for (s, c) in spokes.iter().zip(cands.iter()) {
+                        if s.half_edge != NONE && present(c) {
+                            set(self.edge_c, s.half_edge as usize, *c)?;
                         }
                     }
                 }
@@ -1098,9 +1099,9 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 vertex =
                     catmull_clark_star_in_form(&ring, &fc, !boundary, |q| l.back(q), &mut cands)?;
-                for (s, c) in spokes.iter().zip(cands) {
-                    if s.half_edge != NONE && present(&c) {
-                        set(self.edge_c, s.half_edge as usize, c)?;
+                for (s, c) in spokes.iter().zip(cands.iter()) {
+                    if s.half_edge != NONE && present(c) {
+                        set(self.edge_c, s.half_edge as usize, *c)?;
                     }
                 }
             }
