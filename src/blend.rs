@@ -5,7 +5,7 @@
 //! out (`M = ((a − b)(c − a)⁻¹)⁻¹`). Every quantity but the last is a ratio of lengths, and
 //! the solve is evaluated as `p = e + (M + χ)⁻¹ M (b − e)`, so for inputs of diameter in
 //! [1e-100, 1e100] the blends read only differences of the inputs, each rounded once
-//! (`f4_by_differences`, `f6_by_differences`). Outside that range the inputs are first moved
+//! (`f4_in`, `f6_in`). Outside that range the inputs are first moved
 //! to a normalised frame (centroid at the origin, unit diameter; similarities are Möbius
 //! maps, so this changes nothing in exact arithmetic) that keeps intermediates far from
 //! overflow and underflow.
@@ -186,7 +186,9 @@ fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
     let mut best: Option<(f64, Quat)> = None;
     for q in qs {
         let (im, abs) = (q.abs_im(), q.abs());
-        if !(im > 0.0 && abs.is_finite()) {
+        // Real within the tolerance of `is_negative_real`: for cocircular points `Im q` is
+        // rounding noise whose sign would pick the axis.
+        if !(im > NEGATIVE_REAL_TOLERANCE * abs && abs.is_finite()) {
             continue;
         }
         let ratio = im / abs;
@@ -257,8 +259,8 @@ pub fn f4_hinted(a: Point, b: Point, c: Point, d: Point, x: Point) -> Result<Poi
 struct F4Eval {
     /// `F4(a, b, c, d)`.
     point: Point,
-    /// The noncircularity `1 − |Re ρ|/|ρ|` of `ρ = cr[c, a, b, d]` (in the local frame, the
-    /// same number up to rounding: similarities keep cross-ratios), when the formula ran.
+    /// The noncircularity `1 − |Re ρ|/|ρ|` of `ρ = cr[c, a, b, d]` (in working coordinates,
+    /// the same number up to rounding: similarities keep cross-ratios), when the formula ran.
     noncircularity: Option<f64>,
     /// Whether the point is also `F4(d, c, b, a)` by Lemma 4.1: the formula ran (no
     /// coincidence rule, which prefers `b` or `c` by position) and `ρ` is not a negative real
@@ -297,9 +299,11 @@ fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Resul
 /// Squared diameters between which the blends work on the input coordinates themselves:
 /// diameters in [1e-100, 1e100]. Every quantity of Eq. (3) except the final offset is a ratio
 /// of lengths (cross-ratios, `M`, `χ`), the solve reads only the difference `b − e`
-/// ([`solve_by_difference`]), and an edge that is not coincident is at least 1e-13 × 1e-100
-/// long, so no square, inverse or product leaves `[SAFE_MIN, SAFE_MAX]`. The blends then read
-/// only differences of the inputs, each rounded once. Outside, the inputs are moved to the
+/// ([`solve_by_difference`]), and a pair tested for coincidence that is not coincident is at
+/// least 1e-13 × 1e-100 apart, so its square and inverse stay in `[SAFE_MIN, SAFE_MAX]`;
+/// other pairs (F6's `a, b`, `d, e`, `c, b`, `e, f`, a hint's difference, `M + χ`) can leave
+/// it, and go through the scaled slow paths of the inverses. The blends then read only
+/// differences of the inputs, each rounded once. Outside, the inputs are moved to the
 /// normalised frame first.
 const DIFFERENCES_MIN_SQ: f64 = 1e-200;
 const DIFFERENCES_MAX_SQ: f64 = 1e200;
@@ -365,7 +369,9 @@ fn to_world(frame: Option<Frame>, p: Point) -> Result<Point> {
 /// `p = e + (M + χ)⁻¹ M (b − e)`: the solution of `cr[e, a, b, p] = χ` with
 /// `M = (a − e)(b − a)⁻¹`, which is `(M + χ)⁻¹ (χ e + M b)` (Eq. (3)) with `χ e + M b`
 /// split as `(M + χ) e + M (b − e)`: it reads only the difference `b − e`, so it needs no
-/// frame. A new point at infinity is [`Status::DegenerateGeometry`]; a finite offset from a
+/// frame. A new point at infinity — an offset that is not finite in f64, which the normalised
+/// frame could in rare cases still have represented and reported as
+/// [`Status::NumericalFailure`] — is [`Status::DegenerateGeometry`]; a finite offset from a
 /// point so far out that the sum overflows is [`Status::NumericalFailure`].
 #[inline(always)]
 fn solve_by_difference(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
@@ -432,7 +438,7 @@ fn f4_in(
     // nearer to a than c is to d, the mirrored order is better conditioned: use it. (Not in
     // the negative-real case, whose printed rule depends on the order.) Both orders give
     // the same point in exact arithmetic, and since `|b − a|²` and `|c − d|²` are the same
-    // sums in the mirrored call, the choice makes F4 bit-symmetric. The mirrored
+    // sums in the mirrored call, the choice makes F4 bit-symmetric (unless they are equal). The mirrored
     // cross-ratio cr[b, d, c, a] is the double transposition of ρ: the same differences and
     // inverses.
     if reversible && ab < cd {
@@ -626,7 +632,9 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
 }
 
 /// `F6(a, b, c, c, e, a)`: F6 whose second chain joins the ends of the first in reverse, as
-/// the chain of an even face meets when quadruplet `i + h` follows quadruplet `i`.
+/// the chain of an even face meets when quadruplet `i` or `i + h` follows the chain of its
+/// pair (either orientation: `F6(a, b, c, a, e, c)` is `F4(a, b, e, c)` too, off the negative
+/// reals).
 ///
 /// There `X = cr[e, a, b, c]`, `Y = cr[e, a, b, a] = q_ea q_ab⁻¹ (−q_ab)(−q_ea)⁻¹ = 1` and
 /// `Z = cr[e, c, b, a] = X⁻¹` (the four factors of `X⁻¹` are those of `Z`, each negated), so
@@ -716,19 +724,18 @@ fn face_point_ordered(
             None => Ok(0),
         }
     };
-    // p_l = F4(quadruplet l), its rounded sort key, and whether it is also the F4 of the
-    // reversed partner (even faces), per quadruplet in face order.
-    let mut p: arrayvec::ArrayVec<(Point, i64, bool), { crate::MAX_FACE_SIZE }> =
+    // p_l = F4(quadruplet l) and its rounded sort key, per quadruplet in face order.
+    let mut p: arrayvec::ArrayVec<(Point, i64), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
     let eval = |i: usize| -> Result<(Point, i64, bool)> {
         let [a, b, c, e] = quad(i)?;
         f4_keyed(a, b, c, e)
     };
     for _ in 0..d {
-        p.try_push(([0.0; 3], 0, false))
+        p.try_push(([0.0; 3], 0))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
     }
-    let mut put = |i: usize, v: (Point, i64, bool)| -> Result<()> {
+    let mut put = |i: usize, v: (Point, i64)| -> Result<()> {
         *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
         Ok(())
     };
@@ -760,18 +767,18 @@ fn face_point_ordered(
                 (i, i + h)
             };
             let (pt, key, reversible) = eval(first);
-            put(first, (pt, key, reversible))?;
+            put(first, (pt, key))?;
             if reversible {
-                put(second, (pt, key, true))?;
+                put(second, (pt, key))?;
             } else {
                 let (pt2, key2, _) = eval(second);
-                put(second, (pt2, key2, false))?;
+                put(second, (pt2, key2))?;
             }
         }
     } else {
         for i in 0..d {
             let (pt, key, _) = eval(i);
-            put(i, (pt, key, false))?;
+            put(i, (pt, key))?;
         }
     }
     if let Some(e) = failure {
@@ -782,7 +789,7 @@ fn face_point_ordered(
     // when given, else 0 (face order).
     let mut order: arrayvec::ArrayVec<(usize, (i64, u32)), { crate::MAX_FACE_SIZE }> =
         arrayvec::ArrayVec::new();
-    for (i, &(_, key, _)) in p.iter().enumerate() {
+    for (i, &(_, key)) in p.iter().enumerate() {
         order
             .try_push((i, (key, id(i)?)))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
@@ -800,16 +807,16 @@ fn face_point_ordered(
     }
     let point = |i: usize| {
         p.get(i)
-            .map(|x| (x.0, x.2))
+            .map(|x| x.0)
             .ok_or(Error::new(Status::InvalidArgument))
     };
     let mut it = order.iter();
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
-    let mut vf = point(first)?.0;
+    let mut vf = point(first)?;
     let mut prev = first;
     let (mut a_prev, mut d_prev) = (at(vertices, first)?, at(vertices, first + h)?);
     for &(i, _) in it {
-        let (p, shared) = point(i)?;
+        let p = point(i)?;
         if d % 2 == 0 && h > 0 && i % h == prev % h {
             // The reversed partner of the previous chain: F6(a, b, c, c, e, a), which is
             // F6(a, b, c, a, e, c) too (both are F4(a, b, e, c)), so the step does not depend
@@ -825,9 +832,11 @@ fn face_point_ordered(
         // sort put first — by vertex id, as they always tie — no longer matters: the result
         // does not depend on vertex numbering there. (The other relative orientation is
         // worse conditioned: sphere reproduction on sphere_uv_mixed_pole16 4.3e-10 against
-        // < 1e-12; docs/DECISIONS.md.) Where F4 is not symmetric (`shared` false) the
-        // quadruplet keeps its own orientation.
-        let j = if d % 2 == 0 && shared && (i + d - prev) % d > h {
+        // < 1e-12; docs/DECISIONS.md.) F6 reads only the chain's ends and the point, so the
+        // rule holds where F4 is not symmetric too (a coincidence rule, a negative-real ρ).
+        // The identities hold off the negative reals (principal roots: √(q⁻¹) = (√q)⁻¹ fails
+        // there), so on exactly cocircular data the numbering can still enter.
+        let j = if d % 2 == 0 && (i + d - prev) % d > h {
             (i + h) % d
         } else {
             i
@@ -959,6 +968,56 @@ mod tests {
     }
 
     #[test]
+    fn face_point_with_ids_does_not_depend_on_the_numbering_of_generic_faces() {
+        // Different quadruplets of a generic face never tie, and the reversed pairs of an
+        // even face are oriented by the face, so permuting the ids changes nothing but the
+        // rounding of which pair member is evaluated.
+        let mut state = 11;
+        let mut worst: f64 = 0.0;
+        for n in [4usize, 5, 6, 8] {
+            for _ in 0..300 {
+                let base: [Point; 8] = lcg_points(&mut state);
+                let jitter: [Point; 8] = lcg_points(&mut state);
+                let v: arrayvec::ArrayVec<Point, 8> = (0..n)
+                    .map(|i| {
+                        let t = 2.0 * core::f64::consts::PI * i as f64 / n as f64;
+                        let j = base.get(i).copied().unwrap_or([0.0; 3]);
+                        [
+                            libm::cos(t) + 0.2 * j[0],
+                            libm::sin(t) + 0.2 * j[1],
+                            0.2 * j[2],
+                        ]
+                    })
+                    .collect();
+                let c: arrayvec::ArrayVec<Point, 8> = (0..n)
+                    .map(|i| {
+                        let j = jitter.get(i).copied().unwrap_or([0.0; 3]);
+                        [0.1 * j[0], 0.1 * j[1], 0.1 * j[2]]
+                    })
+                    .collect();
+                let ids: arrayvec::ArrayVec<u32, 8> = (0..n as u32).collect();
+                let perm: arrayvec::ArrayVec<u32, 8> =
+                    (0..n as u32).map(|i| (i * 5 + 3) % n as u32).collect();
+                let rev: arrayvec::ArrayVec<u32, 8> = (0..n as u32).rev().collect();
+                let (Ok(p), Ok(q), Ok(r)) = (
+                    face_point_with_ids(&v, &c, &ids),
+                    face_point_with_ids(&v, &c, &perm),
+                    face_point_with_ids(&v, &c, &rev),
+                ) else {
+                    continue;
+                };
+                worst = worst.max(dist(p, q)).max(dist(p, r));
+            }
+        }
+        // Orienting the chains by ids instead (the previous rule) moves these face points by
+        // 1.6e-7.
+        assert!(
+            worst < 1e-13,
+            "renumbering moves a generic face point by {worst:e}"
+        );
+    }
+
+    #[test]
     fn face_point_failure_does_not_depend_on_the_face_start() {
         // One candidate is NaN and another quadruplet overflows (points f64::MAX apart): the
         // status must be the same from every start (found by the primitives fuzz target,
@@ -1050,7 +1109,16 @@ mod tests {
             let pts: [Point; 6] = lcg_points(&mut state);
             let [a, b, c, d, e, f] = pts;
             type AtScale<'a> = &'a dyn Fn(i32) -> Result<Point>;
-            let cases: [(Result<Point>, AtScale); 2] = [
+            let cases: [(Result<Point>, AtScale); 3] = [
+                (f4_hinted(a, b, c, d, e), &|k| {
+                    f4_hinted(
+                        scaled(a, k),
+                        scaled(b, k),
+                        scaled(c, k),
+                        scaled(d, k),
+                        scaled(e, k),
+                    )
+                }),
                 (f4(a, b, c, d), &|k| {
                     f4(scaled(a, k), scaled(b, k), scaled(c, k), scaled(d, k))
                 }),
