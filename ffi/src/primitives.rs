@@ -389,7 +389,9 @@ pub unsafe extern "C" fn nls_star_mobius_regularity(
 /// The Möbius-invariant face point of a `count`-gon from its vertices and the candidate face
 /// points computed in the canonical forms of the vertices' stars (seed 000 §4.4.3): F4 on
 /// the quadruplets `(v_i, v_{f,i}, v_{f,i+h}, v_{i+h})` sorted by noncircularity, chained with
-/// F6. `vertices` and `candidates` hold `3*count` doubles each.
+/// F6 (in an even face each chain oriented by the face: its start follows the previous
+/// chain's start in face order; docs/DECISIONS.md). `vertices` and `candidates` hold
+/// `3*count` doubles each.
 ///
 /// Errors: `NLS_STATUS_TOO_FEW_POINTS` (`count < 3`), `NLS_STATUS_VALENCE_TOO_HIGH`, and
 /// those of [`nls_f4`] and [`nls_f6`].
