@@ -162,11 +162,11 @@ fn every_mobius_scheme_reproduces_spheres() {
                     .iter()
                     .map(|&p| (dist(p, c) - r).abs() / r)
                     .fold(0.0, f64::max);
-                // Target 1e-12 (the issue's figure). Measured exceptions, only on the two
-                // most irregular meshes (Butterfly and Catmull–Clark, up to ~6e-12), where the
-                // rules extrapolate (edge points up to 22 edge lengths from their edge) and
-                // amplify the inputs' last-bit rounding: the exact rules on the same double
-                // inputs are as far off (docs/RESULTS.md, "Why four sphere runs stay above
+                // Target 1e-12 (the issue's figure). Measured exceptions, only Butterfly on the
+                // most irregular mesh (sphere_icosphere3_strong, up to 2.6e-12), where the
+                // rule extrapolates (edge points up to 22 edge lengths from their edge) and
+                // amplifies the inputs' last-bit rounding: the exact rule on the same double
+                // inputs is as far off (docs/RESULTS.md, "Why two sphere runs stay above
                 // 1e-12"). Printed, and bounded here.
                 if dev >= 1e-12 {
                     println!("ABOVE 1e-12: {name}, {s:?}: {dev:.2e}");
