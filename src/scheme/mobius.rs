@@ -572,7 +572,7 @@ impl Local {
 
     /// The image of vertex `u` in the canonical form, in its normalised frame
     /// ([`CanonicalForm::to_normalised`]: `v` itself goes to the origin).
-    #[inline]
+    #[inline(always)]
     fn canon(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         if u == self.v {
             return Ok(ORIGIN);
@@ -591,6 +591,7 @@ impl Local {
     }
 
     /// The canonical images of the corners of face `f`, in face order, into `pts`.
+    #[inline(always)]
     fn face(&mut self, topo: &Topology<'_, '_>, f: u32, pts: &mut FacePts) -> Result<()> {
         pts.clear();
         for &u in topo.face_vertices(f)? {
@@ -1214,10 +1215,15 @@ impl Driver<'_, '_, '_, '_> {
         // Ears in a substitute's form; anything still missing takes the linear rule.
         let mut linear_pts = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
-            face_points_into(topo, f, &mut linear_pts)?;
+            // The face's own corners only when one of its corner points is missing (rare).
+            let mut gathered = false;
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
                 if present(&get(self.pos, h as usize)?) {
                     continue;
+                }
+                if !gathered {
+                    face_points_into(topo, f, &mut linear_pts)?;
+                    gathered = true;
                 }
                 let q = if self.is_ear(topo.origin(h)?)? {
                     self.form_vertex(f, i)?.and_then(|u| {
