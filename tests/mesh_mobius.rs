@@ -763,27 +763,6 @@ fn nearest_gap(a: &OwnedMesh, b: &OwnedMesh) -> f64 {
         / scale
 }
 
-/// `m` with its vertices renumbered by a deterministic random permutation.
-fn renumber(m: &OwnedMesh, seed: u64) -> OwnedMesh {
-    let n = m.positions.len();
-    let mut perm: Vec<usize> = (0..n).collect();
-    let mut rng = Rng(seed);
-    for i in (1..n).rev() {
-        let j = (((rng.next() + 1.0) / 2.0) * (i + 1) as f64) as usize;
-        perm.swap(i, j.min(i));
-    }
-    let mut pos = vec![[0.0; 3]; n];
-    for (old, &new) in perm.iter().enumerate() {
-        pos[new] = m.positions[old];
-    }
-    let faces: Vec<Vec<u32>> = m
-        .faces()
-        .iter()
-        .map(|f| f.iter().map(|&v| perm[v as usize] as u32).collect())
-        .collect();
-    OwnedMesh::from_faces(pos, &faces)
-}
-
 #[test]
 fn mobius_schemes_versus_vertex_renumbering() {
     // Ties of the §4.4.3 sort go by vertex id, so numbering can only enter through them. The
@@ -810,7 +789,7 @@ fn mobius_schemes_versus_vertex_renumbering() {
         }
         let j = jitter(&m, 1e-3 * diameter(&m), 100 + k as u64);
         for (mesh, generic) in [(&m, false), (&j, true)] {
-            let r = renumber(mesh, 11 + k as u64);
+            let r = renumbered(mesh, 11 + k as u64);
             for s in ALL {
                 if !s.has_mobius_form() || !accepts(s, mesh) {
                     continue;

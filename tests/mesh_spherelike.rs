@@ -452,23 +452,7 @@ fn result_does_not_depend_on_vertex_numbering() {
     // bipyramid (isosceles central triangles). Up to rounding (summation order of edge ends).
     let mut worst = 0.0_f64;
     for (name, m) in assorted().into_iter().take(9) {
-        let n = m.positions.len();
-        let mut perm: Vec<usize> = (0..n).collect();
-        let mut rng = Lcg(n as u64);
-        for i in (1..n).rev() {
-            let j = (((rng.next() + 1.0) / 2.0) * (i + 1) as f64) as usize;
-            perm.swap(i, j.min(i));
-        }
-        let mut pos = vec![[0.0; 3]; n];
-        for (old, &new) in perm.iter().enumerate() {
-            pos[new] = m.positions[old];
-        }
-        let faces: Vec<Vec<u32>> = m
-            .faces()
-            .iter()
-            .map(|f| f.iter().map(|&v| perm[v as usize] as u32).collect())
-            .collect();
-        let renumbered = OwnedMesh::from_faces(pos, &faces);
+        let renumbered = renumbered(&m, m.positions.len() as u64);
         let a = subdivide_n(S, &m, 2).unwrap().positions;
         let b = subdivide_n(S, &renumbered, 2).unwrap().positions;
         assert_eq!(a.len(), b.len());

@@ -288,6 +288,28 @@ impl Lcg {
     }
 }
 
+/// `m` with its vertices renumbered by a random permutation (Fisher–Yates on `Lcg(seed)`),
+/// faces and positions moved with them: the same surface under other vertex ids.
+pub fn renumbered(m: &OwnedMesh, seed: u64) -> OwnedMesh {
+    let n = m.positions.len();
+    let mut perm: Vec<usize> = (0..n).collect();
+    let mut rng = Lcg(seed);
+    for i in (1..n).rev() {
+        let j = (((rng.next() + 1.0) / 2.0) * (i + 1) as f64) as usize;
+        perm.swap(i, j.min(i));
+    }
+    let mut pos = vec![[0.0; 3]; n];
+    for (old, &new) in perm.iter().enumerate() {
+        pos[new] = m.positions[old];
+    }
+    let faces: Vec<Vec<u32>> = m
+        .faces()
+        .iter()
+        .map(|f| f.iter().map(|&v| perm[v as usize] as u32).collect())
+        .collect();
+    OwnedMesh::from_faces(pos, &faces)
+}
+
 pub fn jitter(m: &OwnedMesh, amp: f64, seed: u64) -> OwnedMesh {
     let mut r = Lcg(seed);
     m.map_positions(|p| {
