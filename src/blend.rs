@@ -114,6 +114,12 @@ pub fn is_negative_real(q: Quat) -> bool {
     q.w < 0.0 && q.abs_im() <= NEGATIVE_REAL_TOLERANCE * q.abs()
 }
 
+/// [`is_negative_real`] with `r = q.abs()` known.
+#[inline(always)]
+fn is_negative_real_with_abs(q: Quat, r: f64) -> bool {
+    q.w < 0.0 && q.abs_im() <= NEGATIVE_REAL_TOLERANCE * r
+}
+
 /// The unit normal of the plane through `a, b, c` (`(a − b) × (c − b)` normalised); for
 /// collinear points a fixed unit vector orthogonal to `c − b` (or `a − b`), chosen by the
 /// smallest coordinate so that the choice is deterministic.
@@ -160,44 +166,60 @@ fn cross(a: Point, b: Point) -> Point {
 /// points that are not cospherical.
 #[inline(always)]
 fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
-    let q = if snap && q.w < 0.0 {
+    sqrt_snapped_with_abs(q, q.abs(), n, snap)
+}
+
+/// [`sqrt_snapped`] with `r = q.abs()` computed by the caller (F4 has it from the
+/// noncircularity). `|Im q|` is needed only for a negative real part (the negative-real test
+/// and the root's lower half-space formula); with `Re q ≥ 0` the root reads only whether
+/// `Im q` is zero, which is whether its three components are (`abs_im` is zero exactly
+/// then), so the common case takes two square roots fewer. The same bits as computing both
+/// norms first.
+#[inline(always)]
+fn sqrt_snapped_with_abs(q: Quat, r: f64, n: Point, snap: bool) -> Option<Quat> {
+    let (q, r) = if snap && q.w < 0.0 {
         let along = q.x * n[0] + q.y * n[1] + q.z * n[2];
         let across = [q.x - along * n[0], q.y - along * n[1], q.z - along * n[2]];
-        if norm(across) <= NEGATIVE_REAL_TOLERANCE * q.abs() {
-            Quat::new(q.w, along * n[0], along * n[1], along * n[2])
+        if norm(across) <= NEGATIVE_REAL_TOLERANCE * r {
+            let snapped = Quat::new(q.w, along * n[0], along * n[1], along * n[2]);
+            (snapped, snapped.abs())
         } else {
-            q
+            (q, r)
         }
     } else {
-        q
+        (q, r)
     };
-    // is_negative_real(q), then q.sqrt(), with |q| and |Im q| computed once.
-    let (r, vi) = (q.abs(), q.abs_im());
-    if q.w < 0.0 && vi <= NEGATIVE_REAL_TOLERANCE * r {
-        let t = libm::sqrt(r);
-        return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
+    if q.w < 0.0 {
+        // is_negative_real(q), then q.sqrt(), with |Im q| computed once.
+        let vi = q.abs_im();
+        if vi <= NEGATIVE_REAL_TOLERANCE * r {
+            let t = libm::sqrt(r);
+            return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
+        }
+        return q.sqrt_given(r, vi);
     }
-    q.sqrt_given(r, vi)
+    q.sqrt_upper(r)
 }
 
 /// The unit imaginary part of the quaternion of `qs` farthest from real (largest
 /// `|Im q| / |q|`, the first on ties), or `None` when all are real.
-fn imaginary_axis(qs: &[Quat]) -> Option<Point> {
-    let mut best: Option<(f64, Quat)> = None;
-    for q in qs {
-        let (im, abs) = (q.abs_im(), q.abs());
+/// `abs[i] = qs[i].abs()` is computed by the caller (F6 reuses it for the roots).
+#[inline(always)]
+fn imaginary_axis(qs: &[Quat], abs: &[f64]) -> Option<Point> {
+    let mut best: Option<(f64, Quat, f64)> = None;
+    for (q, &abs) in qs.iter().zip(abs) {
+        let im = q.abs_im();
         // Real within the tolerance of `is_negative_real`: for cocircular points `Im q` is
         // rounding noise whose sign would pick the axis.
         if !(im > NEGATIVE_REAL_TOLERANCE * abs && abs.is_finite()) {
             continue;
         }
         let ratio = im / abs;
-        if best.is_none_or(|(r, _)| ratio > r) {
-            best = Some((ratio, *q));
+        if best.is_none_or(|(r, _, _)| ratio > r) {
+            best = Some((ratio, *q, im));
         }
     }
-    let (_, q) = best?;
-    let im = q.abs_im();
+    let (_, q, im) = best?;
     Some([q.x / im, q.y / im, q.z / im])
 }
 
@@ -430,7 +452,9 @@ fn f4_in(
     } else {
         1.0 - rho.w.abs() / rho_abs
     };
-    let reversible = !is_negative_real(rho);
+    let reversible = !is_negative_real_with_abs(rho, rho_abs);
+    // |ρ| of the cross-ratio the solve uses (the mirrored one's below).
+    let mut r = rho_abs;
     let (mut la, mut lb, mut lc) = (a, b, c);
     // M = (a − c)(b − a)⁻¹ of the solve: the prefix of ρ.
     let mut m = cr.prefix;
@@ -444,6 +468,7 @@ fn f4_in(
     if reversible && ab < cd {
         (la, lb, lc) = (d, c, b);
         rho = cr.transposed()?;
+        r = rho.abs();
         m = cr.transposed_prefix();
     }
     let mut axis = None;
@@ -462,14 +487,15 @@ fn f4_in(
             }
         }
     }
-    let negative_real = is_negative_real(rho);
+    let negative_real = is_negative_real_with_abs(rho, r);
     // The plane's normal is only read for a negative real (after snapping).
     let axis = match axis {
         Some(n) => n,
         None if rho.w < 0.0 => plane_normal(la, lb, lc),
         None => [0.0, 0.0, 1.0],
     };
-    let root = sqrt_snapped(rho, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
+    let root =
+        sqrt_snapped_with_abs(rho, r, axis, snap).ok_or(Error::new(Status::DegenerateGeometry))?;
     // The negative-real case uses χ = +√|ρ|[0, n] as printed; otherwise χ = −√ρ.
     let chi = if negative_real { root } else { -root };
     Ok(F4Eval {
@@ -562,11 +588,12 @@ fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<O
     let x = cx.value()?;
     let y = cross_ratio_from_prefix(cx.prefix, e, b, f)?;
     let z = cross_ratio(e, c, b, f)?;
-    let axis = imaginary_axis(&[x, y, z]);
+    let abs = [x.abs(), y.abs(), z.abs()];
+    let axis = imaginary_axis(&[x, y, z], &abs);
     let snap = axis.is_some();
     let n = axis.unwrap_or_else(|| plane_normal(a, b, e));
-    let sx = sqrt_snapped(x, n, snap).ok_or(degenerate)?;
-    let sz = sqrt_snapped(z, n, snap).ok_or(degenerate)?;
+    let sx = sqrt_snapped_with_abs(x, abs[0], n, snap).ok_or(degenerate)?;
+    let sz = sqrt_snapped_with_abs(z, abs[2], n, snap).ok_or(degenerate)?;
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
     let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
     let chi = -(sx * sr);

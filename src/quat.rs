@@ -89,11 +89,13 @@ impl Quat {
     }
 
     /// `|q|²`.
+    #[inline(always)]
     pub fn norm_sq(self) -> f64 {
         self.w * self.w + self.x * self.x + self.y * self.y + self.z * self.z
     }
 
     /// `|q|`, computed without overflow or underflow of the squares.
+    #[inline(always)]
     pub fn abs(self) -> f64 {
         // Fast path: the plain sum of squares is exact enough whenever it neither overflows
         // nor enters the subnormal range; otherwise scale by the largest component first.
@@ -101,6 +103,14 @@ impl Quat {
         if n.is_finite() && n > SAFE_MIN {
             return libm::sqrt(n);
         }
+        self.abs_scaled()
+    }
+
+    /// [`Quat::abs`] outside the fast path's range, out of line: the blends inline the fast
+    /// path many times.
+    #[cold]
+    #[inline(never)]
+    fn abs_scaled(self) -> f64 {
         let m = self
             .w
             .abs()
@@ -116,6 +126,7 @@ impl Quat {
     }
 
     /// `|Im q|`.
+    #[inline(always)]
     pub fn abs_im(self) -> f64 {
         Quat::new(0.0, self.x, self.y, self.z).abs()
     }
@@ -126,13 +137,14 @@ impl Quat {
     }
 
     /// Whether all four components are finite.
+    #[inline(always)]
     pub fn is_finite(self) -> bool {
         self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
 
     /// The inverse `q⁻¹ = q̄ / |q|²`, or `None` when `q` is zero, not finite, or so small or
     /// large that the inverse is not a finite, non-zero quaternion.
-    #[inline]
+    #[inline(always)]
     pub fn inverse(self) -> Option<Quat> {
         let n = self.norm_sq();
         if n > SAFE_MIN && n < SAFE_MAX {
@@ -141,6 +153,13 @@ impl Quat {
             // ∞, which fails both comparisons), so the finiteness test waits for the slow path.
             return Some(Quat::new(self.w / n, -self.x / n, -self.y / n, -self.z / n));
         }
+        self.inverse_scaled()
+    }
+
+    /// [`Quat::inverse`] outside the fast path's range, out of line (as [`Quat::abs_scaled`]).
+    #[cold]
+    #[inline(never)]
+    fn inverse_scaled(self) -> Option<Quat> {
         if !self.is_finite() {
             return None;
         }
@@ -211,6 +230,21 @@ impl Quat {
         }
     }
 
+    /// [`Quat::sqrt_given`] for `Re q ≥ 0` (or a non-finite `q`) with `r = self.abs()`,
+    /// without `|Im q|`: in that half space the root reads only whether `Im q` is zero, and
+    /// `abs_im` is zero exactly when its three components are. The same bits.
+    #[inline(always)]
+    pub(crate) fn sqrt_upper(self, r: f64) -> Option<Quat> {
+        if self.w >= 0.0 && self.is_finite() {
+            if self.x == 0.0 && self.y == 0.0 && self.z == 0.0 {
+                return Some(Quat::real(libm::sqrt(self.w)));
+            }
+            let s = libm::sqrt(0.5 * (r + self.w));
+            return Some(Quat::from_parts(s, self.im() / (2.0 * s)));
+        }
+        self.sqrt_given(r, self.abs_im())
+    }
+
     /// `√q` with a caller-chosen axis for a negative real `q`: `√|q|·[0, axis]`
     /// (`axis` must be a unit vector).
     pub fn sqrt_with_axis(self, axis: Point) -> Option<Quat> {
@@ -279,6 +313,7 @@ impl Neg for Quat {
 impl Mul for Quat {
     type Output = Quat;
     /// The Hamilton product `[r, v]·[s, w] = [rs − ⟨v, w⟩, rw + sv + v × w]`.
+    #[inline(always)]
     fn mul(self, o: Quat) -> Quat {
         Quat::new(
             self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
@@ -295,7 +330,7 @@ impl Quat {
     /// terms are summed in the order of [`Mul`], so the result equals `self * [0, p]` bit for
     /// bit except possibly the sign of a component that is exactly zero (adding the dropped
     /// `±0` terms changes nothing else).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn mul_im(self, p: Point) -> Quat {
         Quat::new(
             -(self.x * p[0]) - self.y * p[1] - self.z * p[2],
@@ -421,20 +456,20 @@ impl CrossRatio {
     }
 
     /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn value(&self) -> Result<Quat> {
         finite_or_degenerate(self.prefix.mul_im(self.kl).mul_im(self.inv_li))
     }
 
     /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
     /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn transposed(&self) -> Result<Quat> {
         finite_or_degenerate(self.transposed_prefix().mul_im(self.ij).mul_im(self.inv_jk))
     }
 
     /// `q_kl q_li⁻¹`, the prefix of [`CrossRatio::transposed`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn transposed_prefix(&self) -> Quat {
         im_mul_im(self.kl, self.inv_li)
     }
