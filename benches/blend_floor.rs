@@ -34,8 +34,7 @@ use std::time::Instant;
 
 use common::*;
 use nlsubdiv::blend;
-use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::scheme::Scheme;
 use nlsubdiv::Point;
 
 /// The bare formulas: quaternions as `[w, x, y, z]`, points as imaginary quaternions.
@@ -161,20 +160,10 @@ fn ns_per_call(hs: &[[Point; 6]], reps: usize, f: impl Fn(&[Point; 6]) -> Point)
     best / hs.len() as f64 * 1e9
 }
 
-/// One multi-level linear call, in milliseconds.
+/// One multi-level linear call ([`levels_call`]), in milliseconds.
 fn linear_once(s: Scheme, m: &OwnedMesh, levels: usize) -> f64 {
     let t = Instant::now();
-    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-    let p = scheme::plan(s, m.view(), levels, &mut su).unwrap();
-    let o = p.output();
-    su.resize(p.scratch_u32, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch_points];
-    let mut pos = vec![[0.0; 3]; o.vertices];
-    let mut off = vec![0; o.faces + 1];
-    let mut idx = vec![0; o.indices];
-    let mut mo = MeshOut::new(&mut pos, &mut off, &mut idx);
-    scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo).unwrap();
-    black_box(&pos);
+    black_box(levels_call(s, m, levels, false));
     t.elapsed().as_secs_f64() * 1e3
 }
 

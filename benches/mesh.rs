@@ -25,37 +25,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use common::*;
-use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::mobius::MobiusOptions;
-use nlsubdiv::scheme::{self, Scheme};
-
-/// `levels` steps in one multi-level call, linear or Möbius.
-fn levels_call(s: Scheme, m: &OwnedMesh, levels: usize, mobius: bool) -> OwnedMesh {
-    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-    let p = scheme::plan(s, m.view(), levels, &mut su).unwrap();
-    let o = p.output();
-    let np = if mobius {
-        p.mobius_scratch_points().unwrap()
-    } else {
-        p.scratch_points
-    };
-    su.resize(p.scratch_u32, 0);
-    let mut sp = vec![[0.0f64; 3]; np];
-    let mut out = OwnedMesh {
-        positions: vec![[0.0; 3]; o.vertices],
-        offsets: vec![0; o.faces + 1],
-        indices: vec![0; o.indices],
-    };
-    let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
-    if mobius {
-        let opts = MobiusOptions { strict: false };
-        scheme::subdivide_levels_mobius(s, m.view(), levels, &mut su, &mut sp, &mut mo, opts)
-            .unwrap();
-    } else {
-        scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo).unwrap();
-    }
-    out
-}
+use nlsubdiv::scheme::Scheme;
 
 /// Best of `reps` wall-clock runs, in milliseconds.
 fn best_ms(reps: usize, mut f: impl FnMut() -> usize) -> (f64, usize) {
