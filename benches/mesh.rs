@@ -1,7 +1,8 @@
 //! Side-by-side timings of our linear and Möbius mesh schemes in one run (single thread):
 //! the rows of DESIGN.md "Performance" and seed 000 Table 1 (Möbius / linear ratio).
 //!
-//! `cargo bench --bench mesh` (reads `../shared/data/meshes`; prints SKIP rows otherwise).
+//! `cargo bench --bench mesh` (reads `../shared/data/meshes`; prints SKIP rows otherwise):
+//! linear and Möbius interleaved, best of 5 each.
 //! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench_peers.py`.
 //!
 //! Each row is one multi-level call ([`plan`] + [`subdivide_levels`] /
@@ -81,8 +82,14 @@ fn main() {
             );
             continue;
         };
-        let (lin, faces) = best_ms(3, || levels_call(s, &m, levels, false).num_faces());
-        let (mob, _) = best_ms(3, || levels_call(s, &m, levels, true).num_faces());
+        // Interleaved, best of 5 each: linear and Möbius are timed in the same minutes, so
+        // a slow spell of the shared machine does not favour one of them.
+        let (mut lin, mut mob, mut faces) = (f64::MAX, f64::MAX, 0);
+        for _ in 0..5 {
+            let (l, f) = best_ms(1, || levels_call(s, &m, levels, false).num_faces());
+            let (b, _) = best_ms(1, || levels_call(s, &m, levels, true).num_faces());
+            (lin, mob, faces) = (lin.min(l), mob.min(b), f);
+        }
         println!(
             "| {name} | {} | {levels} | {faces} | {lin:.1} | {mob:.1} | {:.2} |",
             s.name(),
