@@ -3,15 +3,20 @@
 //!
 //! `cargo bench --bench blend_floor`
 //!
-//! Every Möbius scheme of seed 000 §4.1 blends each interior edge with one F4 (Eq. (3)); the
-//! Catmull–Clark face point of a quad takes four F4 evaluations and one F6 (§4.4.3: two
-//! quadruplets and their reversed partners, one F6 step between different quadruplets). This
-//! bench times
+//! Every Möbius scheme of seed 000 §4.1 blends each interior edge with one F4 (Eq. (3); the
+//! Butterfly takes the single candidate instead next to irregular vertices, so its count is an
+//! upper bound: 182,016 of the 195,840 edges of its row blend, by callgrind); the
+//! Catmull–Clark face point of a quad takes three F4 evaluations and one F6 (§4.4.3: the two
+//! quadruplets, whose reversed partners reuse them by Lemma 4.1; one F6 step between
+//! different quadruplets; one step onto a reversed partner, which is an F4; callgrind counts
+//! 307,440 F4 = 122,976 edges + 3 × 61,488 faces on spot_quad). This bench times
 //!
 //! 1. `blend::f4` and `blend::f6` of the library per call, and
 //! 2. the *bare* formulas — Eq. (3) and §4.4.2 written straight out, without a single check
-//!    (no coincidence rules, no negative-real case, no range guards, no error paths: the
-//!    least arithmetic these rules can be evaluated with in scalar `f64`),
+//!    (no coincidence rules, no negative-real case, no range guards, no error paths), with
+//!    the products of imaginary quaternions, one reciprocal per inverse and the norms the
+//!    roots already have: as little arithmetic as we know to evaluate these rules with in
+//!    scalar `f64`,
 //!
 //! on the same random generic inputs (the bare results are checked against the library's),
 //! then multiplies by the number of blends each benchmark row needs (counted from its
@@ -45,14 +50,18 @@ mod bare {
     fn sub(a: Point, b: Point) -> Point {
         [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
     }
-    /// `[0, p]⁻¹ = [0, −p/|p|²]`.
+    /// `[0, p]⁻¹ = [0, −p/|p|²]`, one division.
     fn inv(p: Point) -> Point {
-        let n = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-        [-p[0] / n, -p[1] / n, -p[2] / n]
+        let k = -1.0 / (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        [p[0] * k, p[1] * k, p[2] * k]
+    }
+    /// `q⁻¹ = q̄/|q|²` with `|q|²` given.
+    fn qinv_given(q: Q, norm_sq: f64) -> Q {
+        let k = 1.0 / norm_sq;
+        [q[0] * k, -q[1] * k, -q[2] * k, -q[3] * k]
     }
     fn qinv(q: Q) -> Q {
-        let n = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-        [q[0] / n, -q[1] / n, -q[2] / n, -q[3] / n]
+        qinv_given(q, q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
     }
     fn mul(a: Q, b: Q) -> Q {
         [
@@ -62,12 +71,13 @@ mod bare {
             a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
         ]
     }
-    /// The principal square root (`Re ≥ 0` branch, generic inputs).
-    fn sqrt(q: Q) -> Q {
+    /// The principal square root (`Re ≥ 0` branch, generic inputs) and `|q|`, which is
+    /// `|√q|²`.
+    fn sqrt(q: Q) -> (Q, f64) {
         let r = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
         let s = (0.5 * (r + q[0])).sqrt();
         let k = 0.5 / s;
-        [s, q[1] * k, q[2] * k, q[3] * k]
+        ([s, q[1] * k, q[2] * k, q[3] * k], r)
     }
     /// `[0, a]·[0, b] = [−⟨a, b⟩, a × b]`: the products by zero real parts dropped.
     fn im_im(a: Point, b: Point) -> Q {
@@ -103,7 +113,7 @@ mod bare {
     #[inline(never)]
     pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Point {
         let (rho, m) = cr(c, a, b, d);
-        let s = sqrt(rho);
+        let (s, _) = sqrt(rho);
         solve(m, b, c, [-s[0], -s[1], -s[2], -s[3]])
     }
     /// F6(a, b, c, d, e, f), §4.4.2: `χ = −√X·√r`, `r = (√X)⁻¹ Y (√Z)⁻¹`.
@@ -112,9 +122,9 @@ mod bare {
         let (x, m) = cr(e, a, b, d);
         // Y shares the prefix M with X.
         let y = q_im(q_im(m, sub(f, b)), inv(sub(e, f)));
-        let sx = sqrt(x);
-        let sz = sqrt(cr(e, c, b, f).0);
-        let sr = sqrt(mul(mul(qinv(sx), y), qinv(sz)));
+        let (sx, abs_x) = sqrt(x);
+        let (sz, abs_z) = sqrt(cr(e, c, b, f).0);
+        let (sr, _) = sqrt(mul(mul(qinv_given(sx, abs_x), y), qinv_given(sz, abs_z)));
         let chi = mul(sx, sr);
         solve(m, b, e, [-chi[0], -chi[1], -chi[2], -chi[3]])
     }
@@ -186,8 +196,8 @@ fn blends_once(
 }
 
 /// `(F4, F6)` evaluations of `levels` Möbius steps of `s` on a closed all-triangle or
-/// all-quad mesh with `faces` faces of `d` corners: one F4 per edge; for Catmull–Clark four
-/// F4 and one F6 per quad face point. Every level of both splits keeps the face type, with
+/// all-quad mesh with `faces` faces of `d` corners: one F4 per edge (at most, for the
+/// Butterfly); for Catmull–Clark three F4 and one F6 per quad face point. Every level of both splits keeps the face type, with
 /// `F' = 4F` and `E' = 2E + dF`.
 fn blend_counts(s: Scheme, d: usize, faces: usize, levels: usize) -> (usize, usize) {
     let (mut f, mut e) = (faces, faces * d / 2);
@@ -195,7 +205,7 @@ fn blend_counts(s: Scheme, d: usize, faces: usize, levels: usize) -> (usize, usi
     for _ in 0..levels {
         n4 += e;
         if s == Scheme::CatmullClark {
-            n4 += 4 * f;
+            n4 += 3 * f;
             n6 += f;
         }
         e = 2 * e + d * f;
@@ -249,7 +259,7 @@ fn main() {
     ];
     println!(
         "| mesh | scheme | levels | F4 | F6 | linear ms | 2 × linear ms | bare blends ms | \
-         library blends ms | bare blends / linear |"
+         library blends ms (bench inputs) | bare blends / linear |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|");
     for (name, s, levels) in rows {

@@ -5,8 +5,8 @@
 //! linear and Möbius interleaved, best of 5 each.
 //! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench_peers.py`.
 //!
-//! Each row is one multi-level call ([`plan`] + [`subdivide_levels`] /
-//! [`subdivide_levels_mobius`]), as a host would make it: validation, topology of every
+//! Each row is one multi-level call (`common::levels_call`: `plan` + `subdivide_levels` /
+//! `subdivide_levels_mobius`), as a host would make it: validation, topology of every
 //! level, every level, with the caller's buffers allocated inside the timed region.
 //!
 //! `cargo bench --bench mesh -- SCHEME LEVELS MESH.off [--mobius]` runs one such call once

@@ -190,7 +190,7 @@ fn sqrt_snapped_with_abs(q: Quat, r: f64, n: Point, snap: bool) -> Option<Quat> 
         (q, r)
     };
     if q.w < 0.0 {
-        // is_negative_real(q), then q.sqrt(), with |Im q| computed once.
+        // The negative-real test, then the lower half-space root, with |Im q| computed once.
         let vi = q.abs_im();
         if vi <= NEGATIVE_REAL_TOLERANCE * r {
             let t = libm::sqrt(r);

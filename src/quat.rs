@@ -230,9 +230,10 @@ impl Quat {
         }
     }
 
-    /// [`Quat::sqrt_given`] for `Re q ≥ 0` (or a non-finite `q`) with `r = self.abs()`,
-    /// without `|Im q|`: in that half space the root reads only whether `Im q` is zero, and
-    /// `abs_im` is zero exactly when its three components are. The same bits.
+    /// [`Quat::sqrt_given`] with `r = self.abs()`, bit for bit, for any `q`; it saves `|Im q|`
+    /// for a finite `q` with `Re q ≥ 0`: in that half space the root reads only whether
+    /// `Im q` is zero, and `abs_im` is zero exactly when its three components are. Otherwise
+    /// it computes `|Im q|` and calls [`Quat::sqrt_given`].
     #[inline(always)]
     pub(crate) fn sqrt_upper(self, r: f64) -> Option<Quat> {
         if self.w >= 0.0 && self.is_finite() {
