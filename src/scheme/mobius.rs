@@ -904,7 +904,9 @@ impl Driver<'_, '_, '_, '_> {
         // Gather, then blend, `EDGE_CHUNK` edges at a time: the gathering reads the twin and
         // the two candidates of each edge at scattered addresses, and in one loop of short
         // independent iterations those cache misses overlap; between two F4 evaluations
-        // (hundreds of instructions each) they would not. The same blends in the same order.
+        // (hundreds of instructions each) they would not. The same blends in the same order,
+        // the same fallbacks; only a failing topology lookup (an internal error, never a
+        // fallback) is now reported before a strict-mode fallback earlier in its batch.
         let mut chunk = ArrayVec::<EdgeInputs, EDGE_CHUNK>::new();
         let mut first = 0;
         while first < ne {
