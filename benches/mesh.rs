@@ -63,17 +63,9 @@ fn main() {
         return;
     }
     let dir = shared_meshes_dir();
-    let rows = [
-        ("epcot.off", Scheme::Loop, 4),
-        ("epcot.off", Scheme::ModifiedButterfly, 4),
-        ("cube.off", Scheme::CatmullClark, 8),
-        ("spot_quad.off", Scheme::CatmullClark, 3),
-        ("cube.off", Scheme::DooSabin, 8),
-        ("spot_quad.off", Scheme::Kobbelt, 3),
-    ];
     println!("| mesh | scheme | levels | output faces | linear ms | Möbius ms | Möbius / linear |");
     println!("|---|---|---|---|---|---|---|");
-    for (name, s, levels) in rows {
+    for (name, s, levels) in MOBIUS_BENCH_ROWS {
         let Ok(m) = read_off(&dir.join(name)) else {
             println!(
                 "| {name} | {} | {levels} | SKIP: {} not found | | | |",

@@ -591,3 +591,15 @@ pub fn levels_call(s: Scheme, m: &OwnedMesh, levels: usize, mobius: bool) -> Own
     }
     out
 }
+
+/// The benchmark rows of the Möbius speed target (issue 5, DESIGN.md "Performance"): mesh
+/// file in `../shared/data/meshes`, scheme, levels. `benches/mesh.rs` times them all;
+/// `benches/blend_floor.rs` the Loop, Butterfly and Catmull–Clark ones, whose blends it counts.
+pub const MOBIUS_BENCH_ROWS: [(&str, Scheme, usize); 6] = [
+    ("epcot.off", Scheme::Loop, 4),
+    ("epcot.off", Scheme::ModifiedButterfly, 4),
+    ("cube.off", Scheme::CatmullClark, 8),
+    ("spot_quad.off", Scheme::CatmullClark, 3),
+    ("cube.off", Scheme::DooSabin, 8),
+    ("spot_quad.off", Scheme::Kobbelt, 3),
+];
