@@ -11,8 +11,8 @@
 //! overflow and underflow.
 
 use crate::error::{Error, Result, Status};
-use crate::mobius::{add, norm, scale, sub};
-use crate::quat::{cross_ratio, cross_ratio_from_prefix, point_is_finite, CrossRatio, Point, Quat};
+use crate::point::{self, add, cross, norm, scale, sub, Point};
+use crate::quat::{cross_ratio, cross_ratio_from_prefix, CrossRatio, Quat};
 
 /// Relative distance below which two inputs count as coincident (DESIGN.md).
 pub const COINCIDENT_TOLERANCE: f64 = 1e-13;
@@ -53,7 +53,7 @@ impl Frame {
             centre = add(centre, *p);
         }
         centre = scale(centre, inv_n);
-        if !point_is_finite(&centre) {
+        if !point::is_finite(&centre) {
             // The sum overflowed (coordinates near f64::MAX): average the scaled points instead.
             centre = [0.0; 3];
             for p in points {
@@ -146,14 +146,6 @@ fn plane_normal(a: Point, b: Point, c: Point) -> Point {
     } else {
         [0.0, 0.0, 1.0]
     }
-}
-
-fn cross(a: Point, b: Point) -> Point {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// `√q` with the branch of the paper; for a negative real `q` the root `√|q| [0, n]` (the
@@ -270,7 +262,7 @@ pub fn f4(a: Point, b: Point, c: Point, d: Point) -> Result<Point> {
 /// # Errors
 /// As [`f4`]; a non-finite `x` is [`Status::NonFiniteInput`].
 pub fn f4_hinted(a: Point, b: Point, c: Point, d: Point, x: Point) -> Result<Point> {
-    if !point_is_finite(&x) {
+    if !point::is_finite(&x) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     f4_impl(a, b, c, d, Some(x)).map(|r| r.point)
@@ -293,7 +285,7 @@ struct F4Eval {
 
 fn f4_impl(a: Point, b: Point, c: Point, d: Point, hint: Option<Point>) -> Result<F4Eval> {
     let pts = [a, b, c, d];
-    if !pts.iter().all(point_is_finite) {
+    if !pts.iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let sq = pair_squares(&pts);
@@ -381,7 +373,7 @@ fn to_world(frame: Option<Frame>, p: Point) -> Result<Point> {
         Some(frame) => frame.to_world(p),
         None => p,
     };
-    if point_is_finite(&out) {
+    if point::is_finite(&out) {
         Ok(out)
     } else {
         Err(Error::new(Status::NumericalFailure))
@@ -399,11 +391,11 @@ fn to_world(frame: Option<Frame>, p: Point) -> Result<Point> {
 fn solve_by_difference(m: Quat, b: Point, e: Point, chi: Quat) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     let offset = ((m + chi).inverse().ok_or(degenerate)? * m.mul_im(sub(b, e))).to_point();
-    if !point_is_finite(&offset) {
+    if !point::is_finite(&offset) {
         return Err(degenerate);
     }
     let p = add(e, offset);
-    if point_is_finite(&p) {
+    if point::is_finite(&p) {
         Ok(p)
     } else {
         Err(Error::new(Status::NumericalFailure))
@@ -543,7 +535,7 @@ pub fn noncircularity(a: Point, b: Point, c: Point, d: Point) -> Result<f64> {
 /// apart, or a result beyond it).
 pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
     let pts = [a, b, c, d, e, f];
-    if !pts.iter().all(point_is_finite) {
+    if !pts.iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     if b == e && pts.iter().all(|p| p.iter().all(|x| x.abs() <= BOUNDED)) {
@@ -725,7 +717,7 @@ fn face_point_ordered(
     }
     // A shortcut: a non-finite corner or candidate is `NonFiniteInput` (the ranking below
     // would report it too, after evaluating every quadruplet).
-    if !vertices.iter().chain(candidates).all(point_is_finite) {
+    if !vertices.iter().chain(candidates).all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let h = d / 2;
@@ -925,7 +917,7 @@ mod tests {
         let rho = cross_ratio(c, a, b, d).unwrap();
         assert!(is_negative_real(rho));
         let p = f4(a, b, c, d).unwrap();
-        assert!(p[2].abs() < 1e-14 && point_is_finite(&p));
+        assert!(p[2].abs() < 1e-14 && point::is_finite(&p));
     }
 
     #[test]
@@ -1181,7 +1173,7 @@ mod tests {
         // are finite, so the answer must not be NonFiniteInput.
         let t = 5e-324;
         let p = f4([0.0; 3], [0.0, t, 0.0], [t, 0.0, 0.0], [0.0, 0.0, t]).unwrap();
-        assert!(point_is_finite(&p));
+        assert!(point::is_finite(&p));
         // Coordinates near f64::MAX whose sum overflows but whose spread does not.
         let m = f64::MAX;
         let (a, b, c, d) = (
@@ -1191,7 +1183,7 @@ mod tests {
             [0.6 * m, 0.0, 0.1 * m],
         );
         let p = f4(a, b, c, d).unwrap();
-        assert!(point_is_finite(&p));
+        assert!(point::is_finite(&p));
         let q = f6(
             a,
             b,
@@ -1201,7 +1193,7 @@ mod tests {
             [0.75 * m, 0.0, 0.05 * m],
         )
         .unwrap();
-        assert!(point_is_finite(&q));
+        assert!(point::is_finite(&q));
     }
 
     #[test]

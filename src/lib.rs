@@ -55,12 +55,14 @@ pub mod error;
 pub mod mesh;
 pub mod metrics;
 pub mod mobius;
+pub mod point;
 pub mod quat;
 pub mod scheme;
 pub mod stencil;
 
 pub use error::{Error, Result, Status, NO_ELEMENT};
-pub use quat::{Point, Quat};
+pub use point::Point;
+pub use quat::Quat;
 
 /// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held
 /// in fixed-capacity stack arrays of this size; larger ones give [`Status::ValenceTooHigh`].

@@ -8,8 +8,8 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::mobius::{norm, sub};
-use crate::quat::{cross_ratio, tangent_polygon_vertex, Point};
+use crate::point::{norm, sub, Point};
+use crate::quat::{cross_ratio, tangent_polygon_vertex};
 use crate::MAX_VALENCE;
 
 /// Planarity of the quadrilateral `(p0, p1, p2, p3)`: the distance between the lines of its

@@ -8,7 +8,8 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::quat::{inverse_point, point_is_finite, Point, Quat};
+use crate::point::{self, add, norm, scale, sub, Point};
+use crate::quat::{inverse_point, Quat};
 use crate::MAX_VALENCE;
 
 /// A Möbius transformation of R³ ∪ {∞}, `q ↦ (aq + b)(cq + d)⁻¹` (seed 000 Eq. (1)).
@@ -158,7 +159,7 @@ impl MobiusMap {
     /// # Errors
     /// [`Status::DegenerateGeometry`] when `p` is sent to ∞; [`Status::NonFiniteInput`].
     pub fn apply(&self, p: Point) -> Result<Point> {
-        if !point_is_finite(&p) {
+        if !point::is_finite(&p) {
             return Err(Error::new(Status::NonFiniteInput));
         }
         let q = Quat::from_point(p);
@@ -166,7 +167,7 @@ impl MobiusMap {
             .inverse()
             .ok_or(Error::new(Status::DegenerateGeometry))?;
         let w = ((self.a * q + self.b) * den).to_point();
-        if point_is_finite(&w) {
+        if point::is_finite(&w) {
             Ok(w)
         } else {
             Err(Error::new(Status::DegenerateGeometry))
@@ -241,7 +242,7 @@ impl CanonicalForm {
         if n > MAX_VALENCE {
             return Err(Error::new(Status::ValenceTooHigh));
         }
-        if !point_is_finite(&v) {
+        if !point::is_finite(&v) {
             return Err(Error::new(Status::NonFiniteInput));
         }
         t.clear();
@@ -291,7 +292,7 @@ impl CanonicalForm {
             r += norm(sub(*ti, c));
         }
         r /= n as f64;
-        if !(r > 0.0 && r.is_finite() && point_is_finite(&c)) {
+        if !(r > 0.0 && r.is_finite() && point::is_finite(&c)) {
             return Err(Error::new(Status::DegenerateGeometry));
         }
         Ok(CanonicalForm { v, c, r, kind })
@@ -321,7 +322,7 @@ impl CanonicalForm {
     /// [`Status::DegenerateGeometry`] when `x` is sent to ∞ (it lies on the inverse image of
     /// `c`); [`Status::NonFiniteInput`].
     pub fn to_canonical(&self, x: Point) -> Result<Point> {
-        if !point_is_finite(&x) {
+        if !point::is_finite(&x) {
             return Err(Error::new(Status::NonFiniteInput));
         }
         if x == self.v {
@@ -337,7 +338,7 @@ impl CanonicalForm {
     /// # Errors
     /// [`Status::DegenerateGeometry`] when `C` is sent to ∞; [`Status::NonFiniteInput`].
     pub fn from_canonical(&self, p: Point) -> Result<Point> {
-        if !point_is_finite(&p) {
+        if !point::is_finite(&p) {
             return Err(Error::new(Status::NonFiniteInput));
         }
         if p == self.c {
@@ -346,7 +347,7 @@ impl CanonicalForm {
         let t = invert_in_sphere(p, self.c, self.r)?;
         let back = inverse_point(t).ok_or(Error::new(Status::DegenerateGeometry))?;
         let x = add(self.v, back);
-        if point_is_finite(&x) {
+        if point::is_finite(&x) {
             Ok(x)
         } else {
             Err(Error::new(Status::DegenerateGeometry))
@@ -370,7 +371,7 @@ impl CanonicalForm {
         // values: subtraction never underflows to zero), with the same statuses.
         match inverse_point(sub(x, self.v)) {
             Some(t) => self.normalised_from_tangent(t),
-            None if !point_is_finite(&x) || !point_is_finite(&self.v) => {
+            None if !point::is_finite(&x) || !point::is_finite(&self.v) => {
                 Err(Error::new(Status::NonFiniteInput))
             }
             None if x == self.v => Ok([0.0; 3]),
@@ -406,7 +407,7 @@ impl CanonicalForm {
             return Ok(self.v);
         }
         let Some(pinv) = inverse_point(p) else {
-            return Err(Error::new(if point_is_finite(&p) {
+            return Err(Error::new(if point::is_finite(&p) {
                 Status::DegenerateGeometry
             } else {
                 Status::NonFiniteInput
@@ -444,7 +445,7 @@ impl CanonicalForm {
 fn invert_in_sphere(x: Point, c: Point, r: f64) -> Result<Point> {
     let inv = inverse_point(sub(x, c)).ok_or(Error::new(Status::DegenerateGeometry))?;
     let y = sub(c, scale(inv, r * r));
-    if point_is_finite(&y) {
+    if point::is_finite(&y) {
         Ok(y)
     } else {
         Err(Error::new(Status::DegenerateGeometry))
@@ -453,35 +454,19 @@ fn invert_in_sphere(x: Point, c: Point, r: f64) -> Result<Point> {
 
 /// The error of `tangent_polygon_vertex(v, u)` for a finite `v` whose inverse failed.
 fn tangent_error(u: Point) -> Error {
-    Error::new(if point_is_finite(&u) {
+    Error::new(if point::is_finite(&u) {
         Status::DegenerateGeometry
     } else {
         Status::NonFiniteInput
     })
 }
 
-/// [`point_is_finite`] in fewer instructions: `0·a` is `±0` for a finite `a` and NaN for ±∞
+/// [`point::is_finite`] in fewer instructions: `0·a` is `±0` for a finite `a` and NaN for ±∞
 /// and NaN, and a sum of zeros is zero while a NaN term makes it NaN (IEEE arithmetic, no
 /// fast-math: the compiler may not fold `0·a`).
 #[inline]
 fn finite3(p: &Point) -> bool {
     p[0] * 0.0 + p[1] * 0.0 + p[2] * 0.0 == 0.0
-}
-
-pub(crate) fn add(a: Point, b: Point) -> Point {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-pub(crate) fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(crate) fn scale(a: Point, s: f64) -> Point {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-pub(crate) fn norm(a: Point) -> f64 {
-    Quat::from_point(a).abs()
 }
 
 #[cfg(test)]
@@ -626,7 +611,7 @@ mod tests {
         };
         for p in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.5, 0.0]] {
             if let Ok(x) = huge.from_normalised(p) {
-                assert!(point_is_finite(&x));
+                assert!(point::is_finite(&x));
             }
         }
         let nan_r = CanonicalForm {
@@ -643,7 +628,7 @@ mod tests {
             ([f64::INFINITY, f64::NEG_INFINITY, 0.0], false),
         ] {
             assert_eq!(finite3(&p), f);
-            assert_eq!(point_is_finite(&p), f);
+            assert_eq!(point::is_finite(&p), f);
         }
     }
 

@@ -8,12 +8,8 @@
 
 use core::ops::{Add, Mul, Neg, Sub};
 
-use glam::DVec3;
-
 use crate::error::{Error, Result, Status};
-
-/// A point of R³.
-pub type Point = [f64; 3];
+use crate::point::{self, Point};
 
 /// Below this sum of squares the fast paths of [`Quat::abs`] and [`Quat::inverse`] give way to
 /// scaled evaluation (far above the subnormal range, so no precision is lost).
@@ -55,8 +51,8 @@ impl Quat {
         Quat::new(0.0, p[0], p[1], p[2])
     }
 
-    pub(crate) fn from_parts(w: f64, v: DVec3) -> Quat {
-        Quat::new(w, v.x, v.y, v.z)
+    pub(crate) const fn from_parts(w: f64, v: Point) -> Quat {
+        Quat::new(w, v[0], v[1], v[2])
     }
 
     /// The imaginary part as a point of R³ (the real part is dropped).
@@ -74,8 +70,8 @@ impl Quat {
         Quat::new(a[0], a[1], a[2], a[3])
     }
 
-    pub(crate) fn im(self) -> DVec3 {
-        DVec3::new(self.x, self.y, self.z)
+    pub(crate) const fn im(self) -> Point {
+        [self.x, self.y, self.z]
     }
 
     /// Real part `Re q`.
@@ -189,8 +185,8 @@ impl Quat {
         if vi == 0.0 {
             return (r, theta, None);
         }
-        let n = self.im() / vi;
-        (r, theta, Some(n.to_array()))
+        let n = point::div(self.im(), vi);
+        (r, theta, Some(n))
     }
 
     /// The principal square root, `√q = √|q|·[cos θ/2, n sin θ/2]`, whose real part is never
@@ -221,12 +217,12 @@ impl Quat {
         if self.w >= 0.0 {
             // Re √q = √((r + w)/2) is accurate; Im = v / (2 Re).
             let s = libm::sqrt(0.5 * (r + self.w));
-            Some(Quat::from_parts(s, self.im() / (2.0 * s)))
+            Some(Quat::from_parts(s, point::div(self.im(), 2.0 * s)))
         } else {
             // |Im √q| = √((r − w)/2) is accurate; Re = |v| / (2 |Im|).
-            let n = self.im() / vi;
+            let n = point::div(self.im(), vi);
             let t = libm::sqrt(0.5 * (r - self.w));
-            Some(Quat::from_parts(vi / (2.0 * t), n * t))
+            Some(Quat::from_parts(vi / (2.0 * t), point::scale(n, t)))
         }
     }
 
@@ -241,7 +237,7 @@ impl Quat {
                 return Some(Quat::real(libm::sqrt(self.w)));
             }
             let s = libm::sqrt(0.5 * (r + self.w));
-            return Some(Quat::from_parts(s, self.im() / (2.0 * s)));
+            return Some(Quat::from_parts(s, point::div(self.im(), 2.0 * s)));
         }
         self.sqrt_given(r, self.abs_im())
     }
@@ -354,11 +350,6 @@ pub(crate) fn im_mul_im(a: Point, b: Point) -> Quat {
     )
 }
 
-/// Whether every coordinate of `p` is finite.
-pub fn point_is_finite(p: &Point) -> bool {
-    p.iter().all(|c| c.is_finite())
-}
-
 /// `Quat::from_point(p).inverse().map(Quat::to_point)` bit for bit, for the inverse of an
 /// imaginary quaternion `[0, p]⁻¹ = [0, −p/|p|²]` that nearly every Möbius rule takes: with a
 /// zero real part `|q|²` is the same sum of three squares (`0 + x² = x²` exactly) and the real
@@ -421,7 +412,7 @@ impl CrossRatio {
     /// of the product, which [`CrossRatio::value`] checks).
     #[inline]
     pub(crate) fn new(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<CrossRatio> {
-        if ![qi, qj, qk, ql].iter().all(point_is_finite) {
+        if ![qi, qj, qk, ql].iter().all(point::is_finite) {
             return Err(Error::new(Status::NonFiniteInput));
         }
         let inv_jk = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
@@ -486,7 +477,7 @@ pub(crate) fn cross_ratio_from_prefix(
     qk: Point,
     ql: Point,
 ) -> Result<Quat> {
-    if !point_is_finite(&ql) {
+    if !point::is_finite(&ql) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
@@ -509,13 +500,13 @@ fn finite_or_degenerate(q: Quat) -> Result<Quat> {
 /// [`Status::NonFiniteInput`], or [`Status::DegenerateGeometry`] when consecutive points
 /// coincide.
 pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
-    if ![qi, qj, qk].iter().all(point_is_finite) {
+    if ![qi, qj, qk].iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
     let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
     let t = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-    if point_is_finite(&t) {
+    if point::is_finite(&t) {
         Ok(t)
     } else {
         Err(Error::new(Status::DegenerateGeometry))
@@ -529,7 +520,7 @@ pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
 /// # Errors
 /// [`Status::DegenerateGeometry`] when `u = v`; [`Status::NonFiniteInput`].
 pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
-    if !point_is_finite(&v) || !point_is_finite(&u) {
+    if !point::is_finite(&v) || !point::is_finite(&u) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     diff_inverse(v, u).ok_or(Error::new(Status::DegenerateGeometry))

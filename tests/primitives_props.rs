@@ -20,7 +20,8 @@
 use nlsubdiv::blend::{f4, f6, is_negative_real};
 use nlsubdiv::metrics::{mobius_regularity, willmore_energy};
 use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
-use nlsubdiv::quat::{cross_ratio, Point, Quat};
+use nlsubdiv::point::Point;
+use nlsubdiv::quat::{cross_ratio, Quat};
 use nlsubdiv::{Status, MAX_VALENCE};
 
 use core::f64::consts::PI;

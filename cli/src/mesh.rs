@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 /// A point or vector.
-pub type P3 = [f64; 3];
+pub type P3 = nlsubdiv::Point;
 
 /// A polygon mesh in the layout of the core's mesh API: `positions[V]`, `offsets[F + 1]`
 /// (`offsets[0] = 0`), `indices[offsets[F]]`; face `f` is `indices[offsets[f]..offsets[f+1]]`,
@@ -98,39 +98,10 @@ pub fn bbox(points: &[P3]) -> Option<(P3, P3)> {
     Some((lo, hi))
 }
 
-/// `a − b`.
-pub fn sub(a: P3, b: P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `a + b`.
-pub fn add(a: P3, b: P3) -> P3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-/// `s a`.
-pub fn scale(a: P3, s: f64) -> P3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// `a · b`.
-pub fn dot(a: P3, b: P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `a × b`.
-pub fn cross(a: P3, b: P3) -> P3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// Euclidean length.
-pub fn norm(a: P3) -> f64 {
-    dot(a, a).sqrt()
-}
+// Vector arithmetic is the kernel's (`nlsubdiv::point`): the same operations, in the same
+// order, as the rules that produced the meshes this command measures. `norm` is the scaled
+// one, which neither overflows nor underflows at the ends of the double range.
+pub use nlsubdiv::point::{add, cross, dot, norm, scale, sub};
 
 /// `a / |a|`, or zero for a zero vector.
 pub fn normalize(a: P3) -> P3 {

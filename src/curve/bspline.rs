@@ -10,9 +10,9 @@
 //! crease rule of CGAL and OpenSubdiv; linear data stays linear. Two points give the
 //! midpoint.
 
-use crate::curve::{add, at, check_level, cyclic, finite, level_out, midpoint, scale};
+use crate::curve::{at, check_level, cyclic, finite, level_out};
 use crate::error::Result;
-use crate::quat::Point;
+use crate::point::{add, midpoint, scale, Point};
 
 /// The weight of the old point in a vertex point, `6/8`.
 pub const VERTEX_WEIGHT: f64 = 0.75;

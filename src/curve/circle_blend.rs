@@ -36,11 +36,9 @@
 //! [`Status::DegenerateGeometry`], naming the first point of the segment.
 
 use crate::blend::COINCIDENT_TOLERANCE;
-use crate::curve::{
-    add, at, check_level, cyclic, dot, finite, index_u32, level_out, midpoint, norm, scale, sub,
-};
+use crate::curve::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point};
+use crate::point::{self, add, dot, midpoint, scale, sub, Point};
 
 /// The cosine of the smallest angle between the blended tangent and the backward chord:
 /// closer than that (`S` beyond 1e12 chord lengths) the new point counts as at infinity.
@@ -100,7 +98,7 @@ fn arc_midpoint_with(p1: Point, p2: Point, c: Point, len: f64, t: Point, tl: f64
         0.5 * len * (tl - u) / w2
     };
     let s = add(midpoint(p1, p2), scale(w, factor));
-    if point_is_finite(&s) {
+    if point::is_finite(&s) {
         Ok(s)
     } else {
         Err(Error::new(Status::NumericalFailure))
@@ -143,7 +141,7 @@ fn any_coincident<const N: usize>(pairs: [(Point, Point); N]) -> bool {
 /// largest of their distances) or the blended tangent vanishes or points backwards along the
 /// chord; [`Status::NonFiniteInput`]; [`Status::NumericalFailure`].
 pub fn blend_point(p0: Point, p1: Point, p2: Point, p3: Point) -> Result<Point> {
-    if ![p0, p1, p2, p3].iter().all(point_is_finite) {
+    if ![p0, p1, p2, p3].iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     if any_coincident([(p0, p1), (p1, p2), (p0, p2), (p2, p3), (p1, p3)]) {
@@ -173,7 +171,7 @@ pub fn blend_point(p0: Point, p1: Point, p2: Point, p3: Point) -> Result<Point> 
 /// # Errors
 /// As [`blend_point`].
 pub fn end_blend_point(p0: Point, p1: Point, p2: Point) -> Result<Point> {
-    if ![p0, p1, p2].iter().all(point_is_finite) {
+    if ![p0, p1, p2].iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     if any_coincident([(p0, p1), (p1, p2), (p0, p2)]) {

@@ -48,11 +48,11 @@
 //! level `k − 1` already for `k = 1`.
 
 use crate::curve::{
-    add, at, bspline, check_finite, finite, four_point, refined_len, run_levels, scale, sub,
-    to_input_element, Level0, LevelRule,
+    at, bspline, check_finite, finite, four_point, refined_len, run_levels, to_input_element,
+    Level0, LevelRule,
 };
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, scale, sub, Point};
 
 /// The linear scheme used on the differential polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

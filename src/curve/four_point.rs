@@ -11,9 +11,9 @@
 //! (DESIGN.md, "Curves"); the end segments then reproduce linear data only. Two points give
 //! the midpoint (which the virtual points produce by themselves).
 
-use crate::curve::{add, at, check_level, cyclic, finite, level_out, scale, sub};
+use crate::curve::{at, check_level, cyclic, finite, level_out};
 use crate::error::Result;
-use crate::quat::Point;
+use crate::point::{add, scale, sub, Point};
 
 /// Weight of the two inner points, `1/2 + w` with `w = 1/16`.
 pub const INNER_WEIGHT: f64 = 0.5625;

@@ -37,9 +37,10 @@
 //! of its length from `P_1`, the configuration that a Möbius map sends to `0, 1, 2`).
 
 use crate::blend::{f4, COINCIDENT_TOLERANCE};
-use crate::curve::{at, check_level, cyclic, finite, index_u32, level_out, midpoint, norm, sub};
+use crate::curve::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point, Quat};
+use crate::point::{self, midpoint, sub, Point};
+use crate::quat::Quat;
 
 /// The cross-ratio `cr[P_2, P_1, P_0, P_{−1}]` of the virtual end point (DESIGN.md):
 /// `cr[2, 1, 0, −1]` of four equally spaced points of a line.
@@ -78,7 +79,7 @@ fn solve_real_cross_ratio(e: Point, a: Point, b: Point, chi: f64) -> Result<Poin
     }
     let p = (den.inverse().ok_or(degenerate)? * (x * qe)).to_point();
     let out = [b[0] + p[0] * size, b[1] + p[1] * size, b[2] + p[2] * size];
-    if point_is_finite(&out) {
+    if point::is_finite(&out) {
         Ok(out)
     } else {
         Err(degenerate)
@@ -105,7 +106,7 @@ fn coincidences(p0: Point, p1: Point, p2: Point) -> (bool, bool, bool) {
 /// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when two of the points
 /// coincide or `P_{−1}` is at infinity.
 pub fn virtual_end_point(p0: Point, p1: Point, p2: Point) -> Result<Point> {
-    if ![p0, p1, p2].iter().all(point_is_finite) {
+    if ![p0, p1, p2].iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let (a, b, c) = coincidences(p0, p1, p2);
@@ -127,7 +128,7 @@ pub fn virtual_end_point(p0: Point, p1: Point, p2: Point) -> Result<Point> {
 /// # Errors
 /// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when `E` is at infinity.
 pub fn end_edge_point(p0: Point, p1: Point, p2: Point) -> Result<Point> {
-    if ![p0, p1, p2].iter().all(point_is_finite) {
+    if ![p0, p1, p2].iter().all(point::is_finite) {
         return Err(Error::new(Status::NonFiniteInput));
     }
     let (c01, c12, c02) = coincidences(p0, p1, p2);

@@ -76,7 +76,7 @@ pub mod four_point;
 pub mod mobius;
 
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point};
+use crate::point::{self, dot, Point};
 
 /// A curve subdivision scheme. The discriminants are stable codes of the C ABI
 /// (`NLS_CURVE_*`), never reused.
@@ -396,7 +396,7 @@ pub(crate) fn to_input_element(e: Error, level: u32) -> Error {
 
 /// [`Status::NonFiniteInput`] naming the first point with a NaN or infinite coordinate.
 pub(crate) fn check_finite(points: &[Point]) -> Result<()> {
-    match points.iter().position(|p| !point_is_finite(p)) {
+    match points.iter().position(|p| !point::is_finite(p)) {
         Some(i) => Err(Error::at(Status::NonFiniteInput, index_u32(i))),
         None => Ok(()),
     }
@@ -456,55 +456,25 @@ pub(crate) fn cyclic(points: &[Point], i: usize, k: isize) -> Result<Point> {
 /// `p` if finite, else [`Status::NumericalFailure`] naming `element`.
 #[inline]
 pub(crate) fn finite(p: Point, element: usize) -> Result<Point> {
-    if point_is_finite(&p) {
+    if point::is_finite(&p) {
         Ok(p)
     } else {
         Err(Error::at(Status::NumericalFailure, index_u32(element)))
     }
 }
 
-// Small vector helpers (plain IEEE arithmetic, no FMA).
-
-#[inline]
-pub(crate) fn add(a: Point, b: Point) -> Point {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-#[inline]
-pub(crate) fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline]
-pub(crate) fn scale(a: Point, s: f64) -> Point {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-#[inline]
-pub(crate) fn dot(a: Point, b: Point) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `|a|`: `√(a·a)` when the square neither overflows nor comes near underflow, else the
-/// scaled evaluation of [`crate::quat::Quat::abs`]. The branch depends only on `a`, so the
-/// result is deterministic.
+/// The length of a curve vector: `√(a·a)` down to a squared length of 1e-280 (every square
+/// there is still a normal number, so the plain root loses nothing), below that and on
+/// overflow the scaled [`crate::point::norm`]. The curve rules keep this wider fast path of
+/// their own; the branch depends only on `a`, so the result is deterministic.
 #[inline]
 pub(crate) fn norm(a: Point) -> f64 {
     let s = dot(a, a);
     if s.is_finite() && s >= 1e-280 {
         libm::sqrt(s)
     } else {
-        crate::mobius::norm(a)
+        crate::point::norm(a)
     }
-}
-
-#[inline]
-pub(crate) fn midpoint(a: Point, b: Point) -> Point {
-    [
-        0.5 * (a[0] + b[0]),
-        0.5 * (a[1] + b[1]),
-        0.5 * (a[2] + b[2]),
-    ]
 }
 
 /// The first `refined_len_once(p.len())` entries of `out`: the exact output of one level.

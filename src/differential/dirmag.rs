@@ -15,39 +15,15 @@
 
 use crate::error::Result;
 use crate::mesh::{set, Topology};
-use crate::quat::Point;
+use crate::point::{cross, dot, norm_unscaled, sub, Point};
 
 /// Below this length a subdivided normal is not normalised (see the module docs).
 pub const MIN_NORMAL: f64 = 1e-12;
 
-#[inline]
-fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline]
-pub(crate) fn dot(a: Point, b: Point) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-pub(crate) fn cross(a: Point, b: Point) -> Point {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline]
-pub(crate) fn norm(a: Point) -> f64 {
-    libm::sqrt(dot(a, a))
-}
-
 /// `a / ‖a‖`, or `None` below [`MIN_NORMAL`].
 #[inline]
 pub(crate) fn normalized(a: Point) -> Option<Point> {
-    let l = norm(a);
+    let l = norm_unscaled(a);
     if l < MIN_NORMAL || !l.is_finite() {
         None
     } else {
@@ -58,7 +34,7 @@ pub(crate) fn normalized(a: Point) -> Option<Point> {
 /// The angle between `a` and `b` (robust `atan2` form).
 #[inline]
 fn angle(a: Point, b: Point) -> f64 {
-    libm::atan2(norm(cross(a, b)), dot(a, b))
+    libm::atan2(norm_unscaled(cross(a, b)), dot(a, b))
 }
 
 /// Angle-weighted vertex normals of `topo` (Σ over the incident faces of the corner angle
@@ -100,7 +76,7 @@ pub fn angle_weighted_normals(topo: &Topology<'_, '_>, out: &mut [Point]) -> Res
 /// Separates `δ` into the signed magnitude `H` and the unit direction `n` (module docs), with
 /// `nbar` the angle-weighted normal.
 pub fn separate(delta: Point, nbar: Point) -> (f64, Point) {
-    let m = norm(delta);
+    let m = norm_unscaled(delta);
     if m == 0.0 || !m.is_finite() {
         return (0.0, nbar);
     }

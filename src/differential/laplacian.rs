@@ -18,7 +18,7 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, set, Topology};
-use crate::quat::Point;
+use crate::point::Point;
 
 /// A level's Laplacian as neighbour lists: row `i`'s full 1-ring is
 /// `cols[rows[i]..rows[i + 1]]` (counter-clockwise; a boundary vertex's ring runs from `b0`

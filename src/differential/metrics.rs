@@ -13,15 +13,10 @@
 //!   share (old vertices keep their indices) — a proxy for the Hausdorff distance `h_i` of
 //!   §3.3, not the Hausdorff distance itself.
 
-use super::dirmag::{cross, dot, norm, normalized};
+use super::dirmag::normalized;
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, Topology, NONE};
-use crate::quat::Point;
-
-#[inline]
-fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
+use crate::point::{cross, dot, norm_unscaled, sub, Point};
 
 /// Signed dihedral angle of the edge of half-edge `h` (0 on the boundary).
 fn dihedral(topo: &Topology<'_, '_>, h: u32) -> Result<f64> {
@@ -38,7 +33,7 @@ fn dihedral(topo: &Topology<'_, '_>, h: u32) -> Result<f64> {
     let (Some(u1), Some(u2)) = (normalized(n1), normalized(n2)) else {
         return Ok(0.0);
     };
-    let ang = libm::atan2(norm(cross(u1, u2)), dot(u1, u2));
+    let ang = libm::atan2(norm_unscaled(cross(u1, u2)), dot(u1, u2));
     Ok(if dot(u1, sub(d, a)) > 0.0 { -ang } else { ang })
 }
 
@@ -60,7 +55,7 @@ pub fn vertex_curvatures(topo: &Topology<'_, '_>, out: &mut [[f64; 3]]) -> Resul
         for s in topo.star(v) {
             let q = topo.position(s.neighbour)?;
             let e = sub(q, pv);
-            let len = norm(e);
+            let len = norm_unscaled(e);
             if len > 0.0 {
                 let h = if s.half_edge != NONE {
                     s.half_edge
@@ -83,7 +78,7 @@ pub fn vertex_curvatures(topo: &Topology<'_, '_>, out: &mut [[f64; 3]]) -> Resul
                     sub(topo.position(get(vs, 1)?)?, p0),
                     sub(topo.position(get(vs, 2)?)?, p0),
                 );
-                area += norm(c) / 6.0;
+                area += norm_unscaled(c) / 6.0;
                 nsum = [nsum[0] + c[0], nsum[1] + c[1], nsum[2] + c[2]];
             }
         }
@@ -165,7 +160,7 @@ pub fn level_distance(coarse: &[Point], fine: &[Point]) -> Result<f64> {
     }
     let mut m = 0.0f64;
     for (a, b) in coarse.iter().zip(fine) {
-        m = m.max(norm(sub(*a, *b)));
+        m = m.max(norm_unscaled(sub(*a, *b)));
     }
     Ok(m)
 }

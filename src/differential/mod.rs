@@ -51,7 +51,7 @@ use crate::error::{Error, Result, Status};
 use crate::mesh::{
     cadd, cmul, get, internal, set, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, NONE,
 };
-use crate::quat::Point;
+use crate::point::Point;
 use crate::scheme::{Scheme, MAX_LEVELS};
 use laplacian::Laplacian;
 use solve::{SolveLevel, SolveOptions, SolveReport, System};
@@ -242,7 +242,7 @@ pub fn plan(
         if s.len() != n {
             return Err(Error::new(Status::InvalidArgument));
         }
-        if let Some(i) = s.iter().position(|x| !crate::quat::point_is_finite(x)) {
+        if let Some(i) = s.iter().position(|x| !crate::point::is_finite(x)) {
             return Err(Error::at(Status::NonFiniteInput, i as u32));
         }
     }
@@ -660,7 +660,7 @@ pub fn subdivide(
             p[1] + (a[1] - b[1]) / n,
             p[2] + (a[2] - b[2]) / n,
         ];
-        if !crate::quat::point_is_finite(&q) {
+        if !crate::point::is_finite(&q) {
             return Err(Error::at(Status::NumericalFailure, v as u32));
         }
         *p = q;

@@ -69,7 +69,7 @@ use arrayvec::ArrayVec;
 use super::laplacian::Laplacian;
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, set};
-use crate::quat::Point;
+use crate::point::{add, scale, sub, Point};
 
 /// Most levels of a hierarchy (the input and [`crate::scheme::MAX_LEVELS`] steps).
 pub const MAX_HIERARCHY: usize = crate::scheme::MAX_LEVELS + 1;
@@ -215,21 +215,6 @@ fn frob(a: &[Point]) -> f64 {
     libm::sqrt(d[0] + d[1] + d[2])
 }
 
-#[inline]
-fn add(a: Point, b: Point) -> Point {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-#[inline]
-fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline]
-fn scale(s: f64, a: Point) -> Point {
-    [s * a[0], s * a[1], s * a[2]]
-}
-
 /// `y = K̃ x` at one level: `(K x)_i = dᵢ xᵢ − Σ_ring x_j` on free rows, 0 on fixed rows.
 fn apply_k(lap: &Laplacian<'_>, x: &[Point], y: &mut [Point]) -> Result<()> {
     for (i, yi) in y.iter_mut().enumerate().take(lap.len()) {
@@ -242,7 +227,7 @@ fn apply_k(lap: &Laplacian<'_>, x: &[Point], y: &mut [Point]) -> Result<()> {
         for &j in r {
             s = add(s, get(x, j as usize)?);
         }
-        *yi = sub(scale(r.len() as f64, get(x, i)?), s);
+        *yi = sub(scale(get(x, i)?, r.len() as f64), s);
     }
     Ok(())
 }
@@ -269,7 +254,7 @@ fn gauss_seidel(lap: &Laplacian<'_>, b: &[Point], x: &mut [Point], forward: bool
         for &j in r {
             acc = add(acc, get(x, j as usize)?);
         }
-        set(x, i, scale(1.0 / r.len() as f64, acc))?;
+        set(x, i, scale(acc, 1.0 / r.len() as f64))?;
     }
     Ok(())
 }
@@ -280,7 +265,7 @@ fn jacobi(lap: &Laplacian<'_>, r: &[Point], z: &mut [Point]) -> Result<()> {
         *zi = if lap.is_fixed(i)? {
             [0.0; 3]
         } else {
-            scale(1.0 / lap.degree(i)?, get(r, i)?)
+            scale(get(r, i)?, 1.0 / lap.degree(i)?)
         };
     }
     Ok(())
@@ -304,7 +289,7 @@ impl System<'_> {
         for &a in self.anchors {
             let xa = get(x, a as usize)?;
             let ya = y.get_mut(a as usize).ok_or(internal())?;
-            *ya = add(*ya, scale(w, xa));
+            *ya = add(*ya, scale(xa, w));
         }
         Ok(())
     }
@@ -358,7 +343,7 @@ impl System<'_> {
         for e in 0..(n - nc) {
             let a = get(lc.edges, 2 * e)? as usize;
             let b = get(lc.edges, 2 * e + 1)? as usize;
-            let h = scale(0.5, get(cur.r, nc + e)?);
+            let h = scale(get(cur.r, nc + e)?, 0.5);
             for v in [a, b] {
                 let p = cw.b.get_mut(v).ok_or(internal())?;
                 *p = add(*p, h);
@@ -379,7 +364,7 @@ impl System<'_> {
             let a = get(cw.x, get(lc.edges, 2 * e)? as usize)?;
             let b = get(cw.x, get(lc.edges, 2 * e + 1)? as usize)?;
             let p = cur.x.get_mut(nc + e).ok_or(internal())?;
-            *p = add(*p, scale(0.5, add(a, b)));
+            *p = add(*p, scale(add(a, b), 0.5));
         }
         for _ in 0..NU {
             gauss_seidel(&lap, cur.b, cur.x, false)?;
@@ -505,7 +490,7 @@ fn solve_loop(
     if m < 3 {
         return Err(internal());
     }
-    mean = scale(1.0 / m as f64, mean);
+    mean = scale(mean, 1.0 / m as f64);
     let xa = get(x, a as usize)?;
     // Forward elimination: rows −y_{t−1} + 2 y_t − y_{t+1} = g_t, y_0 = y_m = x_a.
     let (mut prev, mut cur) = (a, *lap.ring(a as usize)?.first().ok_or(internal())?);
@@ -513,14 +498,14 @@ fn solve_loop(
     let mut last = cur;
     while cur != a {
         let nxt = along(lap, cur, prev)?;
-        let mut g = scale(2.0, sub(get(delta, cur as usize)?, mean));
+        let mut g = scale(sub(get(delta, cur as usize)?, mean), 2.0);
         g = add(g, d_prev);
         if nxt == a {
             g = add(g, xa);
         }
         let den = 2.0 + c_prev;
         let c = -1.0 / den;
-        let d = scale(1.0 / den, g);
+        let d = scale(g, 1.0 / den);
         set(cp, cur as usize, [c, 0.0, 0.0])?;
         set(dp, cur as usize, d)?;
         c_prev = c;
@@ -536,7 +521,7 @@ fn solve_loop(
     while cur != a {
         let c = get(cp, cur as usize)?[0];
         let d = get(dp, cur as usize)?;
-        let y = if first { d } else { sub(d, scale(c, y_next)) };
+        let y = if first { d } else { sub(d, scale(y_next, c)) };
         first = false;
         set(x, cur as usize, y)?;
         y_next = y;
@@ -620,7 +605,7 @@ pub fn solve(
         centre = add(centre, *p);
     }
     if n > 0 {
-        centre = scale(1.0 / n as f64, centre);
+        centre = scale(centre, 1.0 / n as f64);
     }
     for p in x.iter_mut() {
         *p = sub(*p, centre);
@@ -634,7 +619,7 @@ pub fn solve(
     for &a in sys.anchors {
         let xa = get(x, a as usize)?;
         let ba = bne.get_mut(a as usize).ok_or(internal())?;
-        *ba = add(*ba, scale(sys.anchor_weight, xa));
+        *ba = add(*ba, scale(xa, sys.anchor_weight));
     }
     let bnorm = frob(bne);
     let mut report = SolveReport::default();
@@ -673,7 +658,7 @@ pub fn solve(
             }
             let d = fine.degree(i)?;
             let s = sd.get_mut(l).ok_or(internal())?;
-            *s = add(*s, scale(d, get(delta, i)?));
+            *s = add(*s, scale(get(delta, i)?, d));
             sdd.get_mut(l).ok_or(internal())?[0] += d * d;
         }
         // r = f − K x on free rows, f = Dδ (+ c D² on closed components).
@@ -683,19 +668,19 @@ pub fn solve(
                 continue;
             }
             let d = fine.degree(i)?;
-            let mut f = scale(d, get(delta, i)?);
+            let mut f = scale(get(delta, i)?, d);
             let l = get(sys.components, i)? as usize;
             if get(sys.open, l)? == 0 {
                 let den = get(sdd, l)?[0];
                 if den > 0.0 {
-                    f = sub(f, scale(d * d / den, get(sd, l)?));
+                    f = sub(f, scale(get(sd, l)?, d * d / den));
                 }
             }
             let mut s = [0.0; 3];
             for &j in fine.ring(i)? {
                 s = add(s, get(x, j as usize)?);
             }
-            *ri = add(f, sub(s, scale(d, get(x, i)?)));
+            *ri = add(f, sub(s, scale(get(x, i)?, d)));
         }
     }
 

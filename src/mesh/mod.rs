@@ -37,7 +37,7 @@ pub mod topology;
 pub use topology::{topology_scratch_len, Spoke, Star, Topology};
 
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::Point;
 
 /// The "none" marker in `u32` index arrays (no twin, no face, no half-edge).
 pub const NONE: u32 = u32::MAX;

@@ -53,7 +53,7 @@ pub(crate) use derive::derivable;
 use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
-use crate::quat::{point_is_finite, Point};
+use crate::point::{self, Point};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// Scratch (`u32` entries) that [`Topology::build`] needs for a mesh with `num_vertices`
@@ -644,7 +644,7 @@ impl<'m, 's> Topology<'m, 's> {
         }
 
         for (v, p) in mesh.positions().enumerate() {
-            if !point_is_finite(&p) {
+            if !point::is_finite(&p) {
                 return Err(Error::at(Status::NonFiniteInput, v as u32));
             }
         }

@@ -19,7 +19,7 @@ use crate::mesh::topology::{derivable, Counts};
 use crate::mesh::{
     cadd, cmul, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
 };
-use crate::quat::Point;
+use crate::point::Point;
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// The largest number of levels of one [`subdivide_levels`] call.

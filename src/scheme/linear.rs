@@ -13,7 +13,7 @@ use super::Scheme;
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::{pattern_size, write_pattern};
 use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Topology, NONE};
-use crate::quat::{point_is_finite, Point};
+use crate::point::{self, Point};
 use crate::stencil::{
     akleman, butterfly, catmull_clark, doo_sabin, kobbelt, loop_scheme, simplest,
 };
@@ -85,7 +85,7 @@ fn first_non_finite(pos: &[Point]) -> Option<usize> {
     if finite {
         return None;
     }
-    pos.iter().position(|p| !point_is_finite(p))
+    pos.iter().position(|p| !point::is_finite(p))
 }
 
 // ---- gathering neighbourhoods ----
@@ -374,7 +374,7 @@ pub(crate) fn butterfly_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
         (true, true) => {
             let s0 = butterfly_zorin(topo, i0, i1)?;
             let s1 = butterfly_zorin(topo, i1, i0)?;
-            crate::stencil::midpoint(s0, s1)
+            crate::point::midpoint(s0, s1)
         }
     })
 }
@@ -454,7 +454,7 @@ fn kobbelt_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
             ep(pos, h3)?,
             outer(pos, h3, h1)?,
         );
-        set(pos, nv + ne + f as usize, crate::stencil::midpoint(fa, fb))?;
+        set(pos, nv + ne + f as usize, crate::point::midpoint(fa, fb))?;
     }
     Ok(())
 }

@@ -37,10 +37,9 @@ use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{get, internal, set, MeshOut, MeshSizes, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
-use crate::quat::{point_is_finite, Point};
+use crate::point::{self, midpoint, Point};
 use crate::stencil::{
-    akleman, butterfly, catmull_clark, centroid, doo_sabin, kobbelt, loop_scheme, midpoint,
-    simplest,
+    akleman, butterfly, catmull_clark, centroid, doo_sabin, kobbelt, loop_scheme, simplest,
 };
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
@@ -77,7 +76,7 @@ const ORIGIN: Point = [0.0; 3];
 const MISSING: Point = [f64::NAN; 3];
 
 fn present(p: &Point) -> bool {
-    point_is_finite(p)
+    point::is_finite(p)
 }
 
 /// Scratch points [`subdivide`] needs: an edge candidate and a face candidate per half-edge.
@@ -313,7 +312,7 @@ pub fn catmull_clark_star(
     let (cf, images) = star_form(v, ring, closed)?;
     for j in 0..nf {
         let corners = face(j)?;
-        if !corners.iter().all(point_is_finite) {
+        if !corners.iter().all(point::is_finite) {
             return Err(Error::at(Status::NonFiniteInput, j as u32));
         }
         if !corners.contains(&v) {
@@ -399,7 +398,7 @@ pub fn subdivide(
     };
     d.run(scheme)?;
     for (i, p) in d.pos.iter().enumerate() {
-        if !point_is_finite(p) {
+        if !point::is_finite(p) {
             return Err(Error::at(Status::NumericalFailure, i as u32));
         }
     }
@@ -543,7 +542,7 @@ impl Local {
         let centre = topo.position(v)?;
         // The tangent polygon straight from the mesh: `CanonicalForm::new` of the ring's
         // positions bit for bit (same checks: a finite centre, every `T_i` defined).
-        let mut ok = point_is_finite(&centre);
+        let mut ok = point::is_finite(&centre);
         self.tangents.clear();
         for s in spokes.iter() {
             match CanonicalForm::tangent(centre, topo.position(s.neighbour)?) {
@@ -952,7 +951,7 @@ impl Driver<'_, '_, '_, '_> {
                     None
                 };
                 let p = match p {
-                    Some(p) if point_is_finite(&p) => p,
+                    Some(p) if point::is_finite(&p) => p,
                     _ => {
                         self.fallback(k)?;
                         linear(self, e)?
@@ -1074,7 +1073,7 @@ impl Driver<'_, '_, '_, '_> {
             }
             if !boundary {
                 let q = match vertex {
-                    Some(q) if point_is_finite(&q) => q,
+                    Some(q) if point::is_finite(&q) => q,
                     _ => {
                         self.fallback(v as usize)?;
                         loop_scheme::vertex_interior(p, &ring_points(topo, v)?)?
@@ -1151,7 +1150,7 @@ impl Driver<'_, '_, '_, '_> {
             }
             if !boundary {
                 let q = match vertex {
-                    Some(q) if point_is_finite(&q) => q,
+                    Some(q) if point::is_finite(&q) => q,
                     _ => {
                         self.fallback(v as usize)?;
                         let mut ring: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
@@ -1281,7 +1280,7 @@ impl Driver<'_, '_, '_, '_> {
                     None
                 };
                 let q = match q {
-                    Some(q) if point_is_finite(&q) => q,
+                    Some(q) if point::is_finite(&q) => q,
                     _ => {
                         self.fallback(h as usize)?;
                         doo_sabin::corner_point(&linear_pts, i)?

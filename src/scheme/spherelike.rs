@@ -67,7 +67,7 @@ use super::linear::face_points;
 use crate::curve::circle_blend;
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::quat::Point;
+use crate::point::Point;
 use crate::MAX_FACE_SIZE;
 
 use arrayvec::ArrayVec;
@@ -113,7 +113,7 @@ pub fn segment_point(p0: Option<Point>, p1: Point, p2: Point, p3: Option<Point>)
         (Some(a), Some(b)) => circle_blend::blend_point(a, p1, p2, b),
         (None, Some(b)) => circle_blend::end_blend_point(p1, p2, b),
         (Some(a), None) => circle_blend::end_blend_point(p2, p1, a),
-        (None, None) => Ok(crate::stencil::midpoint(p1, p2)),
+        (None, None) => Ok(crate::point::midpoint(p1, p2)),
     }
 }
 
@@ -256,7 +256,7 @@ fn face_point(topo: &Topology<'_, '_>, pos: &[Point], f: u32) -> Result<Point> {
     }
     let s = 1.0 / count as f64;
     let p = [sum[0] * s, sum[1] * s, sum[2] * s];
-    if crate::quat::point_is_finite(&p) {
+    if crate::point::is_finite(&p) {
         Ok(p)
     } else {
         Err(Error::new(Status::NumericalFailure))

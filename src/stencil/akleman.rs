@@ -21,9 +21,9 @@
 //!   boundary edges are kept (their triangle `(a, b, c_f)`), so the boundary curve is
 //!   unchanged.
 
-use super::{centroid, lin2, midpoint};
+use super::centroid;
 use crate::error::Result;
-use crate::quat::Point;
+use crate::point::{lin2, midpoint, Point};
 
 /// The truncation parameter `t = 1/3` of dual truncation.
 pub const TRUNCATION: f64 = 1.0 / 3.0;

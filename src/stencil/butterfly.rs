@@ -5,9 +5,8 @@
 //!
 //! Old vertices keep their positions (interpolating).
 
-use super::{add, lin2, scale, sub, sum};
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, lin2, scale, sub, sum, Point};
 use crate::MAX_VALENCE;
 
 /// Boundary edge point, the 4-point rule `9/16 (a0 + a1) − 1/16 (p0 + p1)`, `p0`, `p1` the

@@ -3,9 +3,9 @@
 //! cubic B-spline crease rule of CGAL and OpenSubdiv `EDGE_ONLY` (peer-rules.md,
 //! "Catmull–Clark"; OpenMesh's 2/3, 1/6 boundary variant is not the standard).
 
-use super::{add, centroid, lin2, midpoint, scale, sum};
+use super::centroid;
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, lin2, midpoint, scale, sum, Point};
 
 pub use super::crease_vertex as vertex_boundary;
 

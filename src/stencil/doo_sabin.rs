@@ -2,9 +2,8 @@
 //! `DQQ_1step`, the only peer (peer-rules.md, "Doo–Sabin"): one point per (face, corner),
 //! no boundary rule.
 
-use super::{add, scale};
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, scale, Point};
 
 /// Weight `a_k` of vertex `v_{i+k}` in the corner point of corner `i` of an n-gon:
 /// `a_0 = 1/4 + 5/(4n)`, `a_k = (3 + 2 cos(2πk/n)) / (4n)`; quads exactly `(9, 3, 1, 3)/16`

@@ -49,9 +49,9 @@
 //! * A face edge on the boundary has no face beyond it: the outer edge point of the face rule
 //!   is extrapolated the same way, `2 e − e_opposite`.
 
-use super::{add, cyclic, lin2, scale, sub, sum};
+use super::cyclic;
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, lin2, scale, sub, sum, Point};
 
 /// The tension of the 4-point rule, `w = 1/16` (weights `−w, 1/2 + w, 1/2 + w, −w`).
 pub const W: f64 = 1.0 / 16.0;

@@ -1,9 +1,8 @@
 //! Loop subdivision (Loop 1987) with the original weights, as OpenMesh `LoopT`, CGAL
 //! `Loop_mask_3` and OpenSubdiv `loopScheme` (peer-rules.md, "Loop"): not Warren's β.
 
-use super::{add, lin2, midpoint, scale, sum};
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
+use crate::point::{add, lin2, midpoint, scale, sum, Point};
 
 pub use super::crease_vertex as vertex_boundary;
 

@@ -19,36 +19,7 @@ pub mod loop_scheme;
 pub mod simplest;
 
 use crate::error::{Error, Result, Status};
-use crate::quat::Point;
-
-/// `a + b`.
-#[inline]
-pub fn add(a: Point, b: Point) -> Point {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-/// `a − b`.
-#[inline]
-pub fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `s · a`.
-#[inline]
-pub fn scale(a: Point, s: f64) -> Point {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// `wa · a + wb · b`.
-#[inline]
-pub fn lin2(wa: f64, a: Point, wb: f64, b: Point) -> Point {
-    add(scale(a, wa), scale(b, wb))
-}
-
-/// The sum of `points`, left to right.
-pub fn sum(points: &[Point]) -> Point {
-    points.iter().fold([0.0; 3], |acc, &p| add(acc, p))
-}
+use crate::point::{add, lin2, scale, sum, Point};
 
 /// The average of `points`.
 ///
@@ -59,12 +30,6 @@ pub fn centroid(points: &[Point]) -> Result<Point> {
         return Err(Error::new(Status::TooFewPoints));
     }
     Ok(scale(sum(points), 1.0 / points.len() as f64))
-}
-
-/// The midpoint of `a` and `b`.
-#[inline]
-pub fn midpoint(a: Point, b: Point) -> Point {
-    scale(add(a, b), 0.5)
 }
 
 /// The crease (boundary) vertex rule of the cubic B-spline, `3/4 v + 1/8 (b0 + b1)`: the

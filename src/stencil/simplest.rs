@@ -7,4 +7,4 @@
 //! interpolating curve rule; the mid-edge polygon alone would never refine a boundary loop,
 //! it has as many points as edges).
 
-pub use super::midpoint as edge_point;
+pub use crate::point::midpoint as edge_point;

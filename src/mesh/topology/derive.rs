@@ -425,7 +425,7 @@ mod tests {
     use crate::error::Error;
     use crate::mesh::refine::{pattern_size, write_pattern};
     use crate::mesh::topology_scratch_len;
-    use crate::quat::Point;
+    use crate::point::Point;
     use arrayvec::ArrayVec;
 
     /// `u32` and point arenas the levels of one test are carved from (no allocation in the
