@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
-"""The robustness dashboard: the README table between the `dashboard:begin`/`dashboard:end`
-markers, written from the logs of the test-all run that calls it (its last step), never typed.
+"""The robustness dashboard: a table of what the test-all run that calls it (its last step)
+verified, written from that run's logs, never typed.
 
-    scripts/dashboard.py OUT_DIR [README]
+    scripts/dashboard.py OUT_DIR
+
+Writes the table to OUT_DIR/robustness.md and prints it. It belongs to that run: it is not
+copied into any tracked file.
 
 Reads, in OUT_DIR (scripts/test-all.sh's log directory):
 - the `cargo test (release)` log: which Rust tests passed, per test file;
@@ -20,7 +23,7 @@ import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BEGIN, END = "<!-- dashboard:begin -->", "<!-- dashboard:end -->"
+TABLE = "robustness.md"
 
 
 def log_name(step):
@@ -104,7 +107,6 @@ def main():
         print(__doc__)
         return 2
     out = sys.argv[1]
-    readme = sys.argv[2] if len(sys.argv) > 2 else os.path.join(ROOT, "README.md")
     problems = []
     names = status_names()
 
@@ -203,8 +205,10 @@ def main():
         return "yes" if b else "**no**"
 
     lines = [
-        BEGIN,
-        "<!-- written by scripts/dashboard.py from the logs of scripts/test-all.sh; do not edit -->",
+        "# Robustness dashboard",
+        "",
+        f"Written by scripts/dashboard.py from the logs of scripts/test-all.sh in {out}.",
+        "",
         "| figure | this run |",
         "|---|---|",
         f"| bad-input classes (docs/bad-input-catalogue.md) with a passing Rust test | {rust_ok}/{rust_n} applicable |",
@@ -232,21 +236,12 @@ def main():
     else:
         why = fuzz_skip.group(1) if fuzz_skip else "not run in this test command"
         lines.append(f"| fuzz executions under ASan | skipped: {why} |")
-    lines.append(END)
-    table = "\n".join(lines)
+    table = "\n".join(lines) + "\n"
+    path = os.path.join(out, TABLE)
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(table)
     print(table)
-
-    with open(readme, encoding="utf-8") as fh:
-        text = fh.read()
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1]
-        text = head + table + tail
-    else:
-        text = text.rstrip("\n") + "\n\n## Robustness dashboard\n\n" + table + "\n"
-    with open(readme, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    print(f"dashboard: README table written ({os.path.relpath(readme, ROOT)})")
+    print(f"dashboard: table written to {path}")
 
     if problems:
         print("dashboard: FAIL")
