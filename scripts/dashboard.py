@@ -9,6 +9,8 @@ copied into any tracked file.
 
 Reads, in OUT_DIR (scripts/test-all.sh's log directory):
 - the `cargo test (release)` log: which Rust tests passed, per test file;
+- `skipped-tests.txt` (NLS_SKIP_LOG of tests/common/shared_data.rs): tests that passed without
+  the shared test meshes; they cover nothing here;
 - `c-statuses.log` (NLS_STATUS_LOG of ffi_tests/check.h): every status a CHECK_STATUS of a C
   suite verified at run time;
 - the C suites' logs (ASan+UBSan, nightly-ASan Rust staticlib, valgrind): summary lines and
@@ -85,6 +87,22 @@ def rust_passed(log):
     return ok
 
 
+def skipped_tests(out):
+    """{(section, test name)} of the tests that reported a SKIP for missing shared data
+    (`SKIP [cli::]file::test: ...`, one per line of skipped-tests.txt), and the line count."""
+    path = os.path.join(out, "skipped-tests.txt")
+    if not os.path.exists(path):
+        return set(), 0
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        lines = sorted({line.strip() for line in fh if line.startswith("SKIP ")})
+    names = set()
+    for line in lines:
+        parts = line[len("SKIP "):].split(": ", 1)[0].split("::")
+        if len(parts) >= 2:
+            names.add((parts[-2], parts[-1]))
+    return names, len(lines)
+
+
 def rust_covered(cell, passed):
     if cell.startswith("n/a"):
         return None, []
@@ -114,7 +132,9 @@ def main():
     rlog = read(out, "cargo test (release)") or ""
     if not rlog:
         problems.append("no cargo test (release) log")
-    passed = rust_passed(rlog)
+    # A test that skipped (part of) its work for want of shared data covers nothing.
+    skipped, skipped_n = skipped_tests(out)
+    passed = rust_passed(rlog) - skipped
 
     # --- statuses verified at run time by the C suites ------------------------------------------
     verified = {}
@@ -212,6 +232,7 @@ def main():
         "| figure | this run |",
         "|---|---|",
         f"| bad-input classes (docs/bad-input-catalogue.md) with a passing Rust test | {rust_ok}/{rust_n} applicable |",
+        f"| tests skipped for missing shared test meshes (skipped-tests.txt; not counted above) | {skipped_n} |",
         f"| classes whose status a C suite verified at run time | {c_ok}/{c_n} applicable |",
         f"| error statuses of the header verified at run time by the C suites | {len(errors_ok)}/{len(errors)}"
         + (f" (not: {', '.join(unverified)})" if unverified else "") + " |",
