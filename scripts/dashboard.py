@@ -1,11 +1,16 @@
 #!/usr/bin/env python3
-"""The robustness dashboard: the README table between the `dashboard:begin`/`dashboard:end`
-markers, written from the logs of the test-all run that calls it (its last step), never typed.
+"""The robustness dashboard: a table of what the test-all run that calls it (its last step)
+verified, written from that run's logs, never typed.
 
-    scripts/dashboard.py OUT_DIR [README]
+    scripts/dashboard.py OUT_DIR
+
+Writes the table to OUT_DIR/robustness.md and prints it. It belongs to that run: it is not
+copied into any tracked file.
 
 Reads, in OUT_DIR (scripts/test-all.sh's log directory):
 - the `cargo test (release)` log: which Rust tests passed, per test file;
+- `skipped-tests.txt` (NLS_SKIP_LOG of tests/common/shared_data.rs): tests that passed without
+  the shared test meshes; they cover nothing here;
 - `c-statuses.log` (NLS_STATUS_LOG of ffi_tests/check.h): every status a CHECK_STATUS of a C
   suite verified at run time;
 - the C suites' logs (ASan+UBSan, nightly-ASan Rust staticlib, valgrind): summary lines and
@@ -20,7 +25,7 @@ import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BEGIN, END = "<!-- dashboard:begin -->", "<!-- dashboard:end -->"
+TABLE = "robustness.md"
 
 
 def log_name(step):
@@ -82,6 +87,22 @@ def rust_passed(log):
     return ok
 
 
+def skipped_tests(out):
+    """{(section, test name)} of the tests that reported a SKIP for missing shared data
+    (`SKIP [cli::]file::test: ...`, one per line of skipped-tests.txt), and the line count."""
+    path = os.path.join(out, "skipped-tests.txt")
+    if not os.path.exists(path):
+        return set(), 0
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        lines = sorted({line.strip() for line in fh if line.startswith("SKIP ")})
+    names = set()
+    for line in lines:
+        parts = line[len("SKIP "):].split(": ", 1)[0].split("::")
+        if len(parts) >= 2:
+            names.add((parts[-2], parts[-1]))
+    return names, len(lines)
+
+
 def rust_covered(cell, passed):
     if cell.startswith("n/a"):
         return None, []
@@ -104,7 +125,6 @@ def main():
         print(__doc__)
         return 2
     out = sys.argv[1]
-    readme = sys.argv[2] if len(sys.argv) > 2 else os.path.join(ROOT, "README.md")
     problems = []
     names = status_names()
 
@@ -112,7 +132,9 @@ def main():
     rlog = read(out, "cargo test (release)") or ""
     if not rlog:
         problems.append("no cargo test (release) log")
-    passed = rust_passed(rlog)
+    # A test that skipped (part of) its work for want of shared data covers nothing.
+    skipped, skipped_n = skipped_tests(out)
+    passed = rust_passed(rlog) - skipped
 
     # --- statuses verified at run time by the C suites ------------------------------------------
     verified = {}
@@ -203,11 +225,14 @@ def main():
         return "yes" if b else "**no**"
 
     lines = [
-        BEGIN,
-        "<!-- written by scripts/dashboard.py from the logs of scripts/test-all.sh; do not edit -->",
+        "# Robustness dashboard",
+        "",
+        f"Written by scripts/dashboard.py from the logs of scripts/test-all.sh in {out}.",
+        "",
         "| figure | this run |",
         "|---|---|",
         f"| bad-input classes (docs/bad-input-catalogue.md) with a passing Rust test | {rust_ok}/{rust_n} applicable |",
+        f"| tests skipped for missing shared test meshes (skipped-tests.txt; not counted above) | {skipped_n} |",
         f"| classes whose status a C suite verified at run time | {c_ok}/{c_n} applicable |",
         f"| error statuses of the header verified at run time by the C suites | {len(errors_ok)}/{len(errors)}"
         + (f" (not: {', '.join(unverified)})" if unverified else "") + " |",
@@ -232,21 +257,12 @@ def main():
     else:
         why = fuzz_skip.group(1) if fuzz_skip else "not run in this test command"
         lines.append(f"| fuzz executions under ASan | skipped: {why} |")
-    lines.append(END)
-    table = "\n".join(lines)
+    table = "\n".join(lines) + "\n"
+    path = os.path.join(out, TABLE)
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(table)
     print(table)
-
-    with open(readme, encoding="utf-8") as fh:
-        text = fh.read()
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1]
-        text = head + table + tail
-    else:
-        text = text.rstrip("\n") + "\n\n## Robustness dashboard\n\n" + table + "\n"
-    with open(readme, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    print(f"dashboard: README table written ({os.path.relpath(readme, ROOT)})")
+    print(f"dashboard: table written to {path}")
 
     if problems:
         print("dashboard: FAIL")

@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Our linear schemes against the peers, on every mesh of ../shared/data/meshes the peer
-accepts, at 1 and 2 levels, compared order-independently (peers/compare_off.py, max distance
-relative to the bounding-box diagonal <= 1e-12 and identical faces).
+"""Our linear schemes against the peers, on every shared test mesh the peer accepts (the folder
+$NLS_SHARED_DATA, default shared/data/meshes beside the repository), at 1 and 2 levels,
+compared order-independently (peers/compare_off.py, max distance relative to the
+bounding-box diagonal <= 1e-12 and identical faces).
 
   scripts/peer_compare.py PEER_BIN OURS_BIN OUTDIR
 
 Rows: Loop vs OpenMesh, CGAL, OpenSubdiv; Catmull-Clark vs CGAL, OpenSubdiv (and OpenMesh on
-closed meshes: its boundary rule differs, peer-rules.md); Modified Butterfly vs OpenMesh;
+closed meshes: its boundary rule differs); Modified Butterfly vs OpenMesh;
 Doo-Sabin vs CGAL. Last line: "peer-compare: N passed, M failed, K skipped".
 """
 import os
@@ -35,7 +36,7 @@ SLOW_AT_LEVEL_2 = {"camelhead.off", "rocker_arm.off", "fertility.off", "bunny.of
 
 def main():
     peer_bin, ours_bin, out = sys.argv[1], sys.argv[2], sys.argv[3]
-    mesh_dir = os.path.join(HERE, "..", "..", "shared", "data", "meshes")
+    mesh_dir = os.environ.get("NLS_SHARED_DATA") or os.path.join(HERE, "..", "..", "shared", "data", "meshes")
     if not os.path.isdir(mesh_dir):
         print(f"SKIP: {mesh_dir} not found")
         print("peer-compare: 0 passed, 0 failed, 1 skipped")

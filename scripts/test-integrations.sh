@@ -8,8 +8,9 @@
 #    CMake package, the C++ headers); the exported symbols of both libraries are checked;
 # 2. integrations/tests/test_openmesh (linked statically through pkg-config nlsubdiv-static)
 #    and test_cgal (shared, pkg-config nlsubdiv), built once against the installed headers
-#    (-O1; rebuilt only when a source or the library changes), run on ../shared/data/meshes
-#    (they print SKIP when the folder is absent): every plugin/function = the driver,
+#    (-O1; rebuilt only when a source or the library changes), run on the shared test meshes
+#    ($NLS_SHARED_DATA, as for the Rust tests; without them only their in-memory cases run
+#    and each is reported as a skipped test, scripts/lib-test.sh): every plugin/function = the driver,
 #    OpenMesh LoopT/ModifiedButterflyT/CatmullClarkT and CGAL Loop_subdivision, bad meshes;
 # 3. integrations/cmake-consumer configured and built out of tree against the prefix, run;
 # 4. every c_examples/*.c built with `pkg-config --cflags --libs nlsubdiv` (and once static)
@@ -20,7 +21,8 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 OUT=${1:-$ROOT/target/integrations}
-MESHES=$ROOT/../shared/data/meshes
+. scripts/lib-test.sh
+MESHES=$(shared_meshes_dir)
 mkdir -p "$OUT"
 
 missing=()
@@ -94,7 +96,14 @@ run_test() { # run_test NAME: runs it on the shared meshes, prints its summary l
     grep -E "^FAIL|^SKIP|worst max_rel_dist|^bad meshes|^$1:" "$log" | sed 's/^/    /'
     return $rc
 }
-[ -d "$MESHES" ] || echo "    SKIP: $MESHES is absent: only the in-memory cases run"
+if [ ! -d "$MESHES" ]; then
+    # Counted by the caller from $NLS_SKIP_LOG; a failure under NLS_REQUIRE_SHARED_DATA=1.
+    for t in test_openmesh test_cgal; do
+        skip_test "integrations::$t" "shared meshes folder $MESHES not found (set NLS_SHARED_DATA to it); only the in-memory cases run" 2>&1 |
+            sed 's/^/    /'
+        [ "${PIPESTATUS[0]}" -eq 0 ] || failed=$((failed+1))
+    done
+fi
 check "OpenMesh subdividers (log $OUT/test_openmesh.log)" run_test test_openmesh
 check "CGAL masks and functions (log $OUT/test_cgal.log)" run_test test_cgal
 

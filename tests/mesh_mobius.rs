@@ -114,7 +114,9 @@ fn onto_sphere(m: &OwnedMesh) -> OwnedMesh {
     })
 }
 
-fn spherical_meshes() -> Vec<(String, OwnedMesh)> {
+/// Generated meshes on the unit sphere, and the shared `sphere_*.off` meshes (`test` names
+/// the caller for the skip report when those are missing).
+fn spherical_meshes(test: &str) -> Vec<(String, OwnedMesh)> {
     let mut v = vec![
         (
             "cube on the sphere".to_string(),
@@ -129,8 +131,8 @@ fn spherical_meshes() -> Vec<(String, OwnedMesh)> {
             onto_sphere(&bipyramid(7)),
         ),
     ];
-    if let Some(files) = off_files(&shared_meshes_dir()) {
-        for f in files {
+    if let Some(dir) = shared_meshes_partly(test, "the shared sphere_*.off meshes") {
+        for f in off_files(&dir) {
             let name = f.file_name().unwrap().to_string_lossy().to_string();
             if name.starts_with("sphere_") {
                 v.push((name, read_off(&f).unwrap()));
@@ -145,7 +147,7 @@ fn every_mobius_scheme_reproduces_spheres() {
     let mut rng = Rng(7);
     let mut worst: f64 = 0.0;
     let mut runs = 0;
-    for (name, m) in spherical_meshes() {
+    for (name, m) in spherical_meshes("mesh_mobius::every_mobius_scheme_reproduces_spheres") {
         // The mesh itself and a random Möbius image of it (another sphere).
         let f = random_mobius(&m, &mut rng);
         let image = map_mesh(&m, &f);
@@ -215,7 +217,9 @@ fn sphere_through(p: &[Point]) -> (Point, f64) {
     (cen, r)
 }
 
-fn equivariance_meshes() -> Vec<(String, OwnedMesh)> {
+/// Generated meshes and a dozen shared ones of every face kind (`test` names the caller for
+/// the skip report when those are missing).
+fn equivariance_meshes(test: &str) -> Vec<(String, OwnedMesh)> {
     let mut v = vec![
         (
             "jittered quad torus".to_string(),
@@ -249,13 +253,18 @@ fn equivariance_meshes() -> Vec<(String, OwnedMesh)> {
         "dome_polygon_pattern.off",
         "rhombitruncated_cuboctahedron.off",
     ];
-    if off_files(&shared_meshes_dir()).is_some() {
+    if let Some(dir) = shared_meshes_partly(test, "the shared meshes (cube.off, ...)") {
         for n in names {
-            let path = shared_meshes_dir().join(n);
-            if let Ok(m) = read_off(&path) {
-                if validate(&m).is_ok() {
+            let path = dir.join(n);
+            match read_off(&path) {
+                Ok(m) => {
+                    validate(&m).unwrap_or_else(|e| panic!("{n}: {e}"));
                     v.push((n.to_string(), m));
                 }
+                Err(e) => skip(
+                    test,
+                    &format!("{} not readable ({e}); not checked", path.display()),
+                ),
             }
         }
     }
@@ -267,7 +276,9 @@ fn every_mobius_scheme_commutes_with_mobius_maps() {
     let mut rng = Rng(11);
     let mut worst: f64 = 0.0;
     let (mut runs, mut meshes) = (0, 0);
-    for (name, m) in equivariance_meshes() {
+    for (name, m) in
+        equivariance_meshes("mesh_mobius::every_mobius_scheme_commutes_with_mobius_maps")
+    {
         meshes += 1;
         for s in ALL {
             if !accepts(s, &m) {
@@ -783,7 +794,11 @@ fn mobius_schemes_versus_vertex_renumbering() {
             Some((_, w)) => *w = w.max(gap),
             None => v.push((s, gap)),
         };
-    for (k, (name, m)) in equivariance_meshes().into_iter().enumerate() {
+    for (k, (name, m)) in
+        equivariance_meshes("mesh_mobius::mobius_schemes_versus_vertex_renumbering")
+            .into_iter()
+            .enumerate()
+    {
         if m.positions.len() > 400 {
             continue; // the nearest-point comparison is quadratic
         }
@@ -823,7 +838,9 @@ fn every_mobius_scheme_is_independent_of_where_faces_start() {
     // tetrahedron's face points by 3.6e-2 of its diagonal.
     let mut worst: f64 = 0.0;
     let mut runs = 0;
-    for (name, m) in equivariance_meshes() {
+    for (name, m) in
+        equivariance_meshes("mesh_mobius::every_mobius_scheme_is_independent_of_where_faces_start")
+    {
         if m.positions.len() > 400 {
             continue; // the nearest-point comparison is quadratic
         }

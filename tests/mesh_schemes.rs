@@ -837,9 +837,10 @@ fn plan_reports_overflow_at_high_levels() {
 /// with the same Euler characteristic.
 #[test]
 fn shared_meshes_one_level() {
-    let Some(files) = off_files(&shared_meshes_dir()) else {
+    let Some(dir) = shared_meshes("mesh_schemes::shared_meshes_one_level") else {
         return;
     };
+    let files = off_files(&dir);
     for path in files {
         let name = path.file_name().unwrap().to_str().unwrap().to_string();
         let m = read_off(&path).unwrap();

@@ -188,10 +188,10 @@ fn open_sphere_band_rows_and_meridians_stay_on_their_circles() {
     assert!(worst < 1e-12, "{worst:e}");
 }
 
-/// Meshes of every kind the scheme accepts: quads, odd and even n-gons, odd and even
-/// valences, boundaries.
-fn assorted() -> Vec<(String, OwnedMesh)> {
-    let mut v = vec![
+/// Generated meshes of every kind the scheme accepts: quads, odd and even n-gons, odd and
+/// even valences, boundaries.
+fn generated() -> Vec<(String, OwnedMesh)> {
+    vec![
         ("cube".to_string(), cube()),
         ("tetrahedron".to_string(), tetrahedron()),
         ("octahedron".to_string(), octahedron()),
@@ -204,25 +204,32 @@ fn assorted() -> Vec<(String, OwnedMesh)> {
             "torus".to_string(),
             jitter(&quad_torus(6, 5, 3.0, 1.0), 0.05, 8),
         ),
-    ];
-    let dir = shared_meshes_dir();
-    let mut found = 0;
-    for name in [
-        "cube.off",
-        "house_pentagons.off",
-        "hexagon_pyramid.off",
-        "pyramid_mixed.off",
-        "torus_quad.off",
-        "dome_polygon_pattern.off",
-        "vase_quad.off",
-    ] {
-        if let Ok(m) = read_off(&dir.join(name)) {
-            v.push((name.to_string(), m));
-            found += 1;
+    ]
+}
+
+/// The generated meshes and seven shared ones (`test` names the caller for the skip report
+/// when those are missing).
+fn assorted(test: &str) -> Vec<(String, OwnedMesh)> {
+    let mut v = generated();
+    if let Some(dir) = shared_meshes_partly(test, "the shared meshes (cube.off, ...)") {
+        for name in [
+            "cube.off",
+            "house_pentagons.off",
+            "hexagon_pyramid.off",
+            "pyramid_mixed.off",
+            "torus_quad.off",
+            "dome_polygon_pattern.off",
+            "vase_quad.off",
+        ] {
+            let path = dir.join(name);
+            match read_off(&path) {
+                Ok(m) => v.push((name.to_string(), m)),
+                Err(e) => skip(
+                    test,
+                    &format!("{} not readable ({e}); not checked", path.display()),
+                ),
+            }
         }
-    }
-    if found == 0 {
-        println!("SKIP shared meshes: {} not found", dir.display());
     }
     v
 }
@@ -230,7 +237,7 @@ fn assorted() -> Vec<(String, OwnedMesh)> {
 #[test]
 fn old_vertices_are_kept_bit_for_bit_at_every_level() {
     let mut runs = 0;
-    for (name, m) in assorted() {
+    for (name, m) in assorted("mesh_spherelike::old_vertices_are_kept_bit_for_bit_at_every_level") {
         let mut cur = m;
         for level in 1..=3 {
             if cur.indices.len() > 400_000 {
@@ -256,7 +263,7 @@ fn old_vertices_are_kept_bit_for_bit_at_every_level() {
 
 #[test]
 fn connectivity_and_sizes_are_catmull_clarks() {
-    for (name, m) in assorted() {
+    for (name, m) in assorted("mesh_spherelike::connectivity_and_sizes_are_catmull_clarks") {
         let a = subdivide(S, &m).unwrap();
         let b = subdivide(Scheme::CatmullClark, &m).unwrap();
         assert_eq!((&a.offsets, &a.indices), (&b.offsets, &b.indices), "{name}");
@@ -266,7 +273,7 @@ fn connectivity_and_sizes_are_catmull_clarks() {
 
 #[test]
 fn multi_level_call_is_the_chain_of_one_level_calls() {
-    for (name, m) in assorted().into_iter().take(9) {
+    for (name, m) in generated() {
         let levels = 3;
         let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
         let p = scheme::plan(S, m.view(), levels, &mut su).unwrap();
@@ -306,7 +313,7 @@ fn commutes_with_similarities() {
     // Circles, tangents and arc middles are similarity-invariant, so is every choice of the
     // rule (farthest vertex, straight continuation).
     let mut worst = 0.0_f64;
-    for (name, m) in assorted().into_iter().take(9) {
+    for (name, m) in generated() {
         let a = subdivide_n(S, &m.map_positions(similarity), 2).unwrap();
         let b = subdivide_n(S, &m, 2).unwrap().map_positions(similarity);
         let size = b
@@ -451,7 +458,7 @@ fn result_does_not_depend_on_vertex_numbering() {
     // and the orientation, not by vertex ids. Ties happen at the valence-5 poles of the
     // bipyramid (isosceles central triangles). Up to rounding (summation order of edge ends).
     let mut worst = 0.0_f64;
-    for (name, m) in assorted().into_iter().take(9) {
+    for (name, m) in generated() {
         let renumbered = renumbered(&m, m.positions.len() as u64);
         let a = subdivide_n(S, &m, 2).unwrap().positions;
         let b = subdivide_n(S, &renumbered, 2).unwrap().positions;

@@ -15,6 +15,7 @@ use common::*;
 use nlsubdiv::mesh::{Topology, NONE};
 use nlsubdiv::{Status, MAX_VALENCE};
 use std::collections::BTreeSet;
+use std::path::Path;
 
 #[derive(Debug, PartialEq)]
 struct Summary {
@@ -223,8 +224,8 @@ fn numbering_is_deterministic_and_independent_of_face_order() {
 }
 
 /// One row of the README table: (V, F, E, χ, boundary loops, max valence).
-fn readme_rows() -> Option<Vec<(String, [i64; 6])>> {
-    let text = std::fs::read_to_string(shared_meshes_dir().join("README.md")).ok()?;
+fn readme_rows(dir: &Path) -> Option<Vec<(String, [i64; 6])>> {
+    let text = std::fs::read_to_string(dir.join("README.md")).ok()?;
     let mut rows = Vec::new();
     for line in text.lines() {
         let cols: Vec<&str> = line.split('|').map(|c| c.trim()).collect();
@@ -258,9 +259,11 @@ fn readme_rows() -> Option<Vec<(String, [i64; 6])>> {
 
 #[test]
 fn shared_meshes() {
-    let dir = shared_meshes_dir();
-    let Some(files) = off_files(&dir) else { return };
-    let rows = readme_rows().unwrap_or_default();
+    let Some(dir) = common::shared_meshes("mesh_topology::shared_meshes") else {
+        return;
+    };
+    let files = off_files(&dir);
+    let rows = readme_rows(&dir).unwrap_or_default();
     let mut compared = 0;
     for path in files {
         let name = path.file_name().unwrap().to_str().unwrap().to_string();

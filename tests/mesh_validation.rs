@@ -379,8 +379,10 @@ fn mesh_view_accessors_are_total() {
 /// The broken files of the shared test data, each with the status it must produce.
 #[test]
 fn shared_bad_files() {
-    let dir = shared_meshes_dir().join("bad");
-    let Some(files) = off_files(&dir) else { return };
+    let Some(shared) = shared_meshes("mesh_validation::shared_bad_files") else {
+        return;
+    };
+    let files = off_files(&shared.join("bad"));
     let expected: &[(&str, Option<Status>)] = &[
         ("bowtie_vertex.off", Some(Status::NonManifoldVertex)),
         ("degenerate_face.off", None),

@@ -66,7 +66,8 @@ fn must_fail(args: &[&str], out_dir: &TempDir, want_code: i32, needle: &str, wha
 
 #[test]
 fn shared_bad_files_are_refused_with_a_message_and_no_output() {
-    let Some(dir) = shared_meshes("shared_bad_files_are_refused_with_a_message_and_no_output")
+    let Some(dir) =
+        shared_meshes("cli::bad_input::shared_bad_files_are_refused_with_a_message_and_no_output")
     else {
         return;
     };

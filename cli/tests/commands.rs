@@ -244,7 +244,7 @@ fn metrics_of_known_shapes() {
 
 #[test]
 fn metrics_of_shared_meshes() {
-    let Some(dir) = shared_meshes("metrics_of_shared_meshes") else {
+    let Some(dir) = shared_meshes("cli::commands::metrics_of_shared_meshes") else {
         return;
     };
     // On the unit sphere to 3.3e-16 (meshes README): the fit finds it.
@@ -339,7 +339,7 @@ fn render_draws_the_mesh() {
 
 #[test]
 fn render_shared_bunny() {
-    let Some(dir) = shared_meshes("render_shared_bunny") else {
+    let Some(dir) = shared_meshes("cli::commands::render_shared_bunny") else {
         return;
     };
     let tmp = TempDir::new("render-bunny");

@@ -108,7 +108,7 @@ fn obj_relative_indices_groups_and_texture_corners() {
 
 #[test]
 fn shared_meshes_round_trip_bit_exactly() {
-    let Some(dir) = shared_meshes("shared_meshes_round_trip_bit_exactly") else {
+    let Some(dir) = shared_meshes("cli::roundtrip::shared_meshes_round_trip_bit_exactly") else {
         return;
     };
     let files = off_files(&dir);

@@ -237,7 +237,8 @@ fn every_scheme_gives_the_library_output_bit_for_bit() {
 
 #[test]
 fn shared_meshes_give_the_library_output_or_are_refused() {
-    let Some(shared) = shared_meshes("shared_meshes_give_the_library_output_or_are_refused") else {
+    const TEST: &str = "cli::subdivide::shared_meshes_give_the_library_output_or_are_refused";
+    let Some(shared) = shared_meshes(TEST) else {
         return;
     };
     let dir = TempDir::new("subdivide-shared");
@@ -253,7 +254,10 @@ fn shared_meshes_give_the_library_output_or_are_refused() {
     for n in names {
         let src = shared.join(format!("{n}.off"));
         if !src.exists() {
-            println!("SKIP {n}: not in {}", shared.display());
+            skip(
+                TEST,
+                &format!("{} not found; {n} not checked", src.display()),
+            );
             continue;
         }
         std::fs::copy(&src, dir.path("in.off")).unwrap();

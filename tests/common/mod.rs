@@ -14,6 +14,13 @@ use nlsubdiv::scheme::{self, Scheme};
 use nlsubdiv::{Point, Result};
 use std::path::{Path, PathBuf};
 
+// Finding the shared meshes, and skipping visibly without them: one file for every test
+// crate (the command's tests include it too).
+#[path = "shared_data.rs"]
+mod shared_data;
+#[allow(unused_imports)] // each test crate uses some of them
+pub use shared_data::{shared_meshes, shared_meshes_dir, shared_meshes_partly, skip};
+
 /// A mesh owning its buffers.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct OwnedMesh {
@@ -323,25 +330,16 @@ pub fn jitter(m: &OwnedMesh, amp: f64, seed: u64) -> OwnedMesh {
 
 // ---------------------------------------------------------------- OFF files
 
-pub fn shared_meshes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes")
-}
-
-/// The `.off` files of a folder, sorted; `None` (and a visible skip line) when it is absent.
-pub fn off_files(dir: &Path) -> Option<Vec<PathBuf>> {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        println!(
-            "SKIP: {} not found; shared-mesh tests skipped",
-            dir.display()
-        );
-        return None;
-    };
+/// The `.off` files of a folder, sorted. The folder must exist: a test finds the shared
+/// meshes with `shared_meshes` first, which reports a missing folder as a skip.
+pub fn off_files(dir: &Path) -> Vec<PathBuf> {
+    let rd = std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
     let mut v: Vec<PathBuf> = rd
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "off"))
         .collect();
     v.sort();
-    Some(v)
+    v
 }
 
 /// A tiny OFF reader: `OFF`/`COFF` header (counts may follow on the same line), `#`
@@ -451,6 +449,52 @@ pub fn octahedron() -> OwnedMesh {
             vec![1, 2, 5],
             vec![3, 1, 5],
             vec![0, 3, 5],
+        ],
+    )
+}
+
+/// The regular icosahedron on the unit sphere (all vertices valence 5), faces oriented
+/// outwards: the vertices are the cyclic permutations of (0, ±1, ±φ), scaled.
+pub fn icosahedron() -> OwnedMesh {
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let s = 1.0 / (1.0 + phi * phi).sqrt();
+    let (a, b) = (s, phi * s);
+    OwnedMesh::from_faces(
+        vec![
+            [-a, b, 0.0],
+            [a, b, 0.0],
+            [-a, -b, 0.0],
+            [a, -b, 0.0],
+            [0.0, -a, b],
+            [0.0, a, b],
+            [0.0, -a, -b],
+            [0.0, a, -b],
+            [b, 0.0, -a],
+            [b, 0.0, a],
+            [-b, 0.0, -a],
+            [-b, 0.0, a],
+        ],
+        &[
+            vec![0, 11, 5],
+            vec![0, 5, 1],
+            vec![0, 1, 7],
+            vec![0, 7, 10],
+            vec![0, 10, 11],
+            vec![1, 5, 9],
+            vec![5, 11, 4],
+            vec![11, 10, 2],
+            vec![10, 7, 6],
+            vec![7, 1, 8],
+            vec![3, 9, 4],
+            vec![3, 4, 2],
+            vec![3, 2, 6],
+            vec![3, 6, 8],
+            vec![3, 8, 9],
+            vec![4, 9, 5],
+            vec![2, 4, 11],
+            vec![6, 2, 10],
+            vec![8, 6, 7],
+            vec![9, 8, 1],
         ],
     )
 }

@@ -73,20 +73,12 @@ impl Drop for TempDir {
     }
 }
 
-/// `../shared/data/meshes` beside the workspace root, or `None` with a visible SKIP line.
-pub fn shared_meshes(test: &str) -> Option<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let dir = root.join("../shared/data/meshes");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!(
-            "SKIP {test}: {} not found (the shared test meshes live beside the repository)",
-            dir.display()
-        );
-        None
-    }
-}
+// Finding the shared meshes, and skipping visibly without them: the one file that every
+// test crate of the workspace includes.
+#[path = "../../../tests/common/shared_data.rs"]
+mod shared_data;
+#[allow(unused_imports)] // each test crate uses some of them
+pub use shared_data::{shared_meshes, skip};
 
 /// The `.off` files of a folder, sorted.
 pub fn off_files(dir: &Path) -> Vec<PathBuf> {
