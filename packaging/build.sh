@@ -9,7 +9,8 @@
 #   TARGET_DIR/release/nlsubdiv.1          its manual page (packaging/manpage.py)
 #
 # The soname is a link argument of this build only (cargo has no soname setting), so the
-# target/release/libnlsubdiv.so that the test suites load by LD_LIBRARY_PATH keeps none.
+# target/release/libnlsubdiv.so that the test suites load by LD_LIBRARY_PATH keeps none;
+# the static library is the same as cargo's.
 # Crates: with a vendor/ folder at the root (`cargo vendor --locked vendor`) the build is
 # offline from it; otherwise cargo takes the versions Cargo.lock pins from its registry.
 set -euo pipefail
@@ -21,6 +22,8 @@ if [ -d vendor ]; then
     cargo_args+=(--offline --config 'source.crates-io.replace-with="vendored-sources"'
         --config "source.vendored-sources.directory=\"$PWD/vendor\"")
 fi
-cargo rustc -q "${cargo_args[@]}" -p nlsubdiv-ffi -- -C link-arg=-Wl,-soname,"$soname"
+# -lc: the no_std library calls memcpy and memset, which only the C library defines; without
+# it the .so has no NEEDED entry for libc and relies on the program to have loaded one.
+cargo rustc -q "${cargo_args[@]}" -p nlsubdiv-ffi -- -C link-arg=-Wl,-soname,"$soname" -C link-arg=-lc
 cargo build -q "${cargo_args[@]}" -p nlsubdiv-cli
 python3 packaging/manpage.py "$target/release/nlsubdiv" "$target/release/nlsubdiv.1"
