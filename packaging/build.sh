@@ -18,6 +18,9 @@ cd "$(dirname "$0")/.."
 target=${1:-target/install-build}
 soname=$(packaging/version.sh soname)
 cargo_args=(--release --locked --target-dir "$target")
+# The same bits from any build folder: the paths that end up in the command (panic locations
+# of the crates) name the source tree and cargo's home relative to themselves.
+export RUSTFLAGS="${RUSTFLAGS:-} --remap-path-prefix=$PWD=nlsubdiv --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=cargo"
 if [ -d vendor ]; then
     cargo_args+=(--offline --config 'source.crates-io.replace-with="vendored-sources"'
         --config "source.vendored-sources.directory=\"$PWD/vendor\"")
