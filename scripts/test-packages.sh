@@ -20,7 +20,7 @@
 # when a package of the same names is installed already (it would be removed).
 # Last line: "test-packages: N passed, M failed".
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 1
 ROOT=$PWD
 OUT=${1:-$ROOT/target/packages}
 mkdir -p "$OUT"
