@@ -2,7 +2,9 @@
 # Installs what the test suites need on a fresh Debian machine (run as root, or with sudo
 # available): compilers and tools from Debian, and the pinned cbindgen from crates.io.
 set -euo pipefail
-pkgs=(gcc g++ make cmake pkg-config valgrind libopenmesh-dev libcgal-dev libosd-dev libeigen3-dev python3)
+pkgs=(gcc g++ make cmake pkg-config valgrind libopenmesh-dev libcgal-dev libosd-dev libeigen3-dev python3
+    # the Debian packages (scripts/test-packages.sh), the manual page, the C API reference
+    dpkg-dev debhelper lintian man-db doxygen)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,7 +5,8 @@
 #   scripts/test-integrations.sh [OUTDIR]      (default target/integrations)
 #
 # 1. scripts/install.sh into OUTDIR/prefix (header, libnlsubdiv.a, .so with soname, pkg-config,
-#    CMake package, the C++ headers); the exported symbols of both libraries are checked;
+#    CMake package, the C++ headers, the command and its manual page); the exported symbols of
+#    both libraries, the soname, the command's version and the page's rendering are checked;
 # 2. integrations/tests/test_openmesh (linked statically through pkg-config nlsubdiv-static)
 #    and test_cgal (shared, pkg-config nlsubdiv), built once against the installed headers
 #    (-O1; rebuilt only when a source or the library changes), run on the shared test meshes
@@ -63,10 +64,19 @@ symbols() {
     soname=$(readelf -d "$so" | sed -n 's/.*SONAME.*\[\(.*\)\]/\1/p')
     echo "    libnlsubdiv.a: $(nm -g --defined-only "$a" 2>/dev/null | awk 'NF==3 && $3 ~ /^nls_/' | wc -l) nls_* exports, $(printf '%s\n' "$others" | grep -c . ) other global symbols (all __-prefixed compiler builtins: $(printf '%s\n' "$others" | grep -vc '^__' || true) not), libm names: ${libm:-none}, weak: ${weak:-none}"
     echo "    libnlsubdiv.so: soname $soname, $sonls nls_* exports, $sooth others"
-    [ -z "$libm" ] && [ -z "$weak" ] && [ "$sooth" -eq 0 ] && [ "$soname" = "libnlsubdiv.so.0" ] &&
+    [ -z "$libm" ] && [ -z "$weak" ] && [ "$sooth" -eq 0 ] && [ "$soname" = "$(packaging/version.sh soname)" ] &&
         [ "$(printf '%s\n' "$others" | grep -vc '^__' || true)" -eq 0 ]
 }
 check "exported symbols of the installed libraries" symbols
+installed_command() {
+    # The command reports Cargo.toml's version; its manual page renders without a warning.
+    local v warnings
+    v=$("$PREFIX/bin/nlsubdiv" --version) || return 1
+    warnings=$(MANWIDTH=80 man --warnings -E UTF-8 -l "$PREFIX/share/man/man1/nlsubdiv.1" 2>&1 >/dev/null)
+    echo "    $v; man page: ${warnings:-no warnings}"
+    [ "$v" = "nlsubdiv $(packaging/version.sh version)" ] && [ -z "$warnings" ]
+}
+check "installed command and manual page" installed_command
 
 # ---- C++ tests, compiled once (objects reused while sources and library are unchanged) ----
 CXXFLAGS="-std=c++17 -O1 -Wall -Wextra -Wno-unused-parameter -Wno-maybe-uninitialized -ffp-contract=off"
