@@ -174,6 +174,13 @@ else
     skip "integrations (OpenMesh, CGAL, packaging)" "libopenmesh-dev, libcgal-dev, cmake or pkg-config not installed (scripts/setup.sh installs them)"
 fi
 
+# --- Debian packages (scripts/test-packages.sh): build, lintian, install, consumers, purge ---
+if [ "$(id -u)" -eq 0 ] && command -v dpkg-buildpackage >/dev/null && command -v dh >/dev/null && command -v lintian >/dev/null; then
+    step "packages: dpkg-buildpackage, lintian, apt install, C/CMake/OpenMesh/CGAL consumers, man, purge" scripts/test-packages.sh "$OUT/packages"
+else
+    skip "packages (Debian)" "not root, or debhelper/lintian not installed (scripts/setup.sh installs them)"
+fi
+
 # --- C examples -------------------------------------------------------------------------------
 c_examples() {
     local ex
