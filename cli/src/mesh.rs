@@ -77,7 +77,7 @@ impl Mesh {
     pub fn bbox(&self) -> Option<(P3, P3)> {
         bbox(&self.positions)
     }
-
+}
 
 /// Axis-aligned bounding box of points, `None` for none.
 pub fn bbox(points: &[P3]) -> Option<(P3, P3)> {
