@@ -99,7 +99,7 @@ pub const QUOTE_MAX_CHARS: usize = 48;
 pub fn quote(bytes: &[u8]) -> String {
     let mut out = String::with_capacity(bytes.len().min(QUOTE_MAX_CHARS * 4) + 16);
     out.push('\'');
-    let shown = escape_into(&mut out, bytes, QUOTE_MAX_CHARS);
+    let shown = escape_into(&mut out, bytes, QUOTE_MAX_CHARS, true);
     out.push('\'');
     if shown < bytes.len() {
         out.push_str(&format!("… ({} bytes)", bytes.len()));
@@ -113,7 +113,7 @@ pub fn quote(bytes: &[u8]) -> String {
 /// [`quote`] (file names from the command line, messages of libraries).
 pub fn sanitize_line(line: &str, max_chars: usize) -> String {
     let mut out = String::with_capacity(line.len().min(max_chars * 4) + 16);
-    let shown = escape_into(&mut out, line.as_bytes(), max_chars);
+    let shown = escape_into(&mut out, line.as_bytes(), max_chars, false);
     if shown < line.len() {
         out.push_str(&format!("… ({} bytes)", line.len()));
     }
@@ -135,8 +135,9 @@ fn must_escape(c: char) -> bool {
 }
 
 /// Appends the escaped form of `bytes` to `out`, at most `max_chars` source characters;
-/// returns how many bytes of `bytes` were shown.
-fn escape_into(out: &mut String, bytes: &[u8], max_chars: usize) -> usize {
+/// returns how many bytes of `bytes` were shown. `quoted`: also escape `\` and `'` (inside
+/// quotes, so that the quoted text cannot end early or fake an escape).
+fn escape_into(out: &mut String, bytes: &[u8], max_chars: usize, quoted: bool) -> usize {
     use std::fmt::Write as _;
     let mut chars = 0usize;
     let mut consumed = 0usize;
@@ -146,8 +147,8 @@ fn escape_into(out: &mut String, bytes: &[u8], max_chars: usize) -> usize {
                 return consumed;
             }
             match c {
-                '\\' => out.push_str("\\\\"),
-                '\'' => out.push_str("\\'"),
+                '\\' if quoted => out.push_str("\\\\"),
+                '\'' if quoted => out.push_str("\\'"),
                 c if must_escape(c) && (c as u32) < 0x80 => {
                     let _ = write!(out, "\\x{:02x}", c as u32);
                 }
@@ -187,5 +188,6 @@ mod tests {
         assert!(q.len() < 100, "{q}");
         assert!(q.ends_with("… (2000000 bytes)"), "{q}");
         assert_eq!(sanitize_line("x\ry", 10), "x\\x0dy");
+        assert_eq!(sanitize_line("a '\\x1b'", 10), "a '\\x1b'");
     }
 }

@@ -215,7 +215,7 @@ fn keyword(ctx: &Ctx<'_>, toks: &mut Tokens<'_>) -> CliResult<Layout> {
             ctx.path.display()
         )));
     };
-    if t.text.first().is_some_and(|c| c.is_ascii_digit()) {
+    if parse_i64(t.text).is_some() {
         return Ok(Layout::default()); // no keyword: counts first
     }
     let Some(prefix) = t.text.strip_suffix(b"OFF") else {
