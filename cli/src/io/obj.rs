@@ -248,7 +248,7 @@ fn resolve(t: &[u8], count: i64, what: &str) -> Result<i64, String> {
             let r = count + i;
             if r < 0 {
                 Err(format!(
-                    "relative {what} index {i} points before the first one (only {count} so far)"
+                    "relative index {i} points before the first {what} (only {count} so far)"
                 ))
             } else {
                 Ok(r)

@@ -683,7 +683,9 @@ mod tests {
         let e = err("OFF BINARY\n");
         assert!(e.contains("binary OFF"), "{e}");
         let e = err("4OFF\n");
-        assert!(e.contains("4D"), "{e}");
+        assert!(e.contains("ends before the vertex count"), "{e}");
+        let e = err("4nOFF 4\n");
+        assert!(e.contains("dimension 4"), "{e}");
         let e = err("");
         assert!(e.contains("empty"), "{e}");
         let e = err("PLY\n");
