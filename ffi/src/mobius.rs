@@ -377,6 +377,7 @@ pub unsafe extern "C" fn nls_canonical_form_map(
         let cf = unsafe { read(cf)? };
         crate::guard::check_ptr(out.cast_const(), 1)?;
         let inverse = crate::guard::flag(inverse)?;
+        check_fp_env()?;
         let cf = canonical_form_of(&cf)?;
         let m: nls_mobius = if inverse { cf.inverse_map() } else { cf.map() }.into();
         // A form far out in the double range overflows a coefficient: refuse.
