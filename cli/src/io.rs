@@ -159,21 +159,49 @@ pub struct WriteOptions {
     pub scalar: Option<(String, Vec<f64>)>,
 }
 
-/// Reads a mesh file in the format of its extension (or content, for other extensions).
+/// Reads a mesh file in the format of its content or extension (see [`Format`]).
 ///
 /// # Errors
 /// Exit 3 when the file cannot be read, exit 2 for anything wrong in it (see the module
 /// docs), exit 4 for an unknown format.
 pub fn read_mesh(path: &Path) -> CliResult<(Mesh, Source)> {
     let bytes = fs::read(path).map_err(|e| CliError::io(path, "read", &e))?;
-    let format = Format::of_input(path, &bytes)?;
+    parse_mesh(path, &bytes)
+}
+
+/// Parses the bytes of a mesh file named `path` (the name is used for the format, when the
+/// content does not tell, and in messages). The whole of [`read_mesh`] but the reading:
+/// also the entry point of the `parsers` fuzz target.
+///
+/// # Errors
+/// Exit 2 for anything wrong in the bytes, exit 4 for an unknown format.
+pub fn parse_mesh(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
+    let format = Format::of_input(path, bytes)?;
     let (mesh, source) = match format {
-        Format::Off => off::read(path, &bytes)?,
-        Format::Obj => obj::read(path, &bytes)?,
-        Format::Ply => ply::read(path, &bytes)?,
+        Format::Off => off::read(path, bytes)?,
+        Format::Obj => obj::read(path, bytes)?,
+        Format::Ply => ply::read(path, bytes)?,
     };
     check_loaded(&mesh, &source)?;
     Ok((mesh, source))
+}
+
+/// Writes `mesh` in `format` to `out` (no file, no checks of the options: [`write_mesh`]
+/// does those).
+///
+/// # Errors
+/// I/O errors of `out`.
+pub fn write_to(
+    format: Format,
+    out: &mut dyn Write,
+    mesh: &Mesh,
+    opts: &WriteOptions,
+) -> std::io::Result<()> {
+    match format {
+        Format::Off => off::write(out, mesh, opts),
+        Format::Obj => obj::write(out, mesh, opts),
+        Format::Ply => ply::write(out, mesh, opts),
+    }
 }
 
 /// Checks every reader makes on its result: finite coordinates, at least one face, counts
@@ -215,11 +243,7 @@ pub fn write_mesh(path: &Path, mesh: &Mesh, opts: &WriteOptions) -> CliResult<()
         )));
     }
     let mut file = AtomicFile::create(path)?;
-    let result = match format {
-        Format::Off => off::write(file.writer(), mesh, opts),
-        Format::Obj => obj::write(file.writer(), mesh, opts),
-        Format::Ply => ply::write(file.writer(), mesh, opts),
-    };
+    let result = write_to(format, file.writer(), mesh, opts);
     result.map_err(|e| write_error(path, &e))?;
     file.commit()
 }

@@ -8,17 +8,17 @@
 mod cmd;
 mod differential;
 mod dome;
-mod error;
 mod exit;
 mod fields;
-mod io;
 mod memory;
-mod mesh;
 mod out;
 mod progress;
 mod sphere;
 mod subdiv;
 mod topology;
+
+// The file readers and writers live in the library part of this package (src/lib.rs).
+use nlsubdiv_cli::{error, io, mesh};
 
 use std::process::ExitCode;
 use std::time::Instant;

@@ -32,8 +32,7 @@ impl Default for Mesh {
 }
 
 impl Mesh {
-    /// A mesh from positions and a list of faces.
-    #[cfg(test)]
+    /// A mesh from positions and a list of faces (tests build meshes with it).
     pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<P3>, faces: &[F]) -> Mesh {
         let mut m = Mesh {
             positions,

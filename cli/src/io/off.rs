@@ -514,12 +514,9 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
                 format_args!("face {f} has {n} corners (a face needs at least 3)"),
             ));
         }
-        if n as u64 > nv.max(3) {
-            return Err(ctx.err(
-                t.line,
-                format_args!("face {f} has {n} corners but the file has only {nv} vertices"),
-            ));
-        }
+        // A face may name a vertex twice (more corners than vertices): that is a defect of
+        // the mesh, which the topology check names, not of the file; the same face read from
+        // OBJ or PLY must give the same answer. A lying count runs into the end of the file.
         let mut last_line = t.line;
         for _ in 0..n {
             let t = toks.next().ok_or_else(|| eof(&toks))?;
