@@ -2,7 +2,7 @@
 //! refused with exit 2 naming the line (never a different mesh with exit 0); resources are
 //! checked; closed pipes, signals and file-size limits end the command cleanly; messages
 //! never echo raw control bytes; comparisons do not depend on the scale.
-//! (docs/bad-input-catalogue.md, classes C1–C8.)
+//! (docs/bad-input-catalogue.md, rows 28–33.)
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -59,7 +59,7 @@ fn refused(dir: &TempDir, name: &str, text: &[u8], needle: &str) {
     }
 }
 
-/// C1. A UTF-8 byte-order mark before the first OBJ statement is skipped (the statement is
+/// Row 28. A UTF-8 byte-order mark before the first OBJ statement is skipped (the statement is
 /// read), and any statement the format does not define is refused: a mangled keyword never
 /// drops a vertex and renumbers the rest.
 #[test]
@@ -110,7 +110,7 @@ fn obj_byte_order_mark_and_unknown_statements_never_drop_a_vertex() {
     refused(&dir, "surf.obj", b"v 0 0 0\ncstype bspline\n", "free-form");
 }
 
-/// C1. Geomview OFF with every prefix combination: the vertex line is
+/// Row 28. Geomview OFF with every prefix combination: the vertex line is
 /// `x y z [w] [nx ny nz] [colour] [s t]`, `4` divides by w, `n` puts the dimension after
 /// the keyword; face colours follow the indices. Each variant must give the tetrahedron.
 #[test]
@@ -189,7 +189,7 @@ fn off_prefixes_are_read_as_geomview_defines_them() {
     refused(&dir, "wrongcorners.off", format!("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n3 0 1 2 3 1\n3 0 3 1\n3 0 2 3\n3 1 3 2\n").as_bytes(), "wrongcorners.off:7: face 0: 2 numbers after");
 }
 
-/// C1. PLY: a property named twice would shift the columns; data after the last element
+/// Row 28. PLY: a property named twice would shift the columns; data after the last element
 /// means the counts are wrong. Both are refused. Binary big- and little-endian files and
 /// every list count type read to the same mesh as ASCII.
 #[test]
@@ -261,7 +261,7 @@ fn ply_repeated_property_and_trailing_data_are_refused_and_binaries_read_exactly
     }
 }
 
-/// C1. Header oddities: a byte-order mark before `OFF` or `ply` is skipped; a lowercase
+/// Row 28. Header oddities: a byte-order mark before `OFF` or `ply` is skipped; a lowercase
 /// keyword is refused saying why; CR-only line ends are lines.
 #[test]
 fn header_oddities_are_read_or_refused_by_name() {
@@ -297,7 +297,7 @@ fn header_oddities_are_read_or_refused_by_name() {
     );
 }
 
-/// C1. Formats by content: a PLY or OFF file with a misleading or missing extension is read
+/// Row 28. Formats by content: a PLY or OFF file with a misleading or missing extension is read
 /// by its signature; an output name without a mesh extension needs --output-format.
 #[test]
 fn formats_by_content_and_explicit_output_format() {
@@ -342,7 +342,7 @@ fn fan(n: usize) -> String {
     s
 }
 
-/// C2. `render` is linear in the valence: a 60,000-triangle fan (whose corner normals were
+/// Row 29. `render` is linear in the valence: a 60,000-triangle fan (whose corner normals were
 /// compared pairwise: 3.6e9 pairs) renders in seconds.
 #[test]
 fn render_of_a_high_valence_fan_is_not_quadratic() {
@@ -367,7 +367,7 @@ fn render_of_a_high_valence_fan_is_not_quadratic() {
     );
 }
 
-/// C2. `compare` is not quadratic in coincident vertices: 60,000 vertices at one position.
+/// Row 29. `compare` is not quadratic in coincident vertices: 60,000 vertices at one position.
 #[test]
 fn compare_of_coincident_vertices_is_not_quadratic() {
     let dir = TempDir::new("coincident");
@@ -389,7 +389,7 @@ fn compare_of_coincident_vertices_is_not_quadratic() {
     );
 }
 
-/// C2. A reader that closed standard output: exit 3, no message, no abort (was: a panic in
+/// Row 30. A reader that closed standard output: exit 3, no message, no abort (was: a panic in
 /// `println!`, SIGABRT, exit 134).
 #[test]
 fn closed_stdout_ends_quietly_with_exit_3() {
@@ -425,7 +425,7 @@ fn closed_stdout_ends_quietly_with_exit_3() {
     }
 }
 
-/// C2. Allocations the process cannot make (here under `ulimit -v`) are refused with exit 4
+/// Row 29. Allocations the process cannot make (here under `ulimit -v`) are refused with exit 4
 /// and a message (were: an allocation failure, abort, exit 134): a huge picture, and the
 /// differential path's buffers.
 #[test]
@@ -453,7 +453,7 @@ fn allocations_beyond_the_limit_are_refused_with_exit_4() {
     assert_files(&dir, &["t.off"], "refused allocations");
 }
 
-/// C3. Text echoed from a file is quoted, escaped and bounded: no terminal escape reaches
+/// Row 31. Text echoed from a file is quoted, escaped and bounded: no terminal escape reaches
 /// stderr, and a 2 MB token gives a short message.
 #[test]
 fn messages_escape_control_bytes_and_bound_long_tokens() {
@@ -515,7 +515,7 @@ fn big_off(path: &Path, n: usize) {
     std::fs::write(path, s).unwrap();
 }
 
-/// C4. SIGTERM, SIGINT and SIGHUP during a write remove the temporary output file; a
+/// Row 32. SIGTERM, SIGINT and SIGHUP during a write remove the temporary output file; a
 /// file-size limit (SIGXFSZ) ends the command with exit 3 and no file left.
 #[test]
 fn signals_and_file_size_limits_leave_no_temporary_file() {
@@ -572,7 +572,7 @@ fn signals_and_file_size_limits_leave_no_temporary_file() {
     }
 }
 
-/// C5. `compare` at any scale: two different meshes stay different with coordinates of
+/// Row 33. `compare` at any scale: two different meshes stay different with coordinates of
 /// 1e200 (the bounding-box diagonal overflows `f64`) and of 1e-200 (squared distances
 /// underflow), and a mesh still equals itself.
 #[test]

@@ -282,3 +282,35 @@ pub(crate) fn flag(v: u32) -> Result<bool, Status> {
         _ => Err(Status::InvalidArgument),
     }
 }
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::fpcr;
+    use nlsubdiv::Status;
+
+    /// With the overflow, invalid and divide-by-zero traps unmasked (as `feenableexcept` does),
+    /// an export body that overflows completes (the trap is masked inside the call) and the
+    /// host's register, traps and flags, is exactly as before afterwards. Fails with SIGFPE
+    /// when the guard does not mask, and on the comparison when it does not restore.
+    #[test]
+    fn traps_are_masked_for_a_call_and_restored() {
+        let saved = fpcr::read();
+        // IM (bit 7), ZM (9), OM (10) cleared: those exceptions trap.
+        let unmasked = saved & !((1 << 7) | (1 << 9) | (1 << 10));
+        fpcr::write(unmasked);
+        let status = crate::primitives::run(|| {
+            let x = core::hint::black_box(1e308f64);
+            let y = core::hint::black_box(x * 10.0); // overflow
+            let z = core::hint::black_box(y - y); // invalid: inf − inf
+            if y.is_infinite() && z.is_nan() {
+                Ok(())
+            } else {
+                Err(Status::NumericalFailure)
+            }
+        });
+        let after = fpcr::read();
+        fpcr::write(saved);
+        assert_eq!(status, Status::Ok);
+        assert_eq!(after, unmasked, "the host's MXCSR was not restored");
+    }
+}

@@ -5,7 +5,7 @@
 //! `t.off`, `t.obj`, `t.ply`, `t.txt` — a name without a mesh extension, so that the format
 //! comes from the content); the rest is the file.
 //!
-//! Checks, on every execution (docs/bad-input-catalogue.md, class C1 and C3):
+//! Checks, on every execution (docs/bad-input-catalogue.md, rows 28 and 31):
 //! - a read mesh is well formed: offsets start at 0 and increase, every face has at least 3
 //!   corners, every index is below the vertex count, every coordinate is finite;
 //! - written back in each of the three formats (PLY both binary and ASCII), it reads back
