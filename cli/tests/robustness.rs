@@ -77,7 +77,7 @@ fn obj_byte_order_mark_and_unknown_statements_never_drop_a_vertex() {
     refused(
         &dir,
         "mid.obj",
-        format!("v 1 1 1\n\u{feff}v 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\n").as_bytes(),
+        "v 1 1 1\n\u{feff}v 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\n".as_bytes(),
         "mid.obj:2: unknown OBJ statement '\\u{feff}v'",
     );
     refused(
@@ -186,7 +186,12 @@ fn off_prefixes_are_read_as_geomview_defines_them() {
         b"4OFF\n3 1 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n3 0 1 2\n",
         "w0.off:3: vertex 0: homogeneous",
     );
-    refused(&dir, "wrongcorners.off", format!("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n3 0 1 2 3 1\n3 0 3 1\n3 0 2 3\n3 1 3 2\n").as_bytes(), "wrongcorners.off:7: face 0: 2 numbers after");
+    refused(
+        &dir,
+        "wrongcorners.off",
+        b"OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n3 0 1 2 3 1\n3 0 3 1\n3 0 2 3\n3 1 3 2\n",
+        "wrongcorners.off:7: face 0: 2 numbers after",
+    );
 }
 
 /// Row 28. PLY: a property named twice would shift the columns; data after the last element

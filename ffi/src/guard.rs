@@ -74,14 +74,18 @@ mod fpcr {
     pub(crate) fn read() -> Reg {
         let v: u64;
         // SAFETY: reading FPCR has no side effect.
-        unsafe { core::arch::asm!("mrs {}, fpcr", out(reg) v, options(nomem, nostack, preserves_flags)) };
+        unsafe {
+            core::arch::asm!("mrs {}, fpcr", out(reg) v, options(nomem, nostack, preserves_flags))
+        };
         v
     }
 
     pub(crate) fn write(v: Reg) {
         // SAFETY: writes a value read from FPCR with only trap-enable bits changed, or the
         // value read back.
-        unsafe { core::arch::asm!("msr fpcr, {}", in(reg) v, options(nomem, nostack, preserves_flags)) };
+        unsafe {
+            core::arch::asm!("msr fpcr, {}", in(reg) v, options(nomem, nostack, preserves_flags))
+        };
     }
 
     pub(crate) fn masked(v: Reg) -> Reg {

@@ -949,7 +949,9 @@ mod tests {
             e.contains("t.ply:18") && e.contains("face 2") && e.contains("negative"),
             "{e}"
         );
-        let bad = format!("{HEAD}1 1 1 0\n1 -1 -1 0\n-1 1 -1 0\n-1 -1 x 0\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n");
+        let bad = format!(
+            "{HEAD}1 1 1 0\n1 -1 -1 0\n-1 1 -1 0\n-1 -1 x 0\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n"
+        );
         let e = parse(bad.as_bytes()).unwrap_err().message;
         assert!(
             e.starts_with("t.ply:15: vertex 3: property 'z': 'x' is not a float value"),

@@ -61,7 +61,7 @@ impl Nearest {
             }
         }
         let mut axis = vec![0u8; groups.len()];
-        build(&mut groups, &mut axis, 0);
+        build(&mut groups, &mut axis);
         Nearest { groups, axis }
     }
 
@@ -109,7 +109,7 @@ impl Nearest {
 /// Arranges `g` as an implicit k-d tree: the middle element splits the rest along the axis
 /// of largest extent; smaller coordinates go left. Ties are ordered by vertex id, so the
 /// tree is deterministic.
-fn build(g: &mut [Group], axis: &mut [u8], depth: usize) {
+fn build(g: &mut [Group], axis: &mut [u8]) {
     if g.len() <= 1 {
         return;
     }
@@ -138,9 +138,9 @@ fn build(g: &mut [Group], axis: &mut [u8], depth: usize) {
     axis[mid] = a as u8;
     let (left, right) = g.split_at_mut(mid);
     let (al, ar) = axis.split_at_mut(mid);
-    build(left, al, depth + 1);
+    build(left, al);
     if let (Some((_, rest)), Some((_, arest))) = (right.split_first_mut(), ar.split_first_mut()) {
-        build(rest, arest, depth + 1);
+        build(rest, arest);
     }
 }
 
