@@ -26,7 +26,7 @@
 //!   later coordinate). Geomview itself reads vertices as a stream of numbers; every file
 //!   it writes has one vertex per line.
 //! * A face's indices may wrap over several lines; the numbers after the last index on its
-//!   line are the face colour: none, 1 (colour-map index), 3 or 4 (RGB[A]).
+//!   line are the face colour: none, 1 (colour-map index), 3 or 4 (RGB or RGBA).
 //! * `#` starts a comment anywhere; blank lines, tabs, LF, CR LF and CR line ends are
 //!   fine; a UTF-8 byte-order mark at the start is skipped. Keywords are case-sensitive
 //!   (`N` and `n` mean different things): `off` is refused with a message saying so.
