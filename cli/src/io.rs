@@ -271,7 +271,26 @@ fn temporary_files() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
 /// process: no new temporary file can be created or renamed after it. Called on the way
 /// out by the signal handler thread and the panic hook (`main.rs`).
 pub fn remove_temporary_files_for_exit() {
-    let guard = temporary_files();
+    // try_lock, not lock: a panic on a thread that holds the list (it never should) must not
+    // hang the process in its panic hook. Another thread holds it only for a rename or a
+    // removal: a second is plenty.
+    let mut guard = None;
+    for _ in 0..1000 {
+        match TEMPORARY_FILES.try_lock() {
+            Ok(g) => {
+                guard = Some(g);
+                break;
+            }
+            Err(std::sync::TryLockError::Poisoned(p)) => {
+                guard = Some(p.into_inner());
+                break;
+            }
+            Err(std::sync::TryLockError::WouldBlock) => {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+        }
+    }
+    let Some(guard) = guard else { return };
     for p in guard.iter() {
         let _ = fs::remove_file(p);
     }

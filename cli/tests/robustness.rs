@@ -434,13 +434,14 @@ fn closed_stdout_ends_quietly_with_exit_3() {
         if args[0] == "compare" {
             cmd.arg(&p);
         }
-        let mut child = cmd
-            .stdout(Stdio::piped())
+        // A pipe whose reader is gone before the command starts: every write fails (EPIPE).
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = cmd
+            .stdout(Stdio::from(writer))
             .stderr(Stdio::piped())
-            .spawn()
+            .output()
             .unwrap();
-        drop(child.stdout.take()); // the reader is gone before anything is written
-        let o = child.wait_with_output().unwrap();
         assert_eq!(
             o.status.code(),
             Some(3),
