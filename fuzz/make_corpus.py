@@ -10,6 +10,10 @@ Seeds, encoded exactly in the input layouts documented at the top of fuzz_target
 - curve: polygons of those meshes' first faces and boundary-like point rows, every scheme,
   open and closed;
 - primitives: vertex stars (a vertex and its neighbours) of those meshes for every function;
+- parsers: the bytes of every shared mesh file with at most 400 vertices and of every file of
+  bad/, each under the names t.off and t.txt, and written as OBJ (with a byte-order mark,
+  CR LF, relative indices) and PLY (ASCII, binary little- and big-endian), plus the OFF
+  variants of Geomview's keyword (COFF, NOFF, STOFF, 4OFF, nOFF, ...);
 - differential: the all-triangle shared meshes with at most 200 vertices and a 16-face crop of
   every all-triangle mesh, each with Loop, Modified Butterfly and DirMag (1 and 2 levels), a
   few with curvature-scale and normal edits; every mesh of bad/ once (Loop).
@@ -174,6 +178,42 @@ def stars(pos, faces, limit=1):
     return out
 
 
+def parsers_inputs(pos, faces):
+    """Seeds of the `parsers` target (first byte: 0 t.off, 1 t.obj, 2 t.ply, 3 t.txt): the mesh
+    as OBJ and PLY in several spellings, and as OFF with Geomview's vertex extras."""
+    out = {}
+    fmt = lambda x: repr(float(x))
+    obj = "".join(f"v {fmt(p[0])} {fmt(p[1])} {fmt(p[2])}\n" for p in pos)
+    obj += "vt 0 0\nvn 0 0 1\ng g\nusemtl m\n"
+    for k, f in enumerate(faces):
+        if k % 2:
+            obj += "f " + " ".join(f"{v - len(pos)}" for v in f) + "\n"
+        else:
+            obj += "f " + " ".join(f"{v + 1}/1/1" for v in f) + "\n"
+    out["obj"] = b"\x01" + obj.encode()
+    out["obj-bom-crlf"] = b"\x01\xef\xbb\xbf" + obj.replace("\n", "\r\n").encode()
+    head = lambda f: (f"ply\nformat {f} 1.0\ncomment c\nelement vertex {len(pos)}\nproperty double x\n"
+                      f"property double y\nproperty double z\nelement face {len(faces)}\n"
+                      f"property list uchar int vertex_indices\nend_header\n").encode()
+    ascii_body = "".join(f"{fmt(p[0])} {fmt(p[1])} {fmt(p[2])}\n" for p in pos)
+    ascii_body += "".join(f"{len(f)} " + " ".join(str(v) for v in f) + "\n" for f in faces)
+    out["ply-ascii"] = b"\x02" + head("ascii") + ascii_body.encode()
+    for name, e in (("ply-le", "<"), ("ply-be", ">")):
+        body = b"".join(struct.pack(e + "3d", *p) for p in pos)
+        body += b"".join(struct.pack(e + "B", len(f) % 256) + struct.pack(e + f"{len(f)}i", *f) for f in faces)
+        out[name] = b"\x02" + head("binary_little_endian" if e == "<" else "binary_big_endian") + body
+    for kw, extra in (("COFF", " 0.5 0.5 0.5 1"), ("NOFF", " 0 0 1"), ("STOFF", " 0.5 0.25"), ("4OFF", " 1"),
+                      ("STCNOFF", " 0 0 1 255 0 0 255 0.5 0.25")):
+        text = f"{kw}\n{len(pos)} {len(faces)} 0\n"
+        text += "".join(f"{fmt(p[0])} {fmt(p[1])} {fmt(p[2])}{extra}\n" for p in pos)
+        text += "".join(f"{len(f)} " + " ".join(str(v) for v in f) + " 255 0 0\n" for f in faces)
+        out["off-" + kw] = b"\x00" + text.encode()
+    text = f"nOFF\n3\n{len(pos)} {len(faces)} 0\n" + "".join(f"{fmt(p[0])} {fmt(p[1])} {fmt(p[2])}\n" for p in pos)
+    text += "".join(f"{len(f)} " + " ".join(str(v) for v in f) + "\n" for f in faces)
+    out["off-nOFF"] = b"\x03" + text.encode()
+    return out
+
+
 def write(corpus, name, data, counts):
     d = os.path.join(ROOT, "fuzz", "corpus", corpus)
     os.makedirs(d, exist_ok=True)
@@ -199,6 +239,14 @@ def main():
             print(f"make_corpus: {path}: unreadable header, skipped")
             continue
         pos, faces = parsed
+        if len(pos) <= MAX_VERTICES or path in bad_files:
+            with open(path, "rb") as fh:
+                raw = fh.read()
+            write("parsers", f"{name}-off", b"\x00" + raw, counts)
+            write("parsers", f"{name}-txt", b"\x03" + raw, counts)
+            if len(pos) <= MAX_VERTICES and path not in bad_files and all(len(f) < 256 for f in faces):
+                for k, data in parsers_inputs(pos, faces).items():
+                    write("parsers", f"{name}-{k}", data, counts)
         if len(pos) <= MAX_VERTICES or path in bad_files:
             for s in SCHEMES:
                 write("mesh", f"{name}-s{s}-lin", mesh_input(s, 0, 1, pos, faces), counts)

@@ -8,6 +8,8 @@
  * count of 0. Functions are reentrant and thread-safe: there is no global state.
  * The library refuses to compute (NLS_STATUS_FP_ENVIRONMENT) when the host runs with
  * flush-to-zero, denormals-are-zero or a non-default rounding mode (e.g. -ffast-math).
+ * Floating-point exception traps the host unmasked (feenableexcept) are masked during each
+ * call and restored when it returns: they change no result, and never fire in the library.
  */
 
 #ifndef NLSUBDIV_H
@@ -931,8 +933,8 @@ nls_status nls_canonical_form_from_canonical(const struct nls_canonical_form *cf
  * The Möbius map of a canonical form:
  * with `inverse = 0` the forward map `m_{B→C}`, with `inverse = 1` the map back `m_{C→B}`.
  * Errors: `NLS_STATUS_INVALID_ARGUMENT` (a malformed `cf`, `inverse` not 0 or 1),
- * `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite). Nothing is written on
- * error.
+ * `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite),
+ * `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
  */
 nls_status nls_canonical_form_map(const struct nls_canonical_form *cf, uint32_t inverse, struct nls_mobius *out);
 

@@ -11,6 +11,7 @@ use nlsubdiv::{Status, NO_ELEMENT};
 
 use crate::cmd::Ctx;
 use crate::error::{CliError, CliResult};
+use crate::memory;
 use crate::mesh::{Mesh, Source};
 
 /// A differential-space scheme of the command line.
@@ -147,14 +148,33 @@ pub fn run(
     let mut rep = DifferentialReport::default();
     let err = |e, rep: &DifferentialReport| core_error(e, src, scheme.name(), rep);
     let need = diff::plan_scratch_len(&view).map_err(|e| err(e, &rep))?;
-    let mut su = vec![0u32; need];
+    let mut su = memory::filled(need, 0u32, "the differential plan")?;
     let plan = diff::plan(view, &opts, &mut su).map_err(|e| err(e, &rep))?;
-    su.resize(plan.scratch_u32, 0);
-    let mut sp = vec![[0.0; 3]; plan.scratch_points];
     let s = plan.output();
-    let mut pos = vec![[0.0; 3]; s.vertices];
-    let mut offs = vec![0u32; s.faces + 1];
-    let mut idx = vec![0u32; s.indices];
+    // Everything the call holds at once, checked before any of it is allocated.
+    let bytes = 4 * plan.scratch_u32.max(need) as u128
+        + 24 * plan.scratch_points as u128
+        + 24 * s.vertices as u128
+        + 4 * (s.faces as u128 + 1 + s.indices as u128);
+    memory::check(
+        bytes,
+        &format!("{levels} levels of {}", scheme.name()),
+        "use fewer levels",
+    )?;
+    if plan.scratch_u32 > su.len() {
+        su.try_reserve_exact(plan.scratch_u32 - su.len())
+            .map_err(|_| {
+                CliError::usage(format!(
+                    "cannot allocate the scratch of {levels} levels of {}: use fewer levels",
+                    scheme.name()
+                ))
+            })?;
+    }
+    su.resize(plan.scratch_u32, 0);
+    let mut sp = memory::filled(plan.scratch_points, [0.0; 3], "the differential scratch")?;
+    let mut pos = memory::filled(s.vertices, [0.0; 3], "the output positions")?;
+    let mut offs = memory::filled(s.faces + 1, 0u32, "the output faces")?;
+    let mut idx = memory::filled(s.indices, 0u32, "the output faces")?;
     let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
     diff::subdivide(view, &opts, &mut su, &mut sp, &mut out, &mut rep).map_err(|e| err(e, &rep))?;
     Ok(Outcome {

@@ -21,16 +21,18 @@
 pub mod obj;
 pub mod off;
 pub mod ply;
+pub mod text;
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock};
 
 use crate::error::{CliError, CliResult};
 use crate::mesh::{Mesh, Source};
 
 /// A mesh file format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Format {
     /// Object File Format (`.off`).
     Off,
@@ -40,43 +42,109 @@ pub enum Format {
     Ply,
 }
 
+/// `--input-format` and `--output-format`, set once by `main` from the command line.
+static FORMAT_OPTIONS: OnceLock<(Option<Format>, Option<Format>)> = OnceLock::new();
+
+/// Records `--input-format` and `--output-format` (the formats of every mesh the command
+/// reads and writes, whatever the file names say). Called once, by `main`.
+pub fn set_format_options(input: Option<Format>, output: Option<Format>) {
+    let _ = FORMAT_OPTIONS.set((input, output));
+}
+
+fn format_options() -> (Option<Format>, Option<Format>) {
+    FORMAT_OPTIONS.get().copied().unwrap_or((None, None))
+}
+
 impl Format {
-    /// The format of a file name's extension (case-insensitive).
-    pub fn from_path(path: &Path) -> CliResult<Format> {
+    fn from_extension(path: &Path) -> Option<Format> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         match ext.as_deref() {
-            Some("off") => Ok(Format::Off),
-            Some("obj") => Ok(Format::Obj),
-            Some("ply") => Ok(Format::Ply),
-            _ => Err(CliError::usage(format!(
-                "{}: unknown mesh format (use a file name ending in .off, .obj or .ply)",
-                path.display()
-            ))),
+            Some("off") => Some(Format::Off),
+            Some("obj") => Some(Format::Obj),
+            Some("ply") => Some(Format::Ply),
+            _ => None,
         }
     }
 
-    /// The format of a file to read: by extension, else by its first bytes.
-    fn sniff(path: &Path, bytes: &[u8]) -> CliResult<Format> {
-        if let Ok(f) = Format::from_path(path) {
+    /// The format to write `path` in: `--output-format` when given, else the extension
+    /// (case-insensitive); a name without a mesh extension (`/dev/stdout`, `out.txt`) is
+    /// refused, never guessed.
+    ///
+    /// # Errors
+    /// Exit 4 naming the file.
+    pub fn from_path(path: &Path) -> CliResult<Format> {
+        if let (_, Some(f)) = format_options() {
             return Ok(f);
         }
-        let head: Vec<u8> = bytes
-            .iter()
-            .skip_while(|b| b.is_ascii_whitespace())
-            .take(8)
-            .copied()
-            .collect();
-        if head.starts_with(b"ply") {
-            Ok(Format::Ply)
-        } else if head.windows(3).any(|w| w == b"OFF") {
-            Ok(Format::Off)
-        } else {
-            Format::from_path(path)
+        Format::from_extension(path).ok_or_else(|| {
+            CliError::usage(format!(
+                "{}: cannot tell the mesh format to write from the file name: use a name \
+                 ending in .off, .obj or .ply, or give --output-format off|obj|ply",
+                path.display()
+            ))
+        })
+    }
+
+    /// The format of a file to read: `--input-format` when given; else the file's own
+    /// signature (the PLY magic line `ply`, an OFF keyword `[ST][C][N][4][n]OFF` as the first
+    /// word), which wins over a misleading extension; else the extension; else OBJ when the
+    /// first statement is an OBJ one. Anything else is refused, never guessed.
+    fn of_input(path: &Path, bytes: &[u8]) -> CliResult<Format> {
+        if let (Some(f), _) = format_options() {
+            return Ok(f);
+        }
+        let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        if body.starts_with(b"ply\n") || body.starts_with(b"ply\r") {
+            return Ok(Format::Ply);
+        }
+        let first = first_word(body);
+        if is_off_keyword(first) {
+            return Ok(Format::Off);
+        }
+        if let Some(f) = Format::from_extension(path) {
+            return Ok(f);
+        }
+        const OBJ_FIRST: &[&[u8]] = &[
+            b"v", b"vt", b"vn", b"vp", b"f", b"g", b"o", b"s", b"mtllib", b"usemtl",
+        ];
+        if OBJ_FIRST.contains(&first) {
+            return Ok(Format::Obj);
+        }
+        Err(CliError::usage(format!(
+            "{}: cannot tell the mesh format: the name does not end in .off, .obj or .ply and \
+             the content starts with {}, which is none of them (give --input-format off|obj|ply)",
+            path.display(),
+            crate::error::quote(first)
+        )))
+    }
+}
+
+/// The first word of a text, after white space, blank lines and `#` comment lines.
+fn first_word(bytes: &[u8]) -> &[u8] {
+    for (_, line) in text::Lines::new(bytes, 1) {
+        let line = match line.iter().position(|&b| b == b'#') {
+            Some(p) => line.get(..p).unwrap_or(line),
+            None => line,
+        };
+        if let Some(w) = text::tokens(line).next() {
+            return w;
         }
     }
+    b""
+}
+
+/// Whether `w` is an OFF keyword `[ST][C][N][4][n]OFF`.
+fn is_off_keyword(w: &[u8]) -> bool {
+    let Some(mut rest) = w.strip_suffix(b"OFF") else {
+        return false;
+    };
+    for p in [&b"ST"[..], b"C", b"N", b"4", b"n"] {
+        rest = rest.strip_prefix(p).unwrap_or(rest);
+    }
+    rest.is_empty()
 }
 
 /// How to write a mesh.
@@ -91,21 +159,49 @@ pub struct WriteOptions {
     pub scalar: Option<(String, Vec<f64>)>,
 }
 
-/// Reads a mesh file in the format of its extension (or content, for other extensions).
+/// Reads a mesh file in the format of its content or extension (see [`Format`]).
 ///
 /// # Errors
 /// Exit 3 when the file cannot be read, exit 2 for anything wrong in it (see the module
 /// docs), exit 4 for an unknown format.
 pub fn read_mesh(path: &Path) -> CliResult<(Mesh, Source)> {
     let bytes = fs::read(path).map_err(|e| CliError::io(path, "read", &e))?;
-    let format = Format::sniff(path, &bytes)?;
+    parse_mesh(path, &bytes)
+}
+
+/// Parses the bytes of a mesh file named `path` (the name is used for the format, when the
+/// content does not tell, and in messages). The whole of [`read_mesh`] but the reading:
+/// also the entry point of the `parsers` fuzz target.
+///
+/// # Errors
+/// Exit 2 for anything wrong in the bytes, exit 4 for an unknown format.
+pub fn parse_mesh(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
+    let format = Format::of_input(path, bytes)?;
     let (mesh, source) = match format {
-        Format::Off => off::read(path, &bytes)?,
-        Format::Obj => obj::read(path, &bytes)?,
-        Format::Ply => ply::read(path, &bytes)?,
+        Format::Off => off::read(path, bytes)?,
+        Format::Obj => obj::read(path, bytes)?,
+        Format::Ply => ply::read(path, bytes)?,
     };
     check_loaded(&mesh, &source)?;
     Ok((mesh, source))
+}
+
+/// Writes `mesh` in `format` to `out` (no file, no checks of the options: [`write_mesh`]
+/// does those).
+///
+/// # Errors
+/// I/O errors of `out`.
+pub fn write_to(
+    format: Format,
+    out: &mut dyn Write,
+    mesh: &Mesh,
+    opts: &WriteOptions,
+) -> std::io::Result<()> {
+    match format {
+        Format::Off => off::write(out, mesh, opts),
+        Format::Obj => obj::write(out, mesh, opts),
+        Format::Ply => ply::write(out, mesh, opts),
+    }
 }
 
 /// Checks every reader makes on its result: finite coordinates, at least one face, counts
@@ -147,12 +243,8 @@ pub fn write_mesh(path: &Path, mesh: &Mesh, opts: &WriteOptions) -> CliResult<()
         )));
     }
     let mut file = AtomicFile::create(path)?;
-    let result = match format {
-        Format::Off => off::write(file.writer(), mesh, opts),
-        Format::Obj => obj::write(file.writer(), mesh, opts),
-        Format::Ply => ply::write(file.writer(), mesh, opts),
-    };
-    result.map_err(|e| CliError::io(path, "write", &e))?;
+    let result = write_to(format, file.writer(), mesh, opts);
+    result.map_err(|e| write_error(path, &e))?;
     file.commit()
 }
 
@@ -162,23 +254,88 @@ pub fn fmt_f64(x: f64) -> String {
     format!("{x:?}")
 }
 
+/// The temporary files being written, so that a signal (SIGINT, SIGTERM, SIGHUP) or a
+/// panic can remove them before the process ends: [`AtomicFile`] registers its temporary
+/// name before it creates the file and removes the name (under this lock) when it renames or
+/// removes the file.
+static TEMPORARY_FILES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn temporary_files() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    // A panic while the lock was held must not stop the cleanup.
+    TEMPORARY_FILES
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Removes every temporary output file and keeps the list locked for the rest of the
+/// process: no new temporary file can be created or renamed after it. Called on the way
+/// out by the signal handler thread and the panic hook (`main.rs`).
+pub fn remove_temporary_files_for_exit() {
+    // try_lock, not lock: a panic on a thread that holds the list (it never should) must not
+    // hang the process in its panic hook. Another thread holds it only for a rename or a
+    // removal: a second is plenty.
+    let mut guard = None;
+    for _ in 0..1000 {
+        match TEMPORARY_FILES.try_lock() {
+            Ok(g) => {
+                guard = Some(g);
+                break;
+            }
+            Err(std::sync::TryLockError::Poisoned(p)) => {
+                guard = Some(p.into_inner());
+                break;
+            }
+            Err(std::sync::TryLockError::WouldBlock) => {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+        }
+    }
+    let Some(guard) = guard else { return };
+    for p in guard.iter() {
+        let _ = fs::remove_file(p);
+    }
+    // Never unlocked: the process is ending, and another thread must not start a file now.
+    std::mem::forget(guard);
+}
+
 /// A file written under a temporary name in the target's directory and renamed to the
 /// target by [`AtomicFile::commit`]. Dropped without commit, it removes the temporary file,
-/// so an error leaves nothing behind.
+/// so an error leaves nothing behind; a signal or a panic removes it too (see
+/// [`remove_temporary_files_for_exit`]).
+///
+/// A target that exists and is not a regular file (`/dev/stdout`, a named pipe, a
+/// terminal) cannot be replaced by a rename: it is written directly.
 #[derive(Debug)]
 pub struct AtomicFile {
     target: PathBuf,
+    /// The temporary file; empty when writing directly or once renamed or removed.
     temp: PathBuf,
     out: Option<BufWriter<File>>,
     sink: std::io::Sink,
 }
 
 impl AtomicFile {
-    /// Creates the temporary file beside `target`.
+    /// Creates the temporary file beside `target` (or opens `target` itself when it is not a
+    /// regular file).
     ///
     /// # Errors
     /// Exit 3 when it cannot be created.
     pub fn create(target: &Path) -> CliResult<AtomicFile> {
+        if let Ok(meta) = fs::metadata(target) {
+            if !meta.is_file() && !meta.is_dir() {
+                let f = OpenOptions::new()
+                    .write(true)
+                    .truncate(true)
+                    .open(target)
+                    .map_err(|e| CliError::io(target, "open", &e))?;
+                return Ok(AtomicFile {
+                    target: target.to_path_buf(),
+                    temp: PathBuf::new(),
+                    out: Some(BufWriter::with_capacity(1 << 16, f)),
+                    sink: std::io::sink(),
+                });
+            }
+        }
         let dir = match target.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
             _ => PathBuf::from("."),
@@ -193,14 +350,16 @@ impl AtomicFile {
                 ".{name}.nlsubdiv-{}-{attempt}.tmp",
                 std::process::id()
             ));
+            let mut list = temporary_files();
             match OpenOptions::new().write(true).create_new(true).open(&temp) {
                 Ok(f) => {
+                    list.push(temp.clone());
                     return Ok(AtomicFile {
                         target: target.to_path_buf(),
                         temp,
                         out: Some(BufWriter::with_capacity(1 << 16, f)),
                         sink: std::io::sink(),
-                    })
+                    });
                 }
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last_err = Some(e),
                 Err(e) => return Err(CliError::io(target, "create", &e)),
@@ -228,15 +387,30 @@ impl AtomicFile {
         };
         let file = w
             .into_inner()
-            .map_err(|e| CliError::io(&self.target, "write", e.error()))?;
-        file.sync_all()
-            .map_err(|e| CliError::io(&self.target, "write", &e))?;
+            .map_err(|e| write_error(&self.target, e.error()))?;
+        if self.temp.as_os_str().is_empty() {
+            // Written directly (not a regular file): nothing to sync or rename.
+            return Ok(());
+        }
+        file.sync_all().map_err(|e| write_error(&self.target, &e))?;
         drop(file);
+        let mut list = temporary_files();
         fs::rename(&self.temp, &self.target)
             .map_err(|e| CliError::io(&self.target, "rename the temporary file to", &e))?;
         // Renamed: nothing left to clean up.
+        list.retain(|p| *p != self.temp);
         self.temp = PathBuf::new();
         Ok(())
+    }
+}
+
+/// An error writing `path`: exit 3; a closed pipe (the reader stopped reading) ends the
+/// program quietly, without a message.
+pub fn write_error(path: &Path, e: &std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::quiet(crate::error::Exit::Io)
+    } else {
+        CliError::io(path, "write", e)
     }
 }
 
@@ -244,7 +418,9 @@ impl Drop for AtomicFile {
     fn drop(&mut self) {
         self.out = None;
         if !self.temp.as_os_str().is_empty() {
+            let mut list = temporary_files();
             let _ = fs::remove_file(&self.temp);
+            list.retain(|p| *p != self.temp);
         }
     }
 }

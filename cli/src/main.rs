@@ -8,16 +8,17 @@
 mod cmd;
 mod differential;
 mod dome;
-mod error;
+mod exit;
 mod fields;
-mod grid;
-mod io;
 mod memory;
-mod mesh;
+mod out;
 mod progress;
 mod sphere;
 mod subdiv;
 mod topology;
+
+// The file readers and writers live in the library part of this package (src/lib.rs).
+use nlsubdiv_cli::{error, io, mesh};
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -33,13 +34,16 @@ Exit status:
   1  the answer is no: `compare` found a difference, `check` found warnings
   2  bad input: not a valid mesh or curve file, a mesh with defects the command refuses, or
      one the scheme cannot subdivide (the message names the file, line and element)
-  3  I/O error: a file cannot be read or written
+  3  I/O error: a file cannot be read or written (also, without a message, when standard
+     output is closed early by its reader, as in `nlsubdiv metrics --json x.off | head -1`)
   4  bad command line (including more levels than the kernel or the memory can hold)
   5  internal error (a bug: please report it with the input)
 
-Meshes are read from and written to OFF, OBJ and PLY by file extension; curves are text,
-one \"x y z\" per line. Outputs are written to a temporary file and renamed into place: a
-failed command leaves no output behind.";
+Meshes are read by their content (the PLY magic line, an OFF keyword), else by file
+extension (or --input-format); they are written by file extension (or --output-format: a name
+such as /dev/stdout has none). Curves are text, one \"x y z\" per line. Outputs are written to a
+temporary file and renamed into place: a failed or interrupted command (SIGINT, SIGTERM,
+SIGHUP, a file-size limit) leaves no output behind.";
 
 const SUBDIVIDE_HELP: &str = "\
 The output is the library's, bit for bit, in the library's vertex order (the C ABI's): old
@@ -68,6 +72,13 @@ struct Cli {
     /// No progress bars, warnings or summary lines on stderr.
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// Read every input mesh in this format, whatever its name or content suggests.
+    #[arg(long, global = true, value_enum, value_name = "FORMAT")]
+    input_format: Option<io::Format>,
+    /// Write every output mesh in this format, whatever its name (needed for names without
+    /// a .off, .obj or .ply extension, such as /dev/stdout).
+    #[arg(long, global = true, value_enum, value_name = "FORMAT")]
+    output_format: Option<io::Format>,
     #[command(subcommand)]
     command: Command,
 }
@@ -109,6 +120,7 @@ fn dispatch(command: &Command, ctx: &Ctx) -> CliResult<Exit> {
 
 fn main() -> ExitCode {
     let started = Instant::now();
+    exit::install_handlers();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
@@ -120,6 +132,7 @@ fn main() -> ExitCode {
             });
         }
     };
+    io::set_format_options(cli.input_format, cli.output_format);
     let ctx = Ctx {
         quiet: cli.quiet,
         started,
@@ -127,9 +140,7 @@ fn main() -> ExitCode {
     match dispatch(&cli.command, &ctx) {
         Ok(code) => ExitCode::from(code as u8),
         Err(e) => {
-            for line in e.message.lines() {
-                eprintln!("nlsubdiv: error: {line}");
-            }
+            exit::print_error(&e.message);
             ExitCode::from(e.exit as u8)
         }
     }

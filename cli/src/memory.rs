@@ -38,11 +38,20 @@ pub fn check(bytes: u128, what: &str, hint: &str) -> CliResult<()> {
     }
 }
 
+/// Buffers from this size on are checked against `MemAvailable` before they are allocated.
+const LARGE: u128 = 64 << 20;
+
 /// A vector of `n` copies of `fill`, or exit 4 when the allocation fails.
 ///
 /// # Errors
 /// Exit 4 naming `what` and the size.
 pub fn filled<T: Clone>(n: usize, fill: T, what: &str) -> CliResult<Vec<T>> {
+    let bytes = (n as u128).saturating_mul(std::mem::size_of::<T>() as u128);
+    // Large buffers are also checked against the available memory: with overcommit, an
+    // allocation the machine cannot back succeeds and the out-of-memory killer strikes later.
+    if bytes >= LARGE {
+        check(bytes, what, "use fewer levels or a smaller input")?;
+    }
     let mut v = Vec::new();
     v.try_reserve_exact(n).map_err(|_| {
         CliError::usage(format!(

@@ -32,8 +32,7 @@ impl Default for Mesh {
 }
 
 impl Mesh {
-    /// A mesh from positions and a list of faces.
-    #[cfg(test)]
+    /// A mesh from positions and a list of faces (tests build meshes with it).
     pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<P3>, faces: &[F]) -> Mesh {
         let mut m = Mesh {
             positions,
@@ -76,11 +75,6 @@ impl Mesh {
     /// Axis-aligned bounding box of all vertices, `None` without vertices.
     pub fn bbox(&self) -> Option<(P3, P3)> {
         bbox(&self.positions)
-    }
-
-    /// Length of the bounding box diagonal (0 without vertices).
-    pub fn diagonal(&self) -> f64 {
-        self.bbox().map_or(0.0, |(lo, hi)| norm(sub(hi, lo)))
     }
 }
 
@@ -144,10 +138,8 @@ pub struct Source {
 enum Lines {
     /// No line numbers (binary PLY, generated meshes).
     None,
-    /// The line where each vertex and face starts (OFF, OBJ).
+    /// The line where each vertex and face starts (OFF, OBJ, ASCII PLY).
     PerElement { vertex: Vec<u32>, face: Vec<u32> },
-    /// One element per line from the given lines on (ASCII PLY).
-    Consecutive { vertex: u32, face: u32 },
 }
 
 impl Source {
@@ -167,20 +159,11 @@ impl Source {
         }
     }
 
-    /// A source whose vertices start at line `vertex` and faces at line `face`, one per line.
-    pub fn with_consecutive_lines(path: &Path, vertex: u32, face: u32) -> Source {
-        Source {
-            path: path.to_path_buf(),
-            lines: Lines::Consecutive { vertex, face },
-        }
-    }
-
     /// The line of vertex `v`, when known.
     pub fn vertex_line(&self, v: usize) -> Option<u32> {
         match &self.lines {
             Lines::None => None,
             Lines::PerElement { vertex, .. } => vertex.get(v).copied(),
-            Lines::Consecutive { vertex, .. } => u32::try_from(v).ok()?.checked_add(*vertex),
         }
     }
 
@@ -189,7 +172,6 @@ impl Source {
         match &self.lines {
             Lines::None => None,
             Lines::PerElement { face, .. } => face.get(f).copied(),
-            Lines::Consecutive { face, .. } => u32::try_from(f).ok()?.checked_add(*face),
         }
     }
 

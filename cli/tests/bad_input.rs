@@ -169,12 +169,12 @@ fn generated_bad_files_name_file_line_and_element() {
         ("extra.off", format!("OFF\n4 4 0\n{tet_v}3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n3 0 1 3\n"), "extra.off:11: unexpected '3' after the last face"),
         ("binary.off", "OFF BINARY\n".to_string(), "binary OFF is not supported"),
         ("nm.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n".to_string(), "nm.off:10: face 2: edge (0, 1) is shared by 3 faces"),
-        ("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n".to_string(), "zero.obj:4: face 0: index 0 is invalid"),
-        ("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -9\n".to_string(), "rel.obj:5: face 1: relative index -9"),
+        ("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n".to_string(), "zero.obj:4: face 0: corner '0': vertex index 0 is invalid"),
+        ("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -9\n".to_string(), "rel.obj:5: face 1: corner '-9': relative index -9"),
         ("inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n".to_string(), "inf.obj:2: vertex 1: coordinate y is infinite"),
         ("neg.ply", format!("{ply_head}{tet_v}3 0 1 2\n3 0 3 1\n3 0 -2 3\n3 1 3 2\n"), "neg.ply:16: face 2: negative index -2"),
-        ("trunc.ply", format!("{ply_head}{tet_v}3 0 1 2\n3 0 3 1\n"), "end of file"),
-        ("text.ply", format!("{ply_head}1 1 1\n1 -1 -1\n-1 1 x\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n"), "text.ply:12: vertex 2: cannot read '-1 1 x'"),
+        ("trunc.ply", format!("{ply_head}{tet_v}3 0 1 2\n3 0 3 1\n"), "trunc.ply:15: the file ends in face 2 of 4"),
+        ("text.ply", format!("{ply_head}1 1 1\n1 -1 -1\n-1 1 x\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n"), "text.ply:12: vertex 2: property 'z': 'x' is not a double value"),
         ("nofaces.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_string(), "no faces"),
         ("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n".to_string(), "no 'z' property"),
     ];
@@ -233,7 +233,7 @@ fn generated_bad_files_name_file_line_and_element() {
         &["convert", bin.to_str().unwrap(), t.to_str().unwrap()],
         &out,
         2,
-        "end of file",
+        "the file ends in face",
         "binary truncated",
     );
 }

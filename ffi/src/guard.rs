@@ -1,29 +1,190 @@
 //! Pointer checks and the floating-point-environment guard shared by every export
-//! (reliability-anchors §6: NULL → alignment → size → overlap → only then form slices).
+//! (NULL → alignment → size → overlap → only then form slices).
 
 use core::mem::{align_of, size_of};
 
 use nlsubdiv::{Point, Status};
 
-/// Whether the x86 MXCSR register is in its IEEE default state (round to nearest, no
-/// flush-to-zero, no denormals-are-zero; exception masks and sticky flags are ignored).
-/// Hosts compiled with `-ffast-math` start with FTZ/DAZ set, which silently changes
-/// results; we refuse to compute rather than return different bits.
-#[cfg(target_arch = "x86_64")]
-pub(crate) fn fp_env_is_default() -> bool {
-    let mut csr: u32 = 0;
-    // SAFETY: `stmxcsr` stores the 32-bit MXCSR register to the given, valid, aligned
-    // location; it has no other effect.
-    unsafe {
-        core::arch::asm!("stmxcsr [{}]", in(reg) &mut csr, options(nostack, preserves_flags));
+// The floating-point environment of the calling thread (docs/DECISIONS.md, "Host
+// floating-point traps").
+//
+// * Modes that change results (flush-to-zero, denormals-are-zero, a rounding mode other
+//   than to nearest) are refused with `NLS_STATUS_FP_ENVIRONMENT`: the documented bits
+//   would not come out. [`fp_env_is_default`] reads them.
+// * Unmasked exception traps (a host that called `feenableexcept`) do not change any result
+//   — a masked exception gives the IEEE default result, which is what the library computes
+//   with and then checks (an overflow becomes `NLS_STATUS_NUMERICAL_FAILURE`, never a
+//   signal). So every export masks them for the length of the call and restores the host's
+//   register afterwards ([`FpTrapGuard`]): the host keeps its traps for its own code, and
+//   the exceptions the library raises (and handles) internally never reach it, neither as
+//   a SIGFPE nor as sticky flags.
+
+/// MXCSR (x86_64, and 32-bit x86 with SSE2, whose `f64` arithmetic is SSE): exception masks
+/// bits 7-12, denormals-are-zero bit 6, rounding bits 13-14, flush-to-zero bit 15.
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "x86", target_feature = "sse2")
+))]
+mod fpcr {
+    pub(crate) type Reg = u32;
+    /// All six exception masks set: no traps.
+    pub(crate) const TRAPS_MASKED: Reg = 0x1F80;
+    /// Rounding control, flush-to-zero, denormals-are-zero.
+    pub(crate) const MODE_BITS: Reg = 0xE040;
+
+    pub(crate) fn read() -> Reg {
+        let mut csr: u32 = 0;
+        // SAFETY: `stmxcsr` stores the 32-bit MXCSR register to the given, valid, aligned
+        // location; it has no other effect.
+        unsafe {
+            core::arch::asm!("stmxcsr [{}]", in(reg) &mut csr, options(nostack, preserves_flags));
+        }
+        csr
     }
-    // Bits 13-14 rounding control, bit 15 FTZ, bit 6 DAZ must be zero.
-    csr & 0xE040 == 0
+
+    pub(crate) fn write(csr: Reg) {
+        // SAFETY: `ldmxcsr` loads MXCSR from the given, valid, aligned location. Callers only
+        // write a value read from the register with exception bits changed, or the value
+        // they read back (reserved bits unchanged, so no #GP).
+        unsafe {
+            core::arch::asm!("ldmxcsr [{}]", in(reg) &csr, options(nostack, preserves_flags));
+        }
+    }
+
+    /// The register with every exception trap masked.
+    pub(crate) fn masked(csr: Reg) -> Reg {
+        csr | TRAPS_MASKED
+    }
+
+    pub(crate) fn traps_unmasked(csr: Reg) -> bool {
+        csr & TRAPS_MASKED != TRAPS_MASKED
+    }
 }
 
-#[cfg(not(target_arch = "x86_64"))]
+/// FPCR (aarch64): trap enables IOE, DZE, OFE, UFE, IXE (bits 8-12) and IDE (bit 15);
+/// rounding mode bits 22-23, flush-to-zero bit 24. Not tested on hardware by this
+/// project's CI (x86_64 only); most cores do not implement the trap enables (they read as
+/// zero), which this code handles the same way.
+#[cfg(target_arch = "aarch64")]
+mod fpcr {
+    pub(crate) type Reg = u64;
+    const TRAP_ENABLES: Reg = 0x9F00;
+    pub(crate) const MODE_BITS: Reg = 0x01C0_0000;
+
+    pub(crate) fn read() -> Reg {
+        let v: u64;
+        // SAFETY: reading FPCR has no side effect.
+        unsafe {
+            core::arch::asm!("mrs {}, fpcr", out(reg) v, options(nomem, nostack, preserves_flags))
+        };
+        v
+    }
+
+    pub(crate) fn write(v: Reg) {
+        // SAFETY: writes a value read from FPCR with only trap-enable bits changed, or the
+        // value read back.
+        unsafe {
+            core::arch::asm!("msr fpcr, {}", in(reg) v, options(nomem, nostack, preserves_flags))
+        };
+    }
+
+    pub(crate) fn masked(v: Reg) -> Reg {
+        v & !TRAP_ENABLES
+    }
+
+    pub(crate) fn traps_unmasked(v: Reg) -> bool {
+        v & TRAP_ENABLES != 0
+    }
+}
+
+/// FPSCR (32-bit Arm with VFP): the same trap-enable, rounding and flush-to-zero bits as
+/// aarch64's FPCR. Not tested by this project (no such target here).
+#[cfg(all(target_arch = "arm", target_feature = "vfp2"))]
+mod fpcr {
+    pub(crate) type Reg = u32;
+    const TRAP_ENABLES: Reg = 0x9F00;
+    pub(crate) const MODE_BITS: Reg = 0x01C0_0000;
+
+    pub(crate) fn read() -> Reg {
+        let v: u32;
+        // SAFETY: reading FPSCR has no side effect.
+        unsafe { core::arch::asm!("vmrs {}, fpscr", out(reg) v, options(nomem, nostack)) };
+        v
+    }
+
+    pub(crate) fn write(v: Reg) {
+        // SAFETY: writes a value read from FPSCR with only trap-enable bits changed, or the
+        // value read back.
+        unsafe { core::arch::asm!("vmsr fpscr, {}", in(reg) v, options(nomem, nostack)) };
+    }
+
+    pub(crate) fn masked(v: Reg) -> Reg {
+        v & !TRAP_ENABLES
+    }
+
+    pub(crate) fn traps_unmasked(v: Reg) -> bool {
+        v & TRAP_ENABLES != 0
+    }
+}
+
+/// Other targets: no register this crate knows how to read; the default environment is
+/// assumed (documented in docs/DECISIONS.md).
+#[cfg(not(any(
+    target_arch = "x86_64",
+    all(target_arch = "x86", target_feature = "sse2"),
+    target_arch = "aarch64",
+    all(target_arch = "arm", target_feature = "vfp2")
+)))]
+mod fpcr {
+    pub(crate) type Reg = u32;
+    pub(crate) const MODE_BITS: Reg = 0;
+    pub(crate) fn read() -> Reg {
+        0
+    }
+    pub(crate) fn write(_: Reg) {}
+    pub(crate) fn masked(v: Reg) -> Reg {
+        v
+    }
+    pub(crate) fn traps_unmasked(_: Reg) -> bool {
+        false
+    }
+}
+
+/// Whether the modes that change results are the IEEE defaults: round to nearest, no
+/// flush-to-zero, no denormals-are-zero (exception masks and sticky flags are not modes).
+/// Hosts compiled with `-ffast-math` start with FTZ/DAZ set, which silently changes
+/// results; the library refuses to compute rather than return different bits.
 pub(crate) fn fp_env_is_default() -> bool {
-    true
+    fpcr::read() & fpcr::MODE_BITS == 0
+}
+
+/// Masks every floating-point exception trap for its lifetime and then restores the
+/// host's control register exactly (traps and sticky flags as they were on entry). Does
+/// nothing — not even a register write — when no trap is unmasked, the usual case.
+#[derive(Debug)]
+pub(crate) struct FpTrapGuard {
+    saved: Option<fpcr::Reg>,
+}
+
+impl FpTrapGuard {
+    /// Masks the traps if the host unmasked any.
+    pub(crate) fn mask_traps() -> FpTrapGuard {
+        let r = fpcr::read();
+        if fpcr::traps_unmasked(r) {
+            fpcr::write(fpcr::masked(r));
+            FpTrapGuard { saved: Some(r) }
+        } else {
+            FpTrapGuard { saved: None }
+        }
+    }
+}
+
+impl Drop for FpTrapGuard {
+    fn drop(&mut self) {
+        if let Some(r) = self.saved {
+            fpcr::write(r);
+        }
+    }
 }
 
 /// Fails with `FpEnvironment` unless the floating-point environment is the default one.
@@ -123,5 +284,37 @@ pub(crate) fn flag(v: u32) -> Result<bool, Status> {
         0 => Ok(false),
         1 => Ok(true),
         _ => Err(Status::InvalidArgument),
+    }
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::fpcr;
+    use nlsubdiv::Status;
+
+    /// With the overflow, invalid and divide-by-zero traps unmasked (as `feenableexcept` does),
+    /// an export body that overflows completes (the trap is masked inside the call) and the
+    /// host's register, traps and flags, is exactly as before afterwards. Fails with SIGFPE
+    /// when the guard does not mask, and on the comparison when it does not restore.
+    #[test]
+    fn traps_are_masked_for_a_call_and_restored() {
+        let saved = fpcr::read();
+        // IM (bit 7), ZM (9), OM (10) cleared: those exceptions trap.
+        let unmasked = saved & !((1 << 7) | (1 << 9) | (1 << 10));
+        fpcr::write(unmasked);
+        let status = crate::primitives::run(|| {
+            let x = core::hint::black_box(1e308f64);
+            let y = core::hint::black_box(x * 10.0); // overflow
+            let z = core::hint::black_box(y - y); // invalid: inf − inf
+            if y.is_infinite() && z.is_nan() {
+                Ok(())
+            } else {
+                Err(Status::NumericalFailure)
+            }
+        });
+        let after = fpcr::read();
+        fpcr::write(saved);
+        assert_eq!(status, Status::Ok);
+        assert_eq!(after, unmasked, "the host's MXCSR was not restored");
     }
 }

@@ -1,14 +1,15 @@
 //! The C ABI of nlsubdiv (`include/nlsubdiv.h`, prefix `nls_`).
 //!
-//! This crate is the only place with `unsafe` code. Every export follows one contract
-//! (DESIGN.md "C ABI conventions", reliability-anchors §6):
+//! This crate is the only place with `unsafe` code. Every export follows one contract:
 //!
 //! 1. every fallible call returns `nls_status` (`NLS_STATUS_OK = 0`);
 //! 2. pointers are checked before use: NULL (with a non-zero count) gives
 //!    `NLS_STATUS_NULL_PARAMETER`, a misaligned pointer `NLS_STATUS_MISALIGNED_POINTER`, a byte
 //!    size above `isize::MAX` `NLS_STATUS_SIZE_OVERFLOW`;
 //! 3. a host running with flush-to-zero / denormals-are-zero or a non-default rounding mode
-//!    gets `NLS_STATUS_FP_ENVIRONMENT` (results would not be the documented bits);
+//!    gets `NLS_STATUS_FP_ENVIRONMENT` (results would not be the documented bits); a host's
+//!    unmasked exception traps are masked for the call and restored after it (they change
+//!    no result; docs/DECISIONS.md, "Host floating-point traps");
 //! 4. results are written to the trailing out-parameters only on success;
 //! 5. no global state: every function is reentrant and thread-safe.
 //!

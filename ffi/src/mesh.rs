@@ -139,6 +139,7 @@ fn too_small(buffer: u32) -> Fail {
 /// Runs an export body; on failure writes the element to `out_element` when it is a valid
 /// pointer (the one exception to "written only on success", as in `nls_curve_subdivide`).
 fn run_with_element(out_element: *mut u32, body: impl FnOnce() -> Result<(), Fail>) -> Status {
+    let _traps = crate::guard::FpTrapGuard::mask_traps();
     match body() {
         Ok(()) => Status::Ok,
         Err(f) => {

@@ -364,8 +364,8 @@ pub unsafe extern "C" fn nls_canonical_form_from_canonical(
 /// The Möbius map of a canonical form:
 /// with `inverse = 0` the forward map `m_{B→C}`, with `inverse = 1` the map back `m_{C→B}`.
 /// Errors: `NLS_STATUS_INVALID_ARGUMENT` (a malformed `cf`, `inverse` not 0 or 1),
-/// `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite). Nothing is written on
-/// error.
+/// `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite),
+/// `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_canonical_form_map(
     cf: *const nls_canonical_form,
@@ -377,6 +377,7 @@ pub unsafe extern "C" fn nls_canonical_form_map(
         let cf = unsafe { read(cf)? };
         crate::guard::check_ptr(out.cast_const(), 1)?;
         let inverse = crate::guard::flag(inverse)?;
+        check_fp_env()?;
         let cf = canonical_form_of(&cf)?;
         let m: nls_mobius = if inverse { cf.inverse_map() } else { cf.map() }.into();
         // A form far out in the double range overflows a coefficient: refuse.

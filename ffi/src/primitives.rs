@@ -7,8 +7,10 @@ use nlsubdiv::{blend, metrics, quat, Quat, Status};
 
 use crate::guard::{check_fp_env, check_out, points, read_point, read_quat, status_of, write};
 
-/// Runs an export body and folds its result into a status.
+/// Runs an export body and folds its result into a status. Host floating-point traps are
+/// masked for the body and restored after it ([`crate::guard::FpTrapGuard`]).
 pub(crate) fn run(body: impl FnOnce() -> Result<(), Status>) -> Status {
+    let _traps = crate::guard::FpTrapGuard::mask_traps();
     match body() {
         Ok(()) => Status::Ok,
         Err(s) => s,

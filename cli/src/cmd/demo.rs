@@ -139,7 +139,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         elevation: 28.0,
         strict: false,
     };
-    let img = render::render(&r.mesh, &topo, Some(Field::Willmore), &render_args, ctx);
+    let img = render::render(&r.mesh, &topo, Some(Field::Willmore), &render_args, ctx)?;
     render::save_png(&png_path, &img)?;
 
     let boundary = Topology::build(&cage).boundary_loop_starts().len();

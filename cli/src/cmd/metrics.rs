@@ -199,7 +199,15 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     if args.json {
         print_json(&report)?;
     } else {
-        print_text(&report, args, &sw, &sm, &sh, sphere.as_ref(), &used_ids);
+        crate::out::print(&print_text(
+            &report,
+            args,
+            &sw,
+            &sm,
+            &sh,
+            sphere.as_ref(),
+            &used_ids,
+        ))?;
     }
     if let Some(out) = &args.colored {
         let values = match args.color {
@@ -233,6 +241,8 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     Ok(Exit::Ok)
 }
 
+// Writing to a String cannot fail: the `fmt::Result`s of `writeln!` carry nothing.
+#[allow(unused_must_use)]
 fn print_text(
     r: &Value,
     args: &Args,
@@ -241,9 +251,13 @@ fn print_text(
     sh: &Stats,
     sphere: Option<&sphere::SphereFit>,
     used_ids: &[usize],
-) {
-    println!("{}", args.input.display());
-    println!(
+) -> String {
+    use std::fmt::Write as _;
+    let mut text = String::new();
+    let o = &mut text;
+    writeln!(o, "{}", args.input.display());
+    writeln!(
+        o,
         "  vertices {} ({} referenced), faces {}, edges {}, corners {}",
         r["vertices"], r["referenced_vertices"], r["faces"], r["edges"], r["corners"]
     );
@@ -251,13 +265,14 @@ fn print_text(
         .as_object()
         .map(|o| o.iter().map(|(k, v)| format!("{k}-gons {v}")).collect())
         .unwrap_or_default();
-    println!("  faces by size: {}", sizes.join(", "));
+    writeln!(o, "  faces by size: {}", sizes.join(", "));
     let t = &r["topology"];
     let genus: Vec<String> = t["per_component"]
         .as_array()
         .map(|a| a.iter().map(|c| c["genus"].to_string()).collect())
         .unwrap_or_default();
-    println!(
+    writeln!(
+        o,
         "  boundary: {} edges in {} loops; components {}; Euler characteristic {}; genus {}",
         r["boundary_edges"],
         r["boundary_loops"],
@@ -266,13 +281,15 @@ fn print_text(
         genus.join(", ")
     );
     if r["coincident_vertices"].as_u64().unwrap_or(0) > 0 {
-        println!(
+        writeln!(
+            o,
             "  coincident vertices: {} (distinct vertices at the same position)",
             r["coincident_vertices"]
         );
     }
     let e = &r["edge_length"];
-    println!(
+    writeln!(
+        o,
         "  edge length: min {:.6e}, mean {:.6e}, max {:.6e}",
         e["min"].as_f64().unwrap_or(f64::NAN),
         e["mean"].as_f64().unwrap_or(f64::NAN),
@@ -283,7 +300,8 @@ fn print_text(
         ("Möbius regularity", sm),
         ("mean curvature", sh),
     ] {
-        println!(
+        writeln!(
+            o,
             "  {name}: mean {:.6e}, rms {:.6e}, max {:.6e} at vertex {} ({} vertices{})",
             s.mean,
             s.rms,
@@ -297,12 +315,19 @@ fn print_text(
             }
         );
     }
-    match r["thin_plate"].as_f64() {
-        Some(e) => println!("  thin-plate energy (seed 001 §4.3, ∫(κ₁²+κ₂²)/area): {e:.6e}"),
-        None => println!("  thin-plate energy: none (not a triangle mesh, or no area)"),
-    }
-    match sphere {
-        Some(s) => println!(
+    let _ = match r["thin_plate"].as_f64() {
+        Some(e) => writeln!(
+            o,
+            "  thin-plate energy (seed 001 §4.3, ∫(κ₁²+κ₂²)/area): {e:.6e}"
+        ),
+        None => writeln!(
+            o,
+            "  thin-plate energy: none (not a triangle mesh, or no area)"
+        ),
+    };
+    let _ = match sphere {
+        Some(s) => writeln!(
+            o,
             "  best-fit sphere: centre ({:.6e}, {:.6e}, {:.6e}), radius {:.6e}; distance rms {:.3e} r, max {:.3e} r at vertex {}",
             s.center[0],
             s.center[1],
@@ -312,12 +337,15 @@ fn print_text(
             s.max_relative,
             used_ids.get(s.argmax).copied().unwrap_or(0)
         ),
-        None => println!("  best-fit sphere: none (the vertices are coplanar or too few)"),
-    }
+        None => writeln!(
+            o,"  best-fit sphere: none (the vertices are coplanar or too few)"),
+    };
     let h = &r["hash"];
-    println!(
+    writeln!(
+        o,
         "  fingerprint: positions {}, faces {}",
         h["positions"].as_str().unwrap_or(""),
         h["faces"].as_str().unwrap_or("")
     );
+    text
 }

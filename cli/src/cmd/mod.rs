@@ -195,6 +195,5 @@ pub fn findings_json(findings: &[Finding]) -> serde_json::Value {
 pub fn print_json(v: &serde_json::Value) -> CliResult<()> {
     let s = serde_json::to_string_pretty(v)
         .map_err(|e| CliError::internal(format!("JSON output: {e}")))?;
-    println!("{s}");
-    Ok(())
+    crate::out::print(&format!("{s}\n"))
 }

@@ -1,10 +1,25 @@
 //! Wavefront OBJ, polygonal subset.
 //!
-//! Read: `v x y z [w | r g b]` (the first three numbers are the position), `f` and `fo` with
-//! corners `i`, `i/t`, `i//n` or `i/t/n` (only the position index is used), one-based and
-//! negative (relative) indices, `\` line continuation, `#` comments. Every other statement
-//! (`vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, `l`, `p`, …) is ignored. Vertices keep
-//! file order; groups and objects do not split or re-index the mesh.
+//! Read, statement by statement (a line, joined with the next ones while it ends in `\`;
+//! `#` starts a comment; a UTF-8 byte-order mark at the start is skipped; lines end at LF,
+//! CR LF or CR):
+//!
+//! * `v x y z`, `v x y z w` (`w` is the weight of rational free-form geometry, which has no
+//!   meaning for polygons: the position is `x y z`) and `v x y z r g b` (the vertex-colour
+//!   extension MeshLab and others write); any other number of values is refused;
+//! * `f` and `fo` with corners `v`, `v/vt`, `v//vn` or `v/vt/vn`: one-based or negative
+//!   (relative: `-1` is the last vertex so far) indices; the texture and normal references
+//!   are checked (integers, not 0, in range) but not used;
+//! * `vt`, `vn`, `vp` (counted and checked as numbers), and the grouping, display and
+//!   material statements `g`, `o`, `s`, `mg`, `usemtl`, `mtllib`, `usemap`, `maplib`, `lod`,
+//!   `bevel`, `c_interp`, `d_interp`, `shadow_obj`, `trace_obj` are read and ignored; so are
+//!   point and line elements `p` and `l` (not polygons: a polygon mesh has none);
+//! * free-form geometry (`cstype`, `curv`, `surf`, … ), `call` and `csh`, and every statement
+//!   the format does not define are refused, naming the line and the statement: a mangled
+//!   keyword (a stray byte-order mark, a control byte, `V` for `v`) must never drop a vertex
+//!   and silently renumber every later one.
+//!
+//! Vertices keep file order; groups and objects do not split or re-index the mesh.
 //!
 //! Written: `v x y z` (with `r g b` in 0…1 when colours are given, the extension MeshLab and
 //! others read) and `f` with one-based indices.
@@ -12,34 +27,73 @@
 use std::io::Write;
 use std::path::Path;
 
+use super::text::{self, parse_f64, parse_i64};
 use super::{check_indices, fmt_f64, WriteOptions};
-use crate::error::{CliError, CliResult};
+use crate::error::{quote, CliError, CliResult};
 use crate::mesh::{Mesh, Source};
+
+/// Statements that are read and ignored: they carry no polygon geometry.
+const IGNORED: &[&[u8]] = &[
+    b"g",
+    b"o",
+    b"s",
+    b"mg",
+    b"usemtl",
+    b"mtllib",
+    b"usemap",
+    b"maplib",
+    b"lod",
+    b"bevel",
+    b"c_interp",
+    b"d_interp",
+    b"shadow_obj",
+    b"trace_obj",
+    b"p",
+    b"l",
+];
+
+/// Free-form geometry statements: refused (curves and surfaces are not polygons, and
+/// dropping them would give a different mesh).
+const FREE_FORM: &[&[u8]] = &[
+    b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm", b"trim", b"hole",
+    b"scrv", b"sp", b"end", b"con", b"ctech", b"stech",
+];
+
+/// Counts of the attribute vertices, for checking the `vt` and `vn` references of corners.
+#[derive(Default)]
+struct Refs {
+    vt: i64,
+    vn: i64,
+    /// The largest positive `vt`/`vn` reference and its line (checked at the end: OBJ
+    /// allows references to elements defined later in the file).
+    max_vt: Option<(i64, u32)>,
+    max_vn: Option<(i64, u32)>,
+}
 
 /// Reads an OBJ file.
 ///
 /// # Errors
-/// Exit 2 with file, line and element for anything malformed.
+/// Exit 2 with file, line and element for anything malformed or not supported.
 pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let err =
         |line: u32, msg: String| CliError::bad_input(format!("{}:{line}: {msg}", path.display()));
+    let bytes = text::strip_bom(path, bytes)?;
     let mut mesh = Mesh::default();
     let mut vertex_lines = Vec::new();
     let mut face_lines = Vec::new();
-    let mut lines = bytes.split(|&b| b == b'\n').enumerate().peekable();
+    let mut refs = Refs::default();
+    let mut lines = text::Lines::new(bytes, 1);
     let mut stmt: Vec<u8> = Vec::new();
-    while let Some((i, raw)) = lines.next() {
-        let line = u32::try_from(i + 1).unwrap_or(u32::MAX);
+    while let Some((line, raw)) = lines.next() {
         // Join continuation lines (a trailing backslash).
         stmt.clear();
         let mut cur = raw;
         loop {
-            let trimmed = strip_cr(cur);
-            let no_comment = match trimmed.iter().position(|&b| b == b'#') {
-                Some(p) => &trimmed[..p],
-                None => trimmed,
+            let no_comment = match cur.iter().position(|&b| b == b'#') {
+                Some(p) => cur.get(..p).unwrap_or(cur),
+                None => cur,
             };
-            let t = trim_end(no_comment);
+            let t = no_comment.trim_ascii_end();
             if let Some(body) = t.strip_suffix(b"\\") {
                 stmt.extend_from_slice(body);
                 stmt.push(b' ');
@@ -52,70 +106,78 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
                 break;
             }
         }
-        let text = String::from_utf8_lossy(&stmt);
-        let mut toks = text.split_ascii_whitespace();
+        let mut toks = text::tokens(&stmt);
         let Some(kw) = toks.next() else { continue };
         match kw {
-            "v" => {
+            b"v" => {
                 let v = mesh.positions.len();
-                let mut p = [0.0; 3];
-                for (k, c) in p.iter_mut().enumerate() {
-                    let axis = ["x", "y", "z"][k];
-                    let t = toks.next().ok_or_else(|| {
-                        err(line, format!("vertex {v}: missing coordinate {axis}"))
-                    })?;
-                    *c = t.parse::<f64>().map_err(|_| {
+                let vals: Vec<&[u8]> = toks.collect();
+                let mut nums = Vec::with_capacity(vals.len());
+                for (k, t) in vals.iter().enumerate() {
+                    let what = match k {
+                        0 => "coordinate x".to_string(),
+                        1 => "coordinate y".to_string(),
+                        2 => "coordinate z".to_string(),
+                        k => format!("value {}", k + 1),
+                    };
+                    let x = parse_f64(t).ok_or_else(|| {
                         err(
                             line,
-                            format!("vertex {v}: coordinate {axis} is not a number: '{t}'"),
+                            format!("vertex {v}: {what} is not a number: {}", quote(t)),
                         )
                     })?;
+                    nums.push(x);
                 }
-                for t in toks {
-                    if t.parse::<f64>().is_err() {
-                        return Err(err(line, format!("vertex {v}: '{t}' is not a number")));
+                let [x, y, z] = match nums.as_slice() {
+                    [x, y, z] | [x, y, z, _] | [x, y, z, _, _, _] => [*x, *y, *z],
+                    _ => {
+                        return Err(err(
+                            line,
+                            format!(
+                                "vertex {v} has {} values; a vertex is 'v x y z', 'v x y z w' \
+                                 or 'v x y z r g b'",
+                                nums.len()
+                            ),
+                        ))
                     }
-                }
-                mesh.positions.push(p);
+                };
+                mesh.positions.push([x, y, z]);
                 vertex_lines.push(line);
             }
-            "f" | "fo" => {
+            b"vt" | b"vn" | b"vp" => {
+                let name = String::from_utf8_lossy(kw).into_owned();
+                let mut n = 0usize;
+                for t in toks {
+                    if parse_f64(t).is_none() {
+                        return Err(err(
+                            line,
+                            format!("'{name}' value {} is not a number", quote(t)),
+                        ));
+                    }
+                    n += 1;
+                }
+                let (lo, hi) = if kw == b"vn" { (3, 3) } else { (1, 3) };
+                if !(lo..=hi).contains(&n) {
+                    return Err(err(
+                        line,
+                        format!("'{name}' has {n} values (it takes {lo} to {hi})"),
+                    ));
+                }
+                match kw {
+                    b"vt" => refs.vt += 1,
+                    b"vn" => refs.vn += 1,
+                    _ => {}
+                }
+            }
+            b"f" | b"fo" => {
                 let f = mesh.num_faces();
                 let nv = mesh.positions.len() as i64;
                 let start = mesh.indices.len();
                 for t in toks {
-                    let first = t.split('/').next().unwrap_or("");
-                    let i: i64 = first.parse().map_err(|_| {
-                        err(line, format!("face {f}: '{t}' is not a vertex reference"))
+                    let i = corner(t, nv, &mut refs, line).map_err(|why| {
+                        err(line, format!("face {f}: corner {}: {why}", quote(t)))
                     })?;
-                    let resolved = match i {
-                        0 => {
-                            return Err(err(
-                                line,
-                                format!(
-                                    "face {f}: index 0 is invalid (OBJ indices start at 1; \
-                                     the file looks zero-based)"
-                                ),
-                            ))
-                        }
-                        i if i > 0 => i - 1,
-                        i => {
-                            let r = nv + i;
-                            if r < 0 {
-                                return Err(err(
-                                    line,
-                                    format!(
-                                        "face {f}: relative index {i} points before the first \
-                                         vertex (only {nv} vertices so far)"
-                                    ),
-                                ));
-                            }
-                            r
-                        }
-                    };
-                    let u = u32::try_from(resolved)
-                        .map_err(|_| err(line, format!("face {f}: index {i} is out of range")))?;
-                    mesh.indices.push(u);
+                    mesh.indices.push(i);
                 }
                 let n = mesh.indices.len() - start;
                 if n < 3 {
@@ -124,10 +186,48 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
                         format!("face {f} has {n} corners (a face needs at least 3)"),
                     ));
                 }
-                mesh.offsets.push(mesh.indices.len() as u32);
+                let end = u32::try_from(mesh.indices.len()).map_err(|_| {
+                    err(
+                        line,
+                        "more corners than 32-bit indices can hold".to_string(),
+                    )
+                })?;
+                mesh.offsets.push(end);
                 face_lines.push(line);
             }
-            _ => {}
+            kw if IGNORED.contains(&kw) => {}
+            kw if FREE_FORM.contains(&kw) => {
+                return Err(err(
+                    line,
+                    format!(
+                        "{}: free-form curves and surfaces are not supported (only polygons)",
+                        quote(kw)
+                    ),
+                ))
+            }
+            kw => {
+                return Err(err(
+                    line,
+                    format!(
+                        "unknown OBJ statement {} (a keyword such as v, vt, vn, f, g, o, s, \
+                         usemtl must start the line)",
+                        quote(kw)
+                    ),
+                ))
+            }
+        }
+    }
+    for (max, count, what) in [
+        (refs.max_vt, refs.vt, "texture vertex"),
+        (refs.max_vn, refs.vn, "normal"),
+    ] {
+        if let Some((i, line)) = max {
+            if i > count {
+                return Err(err(
+                    line,
+                    format!("{what} {i} does not exist (the file has {count})"),
+                ));
+            }
         }
     }
     let source = Source::with_lines(path, vertex_lines, face_lines);
@@ -135,16 +235,51 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     Ok((mesh, source))
 }
 
-fn strip_cr(s: &[u8]) -> &[u8] {
-    s.strip_suffix(b"\r").unwrap_or(s)
+/// Resolves one OBJ reference (`i` one-based or negative relative to `count` so far) to a
+/// zero-based index; positive references beyond `count` are checked by the caller.
+fn resolve(t: &[u8], count: i64, what: &str) -> Result<i64, String> {
+    let i = parse_i64(t).ok_or_else(|| format!("the {what} reference is not an integer"))?;
+    match i {
+        0 => Err(format!(
+            "{what} index 0 is invalid (OBJ indices start at 1; the file looks zero-based)"
+        )),
+        i if i > 0 => Ok(i - 1),
+        i => {
+            let r = count + i;
+            if r < 0 {
+                Err(format!(
+                    "relative index {i} points before the first {what} (only {count} so far)"
+                ))
+            } else {
+                Ok(r)
+            }
+        }
+    }
 }
 
-fn trim_end(s: &[u8]) -> &[u8] {
-    let mut end = s.len();
-    while end > 0 && s[end - 1].is_ascii_whitespace() {
-        end -= 1;
+/// One face corner `v`, `v/vt`, `v//vn` or `v/vt/vn`: the zero-based vertex index.
+fn corner(t: &[u8], nv: i64, refs: &mut Refs, line: u32) -> Result<u32, String> {
+    let parts: Vec<&[u8]> = t.split(|&b| b == b'/').collect();
+    let (v, vt, vn) = match parts.as_slice() {
+        [v] => (*v, None, None),
+        [v, vt] => (*v, Some(*vt), None),
+        [v, vt, vn] => (*v, (!vt.is_empty()).then_some(*vt), Some(*vn)),
+        _ => return Err("a corner is v, v/vt, v//vn or v/vt/vn".to_string()),
+    };
+    let i = resolve(v, nv, "vertex")?;
+    for (part, count, max, what) in [
+        (vt, refs.vt, &mut refs.max_vt, "texture vertex"),
+        (vn, refs.vn, &mut refs.max_vn, "normal"),
+    ] {
+        if let Some(p) = part {
+            let r = resolve(p, count, what)?;
+            let one_based = r + 1;
+            if max.is_none_or(|(m, _)| one_based > m) {
+                *max = Some((one_based, line));
+            }
+        }
     }
-    &s[..end]
+    u32::try_from(i).map_err(|_| format!("vertex index {} is out of range", i + 1))
 }
 
 /// Writes OBJ.

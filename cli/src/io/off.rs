@@ -1,24 +1,45 @@
-//! OFF (Object File Format), ASCII.
+//! OFF (Object File Format, Geomview's definition), ASCII.
 //!
-//! Accepted layout (a whitespace-token format, as most OFF readers treat it):
+//! The grammar, as Geomview's manual defines it:
 //!
-//! * an optional keyword `[ST][C][N]OFF` (texture coordinates, colours, normals per vertex);
-//!   a file without one starts with the counts. `4OFF`, `nOFF` and `OFF BINARY` are refused
-//!   with a message saying so;
-//! * the counts `V F [E]`, on the keyword's line or later; `E` is ignored;
-//! * `V` vertices `x y z`, then the declared extras (`N`: 3 numbers, `ST`: 2, `C`: the rest
-//!   of the line: RGB, RGBA or a colour-map index);
-//! * `F` faces `n i_1 … i_n`, which may be wrapped over several lines; numbers after the last
-//!   index on its line are a face colour and are skipped;
-//! * `#` starts a comment anywhere; blank lines, tabs and CRLF or CR line ends are fine.
+//! ```text
+//! [ST][C][N][4][n]OFF          keyword, optional; the prefixes in this order
+//! [Ndim]                       only with n: the space dimension
+//! NVertices NFaces NEdges      NEdges is not used
+//! x y z [w] [nx ny nz] [colour] [s t]     one vertex; in this order
+//! Nv v[0] … v[Nv-1] [colour]   one face; the colour is the rest of the line
+//! ```
+//!
+//! * `N`: a normal (3 numbers) per vertex; `C`: a colour per vertex (Geomview writes 4
+//!   numbers, RGBA; 3, RGB, and 1, a colour-map index, are read too); `ST`: texture
+//!   coordinates (2 numbers); `4`: homogeneous coordinates, the position is `x/w y/w z/w`
+//!   (`w = 0`, a point at infinity, is refused); `n`: the dimension follows the keyword
+//!   (2 or 3 here: a 2-dimensional mesh lies in the plane `z = 0`; `4n` adds the
+//!   homogeneous coordinate). Normals, colours and texture coordinates are checked as
+//!   numbers and not used.
+//! * The counts are one line of three integers (the edge count may be 0 and is not used;
+//!   it may be left out, since it is the last thing on the line); the counts may share the
+//!   keyword's line.
+//! * Every vertex is one line holding exactly the numbers the keyword declares: a line with
+//!   more or fewer is refused, naming it (an `OFF` file with colours on its vertex lines, or
+//!   `COFF` with numbers the keyword does not account for, would otherwise shift every
+//!   later coordinate). Geomview itself reads vertices as a stream of numbers; every file
+//!   it writes has one vertex per line.
+//! * A face's indices may wrap over several lines; the numbers after the last index on its
+//!   line are the face colour: none, 1 (colour-map index), 3 or 4 (RGB or RGBA).
+//! * `#` starts a comment anywhere; blank lines, tabs, LF, CR LF and CR line ends are
+//!   fine; a UTF-8 byte-order mark at the start is skipped. Keywords are case-sensitive
+//!   (`N` and `n` mean different things): `off` is refused with a message saying so.
+//!   `OFF BINARY` is refused (use ASCII OFF or PLY).
 //!
 //! Anything after the last face other than comments is an error (the counts are wrong).
 
 use std::io::Write;
 use std::path::Path;
 
+use super::text::{self, parse_f64, parse_i64};
 use super::{check_indices, fmt_f64, WriteOptions};
-use crate::error::{CliError, CliResult};
+use crate::error::{quote, CliError, CliResult};
 use crate::mesh::{Mesh, Source};
 
 /// A token and the (1-based) line it is on.
@@ -122,10 +143,6 @@ impl<'a> Tokens<'a> {
     }
 }
 
-fn text(t: &Tok<'_>) -> String {
-    String::from_utf8_lossy(t.text).into_owned()
-}
-
 struct Ctx<'p> {
     path: &'p Path,
 }
@@ -136,68 +153,158 @@ impl Ctx<'_> {
     }
 }
 
-/// Vertex extras declared by the keyword.
-#[derive(Clone, Copy, Debug, Default)]
-struct Extras {
+/// What the keyword declares about every vertex line.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
     texcoords: bool,
     colors: bool,
     normals: bool,
+    homogeneous: bool,
+    /// `n`: the dimension is given after the keyword.
+    ndim: bool,
+    /// The space dimension (3 unless `n`).
+    dim: usize,
 }
 
-/// Parses the keyword, if there is one.
-fn keyword(ctx: &Ctx<'_>, toks: &mut Tokens<'_>) -> CliResult<Extras> {
+impl Default for Layout {
+    fn default() -> Self {
+        Layout {
+            texcoords: false,
+            colors: false,
+            normals: false,
+            homogeneous: false,
+            ndim: false,
+            dim: 3,
+        }
+    }
+}
+
+impl Layout {
+    /// Coordinates per vertex (the homogeneous one included).
+    fn coords(&self) -> usize {
+        self.dim + usize::from(self.homogeneous)
+    }
+
+    /// A description of the vertex line, for messages.
+    fn describe(&self) -> String {
+        let mut parts = vec![match (self.dim, self.homogeneous) {
+            (2, false) => "x y",
+            (2, true) => "x y w",
+            (_, false) => "x y z",
+            (_, true) => "x y z w",
+        }
+        .to_string()];
+        if self.normals {
+            parts.push("nx ny nz".into());
+        }
+        if self.colors {
+            parts.push("r g b a (or r g b, or a colour-map index)".into());
+        }
+        if self.texcoords {
+            parts.push("s t".into());
+        }
+        parts.join(" ")
+    }
+}
+
+/// Parses the keyword `[ST][C][N][4][n]OFF`, if there is one.
+fn keyword(ctx: &Ctx<'_>, toks: &mut Tokens<'_>) -> CliResult<Layout> {
     let Some(t) = toks.peek() else {
         return Err(CliError::bad_input(format!(
             "{}: the file is empty",
             ctx.path.display()
         )));
     };
+    if parse_i64(t.text).is_some() {
+        return Ok(Layout::default()); // no keyword: counts first
+    }
     let Some(prefix) = t.text.strip_suffix(b"OFF") else {
-        if t.text.first().is_some_and(|c| c.is_ascii_digit()) {
-            return Ok(Extras::default()); // no keyword: counts first
+        let upper = t.text.to_ascii_uppercase();
+        if upper.ends_with(b"OFF") && upper.len() <= 9 {
+            return Err(ctx.err(
+                t.line,
+                format_args!(
+                    "{}: OFF keywords are case-sensitive (the prefixes N and n mean different \
+                     things): write OFF, COFF, NOFF, …",
+                    quote(t.text)
+                ),
+            ));
         }
+        let hint = if t.text.starts_with(b"ply") {
+            " (the file looks like PLY)"
+        } else if matches!(t.text, b"v" | b"#" | b"o" | b"g" | b"mtllib") {
+            " (the file looks like OBJ)"
+        } else {
+            ""
+        };
         return Err(ctx.err(
             t.line,
             format_args!(
-                "not an OFF file: expected the keyword OFF, found '{}'",
-                text(&t)
+                "not an OFF file: expected the keyword OFF or the vertex count, found {}{hint}",
+                quote(t.text)
             ),
         ));
     };
     toks.next();
-    let mut e = Extras::default();
+    let mut e = Layout::default();
     let mut rest = prefix;
-    if let Some(r) = rest.strip_prefix(b"ST") {
-        e.texcoords = true;
-        rest = r;
+    for (p, flag) in [
+        (&b"ST"[..], &mut e.texcoords),
+        (b"C", &mut e.colors),
+        (b"N", &mut e.normals),
+        (b"4", &mut e.homogeneous),
+        (b"n", &mut e.ndim),
+    ] {
+        if let Some(r) = rest.strip_prefix(p) {
+            *flag = true;
+            rest = r;
+        }
     }
-    if let Some(r) = rest.strip_prefix(b"C") {
-        e.colors = true;
-        rest = r;
-    }
-    if let Some(r) = rest.strip_prefix(b"N") {
-        e.normals = true;
-        rest = r;
-    }
-    if rest == b"4" || rest == b"n" || rest == b"4n" {
+    if !rest.is_empty() {
         return Err(ctx.err(
             t.line,
             format_args!(
-                "'{}': only 3-dimensional OFF is supported, not 4D or n-dimensional",
-                text(&t)
+                "unknown OFF keyword {} (the keyword is [ST][C][N][4][n]OFF, prefixes in \
+                 this order)",
+                quote(t.text)
             ),
         ));
     }
-    if !rest.is_empty() {
-        return Err(ctx.err(t.line, format_args!("unknown OFF keyword '{}'", text(&t))));
-    }
     if let Some(n) = toks.next_on_line(t.line) {
-        if n.text.eq_ignore_ascii_case(b"BINARY") {
+        if n.text == b"BINARY" {
             return Err(ctx.err(n.line, "binary OFF is not supported (use ASCII OFF or PLY)"));
         }
-        // Counts on the keyword's line: put the token back by re-peeking is not possible,
-        // so hand it over.
+        // Counts (or the dimension) on the keyword's line: hand the token back.
         toks.peeked = Some(Some(n));
+    }
+    if e.ndim {
+        let d = toks.next().ok_or_else(|| {
+            ctx.err(
+                toks.last_line(),
+                "the file ends before the dimension (nOFF)",
+            )
+        })?;
+        e.dim = match parse_i64(d.text) {
+            Some(2) => 2,
+            Some(3) => 3,
+            Some(k) => {
+                return Err(ctx.err(
+                    d.line,
+                    format_args!(
+                        "dimension {k}: only 2- and 3-dimensional OFF meshes are supported"
+                    ),
+                ))
+            }
+            None => {
+                return Err(ctx.err(
+                    d.line,
+                    format_args!(
+                        "the dimension of nOFF must be an integer, found {}",
+                        quote(d.text)
+                    ),
+                ))
+            }
+        };
     }
     Ok(e)
 }
@@ -211,34 +318,108 @@ fn parse_count(ctx: &Ctx<'_>, t: Option<Tok<'_>>, what: &str, eof_line: u32) -> 
             ctx.err(
                 t.line,
                 format_args!(
-                    "the {what} must be a non-negative integer, found '{}'",
-                    text(&t)
+                    "the {what} must be a non-negative integer, found {}",
+                    quote(t.text)
                 ),
             )
         })
 }
 
-fn parse_f64(t: &Tok<'_>) -> Option<f64> {
-    std::str::from_utf8(t.text).ok()?.parse::<f64>().ok()
-}
-
-/// Skips `n` numbers of vertex `v`'s extras.
-fn skip(ctx: &Ctx<'_>, toks: &mut Tokens<'_>, v: u64, n: usize, what: &str) -> CliResult<()> {
-    for _ in 0..n {
-        let t = toks.next().ok_or_else(|| {
+/// Reads one vertex line: the position, after checking that the line holds exactly the
+/// numbers `layout` declares.
+fn vertex(
+    ctx: &Ctx<'_>,
+    toks: &mut Tokens<'_>,
+    layout: &Layout,
+    v: u64,
+    nv: u64,
+) -> CliResult<(u32, [f64; 3])> {
+    let first = toks.next().ok_or_else(|| {
+        ctx.err(
+            toks.last_line(),
+            format_args!(
+                "the file ends in vertex {v} of {nv} (truncated, or the header's vertex count \
+                 is wrong)"
+            ),
+        )
+    })?;
+    let line = first.line;
+    let mut vals: Vec<f64> = Vec::with_capacity(16);
+    let mut tok = Some(first);
+    while let Some(t) = tok {
+        let x = parse_f64(t.text).ok_or_else(|| {
+            let what = match vals.len() {
+                0 => "coordinate x".to_string(),
+                1 => "coordinate y".to_string(),
+                2 if layout.dim == 3 => "coordinate z".to_string(),
+                k => format!("value {}", k + 1),
+            };
             ctx.err(
-                toks.last_line(),
-                format_args!("the file ends in the {what} of vertex {v}"),
+                line,
+                format_args!("vertex {v}: {what} is not a number: {}", quote(t.text)),
             )
         })?;
-        if parse_f64(&t).is_none() {
+        vals.push(x);
+        if vals.len() > 64 {
+            break;
+        }
+        tok = toks.next_on_line(line);
+    }
+    let fixed =
+        layout.coords() + if layout.normals { 3 } else { 0 } + if layout.texcoords { 2 } else { 0 };
+    let color = vals.len().checked_sub(fixed);
+    let fits = match color {
+        Some(0) => !layout.colors,
+        Some(1 | 3 | 4) => layout.colors,
+        _ => false,
+    };
+    if !fits {
+        let hint = if !layout.colors && !layout.normals && !layout.texcoords && vals.len() > fixed {
+            "; a keyword COFF, NOFF or STOFF declares colours, normals or texture coordinates"
+        } else {
+            ""
+        };
+        return Err(ctx.err(
+            line,
+            format_args!(
+                "vertex {v} has {}{} numbers on its line, but this OFF keyword declares {} \
+                 (one vertex per line){hint}",
+                vals.len().min(64),
+                if vals.len() > 64 { " or more" } else { "" },
+                layout.describe()
+            ),
+        ));
+    }
+    let mut p = [0.0; 3];
+    for (k, c) in p.iter_mut().enumerate().take(layout.dim) {
+        *c = vals.get(k).copied().unwrap_or(0.0);
+    }
+    if layout.homogeneous {
+        let w = vals.get(layout.dim).copied().unwrap_or(1.0);
+        if w == 0.0 || !w.is_finite() {
             return Err(ctx.err(
-                t.line,
-                format_args!("vertex {v}: {what} '{}' is not a number", text(&t)),
+                line,
+                format_args!(
+                    "vertex {v}: homogeneous coordinate w = {w} (a point at infinity, or not a \
+                     number): 4OFF positions are x/w y/w z/w"
+                ),
             ));
         }
+        for (k, c) in p.iter_mut().enumerate().take(layout.dim) {
+            let q = *c / w;
+            if c.is_finite() && !q.is_finite() {
+                return Err(ctx.err(
+                    line,
+                    format_args!(
+                        "vertex {v}: {} / w overflows ({c:e} / {w:e})",
+                        ["x", "y", "z"][k]
+                    ),
+                ));
+            }
+            *c = q;
+        }
     }
-    Ok(())
+    Ok((line, p))
 }
 
 /// Reads an OFF file.
@@ -247,30 +428,45 @@ fn skip(ctx: &Ctx<'_>, toks: &mut Tokens<'_>, v: u64, n: usize, what: &str) -> C
 /// Exit 2 with the file, line and element for anything malformed (see the module docs).
 pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let ctx = Ctx { path };
+    let bytes = text::strip_bom(path, bytes)?;
     let mut toks = Tokens::new(bytes);
-    let extras = keyword(&ctx, &mut toks)?;
-    let nv = parse_count(&ctx, toks.next(), "vertex count", toks.last_line())?;
-    let t_nf = toks.next();
+    let layout = keyword(&ctx, &mut toks)?;
+    let t_nv = toks.next();
+    let nv = parse_count(&ctx, t_nv, "vertex count", toks.last_line())?;
+    let counts_line = t_nv.map_or(1, |t| t.line);
+    let t_nf = toks.next_on_line(counts_line);
+    if t_nf.is_none() {
+        return Err(ctx.err(
+            counts_line,
+            "the counts line must hold the vertex, face and edge counts ('V F E')",
+        ));
+    }
     let nf = parse_count(&ctx, t_nf, "face count", toks.last_line())?;
-    if let Some(t) = t_nf {
-        // The edge count, when it is on the line of the face count.
-        if let Some(e) = toks.next_on_line(t.line) {
-            if std::str::from_utf8(e.text)
-                .ok()
-                .and_then(|s| s.parse::<u64>().ok())
-                .is_none()
-            {
-                return Err(ctx.err(
-                    e.line,
-                    format_args!("the edge count must be an integer, found '{}'", text(&e)),
-                ));
-            }
+    // The edge count, when it is there (the last number of the line: it is not used).
+    if let Some(e) = toks.next_on_line(counts_line) {
+        if parse_count(&ctx, Some(e), "edge count", counts_line).is_err() {
+            return Err(ctx.err(
+                e.line,
+                format_args!(
+                    "the edge count must be a non-negative integer, found {}",
+                    quote(e.text)
+                ),
+            ));
         }
+    }
+    if let Some(x) = toks.next_on_line(counts_line) {
+        return Err(ctx.err(
+            x.line,
+            format_args!(
+                "unexpected {} after the counts 'V F E' on their line",
+                quote(x.text)
+            ),
+        ));
     }
     let limit = u64::from(u32::MAX - 1);
     if nv > limit || nf > limit {
         return Err(ctx.err(
-            t_nf.map_or(1, |t| t.line),
+            counts_line,
             format_args!("{nv} vertices, {nf} faces: too many (at most {limit} each)"),
         ));
     }
@@ -280,43 +476,8 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let mut positions = Vec::with_capacity(cap(nv, 6));
     let mut vertex_lines = Vec::with_capacity(cap(nv, 6));
     for v in 0..nv {
-        let mut p = [0.0; 3];
-        let mut last_line = 0;
-        for (k, c) in p.iter_mut().enumerate() {
-            let t = toks.next().ok_or_else(|| {
-                ctx.err(
-                    toks.last_line(),
-                    format_args!(
-                        "the file ends in vertex {v} of {nv} (truncated, or the header's \
-                         vertex count is wrong)"
-                    ),
-                )
-            })?;
-            if k == 0 {
-                vertex_lines.push(t.line);
-            }
-            last_line = t.line;
-            *c = parse_f64(&t).ok_or_else(|| {
-                ctx.err(
-                    t.line,
-                    format_args!(
-                        "vertex {v}: coordinate {} is not a number: '{}'",
-                        ["x", "y", "z"][k],
-                        text(&t)
-                    ),
-                )
-            })?;
-        }
-        if extras.normals {
-            skip(&ctx, &mut toks, v, 3, "normal")?;
-        }
-        if extras.colors {
-            // RGB, RGBA or a colour-map index: the rest of the line.
-            while toks.next_on_line(last_line).is_some() {}
-        }
-        if extras.texcoords {
-            skip(&ctx, &mut toks, v, 2, "texture coordinates")?;
-        }
+        let (line, p) = vertex(&ctx, &mut toks, &layout, v, nv)?;
+        vertex_lines.push(line);
         positions.push(p);
     }
     let mut mesh = Mesh {
@@ -338,43 +499,34 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
         };
         let t = toks.next().ok_or_else(|| eof(&toks))?;
         face_lines.push(t.line);
-        let n = std::str::from_utf8(t.text)
-            .ok()
-            .and_then(|s| s.parse::<i64>().ok())
-            .ok_or_else(|| {
-                ctx.err(
-                    t.line,
-                    format_args!(
-                        "face {f}: the corner count must be an integer, found '{}'",
-                        text(&t)
-                    ),
-                )
-            })?;
+        let n = parse_i64(t.text).ok_or_else(|| {
+            ctx.err(
+                t.line,
+                format_args!(
+                    "face {f}: the corner count must be an integer, found {}",
+                    quote(t.text)
+                ),
+            )
+        })?;
         if n < 3 {
             return Err(ctx.err(
                 t.line,
                 format_args!("face {f} has {n} corners (a face needs at least 3)"),
             ));
         }
-        if n as u64 > nv.max(3) {
-            return Err(ctx.err(
-                t.line,
-                format_args!("face {f} has {n} corners but the file has only {nv} vertices"),
-            ));
-        }
+        // A face may name a vertex twice (more corners than vertices): that is a defect of
+        // the mesh, which the topology check names, not of the file; the same face read from
+        // OBJ or PLY must give the same answer. A lying count runs into the end of the file.
         let mut last_line = t.line;
         for _ in 0..n {
             let t = toks.next().ok_or_else(|| eof(&toks))?;
             last_line = t.line;
-            let i = std::str::from_utf8(t.text)
-                .ok()
-                .and_then(|s| s.parse::<i64>().ok())
-                .ok_or_else(|| {
-                    ctx.err(
-                        t.line,
-                        format_args!("face {f}: index '{}' is not an integer", text(&t)),
-                    )
-                })?;
+            let i = parse_i64(t.text).ok_or_else(|| {
+                ctx.err(
+                    t.line,
+                    format_args!("face {f}: index {} is not an integer", quote(t.text)),
+                )
+            })?;
             if i < 0 {
                 return Err(ctx.err(
                     t.line,
@@ -390,23 +542,36 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
             mesh.indices.push(i);
         }
         // A face colour: the numbers after the last index on its line.
+        let mut ncol = 0usize;
         while let Some(c) = toks.next_on_line(last_line) {
-            if parse_f64(&c).is_none() {
+            if parse_f64(c.text).is_none() {
                 return Err(ctx.err(
                     c.line,
-                    format_args!("face {f}: unexpected '{}' after its indices", text(&c)),
+                    format_args!("face {f}: unexpected {} after its indices", quote(c.text)),
                 ));
             }
+            ncol += 1;
         }
-        mesh.offsets.push(mesh.indices.len() as u32);
+        if !matches!(ncol, 0 | 1 | 3 | 4) {
+            return Err(ctx.err(
+                last_line,
+                format_args!(
+                    "face {f}: {ncol} numbers after its {n} indices; a face colour is 1 \
+                     (colour-map index), 3 or 4 numbers (is the corner count right?)"
+                ),
+            ));
+        }
+        let end = u32::try_from(mesh.indices.len())
+            .map_err(|_| ctx.err(last_line, "more corners than 32-bit indices can hold"))?;
+        mesh.offsets.push(end);
     }
     if let Some(t) = toks.next() {
         return Err(ctx.err(
             t.line,
             format_args!(
-                "unexpected '{}' after the last face (the header says {nv} vertices and {nf} \
+                "unexpected {} after the last face (the header says {nv} vertices and {nf} \
                  faces)",
-                text(&t)
+                quote(t.text)
             ),
         ));
     }
@@ -515,7 +680,9 @@ mod tests {
         let e = err("OFF BINARY\n");
         assert!(e.contains("binary OFF"), "{e}");
         let e = err("4OFF\n");
-        assert!(e.contains("4D"), "{e}");
+        assert!(e.contains("ends before the vertex count"), "{e}");
+        let e = err("4nOFF 4\n");
+        assert!(e.contains("dimension 4"), "{e}");
         let e = err("");
         assert!(e.contains("empty"), "{e}");
         let e = err("PLY\n");

@@ -1,7 +1,8 @@
 //! `nlsubdiv compare A B [--tol T] [--json]`: order-independent comparison of two meshes.
 //!
-//! Every vertex of A is matched to its nearest vertex of B (a uniform grid; among vertices
-//! at exactly the same distance the lowest-numbered one not matched yet). The meshes agree
+//! Every vertex of A is matched to its nearest vertex of B (a k-d tree of B's distinct
+//! positions, [`nearest`]; among vertices at exactly the same distance the lowest-numbered
+//! one not matched yet). The meshes agree
 //! when they have the same numbers of vertices, faces and corners, the largest match
 //! distance divided by A's bounding-box diagonal is at most `--tol`, and the faces of A,
 //! renamed through the matching, are the faces of B: each face may start at any of its
@@ -9,6 +10,16 @@
 //! not, 2 or 3 when a file cannot be read.
 //!
 //! Only the files' syntax is checked, not their topology: broken meshes can be compared.
+//!
+//! Scale: distances are computed on both meshes scaled by one power of two (exact) that
+//! brings the largest coordinate of either into [0.5, 1): squares of differences neither
+//! overflow (coordinates of 1e155 and more would make the bounding-box diagonal infinite and
+//! every relative distance 0, calling different meshes equal) nor underflow (coordinates
+//! near 1e-160 would make distinct points coincide). Relative distances do not depend on
+//! the scale; distances are reported in the files' units (infinite when they exceed the
+//! largest `f64`).
+
+mod nearest;
 
 use std::cmp::Ordering;
 use std::path::PathBuf;
@@ -17,9 +28,10 @@ use serde_json::json;
 
 use super::{print_json, Ctx};
 use crate::error::{CliError, CliResult, Exit};
-use crate::grid::Grid;
 use crate::io::read_mesh;
-use crate::mesh::Mesh;
+use crate::memory;
+use crate::mesh::{bbox, norm, sub, Mesh, P3};
+use nearest::Nearest;
 
 /// Arguments of `compare`.
 #[derive(clap::Args, Debug)]
@@ -104,6 +116,45 @@ fn face_difference(a: &Faces, b: &Faces) -> (usize, Option<usize>) {
     (missing, first)
 }
 
+/// `2^k` for `k` in the normal exponent range.
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
+}
+
+/// The exponent `k` such that `2^k · max|x|` is in [0.5, 1) (0 for no or zero coordinates).
+fn scale_exponent(points: &[&[P3]]) -> i32 {
+    let m = points
+        .iter()
+        .flat_map(|p| p.iter())
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return 0;
+    }
+    // frexp: m = f · 2^e with f in [0.5, 1).
+    let bits = m.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    let e = if biased == 0 {
+        // Subnormal: normalise first.
+        let n = (m * pow2(64)).to_bits();
+        ((n >> 52) & 0x7ff) as i32 - 1022 - 64
+    } else {
+        biased - 1022
+    };
+    -e
+}
+
+/// `points` multiplied by `2^k` (two exact steps: `2^k` itself may not be a normal number).
+fn scaled(points: &[P3], k: i32) -> CliResult<Vec<P3>> {
+    let (k1, k2) = (k / 2, k - k / 2);
+    let (s1, s2) = (pow2(k1), pow2(k2));
+    let mut out = memory::filled(points.len(), [0.0; 3], "the scaled coordinates")?;
+    for (o, p) in out.iter_mut().zip(points) {
+        *o = p.map(|x| x * s1 * s2);
+    }
+    Ok(out)
+}
+
 /// Runs `compare`.
 pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     if args.tol.is_nan() || args.tol < 0.0 {
@@ -115,30 +166,44 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     let spinner = ctx.spinner("reading");
     let (a, _) = read_mesh(&args.a)?;
     let (b, _) = read_mesh(&args.b)?;
-    let grid = Grid::new(&b.positions);
+    let k = scale_exponent(&[&a.positions, &b.positions]);
+    let (sa, sb) = (scaled(&a.positions, k)?, scaled(&b.positions, k)?);
+    let mut tree = Nearest::new(&sb);
     drop(spinner);
     let same_counts = a.num_vertices() == b.num_vertices()
         && a.num_faces() == b.num_faces()
         && a.indices.len() == b.indices.len();
 
     // Match every vertex of A to its nearest in B.
-    let mut used = vec![false; b.num_vertices()];
-    let mut map = vec![u32::MAX; a.num_vertices()];
+    let mut map = memory::filled(a.num_vertices(), u32::MAX, "the matching")?;
     let mut max_d2: f64 = 0.0;
     let mut worst: Option<(usize, u32)> = None;
     let mut progress = ctx.progress(a.num_vertices(), "matching");
-    for (v, p) in a.positions.iter().enumerate() {
+    for (v, p) in sa.iter().enumerate() {
         progress.inc(1);
-        let Some((d2, cands)) = grid.nearest(&b.positions, *p) else {
+        let Some((d2, groups)) = tree.query(*p) else {
             break;
         };
-        let pick = cands
+        // The lowest-numbered vertex not matched yet among all at this distance, else the
+        // lowest-numbered of them.
+        let unused = groups
             .iter()
-            .copied()
-            .find(|&c| !used[c as usize])
-            .or_else(|| cands.first().copied())
-            .unwrap_or(0);
-        used[pick as usize] = true;
+            .filter_map(|&g| {
+                let gr = &tree.groups[g];
+                gr.members.get(gr.used).map(|&m| (m, g))
+            })
+            .min();
+        let pick = match unused {
+            Some((m, g)) => {
+                tree.groups[g].used += 1;
+                m
+            }
+            None => groups
+                .iter()
+                .filter_map(|&g| tree.groups[g].members.first().copied())
+                .min()
+                .unwrap_or(0),
+        };
         map[v] = pick;
         if d2 > max_d2 || worst.is_none() {
             max_d2 = d2.max(max_d2);
@@ -146,21 +211,24 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         }
     }
     progress.finish();
-    let mut hits = vec![0u32; b.num_vertices()];
+    let mut hits = memory::filled(b.num_vertices(), 0u32, "the matching")?;
     for &m in &map {
         if let Some(h) = hits.get_mut(m as usize) {
             *h += 1;
         }
     }
     let one_to_one = same_counts && hits.iter().all(|&h| h == 1);
-    let max_distance = max_d2.sqrt();
-    let diagonal = a.diagonal();
-    let max_relative = if diagonal > 0.0 {
-        max_distance / diagonal
+    // Back to the files' units: 2^-k, in two exact steps.
+    let unscale = |x: f64| x * pow2(-(k / 2)) * pow2(-(k - k / 2));
+    let scaled_distance = max_d2.sqrt();
+    let scaled_diagonal = bbox(&sa).map_or(0.0, |(lo, hi)| norm(sub(hi, lo)));
+    let max_distance = unscale(scaled_distance);
+    let diagonal = unscale(scaled_diagonal);
+    let max_relative = if scaled_diagonal > 0.0 {
+        scaled_distance / scaled_diagonal
     } else {
         max_distance
     };
-
     let (faces_identical, missing, first_missing) = if same_counts {
         let fa = Faces::new(&a, |v| map[v as usize]);
         let fb = Faces::new(&b, |v| v);
@@ -193,14 +261,19 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             "equal": equal,
         }))?;
     } else {
-        println!(
+        use std::fmt::Write as _;
+        let mut text = String::new();
+        let o = &mut text;
+        let _ = writeln!(
+            o,
             "A: {} ({} vertices, {} faces, {} corners)",
             args.a.display(),
             a.num_vertices(),
             a.num_faces(),
             a.indices.len()
         );
-        println!(
+        let _ = writeln!(
+            o,
             "B: {} ({} vertices, {} faces, {} corners)",
             args.b.display(),
             b.num_vertices(),
@@ -208,35 +281,41 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             b.indices.len()
         );
         if !same_counts {
-            println!("counts differ");
+            let _ = writeln!(o, "counts differ");
         }
         if let Some((v, w)) = worst {
-            println!(
+            let _ = writeln!(
+                o,
                 "largest distance {max_distance:e} = {max_relative:e} of A's diagonal \
                  ({diagonal:e}), A vertex {v} -> B vertex {w}"
             );
         }
         if same_counts && !one_to_one {
             let twice = hits.iter().filter(|&&h| h > 1).count();
-            println!(
+            let _ = writeln!(
+                o,
                 "matching is not one-to-one: {twice} vertices of B are nearest to several of A"
             );
         }
         if same_counts {
-            match first_missing {
-                None => println!("faces identical after matching ({} faces)", a.num_faces()),
-                Some(f) => println!(
+            let _ = match first_missing {
+                None => writeln!(
+            o,"faces identical after matching ({} faces)", a.num_faces()),
+                Some(f) => writeln!(
+            o,
                     "{missing} faces of A have no counterpart in B (first: A face {f}: {:?} -> {:?})",
                     a.face(f),
                     a.face(f).iter().map(|&v| map[v as usize]).collect::<Vec<_>>()
                 ),
-            }
+            };
         }
-        println!(
+        let _ = writeln!(
+            o,
             "{} (tolerance {:e})",
             if equal { "equal" } else { "DIFFERENT" },
             args.tol
         );
+        crate::out::print(&text)?;
     }
     Ok(if equal { Exit::Ok } else { Exit::Failed })
 }
