@@ -140,11 +140,11 @@ fi
 # --- fuzzing ---------------------------------------------------------------------------------
 # cargo-fuzz targets over the C ABI (fuzz/), ASan, 60 s per target; needs nightly + cargo-fuzz.
 if ! rustup toolchain list 2>/dev/null | grep -q nightly; then
-    skip "fuzz (mesh, curve, primitives, differential)" "no nightly toolchain (ASan fuzzing needs it)"
+    skip "fuzz (mesh, curve, primitives, differential, parsers)" "no nightly toolchain (ASan fuzzing needs it)"
 elif ! cargo fuzz --version >/dev/null 2>&1; then
-    skip "fuzz (mesh, curve, primitives, differential)" "cargo-fuzz not installed (scripts/setup.sh installs it)"
+    skip "fuzz (mesh, curve, primitives, differential, parsers)" "cargo-fuzz not installed (scripts/setup.sh installs it)"
 else
-    step "fuzz: mesh, curve, primitives, differential under ASan (nightly), 3 × ${NLS_FUZZ_SECONDS:-60} s shared" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
+    step "fuzz: mesh, curve, primitives, differential, parsers under ASan (nightly), 3 × ${NLS_FUZZ_SECONDS:-60} s shared" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
 fi
 
 # --- peers: OpenMesh, CGAL, OpenSubdiv (Debian packages) ------------------------------------
