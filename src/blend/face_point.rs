@@ -486,7 +486,7 @@ mod tests {
     #[test]
     fn face_point_failure_does_not_depend_on_the_face_start() {
         // One candidate is NaN and another quadruplet overflows (points f64::MAX apart): the
-        // status must be the same from every start (found by the primitives fuzz target,
+        // status must be the same from every start (also pinned by
         // fuzz/regressions/primitives/face-point-status-start). Then two finite failures:
         // an overflowing quadruplet and well-behaved ones.
         let m = f64::MAX;

@@ -378,8 +378,7 @@ fn subdivide_field(
 /// was validated by [`plan`], so a non-finite value met while building their topology is an
 /// overflow of the computation (`Δ` of a vertex near `1e231` overflows), reported as
 /// [`Status::NumericalFailure`] naming the vertex (docs/bad-input-catalogue.md row 15), not
-/// as bad input. Found by the `differential` fuzz target
-/// (`fuzz/regressions/differential/laplacian-overflow`).
+/// as bad input (pinned by `fuzz/regressions/differential/laplacian-overflow`).
 fn non_finite_intermediate(e: Error) -> Error {
     if e.status == Status::NonFiniteInput {
         Error::at(Status::NumericalFailure, e.element)
