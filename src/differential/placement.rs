@@ -12,7 +12,7 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::point::{self, Point};
+use crate::point::{self, add, Point};
 
 /// The anchors found by [`components_and_anchors`].
 #[derive(Clone, Copy, Debug)]
@@ -126,7 +126,7 @@ pub(super) fn spatial_centroid_sums(
     for (v, p) in spatial.iter().enumerate() {
         let l = get(labels, v)? as usize;
         let s = sums_spatial.get_mut(l).ok_or(internal())?;
-        *s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
+        *s = add(*s, *p);
         counts.get_mut(l).ok_or(internal())?[0] += 1.0;
     }
     Ok(())
@@ -147,7 +147,7 @@ pub(super) fn place(
     for (v, p) in pos.iter().enumerate() {
         let l = get(labels, v)? as usize;
         let s = sums_solved.get_mut(l).ok_or(internal())?;
-        *s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
+        *s = add(*s, *p);
     }
     for (v, p) in pos.iter_mut().enumerate() {
         let l = get(labels, v)? as usize;

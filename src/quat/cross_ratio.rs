@@ -7,12 +7,12 @@
 
 use super::quaternion::{im_mul_im, inverse_point, Quat};
 use crate::error::{Error, Result, Status};
-use crate::point::{self, Point};
+use crate::point::{self, sub, Point};
 
 /// `b − a`: the difference quaternion `q_ab = [0, b − a]` of seed 000 §3.2 as a point.
 #[inline]
 fn diff_point(a: Point, b: Point) -> Point {
-    [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
+    sub(b, a)
 }
 
 /// `q_ab⁻¹` ([`inverse_point`] of [`diff_point`]).

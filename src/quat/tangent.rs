@@ -8,7 +8,7 @@
 
 use super::cross_ratio::diff_inverse;
 use crate::error::{Error, Result, Status};
-use crate::point::{self, Point};
+use crate::point::{self, add, Point};
 
 /// The corner tangent `t[qi, qj, qk] = q_ij⁻¹ + q_jk⁻¹` (seed 000 §3.3): tangent at `qj` to the
 /// circle through the three points.
@@ -22,7 +22,7 @@ pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
     }
     let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
     let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
-    let t = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+    let t = add(a, b);
     if point::is_finite(&t) {
         Ok(t)
     } else {
