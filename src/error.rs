@@ -1,9 +1,14 @@
 //! Status codes and the error type of every fallible call.
 //!
 //! One enum serves the Rust API and the C ABI (`nls_status`): its discriminants are stable
-//! `u32` codes, never reused. Codes follow the bad-input catalogue of
-//! `reference/reliability-anchors.md` §2 so that a number seen in a C host's log can be looked
-//! up there.
+//! `u32` codes, never reused. Codes 1–27 are the row numbers of their classes in the bad-input
+//! catalogue (`docs/bad-input-catalogue.md`), so that a number seen in a C host's log can be
+//! looked up there (a class that is accepted or reported with another class's status has no
+//! code of its own); 28 and 29 are numbered after the catalogue's rows.
+//!
+//! Both [`Status`] and [`Error`] are `#[non_exhaustive]`: a later version may add a status (a
+//! new code, never a changed one) or a field of the error without breaking callers, so a
+//! `match` on a status outside this crate needs a wildcard arm.
 
 use core::ffi::CStr;
 use core::fmt;
@@ -12,6 +17,7 @@ use core::fmt;
 ///
 /// The C ABI returns these as `uint32_t`-sized enum values (`NLS_STATUS_*`).
 #[repr(u32)]
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Status {
     /// Success. Out-parameters were written.
@@ -172,7 +178,9 @@ pub const NO_ELEMENT: u32 = u32::MAX;
 
 /// The error of a failed call: a [`Status`], the element at fault (a vertex, face, edge or
 /// point index, depending on the call; [`NO_ELEMENT`] when none applies) and, for
-/// [`Status::BufferTooSmall`], the size that is needed.
+/// [`Status::BufferTooSmall`], the size that is needed. Built with [`Error::new`],
+/// [`Error::at`] or [`Error::too_small`].
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Error {
     /// What went wrong.

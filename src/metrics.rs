@@ -8,8 +8,8 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::point::{norm, sub, Point};
-use crate::quat::{cross_ratio, tangent_polygon_vertex};
+use crate::point::{cross, div, dot, norm, sub, Point};
+use crate::quat::{cross_ratio, tangent_polygon_vertex, Quat};
 use crate::MAX_VALENCE;
 
 /// Planarity of the quadrilateral `(p0, p1, p2, p3)`: the distance between the lines of its
@@ -24,7 +24,7 @@ pub fn quad_planarity(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
         .flatten()
         .fold(0.0f64, |m, c| m.max(c.abs()));
     let [p0, p1, p2, p3] = if m > 0.0 && m.is_finite() {
-        [p0, p1, p2, p3].map(|p| [p[0] / m, p[1] / m, p[2] / m])
+        [p0, p1, p2, p3].map(|p| div(p, m))
     } else {
         [p0, p1, p2, p3]
     };
@@ -34,18 +34,14 @@ pub fn quad_planarity(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
     if mean == 0.0 {
         return 0.0;
     }
-    let n = [
-        d1[1] * d2[2] - d1[2] * d2[1],
-        d1[2] * d2[0] - d1[0] * d2[2],
-        d1[0] * d2[1] - d1[1] * d2[0],
-    ];
+    let n = cross(d1, d2);
     let nl = norm(n);
     if nl <= 1e-15 * norm(d1) * norm(d2) {
         // Parallel diagonals lie in one plane.
         return 0.0;
     }
     let w = sub(p1, p0);
-    let dist = (w[0] * n[0] + w[1] * n[1] + w[2] * n[2]).abs() / nl;
+    let dist = dot(w, n).abs() / nl;
     dist / mean
 }
 
@@ -115,7 +111,7 @@ pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> 
         return Err(Error::new(Status::ValenceTooHigh));
     }
     let at = |i: usize| ring.get(i % n).copied().unwrap_or_default();
-    let mut crs: ArrayVec<crate::quat::Quat, MAX_VALENCE> = ArrayVec::new();
+    let mut crs: ArrayVec<Quat, MAX_VALENCE> = ArrayVec::new();
     let (first, last) = if closed { (0, n) } else { (1, n - 1) };
     for i in first..last {
         let cr = cross_ratio(v, at(i + n - 1), at(i), at(i + 1))

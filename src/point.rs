@@ -82,8 +82,8 @@ pub fn norm_unscaled(a: Point) -> f64 {
 }
 
 /// `|a|`, computed without overflow or underflow of the squares: `√(a·a)` while the sum of
-/// squares is finite and above `NORM_SAFE_MIN` (1e-250), otherwise scaled by the largest component
-/// first. The same bits as the absolute value of the imaginary quaternion `[0, a]`
+/// squares is finite and above `NORM_SAFE_MIN` (1e-250), otherwise scaled by the largest
+/// component first. The same bits as the absolute value of the imaginary quaternion `[0, a]`
 /// (`Quat::abs`), which the Möbius rules compare with.
 #[inline]
 pub fn norm(a: Point) -> f64 {

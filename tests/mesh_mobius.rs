@@ -778,14 +778,13 @@ fn nearest_gap(a: &OwnedMesh, b: &OwnedMesh) -> f64 {
 fn mobius_schemes_versus_vertex_renumbering() {
     // Ties of the §4.4.3 sort go by vertex id, so numbering can only enter through them. The
     // reversed quadruplets of an even face always tie; their chains are oriented by the face
-    // (blend::face_point_ordered), which takes the numbering out of those ties. What remains
-    // are exact ties between different quadruplets, which only exactly symmetric faces have
-    // (a regular tetrahedron's: the F6 chain breaks their symmetry whatever the order), and
-    // Kobbelt's two grid lines, ordered and directed by edge id. So: every mesh jittered
-    // by 1e-3 of its
-    // diameter must give the same result under a random renumbering (Kobbelt printed, not
-    // asserted), and the unjittered meshes' figures are printed. Relative to the diameter,
-    // 2 levels.
+    // (`oriented_start` in src/blend/face_point.rs), which takes the numbering out of those
+    // ties. What remains are exact ties between different quadruplets, which only exactly
+    // symmetric faces have (a regular tetrahedron's: the F6 chain breaks their symmetry
+    // whatever the order), and Kobbelt's two grid lines, ordered and directed by edge id. So:
+    // every mesh jittered by 1e-3 of its diameter must give the same result under a random
+    // renumbering (Kobbelt printed, not asserted), and the unjittered meshes' figures are
+    // printed. Relative to the diameter, 2 levels.
     let mut exact: Vec<(Scheme, f64)> = Vec::new();
     let mut jittered: Vec<(Scheme, f64)> = Vec::new();
     let worst =

@@ -900,8 +900,8 @@ fn f6_is_unchanged_when_both_chains_are_reversed() {
     // (= q_ec q_cb⁻¹ q_ab q_ea⁻¹, the same for every last point) the reversed blend has
     // X' = Z, Z' = X, Y' = K X with K = Z Y⁻¹, so r' = √Z Y⁻¹ √X = r⁻¹ and
     // χ' = −√Z (√r)⁻¹ = K χ: its point solves cr[e, a, b, p] = χ too (off the negative reals,
-    // where the principal roots break √(r⁻¹) = (√r)⁻¹). The face-point chain
-    // of an even face relies on it (blend::face_point_ordered). Reversing one chain only is
+    // where the principal roots break √(r⁻¹) = (√r)⁻¹). The face-point chain of an even face
+    // relies on it (`oriented_start` in src/blend/face_point.rs). Reversing one chain only is
     // a different blend: that difference is printed to show the test can tell them apart.
     let mut rng = Rng::new(0x0F6_0007);
     let (mut worst, mut one_chain): (f64, f64) = (0.0, 0.0);

@@ -10,7 +10,7 @@
  *    vertices nv + ne + f in face order, so they can be compared index by index.
  * 2. nls_face_point_with_ids on one face, with the vertices, candidates and ids rotated
  *    together (plain nls_face_point keeps the paper's face-order tie-break and depends on it).
- * The former cause (src/blend.rs face_point): the quadruplets are sorted by noncircularity with a stable
+ * The former cause (src/blend/face_point.rs): the quadruplets are sorted by noncircularity with a stable
  * sort; equal keys (always for quadruplets i and i + d/2 of an even face, and for every
  * quadruplet of a symmetric face such as the tetrahedron's) keep face order, and the F6
  * chain F6(a_prev, v_f, d_prev, a, p, d) is neither commutative in its order nor symmetric in

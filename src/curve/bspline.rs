@@ -1,16 +1,18 @@
 //! The cubic B-spline curve scheme (Lane–Riesenfeld, degree 3): the linear approximating
 //! rule that seed 000 §4.4.1 converts into the Möbius approximating rule, and the boundary
-//! rule of Loop and Catmull–Clark (DESIGN.md, `reference/peer-rules.md`).
+//! rule of Loop and Catmull–Clark (the mesh drivers subdivide every boundary loop as a
+//! closed curve with this rule, as CGAL and OpenSubdiv do).
 //!
 //! One level, output interleaved as in [`crate::curve`]:
 //! * edge points: `P'_{2i+1} = (P_i + P_{i+1}) / 2`;
 //! * vertex points: `P'_{2i} = 3/4 P_i + 1/8 (P_{i−1} + P_{i+1})`, the mask `(1, 6, 1)/8`.
 //!
-//! Open curves keep both end points (`P'_0 = P_0`, `P'_{2n−2} = P_{n−1}`, DESIGN.md), the
-//! crease rule of CGAL and OpenSubdiv; linear data stays linear. Two points give the
+//! Open curves keep both end points (`P'_0 = P_0`, `P'_{2n−2} = P_{n−1}`), the crease rule
+//! of CGAL and OpenSubdiv, so that a curve's ends stay where the user put them; linear data
+//! stays linear. Two points give the
 //! midpoint.
 
-use crate::curve::{at, check_level, cyclic, finite, level_out};
+use super::polygon::{at, check_level, cyclic, finite, level_out};
 use crate::error::Result;
 use crate::point::{add, midpoint, scale, Point};
 
@@ -39,7 +41,7 @@ pub fn refine(points: &[Point], closed: bool, out: &mut [Point]) -> Result<usize
     Ok(next)
 }
 
-/// One level on validated input (see [`crate::curve::LevelRule`]).
+/// One level on validated input (see `LevelRule` in `levels.rs`).
 pub(crate) fn refine_level(p: &[Point], closed: bool, out: &mut [Point]) -> Result<()> {
     let out = level_out(p, closed, out)?;
     let n = p.len();

@@ -1,5 +1,7 @@
 //! The circle-blend curve scheme of seed 003 §2 ("The curve scheme"), after Séquin and Yen's
-//! circular subdivision, in the 3D form of DESIGN.md ("Curves").
+//! circular subdivision. The paper states it in the plane; in R³ the arc of each step lies in
+//! the plane of its chord and the averaged tangent (below), which is the plane of the circle
+//! whenever the four points are cocircular.
 //!
 //! For the segment `P_1 P_2` with neighbours `P_0`, `P_3`:
 //! 1. `t_1` is the tangent at `P_1` of the circle `C_1` through `P_0, P_1, P_2`, `t_2` the
@@ -24,9 +26,10 @@
 //! would give the same `S` (the reflection in the bisector plane of the chord maps each
 //! circle through `P_1, P_2` to itself), so the rule is symmetric under reversal.
 //!
-//! Open curves: the end segment uses its only circle (DESIGN.md): `P_0 P_1` the circle
-//! through `P_0, P_1, P_2` with its tangent at `P_0`, `P_{n−2} P_{n−1}` the circle through
-//! `P_{n−3}, P_{n−2}, P_{n−1}` with its tangent at `P_{n−2}`. Two points give the midpoint.
+//! Open curves: the end segment uses its only circle (so a circular arc stays on its circle up
+//! to the ends): `P_0 P_1` the circle through `P_0, P_1, P_2` with its tangent at `P_0`,
+//! `P_{n−2} P_{n−1}` the circle through `P_{n−3}, P_{n−2}, P_{n−1}` with its tangent at
+//! `P_{n−2}`. Two points give the midpoint.
 //!
 //! # Degenerate input
 //!
@@ -35,8 +38,8 @@
 //! vanishes (`t_1 = −t_2`) or points backwards along the chord (`S` at infinity) give
 //! [`Status::DegenerateGeometry`], naming the first point of the segment.
 
+use super::polygon::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::blend::COINCIDENT_TOLERANCE;
-use crate::curve::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::error::{Error, Result, Status};
 use crate::point::{self, add, dot, midpoint, scale, sub, Point};
 
@@ -45,8 +48,8 @@ use crate::point::{self, add, dot, midpoint, scale, sub, Point};
 const BACKWARD_TOLERANCE: f64 = 1e-12;
 
 /// The tangent at `b` of the circle through `a, b, c`, oriented `a → b → c`:
-/// `(b − a)/|b − a|² + (c − b)/|c − b|²` (DESIGN.md; seed 000 §3.3's corner tangent
-/// `q_ab⁻¹ + q_bc⁻¹` up to sign). On a line it points from `a` to `c`. Not normalised.
+/// `(b − a)/|b − a|² + (c − b)/|c − b|²` (seed 000 §3.3's corner tangent `q_ab⁻¹ + q_bc⁻¹` up
+/// to sign, which is the circle's tangent in R³ without computing the circle). On a line it points from `a` to `c`. Not normalised.
 #[inline]
 pub fn circle_tangent(a: Point, b: Point, c: Point) -> Point {
     let (u, w) = (sub(b, a), sub(c, b));
@@ -64,7 +67,8 @@ pub fn circle_tangent_at_start(a: Point, b: Point, c: Point) -> Point {
 }
 
 /// The middle `S` of the circular arc from `p1` to `p2` whose tangent at `p1` is `t`:
-/// `S = (p1 + p2)/2 + (|p1 p2|/2) tan(θ/2) N` (seed 003 §2, DESIGN.md).
+/// `S = (p1 + p2)/2 + (|p1 p2|/2) tan(θ/2) N` (seed 003 §2), `θ` the angle between `t` and the
+/// chord, `N` the unit part of `t` orthogonal to the chord.
 ///
 /// With `u = t · ĉ` (`ĉ` the unit chord) and `w⃗ = t − u ĉ`: `tan(θ/2) N = w⃗ / (|t| + u)`,
 /// evaluated as `(|t| − u) w⃗ / |w⃗|²` when `u < 0` to avoid cancellation. A tangent along the
@@ -253,28 +257,25 @@ pub(crate) fn refine_level(p: &[Point], closed: bool, out: &mut [Point]) -> Resu
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn dist(a: Point, b: Point) -> f64 {
-        norm(sub(a, b))
-    }
+    use crate::point::distance;
 
     #[test]
     fn tangents_of_the_unit_circle() {
         let (a, b, c) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]);
         let t = unit(circle_tangent(a, b, c)).unwrap();
-        assert!(dist(t, [-1.0, 0.0, 0.0]) < 1e-15, "{t:?}");
+        assert!(distance(t, [-1.0, 0.0, 0.0]) < 1e-15, "{t:?}");
         let t = unit(circle_tangent_at_start(a, b, c)).unwrap();
-        assert!(dist(t, [0.0, 1.0, 0.0]) < 1e-15, "{t:?}");
+        assert!(distance(t, [0.0, 1.0, 0.0]) < 1e-15, "{t:?}");
     }
 
     #[test]
     fn quarter_circle_midpoint() {
         let s = arc_midpoint([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
         let h = libm::sqrt(0.5);
-        assert!(dist(s, [h, h, 0.0]) < 1e-15, "{s:?}");
+        assert!(distance(s, [h, h, 0.0]) < 1e-15, "{s:?}");
         // Three quarters of a circle: tangent (0, −1) at (1, 0), chord to (0, 1).
         let s = arc_midpoint([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0]).unwrap();
-        assert!(dist(s, [-h, -h, 0.0]) < 1e-15, "{s:?}");
+        assert!(distance(s, [-h, -h, 0.0]) < 1e-15, "{s:?}");
         // Backwards: a full circle, S at infinity.
         let e = arc_midpoint([0.0; 3], [1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]).unwrap_err();
         assert_eq!(e.status, Status::DegenerateGeometry);

@@ -20,8 +20,8 @@
 //!
 //! `Σ δ_i = 0` for a closed polygon, and both schemes map a zero-sum polygon to a zero-sum
 //! polygon (each old point contributes with total weight 2), so `L Ṽ = 4⁻ᵏ Δᵏ` is
-//! consistent (DESIGN.md, "Differential space"): the least-squares solution of the paper's
-//! stacked system `[4ᵏ L; anchor] V = [Δᵏ; anchor]` is its exact solution with the anchor.
+//! consistent: the least-squares solution of the paper's stacked system
+//! `[4ᵏ L; anchor] V = [Δᵏ; anchor]` is its exact solution with the anchor.
 //! The anchor is the Dirichlet condition of Prop. 1 ("fixing one vertex of the closed curve"):
 //! output point 0 is input point 0 (the paper puts it at the origin; we keep the curve where
 //! it was). The solve is direct and O(n): with `g_i = −2 · 4⁻ᵏ δ_i` and `d_i = v_{i+1} − v_i`,
@@ -47,10 +47,9 @@
 //! is replaced by the curve in place. [`crate::curve::scratch_len`] is therefore the size of
 //! level `k − 1` already for `k = 1`.
 
-use crate::curve::{
-    at, bspline, check_finite, finite, four_point, refined_len, run_levels, to_input_element,
-    Level0, LevelRule,
-};
+use super::levels::{run_levels, to_input_element, Level0, LevelRule};
+use super::polygon::{at, check_finite, finite};
+use super::{bspline, four_point, refined_len};
 use crate::error::{Error, Result, Status};
 use crate::point::{add, scale, sub, Point};
 

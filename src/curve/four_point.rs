@@ -8,10 +8,11 @@
 //!   reproduces cubic polynomials on uniformly sampled data.
 //!
 //! Open curves use the virtual points `P_{−1} = 2P_0 − P_1` and `P_n = 2P_{n−1} − P_{n−2}`
-//! (DESIGN.md, "Curves"); the end segments then reproduce linear data only. Two points give
+//! (linear extrapolation, the linear counterpart of the Möbius rules' virtual end point); the
+//! end segments then reproduce linear data only. Two points give
 //! the midpoint (which the virtual points produce by themselves).
 
-use crate::curve::{at, check_level, cyclic, finite, level_out};
+use super::polygon::{at, check_level, cyclic, finite, level_out};
 use crate::error::Result;
 use crate::point::{add, scale, sub, Point};
 
@@ -49,7 +50,7 @@ pub fn refine(points: &[Point], closed: bool, out: &mut [Point]) -> Result<usize
     Ok(next)
 }
 
-/// One level on validated input (see [`crate::curve::LevelRule`]).
+/// One level on validated input (see `LevelRule` in `levels.rs`).
 pub(crate) fn refine_level(p: &[Point], closed: bool, out: &mut [Point]) -> Result<()> {
     let out = level_out(p, closed, out)?;
     let n = p.len();

@@ -5,8 +5,9 @@
 //!   — the Möbius form of the 4-point scheme.
 //! * **Approximating**: edge points as above; vertex points
 //!   `P'_{2i} = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})` ("applying F4 to the even vertices as
-//!   well, with the two original even neighbors and the two new odd edge points"; the order of
-//!   the arguments is DESIGN.md's) — the Möbius form of the cubic B-spline scheme.
+//!   well, with the two original even neighbors and the two new odd edge points"; the paper
+//!   leaves the order of the arguments open, this one is the curve order, which keeps the rule
+//!   symmetric under reversal) — the Möbius form of the cubic B-spline scheme.
 //!
 //! Both commute with every Möbius map `M` of R³ ∪ {∞} (`S(M P) = M S(P)` wherever the points
 //! stay finite), keep points of a sphere on that sphere and points of a circle on that circle
@@ -14,8 +15,8 @@
 //!
 //! # Open curves
 //!
-//! The end segment `P_0 P_1` needs a point before `P_0`. DESIGN.md fixes the virtual end
-//! point `P_{−1}` by the Möbius-invariant extrapolation `cr[P_2, P_1, P_0, P_{−1}] = −1/3`:
+//! The end segment `P_0 P_1` needs a point before `P_0`, which the paper does not define. We
+//! fix the virtual end point `P_{−1}` by the Möbius-invariant extrapolation `cr[P_2, P_1, P_0, P_{−1}] = −1/3`:
 //! the point of the circle through `P_0, P_1, P_2` (the line, for collinear points) that a
 //! Möbius map taking `P_2, P_1, P_0` to `2, 1, 0` on a line takes to `−1`
 //! ([`virtual_end_point`]). The end edge point is then `F4(P_{−1}, P_0, P_1, P_2)`. Because F4
@@ -36,13 +37,13 @@
 //! Möbius rules: e.g. an end edge point when `P_2` lies on the chord `P_0 P_1` at one third
 //! of its length from `P_1`, the configuration that a Möbius map sends to `0, 1, 2`).
 
+use super::polygon::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::blend::{f4, COINCIDENT_TOLERANCE};
-use crate::curve::{at, check_level, cyclic, finite, index_u32, level_out, norm};
 use crate::error::{Error, Result, Status};
 use crate::point::{self, midpoint, sub, Point};
 use crate::quat::Quat;
 
-/// The cross-ratio `cr[P_2, P_1, P_0, P_{−1}]` of the virtual end point (DESIGN.md):
+/// The cross-ratio `cr[P_2, P_1, P_0, P_{−1}]` of the virtual end point (module docs):
 /// `cr[2, 1, 0, −1]` of four equally spaced points of a line.
 pub const VIRTUAL_END_CROSS_RATIO: f64 = -1.0 / 3.0;
 
@@ -96,7 +97,7 @@ fn coincidences(p0: Point, p1: Point, p2: Point) -> (bool, bool, bool) {
 
 /// The virtual end point `P_{−1}` before `P_0` of an open curve: the point of the circle
 /// through `P_0, P_1, P_2` (the line, for collinear points) with
-/// `cr[P_2, P_1, P_0, P_{−1}] = −1/3` (DESIGN.md, "Curves"). Equally spaced points of a line
+/// `cr[P_2, P_1, P_0, P_{−1}] = −1/3` (module docs, "Open curves"). Equally spaced points of a line
 /// give `2 P_0 − P_1`.
 ///
 /// The curve rules use [`end_edge_point`], which equals `F4(P_{−1}, P_0, P_1, P_2)` without
@@ -255,23 +256,20 @@ pub(crate) fn refine_approximating_level(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn dist(a: Point, b: Point) -> f64 {
-        norm(sub(a, b))
-    }
+    use crate::point::distance;
 
     #[test]
     fn virtual_end_point_on_a_line() {
         let p = virtual_end_point([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]).unwrap();
-        assert!(dist(p, [-1.0, 0.0, 0.0]) < 1e-15, "{p:?}");
+        assert!(distance(p, [-1.0, 0.0, 0.0]) < 1e-15, "{p:?}");
         let e = end_edge_point([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]).unwrap();
-        assert!(dist(e, [0.5, 0.0, 0.0]) < 1e-15, "{e:?}");
+        assert!(distance(e, [0.5, 0.0, 0.0]) < 1e-15, "{e:?}");
         // |P1 P2| = |P0 P1| / 3: the virtual point is at infinity, the edge point is not.
         let far = virtual_end_point([0.0; 3], [3.0, 0.0, 0.0], [4.0, 0.0, 0.0]);
         assert_eq!(far.unwrap_err().status, Status::DegenerateGeometry);
         let e = end_edge_point([0.0; 3], [3.0, 0.0, 0.0], [4.0, 0.0, 0.0]).unwrap();
         // p = (3s x0 + x2)/(3s + 1) with s = 1/3: 4/2 = 2.
-        assert!(dist(e, [2.0, 0.0, 0.0]) < 1e-14, "{e:?}");
+        assert!(distance(e, [2.0, 0.0, 0.0]) < 1e-14, "{e:?}");
     }
 
     #[test]
@@ -281,7 +279,7 @@ mod tests {
         let v = virtual_end_point(p0, p1, p2).unwrap();
         let a = f4(v, p0, p1, p2).unwrap();
         let b = end_edge_point(p0, p1, p2).unwrap();
-        assert!(dist(a, b) < 1e-14, "{a:?} {b:?}");
+        assert!(distance(a, b) < 1e-14, "{a:?} {b:?}");
         // On the circle, between P0 and P1.
         assert!((libm::hypot(b[0], b[1]) - 2.0).abs() < 1e-14);
         let t = libm::atan2(b[1], b[0]);

@@ -15,7 +15,7 @@
 
 use crate::error::Result;
 use crate::mesh::{set, Topology};
-use crate::point::{cross, dot, norm_unscaled, sub, Point};
+use crate::point::{add, cross, div, dot, norm_unscaled, sub, Point};
 
 /// Below this length a subdivided normal is not normalised (see the module docs).
 pub const MIN_NORMAL: f64 = 1e-12;
@@ -27,7 +27,7 @@ pub(crate) fn normalized(a: Point) -> Option<Point> {
     if l < MIN_NORMAL || !l.is_finite() {
         None
     } else {
-        Some([a[0] / l, a[1] / l, a[2] / l])
+        Some(div(a, l))
     }
 }
 
@@ -54,7 +54,7 @@ pub fn angle_weighted_normals(topo: &Topology<'_, '_>, out: &mut [Point]) -> Res
             let a = topo.position(crate::mesh::get(vs, k)?)?;
             let b = topo.position(crate::mesh::get(vs, k + 1)?)?;
             let c = cross(sub(a, p0), sub(b, p0));
-            fnrm = [fnrm[0] + c[0], fnrm[1] + c[1], fnrm[2] + c[2]];
+            fnrm = add(fnrm, c);
         }
         let Some(fu) = normalized(fnrm) else { continue };
         for k in 0..m {
@@ -81,5 +81,5 @@ pub fn separate(delta: Point, nbar: Point) -> (f64, Point) {
         return (0.0, nbar);
     }
     let h = if dot(nbar, delta) > 0.0 { m } else { -m };
-    (h, [delta[0] / h, delta[1] / h, delta[2] / h])
+    (h, div(delta, h))
 }

@@ -18,7 +18,7 @@
 
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, set, Topology};
-use crate::point::Point;
+use crate::point::{add, scale, sub, Point};
 
 /// A level's Laplacian as neighbour lists: row `i`'s full 1-ring is
 /// `cols[rows[i]..rows[i + 1]]` (counter-clockwise; a boundary vertex's ring runs from `b0`
@@ -137,21 +137,17 @@ impl Laplacian<'_> {
             let (s, w) = if bnd {
                 let a = get(x, *r.first().ok_or(internal())? as usize)?;
                 let b = get(x, *r.last().ok_or(internal())? as usize)?;
-                ([a[0] + b[0], a[1] + b[1], a[2] + b[2]], 0.5)
+                (add(a, b), 0.5)
             } else {
                 let mut s = [0.0; 3];
                 for &j in r {
                     let p = get(x, j as usize)?;
-                    s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
+                    s = add(s, p);
                 }
                 (s, 1.0 / r.len() as f64)
             };
             let xi = get(x, i)?;
-            *yi = [
-                c * (xi[0] - w * s[0]),
-                c * (xi[1] - w * s[1]),
-                c * (xi[2] - w * s[2]),
-            ];
+            *yi = scale(sub(xi, scale(s, w)), c);
         }
         Ok(())
     }
@@ -165,19 +161,19 @@ impl Laplacian<'_> {
             }
             let ti = get(t, i)?;
             let yi = y.get_mut(i).ok_or(internal())?;
-            *yi = [yi[0] + ti[0], yi[1] + ti[1], yi[2] + ti[2]];
-            let mut sub = |j: u32, w: f64| -> Result<()> {
+            *yi = add(*yi, ti);
+            let mut subtract = |j: u32, w: f64| -> Result<()> {
                 let yj = y.get_mut(j as usize).ok_or(internal())?;
-                *yj = [yj[0] - w * ti[0], yj[1] - w * ti[1], yj[2] - w * ti[2]];
+                *yj = sub(*yj, scale(ti, w));
                 Ok(())
             };
             if bnd {
-                sub(*r.first().ok_or(internal())?, 0.5)?;
-                sub(*r.last().ok_or(internal())?, 0.5)?;
+                subtract(*r.first().ok_or(internal())?, 0.5)?;
+                subtract(*r.last().ok_or(internal())?, 0.5)?;
             } else {
                 let w = 1.0 / r.len() as f64;
                 for &j in r {
-                    sub(j, w)?;
+                    subtract(j, w)?;
                 }
             }
         }
@@ -192,11 +188,11 @@ impl Laplacian<'_> {
             let mut s = [0.0; 3];
             for &j in r {
                 let p = get(x, j as usize)?;
-                s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
+                s = add(s, p);
             }
             let d = r.len() as f64;
             let xi = get(x, i)?;
-            *yi = [d * xi[0] - s[0], d * xi[1] - s[1], d * xi[2] - s[2]];
+            *yi = sub(scale(xi, d), s);
         }
         Ok(())
     }

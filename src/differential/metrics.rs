@@ -16,7 +16,7 @@
 use super::dirmag::normalized;
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, Topology, NONE};
-use crate::point::{cross, dot, norm_unscaled, sub, Point};
+use crate::point::{add, cross, div, dot, norm_unscaled, sub, Point};
 
 /// Signed dihedral angle of the edge of half-edge `h` (0 on the boundary).
 fn dihedral(topo: &Topology<'_, '_>, h: u32) -> Result<f64> {
@@ -48,68 +48,14 @@ pub fn vertex_curvatures(topo: &Topology<'_, '_>, out: &mut [[f64; 3]]) -> Resul
         if topo.is_isolated(v)? {
             continue;
         }
-        let pv = topo.position(v)?;
-        let mut t = [[0.0f64; 3]; 3];
-        let mut area = 0.0;
-        let mut nsum = [0.0; 3];
-        for s in topo.star(v) {
-            let q = topo.position(s.neighbour)?;
-            let e = sub(q, pv);
-            let len = norm_unscaled(e);
-            if len > 0.0 {
-                let h = if s.half_edge != NONE {
-                    s.half_edge
-                } else {
-                    topo.edge_half_edge(s.edge)?
-                };
-                let beta = dihedral(topo, h)?;
-                let u = [e[0] / len, e[1] / len, e[2] / len];
-                let w = beta * 0.5 * len;
-                for (i, row) in t.iter_mut().enumerate() {
-                    for (j, x) in row.iter_mut().enumerate() {
-                        *x += w * get(&u, i)? * get(&u, j)?;
-                    }
-                }
-            }
-            if s.face != NONE {
-                let vs = topo.face_vertices(s.face)?;
-                let p0 = topo.position(get(vs, 0)?)?;
-                let c = cross(
-                    sub(topo.position(get(vs, 1)?)?, p0),
-                    sub(topo.position(get(vs, 2)?)?, p0),
-                );
-                area += norm_unscaled(c) / 6.0;
-                nsum = [nsum[0] + c[0], nsum[1] + c[1], nsum[2] + c[2]];
-            }
-        }
+        let (t, area, nsum) = star_tensor(topo, v)?;
         let Some(nrm) = normalized(nsum) else {
             continue;
         };
         if area <= 0.0 {
             continue;
         }
-        // P T P with P = I − n nᵀ.
-        let mut p = [[0.0f64; 3]; 3];
-        for (i, row) in p.iter_mut().enumerate() {
-            for (j, x) in row.iter_mut().enumerate() {
-                *x = f64::from(u8::from(i == j)) - get(&nrm, i)? * get(&nrm, j)?;
-            }
-        }
-        let mul = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
-            let mut c = [[0.0f64; 3]; 3];
-            for (i, row) in c.iter_mut().enumerate() {
-                for (j, x) in row.iter_mut().enumerate() {
-                    let mut s = 0.0;
-                    for (k, aik) in a.get(i).into_iter().flatten().enumerate() {
-                        let bkj = b.get(k).and_then(|r| r.get(j)).copied().unwrap_or(0.0);
-                        s += aik * bkj;
-                    }
-                    *x = s;
-                }
-            }
-            c
-        };
-        let pt = mul(&mul(&p, &t), &p);
+        let pt = tangent_part(&t, nrm)?;
         let mut f2 = 0.0;
         let mut tr = 0.0;
         for (i, row) in pt.iter().enumerate() {
@@ -124,6 +70,77 @@ pub fn vertex_curvatures(topo: &Topology<'_, '_>, out: &mut [[f64; 3]]) -> Resul
         *o = [f2 * inv * inv, 0.5 * tr * inv, area];
     }
     Ok(())
+}
+
+/// A 3×3 matrix, row-major.
+type Matrix = [[f64; 3]; 3];
+
+/// The star sums of vertex `v`: the unnormalised tensor `Σ_{e ∋ v} β(e) (|e|/2) ê êᵀ`, the area
+/// `A_v` (a third of the incident triangles' area), and the sum of the incident faces' area
+/// vectors (the angle-unweighted normal direction).
+fn star_tensor(topo: &Topology<'_, '_>, v: u32) -> Result<(Matrix, f64, Point)> {
+    let pv = topo.position(v)?;
+    let mut t = [[0.0f64; 3]; 3];
+    let mut area = 0.0;
+    let mut nsum = [0.0; 3];
+    for s in topo.star(v) {
+        let q = topo.position(s.neighbour)?;
+        let e = sub(q, pv);
+        let len = norm_unscaled(e);
+        if len > 0.0 {
+            let h = if s.half_edge != NONE {
+                s.half_edge
+            } else {
+                topo.edge_half_edge(s.edge)?
+            };
+            let beta = dihedral(topo, h)?;
+            let u = div(e, len);
+            let w = beta * 0.5 * len;
+            for (i, row) in t.iter_mut().enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x += w * get(&u, i)? * get(&u, j)?;
+                }
+            }
+        }
+        if s.face != NONE {
+            let vs = topo.face_vertices(s.face)?;
+            let p0 = topo.position(get(vs, 0)?)?;
+            let c = cross(
+                sub(topo.position(get(vs, 1)?)?, p0),
+                sub(topo.position(get(vs, 2)?)?, p0),
+            );
+            area += norm_unscaled(c) / 6.0;
+            nsum = add(nsum, c);
+        }
+    }
+    Ok((t, area, nsum))
+}
+
+/// `P T P` with `P = I − n nᵀ`: the part of `t` in the tangent plane of the unit normal `n`.
+fn tangent_part(t: &Matrix, n: Point) -> Result<Matrix> {
+    let mut p = [[0.0f64; 3]; 3];
+    for (i, row) in p.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            *x = f64::from(u8::from(i == j)) - get(&n, i)? * get(&n, j)?;
+        }
+    }
+    Ok(mat_mul(&mat_mul(&p, t), &p))
+}
+
+/// The matrix product `a b`, each entry summed over `k` in order.
+fn mat_mul(a: &Matrix, b: &Matrix) -> Matrix {
+    let mut c = [[0.0f64; 3]; 3];
+    for (i, row) in c.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            let mut s = 0.0;
+            for (k, aik) in a.get(i).into_iter().flatten().enumerate() {
+                let bkj = b.get(k).and_then(|r| r.get(j)).copied().unwrap_or(0.0);
+                s += aik * bkj;
+            }
+            *x = s;
+        }
+    }
+    c
 }
 
 /// The normalised thin-plate energy of `topo` (module docs); `scratch` holds one entry per

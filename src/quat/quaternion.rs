@@ -4,11 +4,12 @@
 //! `[r, v]·[s, w] = [rs − ⟨v, w⟩, rw + sv + v × w]`, the conjugate `[r, −v]`, the inverse
 //! `q̄ / |q|²`. Every operation is written out in plain `f64` arithmetic: no fused
 //! multiply-add, transcendental functions from `libm`, so results are bit-identical on every
-//! run and platform (DESIGN.md, "Numerics and determinism").
+//! run and platform. The inverse and the absolute value avoid overflow and underflow of
+//! `|q|²` by scaling outside a fast path, because the Möbius rules invert differences of
+//! points that may be very close or very far apart.
 
 use core::ops::{Add, Mul, Neg, Sub};
 
-use crate::error::{Error, Result, Status};
 use crate::point::{self, Point};
 
 /// Below this sum of squares the fast paths of [`Quat::abs`] and [`Quat::inverse`] give way to
@@ -190,7 +191,7 @@ impl Quat {
     }
 
     /// The principal square root, `√q = √|q|·[cos θ/2, n sin θ/2]`, whose real part is never
-    /// negative (seed 000 §3.1, DESIGN.md "Quaternions and blends").
+    /// negative (seed 000 §3.1: the branch the blends of §4.4 are stated with).
     ///
     /// Computed with half-angle formulas that stay accurate in both half spaces. Returns
     /// `None` for a negative real `q` (the root is then any `√|q|·[0, n]`: callers choose `n`)
@@ -364,191 +365,10 @@ pub(crate) fn inverse_point(p: Point) -> Option<Point> {
     Quat::from_point(p).inverse().map(Quat::to_point)
 }
 
-/// `b − a`: the difference quaternion `q_ab = [0, b − a]` of seed 000 §3.2 as a point.
-#[inline]
-fn diff_point(a: Point, b: Point) -> Point {
-    [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
-}
-
-/// `q_ab⁻¹` ([`inverse_point`] of [`diff_point`]).
-#[inline]
-fn diff_inverse(a: Point, b: Point) -> Option<Point> {
-    inverse_point(diff_point(a, b))
-}
-
-/// The quaternionic cross-ratio `cr[qi, qj, qk, ql] = q_ij q_jk⁻¹ q_kl q_li⁻¹` with
-/// `q_ij = q_j − q_i` (seed 000 §3.2), exactly as printed.
-///
-/// It is real iff the four points are cocircular; `Re` and `|Im|` are Möbius invariants.
-///
-/// # Errors
-/// [`Status::NonFiniteInput`] for a non-finite coordinate; [`Status::DegenerateGeometry`]
-/// when `qj = qk` or `ql = qi` (an inverse of zero) or the result is not finite.
-pub fn cross_ratio(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<Quat> {
-    CrossRatio::new(qi, qj, qk, ql)?.value()
-}
-
-/// The factors of `cr[qi, qj, qk, ql] = ((q_ij q_jk⁻¹) q_kl) q_li⁻¹`, evaluated in that
-/// order by [`cross_ratio`], kept so that the blends can reuse them bit for bit: the prefix
-/// `q_ij q_jk⁻¹` is the `M` of the solve of Eq. (3) and starts every cross-ratio with the
-/// same first three points; the double transposition `cr[qk, ql, qi, qj]` (F4's mirrored
-/// order) is the same four factors in another order.
-#[derive(Clone, Copy)]
-pub(crate) struct CrossRatio {
-    /// `q_ij q_jk⁻¹`.
-    pub(crate) prefix: Quat,
-    /// `q_ij` (imaginary).
-    ij: Point,
-    /// `q_jk⁻¹` (imaginary).
-    inv_jk: Point,
-    /// `q_kl` (imaginary).
-    kl: Point,
-    /// `q_li⁻¹` (imaginary).
-    inv_li: Point,
-}
-
-impl CrossRatio {
-    /// The factors, with the checks of [`cross_ratio`] in its order (all but the finiteness
-    /// of the product, which [`CrossRatio::value`] checks).
-    #[inline]
-    pub(crate) fn new(qi: Point, qj: Point, qk: Point, ql: Point) -> Result<CrossRatio> {
-        if ![qi, qj, qk, ql].iter().all(point::is_finite) {
-            return Err(Error::new(Status::NonFiniteInput));
-        }
-        let inv_jk = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
-        let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
-        let ij = diff_point(qi, qj);
-        Ok(CrossRatio {
-            prefix: im_mul_im(ij, inv_jk),
-            ij,
-            inv_jk,
-            kl: diff_point(qk, ql),
-            inv_li,
-        })
-    }
-
-    /// The factors from the four differences `q_ij`, `q_jk`, `q_kl`, `q_li` (computed by the
-    /// caller, whose inputs are finite): the translation-free entry of the blends.
-    #[inline(always)]
-    pub(crate) fn from_differences(
-        ij: Point,
-        jk: Point,
-        kl: Point,
-        li: Point,
-    ) -> Result<CrossRatio> {
-        let inv_jk = inverse_point(jk).ok_or(Error::new(Status::DegenerateGeometry))?;
-        let inv_li = inverse_point(li).ok_or(Error::new(Status::DegenerateGeometry))?;
-        Ok(CrossRatio {
-            prefix: im_mul_im(ij, inv_jk),
-            ij,
-            inv_jk,
-            kl,
-            inv_li,
-        })
-    }
-
-    /// `cr[qi, qj, qk, ql]`, bit for bit [`cross_ratio`].
-    #[inline(always)]
-    pub(crate) fn value(&self) -> Result<Quat> {
-        finite_or_degenerate(self.prefix.mul_im(self.kl).mul_im(self.inv_li))
-    }
-
-    /// `cr[qk, ql, qi, qj] = ((q_kl q_li⁻¹) q_ij) q_jk⁻¹`, bit for bit
-    /// `cross_ratio(qk, ql, qi, qj)` (the same differences and inverses).
-    #[inline(always)]
-    pub(crate) fn transposed(&self) -> Result<Quat> {
-        finite_or_degenerate(self.transposed_prefix().mul_im(self.ij).mul_im(self.inv_jk))
-    }
-
-    /// `q_kl q_li⁻¹`, the prefix of [`CrossRatio::transposed`].
-    #[inline(always)]
-    pub(crate) fn transposed_prefix(&self) -> Quat {
-        im_mul_im(self.kl, self.inv_li)
-    }
-}
-
-/// `cr[qi, qj, qk, ql]` from its prefix `q_ij q_jk⁻¹` (computed for another cross-ratio that
-/// starts with the same `qi, qj, qk`, whose checks passed), bit for bit [`cross_ratio`]: the
-/// remaining checks in its order.
-#[inline]
-pub(crate) fn cross_ratio_from_prefix(
-    prefix: Quat,
-    qi: Point,
-    qk: Point,
-    ql: Point,
-) -> Result<Quat> {
-    if !point::is_finite(&ql) {
-        return Err(Error::new(Status::NonFiniteInput));
-    }
-    let inv_li = diff_inverse(ql, qi).ok_or(Error::new(Status::DegenerateGeometry))?;
-    finite_or_degenerate(prefix.mul_im(diff_point(qk, ql)).mul_im(inv_li))
-}
-
-#[inline]
-fn finite_or_degenerate(q: Quat) -> Result<Quat> {
-    if q.is_finite() {
-        Ok(q)
-    } else {
-        Err(Error::new(Status::DegenerateGeometry))
-    }
-}
-
-/// The corner tangent `t[qi, qj, qk] = q_ij⁻¹ + q_jk⁻¹` (seed 000 §3.3): tangent at `qj` to the
-/// circle through the three points.
-///
-/// # Errors
-/// [`Status::NonFiniteInput`], or [`Status::DegenerateGeometry`] when consecutive points
-/// coincide.
-pub fn corner_tangent(qi: Point, qj: Point, qk: Point) -> Result<Point> {
-    if ![qi, qj, qk].iter().all(point::is_finite) {
-        return Err(Error::new(Status::NonFiniteInput));
-    }
-    let a = diff_inverse(qi, qj).ok_or(Error::new(Status::DegenerateGeometry))?;
-    let b = diff_inverse(qj, qk).ok_or(Error::new(Status::DegenerateGeometry))?;
-    let t = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-    if point::is_finite(&t) {
-        Ok(t)
-    } else {
-        Err(Error::new(Status::DegenerateGeometry))
-    }
-}
-
-/// The vertex `T_i = (u_i − v)⁻¹` of the tangent polygon of the star `v u_1 … u_n`
-/// (seed 000 §3.3). Consecutive differences are the corner tangents:
-/// `T_{i+1} − T_i = t[u_i, v, u_{i+1}]`.
-///
-/// # Errors
-/// [`Status::DegenerateGeometry`] when `u = v`; [`Status::NonFiniteInput`].
-pub fn tangent_polygon_vertex(v: Point, u: Point) -> Result<Point> {
-    if !point::is_finite(&v) || !point::is_finite(&u) {
-        return Err(Error::new(Status::NonFiniteInput));
-    }
-    diff_inverse(v, u).ok_or(Error::new(Status::DegenerateGeometry))
-}
-
-/// Writes the tangent polygon `T_i = (u_i − v)⁻¹` of the star `v u_1 … u_n` into `out`
-/// (seed 000 §3.3, Lemma 3.1: it is Möbius equivalent to the boundary polygon `B_v`).
-///
-/// # Errors
-/// [`Status::BufferTooSmall`] if `out` is shorter than `ring`; [`Status::DegenerateGeometry`]
-/// (element = ring index) when a neighbour coincides with `v`; [`Status::NonFiniteInput`].
-pub fn tangent_polygon(v: Point, ring: &[Point], out: &mut [Point]) -> Result<()> {
-    if out.len() < ring.len() {
-        return Err(Error::too_small(ring.len()));
-    }
-    for (i, (u, t)) in ring.iter().zip(out.iter_mut()).enumerate() {
-        *t = tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::testing::close;
     use super::*;
-
-    fn close(a: Quat, b: Quat, tol: f64) -> bool {
-        (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
-    }
 
     #[test]
     fn hamilton_units() {
@@ -664,92 +484,5 @@ mod tests {
         assert!((r - libm::sqrt(2.0)).abs() < 1e-15);
         assert!((th - core::f64::consts::FRAC_PI_4).abs() < 1e-15);
         assert_eq!(n, Some([0.0, 1.0, 0.0]));
-    }
-
-    #[test]
-    fn cross_ratio_is_real_exactly_for_cocircular_points() {
-        let on_circle = |t: f64| [libm::cos(t), libm::sin(t), 0.0];
-        let cr = cross_ratio(
-            on_circle(0.1),
-            on_circle(1.0),
-            on_circle(2.5),
-            on_circle(4.0),
-        )
-        .unwrap();
-        assert!(cr.abs_im() < 1e-15 * cr.abs());
-        let cr2 = cross_ratio(
-            on_circle(0.1),
-            on_circle(1.0),
-            on_circle(2.5),
-            [0.0, 0.0, 1.0],
-        )
-        .unwrap();
-        assert!(cr2.abs_im() > 1e-3);
-        assert_eq!(
-            cross_ratio([0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
-                .unwrap_err()
-                .status,
-            Status::DegenerateGeometry
-        );
-        assert_eq!(
-            cross_ratio(
-                [f64::NAN, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [2.0, 0.0, 0.0],
-                [3.0; 3]
-            )
-            .unwrap_err()
-            .status,
-            Status::NonFiniteInput
-        );
-    }
-
-    #[test]
-    fn cross_ratio_equals_corner_tangent_form() {
-        // Eq. (2): cr[qi,qj,qk,ql] = t[qk,qi,qj]⁻¹ · t[qk,qi,ql].
-        let (a, b, c, d) = (
-            [0.3, -1.0, 2.0],
-            [1.5, 0.2, -0.7],
-            [-0.4, 2.2, 1.1],
-            [2.0, 1.0, 0.5],
-        );
-        let cr = cross_ratio(a, b, c, d).unwrap();
-        let t1 = Quat::from_point(corner_tangent(c, a, b).unwrap())
-            .inverse()
-            .unwrap();
-        let t2 = Quat::from_point(corner_tangent(c, a, d).unwrap());
-        assert!(close(cr, t1 * t2, 1e-13), "{cr:?} {:?}", t1 * t2);
-    }
-
-    #[test]
-    fn tangent_polygon_edges_are_corner_tangents() {
-        let v = [0.1, 0.2, 0.3];
-        let ring = [
-            [1.0, 0.0, 0.1],
-            [0.2, 1.1, 0.0],
-            [-1.0, 0.3, -0.2],
-            [0.0, -1.0, 0.4],
-        ];
-        let mut t = [[0.0; 3]; 4];
-        tangent_polygon(v, &ring, &mut t).unwrap();
-        for i in 0..4 {
-            let ct = corner_tangent(ring[i], v, ring[(i + 1) % 4]).unwrap();
-            let e = [
-                t[(i + 1) % 4][0] - t[i][0],
-                t[(i + 1) % 4][1] - t[i][1],
-                t[(i + 1) % 4][2] - t[i][2],
-            ];
-            for k in 0..3 {
-                assert!((ct[k] - e[k]).abs() < 1e-14);
-            }
-        }
-        let mut small = [[0.0; 3]; 3];
-        assert_eq!(
-            tangent_polygon(v, &ring, &mut small).unwrap_err(),
-            Error::too_small(4)
-        );
-        let bad = [v, [1.0, 0.0, 0.0]];
-        let e = tangent_polygon(v, &bad, &mut t).unwrap_err();
-        assert_eq!((e.status, e.element), (Status::DegenerateGeometry, 0));
     }
 }

@@ -1,0 +1,170 @@
+//! The six-point blend F6 (seed 000 §4.4.2, Lemma 4.2, Appendix A).
+//!
+//! `F6(a, b, c, d, e, f)` blends two chains of three points, `a, b, c` and `d, e, f`, into one
+//! point near their middles `b` and `e`: Kobbelt's face point (two grid lines through a face)
+//! and each step of the face-point chain of §4.4.3. All its cross-ratios start at `e`, which is
+//! what makes the blend and the choice of axis on the negative reals Möbius-equivariant.
+
+use super::frame::{
+    self, max_of, normalised, pair_squares, Normalised, DIFFERENCES_MAX_SQ, DIFFERENCES_MIN_SQ,
+};
+use super::roots::{imaginary_axis, plane_normal, sqrt_snapped, sqrt_snapped_with_abs};
+use super::solve::solve_by_difference;
+use super::COINCIDENT_TOLERANCE;
+use crate::error::{Error, Result, Status};
+use crate::point::{self, sub, Point};
+use crate::quat::{cross_ratio, cross_ratio_from_prefix, CrossRatio};
+
+/// Coordinates within ±`BOUNDED` are less than `f64::MAX` apart (`2√3 · 1e300`).
+const BOUNDED: f64 = 1e300;
+
+/// The six-point blend `F6(a, b, c, d, e, f)` of the chains `a, b, c` and `d, e, f`
+/// (seed 000 §4.4.2): the point `p` with `cr[e, a, b, p] = χ`,
+/// `χ = −√X · √r`, `r = (√X)⁻¹ Y (√Z)⁻¹`, `X = cr[e, a, b, d]`, `Y = cr[e, a, b, f]`,
+/// `Z = cr[e, c, b, f]`.
+///
+/// Möbius-equivariant (all cross-ratios start at `e`), sphere preserving for six cospherical
+/// points (Lemma 4.2). `b = e` (within 1e-13 × the diameter of the six points) gives `b`.
+/// A negative-real `X`, `Z` or `r` takes the root `√|·| [0, n]` with `n` the unit imaginary
+/// part of whichever of `X`, `Y`, `Z` is farthest from real (largest `|Im|/|·|`, first in
+/// that order on ties). All three start at `e`, so a Möbius map turns their imaginary parts
+/// by one and the same rotation (seed 000 §3.2), and for cospherical points they all point
+/// along the sphere's normal at `e` (Appendix A, Lemma A.1): this keeps F6 Möbius-equivariant
+/// and sphere preserving there. Only when all three are real (the six points cocircular in
+/// pairs of four) is `n` the normal of the plane through `a, b, e`, as F4 does, with the
+/// same documented discontinuity. The real part of the solution, zero for cospherical
+/// points and observed to be zero otherwise (the paper has no proof), is dropped.
+///
+/// # Errors
+/// [`Status::NonFiniteInput`]; [`Status::DegenerateGeometry`] when a cross-ratio is undefined
+/// (`a = b`, `d = e`, `b = c`, `e = f`), `X` or `Z` is zero, or `p` is at infinity;
+/// [`Status::NumericalFailure`] when finite inputs overflow (points more than `f64::MAX`
+/// apart, or a result beyond it).
+pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<Point> {
+    let pts = [a, b, c, d, e, f];
+    if !pts.iter().all(point::is_finite) {
+        return Err(Error::new(Status::NonFiniteInput));
+    }
+    if b == e && pts.iter().all(|p| p.iter().all(|x| x.abs() <= BOUNDED)) {
+        // The rule `b = e → b` below, without the squares: coordinates within ±1e300 put
+        // every pair less than f64::MAX apart, so the rule applies. (The face-point chain
+        // meets this whenever a quadruplet's F4 is reused.)
+        return Ok(b);
+    }
+    let sq = pair_squares(&pts);
+    let max_sq = max_of(&sq);
+    let (found, frame) = if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
+        (f6_in(pts, sq, max_sq)?, None)
+    } else {
+        match normalised(pts, sq)? {
+            None => (None, None),
+            Some(Normalised {
+                frame,
+                local,
+                local_sq,
+            }) => (f6_in(local, local_sq, max_of(&local_sq))?, Some(frame)),
+        }
+    };
+    match found {
+        None => Ok(b),
+        Some(p) => frame::to_world(frame, p),
+    }
+}
+
+/// F6 on six finite points with pairwise squares `sq` (pairs in lexicographic order) whose
+/// largest is `max_sq`, in world or normalised-frame coordinates: `None` for the rule
+/// `b = e → b`, else the solved point.
+fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<Option<Point>> {
+    // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
+    let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
+    if be <= COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq {
+        return Ok(None);
+    }
+    let degenerate = Error::new(Status::DegenerateGeometry);
+    // X = cr[e, a, b, d] = q_ea q_ab⁻¹ q_bd q_de⁻¹ and Y = cr[e, a, b, f] share the prefix
+    // (a − e)(b − a)⁻¹, which is also the M of the solve; Z = cr[e, c, b, f].
+    let cx = CrossRatio::from_differences(sub(a, e), sub(b, a), sub(d, b), sub(e, d))?;
+    let x = cx.value()?;
+    let y = cross_ratio_from_prefix(cx.prefix, e, b, f)?;
+    let z = cross_ratio(e, c, b, f)?;
+    let abs = [x.abs(), y.abs(), z.abs()];
+    let axis = imaginary_axis(&[x, y, z], &abs);
+    let snap = axis.is_some();
+    let n = axis.unwrap_or_else(|| plane_normal(a, b, e));
+    let sx = sqrt_snapped_with_abs(x, abs[0], n, snap).ok_or(degenerate)?;
+    let sz = sqrt_snapped_with_abs(z, abs[2], n, snap).ok_or(degenerate)?;
+    let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
+    let sr = sqrt_snapped(r, n, snap).ok_or(degenerate)?;
+    let chi = -(sx * sr);
+    solve_by_difference(cx.prefix, b, e, chi).map(Some)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::is_negative_real;
+    use super::super::solve::solve_cross_ratio;
+    use super::*;
+    use crate::point::distance;
+
+    #[test]
+    fn f6_with_a_negative_real_r_stays_on_the_sphere_and_commutes() {
+        // Six coplanar points with r = (√X)⁻¹ Y (√Z)⁻¹ = −1 exactly: d is solved from
+        // √X = −Y (√Z)⁻¹ (real part > 0 for these points).
+        let (a, b, c) = ([-1.0, 0.1, 0.0], [0.0; 3], [1.0, -0.05, 0.0]);
+        let (e, f) = ([-1.987, 0.7, 0.0], [-2.0, -2.0, 0.0]);
+        let y = cross_ratio(e, a, b, f).unwrap();
+        let sz = cross_ratio(e, c, b, f).unwrap().sqrt().unwrap();
+        let sx = -(y * sz.inverse().unwrap());
+        assert!(sx.w > 0.1);
+        let d = solve_cross_ratio(a, b, e, sx * sx).unwrap();
+        let x = cross_ratio(e, a, b, d).unwrap();
+        let r = x.sqrt().unwrap().inverse().unwrap() * y * sz.inverse().unwrap();
+        assert!(is_negative_real(r), "{r:?}");
+        let p = f6(a, b, c, d, e, f).unwrap();
+        assert!(p[2].abs() < 1e-15, "{p:?}");
+        // An inversion maps the plane z = 0 to a sphere through its centre m; r stays a
+        // negative real, and the new point must stay on that sphere and commute with the map.
+        let (m, rad) = ([0.3, -0.2, 0.7], 0.9);
+        let inv = crate::mobius::MobiusMap::inversion(m, rad);
+        let im = [a, b, c, d, e, f].map(|q| inv.apply(q).unwrap());
+        let q = f6(im[0], im[1], im[2], im[3], im[4], im[5]).unwrap();
+        let big_r = rad * rad / (2.0 * m[2]);
+        let centre = [m[0], m[1], m[2] - big_r];
+        assert!(
+            (distance(q, centre) - big_r).abs() < 1e-13,
+            "{q:?} off the sphere"
+        );
+        assert!(distance(q, inv.apply(p).unwrap()) < 1e-13, "{q:?}");
+    }
+
+    #[test]
+    fn f6_with_b_equal_e_returns_b() {
+        let b = [0.5, 0.5, 0.1];
+        let p = f6(
+            [0.0; 3],
+            b,
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            b,
+            [1.0, 1.0, 0.0],
+        )
+        .unwrap();
+        assert_eq!(p, b);
+    }
+
+    #[test]
+    fn f6_on_a_planar_regular_grid_gives_the_centre() {
+        // Kobbelt face point of a unit square cell of a regular grid: two chains through the
+        // edge points meet at the cell centre (seed 000 Fig. 14).
+        let p = f6(
+            [0.0, 0.5, 0.0],
+            [0.5, 0.5, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+        )
+        .unwrap();
+        assert_eq!(p, [0.5, 0.5, 0.0]);
+    }
+}

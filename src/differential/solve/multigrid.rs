@@ -1,0 +1,203 @@
+//! The multigrid preconditioner of the solve: one V-cycle for the Dirichlet graph Laplacian
+//! `K̃` over the subdivision hierarchy (the [module documentation](super), "How it is solved").
+//!
+//! Level `j` is the mesh after `j` subdivision steps; the edge points of level `j + 1`
+//! interpolate linearly from their edge's ends (`P`), residuals restrict by `Pᵀ`, and the
+//! rediscretised `K_j` is the Galerkin operator of the finer one, so no coarse matrix is
+//! formed. The coarsest level (the control mesh) is solved by Jacobi-preconditioned CG.
+
+use super::vectors::{axpy, copy, dots, frob, ratio, xpby};
+use super::{SolveLevel, System};
+use crate::differential::laplacian::Laplacian;
+use crate::error::Result;
+use crate::mesh::{get, internal, set};
+use crate::point::{add, scale, sub, Point};
+
+/// Gauss–Seidel sweeps before and after each coarse correction.
+const NU: usize = 1;
+
+/// Parameters of the coarsest-level solve.
+#[derive(Clone, Copy)]
+pub(super) struct Coarse {
+    /// Relative residual to reach.
+    pub(super) tol: f64,
+    /// Iteration cap.
+    pub(super) max: u32,
+}
+
+/// Per-level work vectors of the V-cycle.
+pub(super) struct Work<'a> {
+    /// Right-hand side.
+    pub(super) b: &'a mut [Point],
+    /// Solution.
+    pub(super) x: &'a mut [Point],
+    /// Residual.
+    pub(super) r: &'a mut [Point],
+    /// A temporary.
+    pub(super) t: &'a mut [Point],
+}
+
+/// `y = K̃ x` at one level: `(K x)_i = dᵢ xᵢ − Σ_ring x_j` on free rows, 0 on fixed rows.
+pub(super) fn apply_k(lap: &Laplacian<'_>, x: &[Point], y: &mut [Point]) -> Result<()> {
+    for (i, yi) in y.iter_mut().enumerate().take(lap.len()) {
+        if lap.is_fixed(i)? {
+            *yi = [0.0; 3];
+            continue;
+        }
+        let r = lap.ring(i)?;
+        let mut s = [0.0; 3];
+        for &j in r {
+            s = add(s, get(x, j as usize)?);
+        }
+        *yi = sub(scale(get(x, i)?, r.len() as f64), s);
+    }
+    Ok(())
+}
+
+/// `r = b − K̃ x` (0 on fixed rows).
+fn residual(lap: &Laplacian<'_>, w: &mut Work<'_>) -> Result<()> {
+    apply_k(lap, w.x, w.r)?;
+    for (ri, bi) in w.r.iter_mut().zip(w.b.iter()) {
+        *ri = sub(*bi, *ri);
+    }
+    Ok(())
+}
+
+/// One Gauss–Seidel sweep for `K̃ x = b`, forward or backward (fixed entries stay 0).
+fn gauss_seidel(lap: &Laplacian<'_>, b: &[Point], x: &mut [Point], forward: bool) -> Result<()> {
+    let n = lap.len();
+    for s in 0..n {
+        let i = if forward { s } else { n - 1 - s };
+        if lap.is_fixed(i)? {
+            continue;
+        }
+        let r = lap.ring(i)?;
+        let mut acc = get(b, i)?;
+        for &j in r {
+            acc = add(acc, get(x, j as usize)?);
+        }
+        set(x, i, scale(acc, 1.0 / r.len() as f64))?;
+    }
+    Ok(())
+}
+
+/// `z = D⁻¹ r` on free rows, 0 on fixed rows.
+fn jacobi(lap: &Laplacian<'_>, r: &[Point], z: &mut [Point]) -> Result<()> {
+    for (i, zi) in z.iter_mut().enumerate().take(lap.len()) {
+        *zi = if lap.is_fixed(i)? {
+            [0.0; 3]
+        } else {
+            scale(get(r, i)?, 1.0 / lap.degree(i)?)
+        };
+    }
+    Ok(())
+}
+
+impl System<'_> {
+    fn level(&self, j: usize) -> Result<&SolveLevel<'_>> {
+        self.levels.get(j).ok_or(internal())
+    }
+
+    /// One V-cycle for `K̃` at the last level of `work`: `x ≈ K̃⁻¹ b`.
+    pub(super) fn vcycle(
+        &self,
+        work: &mut [Work<'_>],
+        coarse: &mut [&mut [Point]; 3],
+        c: Coarse,
+    ) -> Result<()> {
+        let Some((cur, below)) = work.split_last_mut() else {
+            return Err(internal());
+        };
+        let j = below.len();
+        let lap = self.level(j)?.lap;
+        if j == 0 {
+            return coarse_solve(&lap, cur, coarse, c);
+        }
+        let n = lap.len();
+        for xi in cur.x.iter_mut() {
+            *xi = [0.0; 3];
+        }
+        for _ in 0..NU {
+            gauss_seidel(&lap, cur.b, cur.x, true)?;
+        }
+        residual(&lap, cur)?;
+        let lc = self.level(j - 1)?;
+        let nc = lc.lap.len();
+        let cw = below.last_mut().ok_or(internal())?;
+        for i in 0..nc {
+            set(cw.b, i, get(cur.r, i)?)?;
+        }
+        for e in 0..(n - nc) {
+            let a = get(lc.edges, 2 * e)? as usize;
+            let b = get(lc.edges, 2 * e + 1)? as usize;
+            let h = scale(get(cur.r, nc + e)?, 0.5);
+            for v in [a, b] {
+                let p = cw.b.get_mut(v).ok_or(internal())?;
+                *p = add(*p, h);
+            }
+        }
+        for i in 0..nc {
+            if lc.lap.is_fixed(i)? {
+                set(cw.b, i, [0.0; 3])?;
+            }
+        }
+        self.vcycle(below, coarse, c)?;
+        let cw = below.last().ok_or(internal())?;
+        for i in 0..nc {
+            let p = cur.x.get_mut(i).ok_or(internal())?;
+            *p = add(*p, get(cw.x, i)?);
+        }
+        for e in 0..(n - nc) {
+            let a = get(cw.x, get(lc.edges, 2 * e)? as usize)?;
+            let b = get(cw.x, get(lc.edges, 2 * e + 1)? as usize)?;
+            let p = cur.x.get_mut(nc + e).ok_or(internal())?;
+            *p = add(*p, scale(add(a, b), 0.5));
+        }
+        for _ in 0..NU {
+            gauss_seidel(&lap, cur.b, cur.x, false)?;
+        }
+        Ok(())
+    }
+}
+
+/// Jacobi-PCG for `K̃₀` from `x = 0` to the coarse tolerance.
+fn coarse_solve(
+    lap: &Laplacian<'_>,
+    w: &mut Work<'_>,
+    v: &mut [&mut [Point]; 3],
+    c: Coarse,
+) -> Result<()> {
+    let n = lap.len();
+    let [p, q, z] = v;
+    let (p, q, z) = (
+        p.get_mut(..n).ok_or(internal())?,
+        q.get_mut(..n).ok_or(internal())?,
+        z.get_mut(..n).ok_or(internal())?,
+    );
+    for (x, (r, b)) in w.x.iter_mut().zip(w.r.iter_mut().zip(w.b.iter())) {
+        *x = [0.0; 3];
+        *r = *b;
+    }
+    let b0 = frob(w.b);
+    if b0 == 0.0 {
+        return Ok(());
+    }
+    jacobi(lap, w.r, z)?;
+    copy(p, z);
+    let mut rz = dots(w.r, z);
+    for _ in 0..c.max {
+        apply_k(lap, p, q)?;
+        let alpha = ratio(rz, dots(p, q));
+        axpy(w.x, alpha, p);
+        axpy(w.r, [-alpha[0], -alpha[1], -alpha[2]], q);
+        if frob(w.r) <= c.tol * b0 {
+            break;
+        }
+        jacobi(lap, w.r, z)?;
+        let rz_new = dots(w.r, z);
+        let beta = ratio(rz_new, rz);
+        rz = rz_new;
+        xpby(p, z, beta);
+    }
+    Ok(())
+}
