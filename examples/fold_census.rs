@@ -1,0 +1,1096 @@
+//! Folded edges of canonical Möbius subdivision: where they are, which rule made them, and a
+//! prototype of a Möbius-invariant safety criterion with a continuous fallback
+//! (docs/folds.md).
+//!
+//! ```text
+//! fold_census census  SCHEME LEVELS IN.off...        folded edges, library Möbius vs linear
+//! fold_census check   SCHEME LEVELS IN.off...        re-implementation == library, bit for bit
+//! fold_census trace   SCHEME LEVELS IN.off [--list]  every fold traced to its element and cause
+//! fold_census proto   SCHEME LEVELS IN.off...        paper / prototype / linear fold counts, flags
+//! fold_census equiv   SCHEME IN.off...               flags and output under random Möbius maps
+//! ```
+//!
+//! A folded edge is an interior edge of the output whose two faces have (Newell) normals more
+//! than 90° apart. SCHEME is `loop`, `butterfly` or `catmull-clark`.
+//!
+//! The per-element evaluation of the Möbius drivers (seed 000 §4.1–4.4) is re-implemented
+//! here from the crate's public primitives (canonical forms, stencils, F4, the face-point
+//! chain), so that every output vertex can carry what produced it; `check` confirms that the
+//! re-implementation reproduces the library's output bit for bit before `trace` relies on it.
+#![allow(
+    clippy::expect_used,
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::too_many_arguments,
+    clippy::type_complexity,
+    dead_code
+)]
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use std::path::Path;
+
+use common::*;
+use nlsubdiv::blend::{f4, f4_hinted, face_point_with_ids, is_negative_real};
+use nlsubdiv::mesh::{MeshOut, Spoke, Topology, NONE};
+use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
+use nlsubdiv::point::{add, cross, dot, norm, scale, sub};
+use nlsubdiv::quat::{cross_ratio, Quat};
+use nlsubdiv::scheme::mobius::MobiusOptions;
+use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::stencil::{butterfly, catmull_clark, centroid, loop_scheme};
+use nlsubdiv::Point;
+
+const ORIGIN: Point = [0.0; 3];
+const MISSING: Point = [f64::NAN; 3];
+
+fn present(p: &Point) -> bool {
+    p.iter().all(|x| x.is_finite())
+}
+
+// ------------------------------------------------------------------------------------------
+// Library runs and the fold census
+// ------------------------------------------------------------------------------------------
+
+fn build<R>(m: &OwnedMesh, f: impl FnOnce(&Topology<'_, '_>) -> R) -> R {
+    let mut scratch = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
+    let topo = Topology::build(m.view(), &mut scratch).unwrap();
+    f(&topo)
+}
+
+/// One library step, linear or Möbius (default options), and the number of fallbacks.
+fn lib_step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> (OwnedMesh, u32) {
+    build(m, |topo| {
+        let sizes = scheme::subdivide_size(s, topo).unwrap();
+        let mut out = OwnedMesh {
+            positions: vec![[0.0; 3]; sizes.vertices],
+            offsets: vec![0; sizes.faces + 1],
+            indices: vec![0; sizes.indices],
+        };
+        let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
+        let mut fb = 0;
+        if mobius_on {
+            let mut sp = vec![[0.0; 3]; scheme::mobius::scratch_len(topo).unwrap()];
+            let (_, rep) =
+                scheme::mobius::subdivide(s, topo, &mut mo, &mut sp, MobiusOptions::default())
+                    .unwrap();
+            fb = rep.fallbacks;
+        } else {
+            scheme::subdivide(s, topo, &mut mo).unwrap();
+        }
+        (out, fb)
+    })
+}
+
+fn lib_levels(s: Scheme, m: &OwnedMesh, levels: usize, mobius_on: bool) -> OwnedMesh {
+    let mut cur = m.clone();
+    for _ in 0..levels {
+        cur = lib_step(s, &cur, mobius_on).0;
+    }
+    cur
+}
+
+/// The Newell normal (area vector) of face `f`.
+fn face_normal(m: &OwnedMesh, f: usize) -> Point {
+    let idx = &m.indices[m.offsets[f] as usize..m.offsets[f + 1] as usize];
+    let mut n = [0.0; 3];
+    for i in 0..idx.len() {
+        let p = m.positions[idx[i] as usize];
+        let q = m.positions[idx[(i + 1) % idx.len()] as usize];
+        n = add(n, cross(p, q));
+    }
+    n
+}
+
+/// The folded interior edges of `m`: `(edge, face a, face b)`.
+fn folds(m: &OwnedMesh) -> Vec<(u32, u32, u32)> {
+    let normals: Vec<Point> = (0..m.num_faces()).map(|f| face_normal(m, f)).collect();
+    build(m, |topo| {
+        let mut out = Vec::new();
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e).unwrap();
+            let t = topo.twin(h).unwrap();
+            if t == NONE {
+                continue;
+            }
+            let (fa, fb) = (topo.face(h).unwrap(), topo.face(t).unwrap());
+            if dot(normals[fa as usize], normals[fb as usize]) < 0.0 {
+                out.push((e, fa, fb));
+            }
+        }
+        out
+    })
+}
+
+fn scheme_arg(a: &str) -> Scheme {
+    Scheme::from_name(a).unwrap_or_else(|| {
+        eprintln!("unknown scheme {a}");
+        std::process::exit(1)
+    })
+}
+
+fn load(p: &str) -> OwnedMesh {
+    read_off(Path::new(p)).unwrap_or_else(|e| {
+        eprintln!("{p}: {e}");
+        std::process::exit(1)
+    })
+}
+
+fn stem(p: &str) -> String {
+    Path::new(p)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+// ------------------------------------------------------------------------------------------
+// Per-star diagnostics (all but `pole_ratio` and the Euclidean angles are Möbius-invariant)
+// ------------------------------------------------------------------------------------------
+
+/// What one vertex star looks like to its canonical form.
+#[derive(Clone, Debug, Default)]
+struct StarDiag {
+    form: bool,
+    boundary: bool,
+    n: usize,
+    /// Signed turning (sine) of the tangent polygon at each spoke's corner, relative to the
+    /// polygon's own area vector; negative = reflex corner = the spoke is non-Delaunay in
+    /// the Möbius sense (seed 000 §4.5: "Delaunay = convex tangent polygon"). NaN for the
+    /// end corners of an open star.
+    turn: Vec<f64>,
+    /// The same turning as an angle in (−π, π].
+    turn_angle: Vec<f64>,
+    /// Wedges `(0, C_i, C_{i+1})` of the canonical star whose orientation disagrees with the
+    /// canonical ring's area vector: the canonical star is folded around the centre.
+    c_fold: u32,
+    /// `|c| / r`: the input's point at infinity sits at distance `r/|c|` from the centre in
+    /// the normalised canonical frame (not Möbius-invariant).
+    pole_ratio: f64,
+}
+
+fn spoke_list(topo: &Topology<'_, '_>, v: u32) -> Vec<Spoke> {
+    topo.star(v).collect()
+}
+
+fn is_ear(topo: &Topology<'_, '_>, v: u32) -> bool {
+    let h = topo.vertex_half_edge(v).unwrap();
+    h != NONE && topo.twin(h).unwrap() == NONE && topo.valence(v).unwrap() == 2
+}
+
+/// The canonical form the drivers use for `v` (none for isolated vertices, ears and stars
+/// without a form), with the star's spokes.
+fn form_of(topo: &Topology<'_, '_>, v: u32) -> (Option<CanonicalForm>, Vec<Spoke>) {
+    let h = topo.vertex_half_edge(v).unwrap();
+    if h == NONE {
+        return (None, Vec::new());
+    }
+    let boundary = topo.twin(h).unwrap() == NONE;
+    if boundary && topo.valence(v).unwrap() == 2 {
+        return (None, Vec::new());
+    }
+    let spokes = spoke_list(topo, v);
+    let ring: Vec<Point> = spokes
+        .iter()
+        .map(|s| topo.position(s.neighbour).unwrap())
+        .collect();
+    let kind = if boundary {
+        StarKind::Boundary
+    } else {
+        StarKind::Interior
+    };
+    (
+        CanonicalForm::new(topo.position(v).unwrap(), &ring, kind).ok(),
+        spokes,
+    )
+}
+
+fn star_diag(topo: &Topology<'_, '_>, v: u32) -> StarDiag {
+    let (cf, spokes) = form_of(topo, v);
+    let boundary = topo.is_boundary_vertex(v).unwrap_or(false);
+    let n = spokes.len();
+    let Some(cf) = cf else {
+        return StarDiag {
+            boundary,
+            n,
+            turn: vec![f64::NAN; n],
+            turn_angle: vec![f64::NAN; n],
+            ..Default::default()
+        };
+    };
+    let pv = topo.position(v).unwrap();
+    let t: Vec<Point> = spokes
+        .iter()
+        .map(|s| {
+            let d = sub(topo.position(s.neighbour).unwrap(), pv);
+            scale(d, -1.0 / dot(d, d)) // (u − v)⁻¹ for an imaginary quaternion
+        })
+        .collect();
+    let area = |p: &[Point]| {
+        let mut a = [0.0; 3];
+        for i in 0..p.len() {
+            a = add(a, cross(p[i], p[(i + 1) % p.len()]));
+        }
+        a
+    };
+    let nt = area(&t);
+    let ntl = norm(nt).max(1e-300);
+    let mut turn = vec![f64::NAN; n];
+    let mut turn_angle = vec![f64::NAN; n];
+    for i in 0..n {
+        if boundary && (i == 0 || i + 1 == n) {
+            continue;
+        }
+        let a = sub(t[i], t[(i + n - 1) % n]);
+        let b = sub(t[(i + 1) % n], t[i]);
+        let c = cross(a, b);
+        let s = dot(c, nt) / (ntl * norm(a) * norm(b));
+        turn[i] = s;
+        let cosang = dot(a, b) / (norm(a) * norm(b));
+        let ang = libm::atan2(norm(c), cosang);
+        turn_angle[i] = if s < 0.0 { -ang } else { ang };
+    }
+    let cimg: Vec<Point> = spokes
+        .iter()
+        .map(|s| {
+            cf.to_normalised(topo.position(s.neighbour).unwrap())
+                .unwrap_or(MISSING)
+        })
+        .collect();
+    let nc = area(&cimg);
+    let mut c_fold = 0;
+    let wedges = if boundary { n.saturating_sub(1) } else { n };
+    for i in 0..wedges {
+        if dot(cross(cimg[i], cimg[(i + 1) % n]), nc) <= 0.0 {
+            c_fold += 1;
+        }
+    }
+    StarDiag {
+        form: true,
+        boundary,
+        n,
+        turn,
+        turn_angle,
+        c_fold,
+        pole_ratio: norm(cf.c) / cf.r,
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// The re-implemented Möbius step with per-element provenance
+// ------------------------------------------------------------------------------------------
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+enum Kind {
+    #[default]
+    Vertex,
+    Edge,
+    Face,
+    Old,
+    BoundaryEdge,
+    BoundaryVertex,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+enum Rule {
+    /// From the element's own star (vertex points).
+    #[default]
+    Star,
+    /// `F4(v_j, e_j, e_k, v_k)` of two candidates.
+    F4Both,
+    /// One star gave a candidate.
+    Single,
+    /// The linear rule (degenerate neighbourhood).
+    Fallback,
+    /// A boundary curve rule.
+    Curve,
+    /// The §4.4.3 face-point chain.
+    FaceChain,
+    /// Copied (Butterfly's old vertices).
+    Copy,
+    /// Prototype: blended toward the linear rule.
+    Blended,
+}
+
+/// Provenance of one output vertex.
+#[derive(Clone, Copy, Debug, Default)]
+struct Elem {
+    kind: Kind,
+    /// Input vertex, edge or face.
+    src: u32,
+    rule: Rule,
+    /// Angle of F4's `ρ = cr[e_k, v_j, e_j, v_k]` in [0, π] (π: the negative-real cut).
+    rho_angle: f64,
+    /// Largest Euclidean distance of a candidate from the edge midpoint over the edge length.
+    cand_far: f64,
+    /// Smallest distance in the normalised canonical frame between the pole (image of the
+    /// input's ∞) and the segment from the centre to a candidate, over the candidate's norm.
+    pole_margin: f64,
+    /// Prototype: the weight of the Möbius rule (1 = the paper's rule).
+    weight: f64,
+}
+
+/// Prototype parameters: `None` runs the paper's rules.
+#[derive(Clone, Copy, Debug)]
+struct Proto {
+    /// Turning angle (radians) at or above which a tangent-polygon corner counts as fully
+    /// safe; below `lo` fully unsafe.
+    hi: f64,
+    lo: f64,
+}
+
+struct Step {
+    out: OwnedMesh,
+    lin: Vec<Point>,
+    elems: Vec<Elem>,
+    stars: Vec<StarDiag>,
+    /// Per half-edge: the candidate from the origin's form and its normalised-frame image.
+    edge_c: Vec<Point>,
+    /// Stars flagged by the prototype (trust < 1).
+    flagged: u32,
+    /// Elements whose weight < 1.
+    blended: u32,
+}
+
+fn pole_margin(cf: &CanonicalForm, p: Point) -> f64 {
+    let c2 = dot(cf.c, cf.c);
+    if c2 == 0.0 {
+        return f64::INFINITY;
+    }
+    let pole = scale(cf.c, -cf.r / c2);
+    let pp = dot(p, p);
+    if pp == 0.0 {
+        return f64::INFINITY;
+    }
+    let s = (dot(pole, p) / pp).clamp(0.0, 1.0);
+    norm(sub(pole, scale(p, s))) / pp.sqrt()
+}
+
+/// The trust in a star's canonical form at the corner of spoke `j` (1 = safe, 0 = fall back).
+fn corner_trust(sd: &StarDiag, j: usize, p: &Proto) -> f64 {
+    let a = sd.turn_angle.get(j).copied().unwrap_or(f64::NAN);
+    if !a.is_finite() {
+        return 1.0;
+    }
+    ((a - p.lo) / (p.hi - p.lo)).clamp(0.0, 1.0)
+}
+
+/// The trust in a whole star: the least over its corners.
+fn star_trust(sd: &StarDiag, p: &Proto) -> f64 {
+    if !sd.form {
+        return 1.0;
+    }
+    (0..sd.n).map(|j| corner_trust(sd, j, p)).fold(1.0, f64::min)
+}
+
+/// `q^w` for a quaternion off the negative reals (principal branch, via log/exp).
+fn qpow(q: Quat, w: f64) -> Option<Quat> {
+    Some(q.log()?.scale(w).exp())
+}
+
+/// The weighted four-point blend: the point `p` with `cr[c, a, b, p] = χ_w`,
+/// `χ_w = −ρ (1 − ρ^w)(ρ^w − ρ)⁻¹`, `ρ = cr[c, a, b, d]`. `w = ½` is F4 (`χ = −√ρ`), `w → 0`
+/// gives `b`, `w → 1` gives `c`: in a Möbius frame with `a = 0`, `d = ∞` it is the weighted
+/// geometric mean `b^{1−w} c^w`. Every quantity is a function of `ρ`, so it is Möbius
+/// equivariant and sphere preserving like F4 (Lemma A.1).
+fn f4_weighted(a: Point, b: Point, c: Point, d: Point, w: f64) -> Option<Point> {
+    if w <= 0.0 {
+        return Some(b);
+    }
+    if w >= 1.0 {
+        return Some(c);
+    }
+    let rho = cross_ratio(c, a, b, d).ok()?;
+    if is_negative_real(rho) {
+        return None;
+    }
+    let rw = qpow(rho, w)?;
+    let chi = -(rho * (Quat::ONE - rw) * (rw - rho).inverse()?);
+    // Solve cr[c, a, b, p] = χ: p = c + (M + χ)⁻¹ M (b − c), M = (a − c)(b − a)⁻¹.
+    let qa = Quat::from_point(a);
+    let qb = Quat::from_point(b);
+    let qc = Quat::from_point(c);
+    let m = (qa - qc) * (qb - qa).inverse()?;
+    let off = ((m + chi).inverse()? * m * (qb - qc)).to_point();
+    let p = add(c, off);
+    present(&p).then_some(p)
+}
+
+struct Ctx<'a, 't, 'm, 's> {
+    topo: &'a Topology<'m, 's>,
+    s: Scheme,
+    proto: Option<Proto>,
+    stars: Vec<StarDiag>,
+    trust: Vec<f64>,
+    pos: Vec<Point>,
+    elems: Vec<Elem>,
+    lin: Vec<Point>,
+    edge_c: Vec<Point>,
+    face_c: Vec<Point>,
+    /// Per half-edge: the pole margin of its edge candidate.
+    edge_pm: Vec<f64>,
+    _t: std::marker::PhantomData<&'t ()>,
+}
+
+impl Ctx<'_, '_, '_, '_> {
+    fn p(&self, v: u32) -> Point {
+        self.topo.position(v).unwrap()
+    }
+
+    fn canon(&self, cf: &CanonicalForm, v: u32, u: u32) -> Option<Point> {
+        if u == v {
+            return Some(ORIGIN);
+        }
+        cf.to_normalised(self.p(u)).ok()
+    }
+
+    fn apex(&self, h: u32) -> u32 {
+        self.topo.dest(self.topo.next(h).unwrap()).unwrap()
+    }
+
+    fn set(&mut self, k: usize, p: Point, e: Elem) {
+        self.pos[k] = p;
+        self.elems[k] = e;
+    }
+
+    /// The weight of the Möbius rule for spoke `j` of `v`'s star.
+    fn spoke_weight(&self, v: u32, j: usize) -> f64 {
+        match self.proto {
+            None => 1.0,
+            Some(p) => corner_trust(&self.stars[v as usize], j, &p).min(self.trust_of(v)),
+        }
+    }
+
+    fn trust_of(&self, v: u32) -> f64 {
+        self.trust[v as usize]
+    }
+
+    /// Blend the Möbius point `m` with the linear point `l`: `w m + (1 − w) l`.
+    fn toward_linear(m: Point, l: Point, w: f64) -> Point {
+        if w >= 1.0 {
+            m
+        } else {
+            add(scale(m, w), scale(l, 1.0 - w))
+        }
+    }
+
+    // ---- edges ----
+
+    fn blend_interior_edges(&mut self, start: usize) {
+        let topo = self.topo;
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e).unwrap();
+            let t = topo.twin(h).unwrap();
+            if t == NONE {
+                continue;
+            }
+            let (va, vb) = (topo.origin(h).unwrap(), topo.dest(h).unwrap());
+            let (a, b) = (self.p(va), self.p(vb));
+            let ca = self.edge_c[h as usize];
+            let cb = self.edge_c[t as usize];
+            let hint = self.p(self.apex(h));
+            let k = start + e as usize;
+            let mut el = Elem {
+                kind: Kind::Edge,
+                src: e,
+                rho_angle: f64::NAN,
+                weight: 1.0,
+                ..Default::default()
+            };
+            let len = norm(sub(a, b));
+            let mid = scale(add(a, b), 0.5);
+            for c in [ca, cb] {
+                if present(&c) {
+                    el.cand_far = el.cand_far.max(norm(sub(c, mid)) / len);
+                }
+            }
+            el.pole_margin = self.edge_pm[h as usize].min(self.edge_pm[t as usize]);
+            if present(&ca) && present(&cb) {
+                if let Ok(rho) = cross_ratio(cb, a, ca, b) {
+                    el.rho_angle = libm::atan2(rho.abs_im(), rho.w);
+                }
+            }
+            let p = if present(&ca) && present(&cb) {
+                el.rule = Rule::F4Both;
+                f4_hinted(a, ca, cb, b, hint).ok()
+            } else if present(&ca) {
+                el.rule = Rule::Single;
+                Some(ca)
+            } else if present(&cb) {
+                el.rule = Rule::Single;
+                Some(cb)
+            } else {
+                None
+            };
+            let p = match p {
+                Some(p) if present(&p) => p,
+                _ => {
+                    el.rule = Rule::Fallback;
+                    self.lin[k]
+                }
+            };
+            // Prototype: the edge point leans toward its linear rule by the trust of the two
+            // stars at this spoke.
+            let p = if self.proto.is_some() && el.rule != Rule::Fallback {
+                let ja = self.spoke_index(va, h);
+                let jb = self.spoke_index(vb, t);
+                let w = self.spoke_weight(va, ja).min(self.spoke_weight(vb, jb));
+                el.weight = w;
+                if w < 1.0 {
+                    el.rule = Rule::Blended;
+                }
+                Self::toward_linear(p, self.lin[k], w)
+            } else {
+                p
+            };
+            self.set(k, p, el);
+        }
+    }
+
+    fn spoke_index(&self, v: u32, h: u32) -> usize {
+        self.topo
+            .star(v)
+            .position(|s| s.half_edge == h)
+            .unwrap_or(usize::MAX)
+    }
+
+    fn boundary_outer(&self, h: u32) -> (u32, u32) {
+        let topo = self.topo;
+        (
+            topo.origin(topo.prev_boundary(h).unwrap()).unwrap(),
+            topo.dest(topo.next_boundary(h).unwrap()).unwrap(),
+        )
+    }
+
+    fn boundary_edges(&mut self, start: usize) {
+        let topo = self.topo;
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e).unwrap();
+            if topo.twin(h).unwrap() != NONE {
+                continue;
+            }
+            let (i0, i3) = self.boundary_outer(h);
+            let p = [
+                self.p(i0),
+                self.p(topo.origin(h).unwrap()),
+                self.p(topo.dest(h).unwrap()),
+                self.p(i3),
+            ];
+            let k = start + e as usize;
+            let mut el = Elem {
+                kind: Kind::BoundaryEdge,
+                src: e,
+                rule: Rule::Curve,
+                rho_angle: f64::NAN,
+                weight: 1.0,
+                ..Default::default()
+            };
+            if let Ok(rho) = cross_ratio(p[2], p[0], p[1], p[3]) {
+                el.rho_angle = libm::atan2(rho.abs_im(), rho.w);
+            }
+            let q = match f4(p[0], p[1], p[2], p[3]) {
+                Ok(q) => q,
+                Err(_) => {
+                    el.rule = Rule::Fallback;
+                    self.lin[k]
+                }
+            };
+            self.set(k, q, el);
+        }
+    }
+
+    fn boundary_vertices_approximating(&mut self, start: usize) {
+        let topo = self.topo;
+        for v in 0..topo.num_vertices() as u32 {
+            if !topo.is_boundary_vertex(v).unwrap() {
+                continue;
+            }
+            let out_h = topo.vertex_half_edge(v).unwrap();
+            let in_h = topo.prev_boundary(out_h).unwrap();
+            let (b0, b1) = (topo.dest(out_h).unwrap(), topo.origin(in_h).unwrap());
+            let e_out = self.pos[start + topo.edge(out_h).unwrap() as usize];
+            let e_in = self.pos[start + topo.edge(in_h).unwrap() as usize];
+            let (p0, p1) = (self.p(b1), self.p(b0));
+            let mut el = Elem {
+                kind: Kind::BoundaryVertex,
+                src: v,
+                rule: Rule::Curve,
+                rho_angle: f64::NAN,
+                weight: 1.0,
+                ..Default::default()
+            };
+            if let Ok(rho) = cross_ratio(e_out, p0, e_in, p1) {
+                el.rho_angle = libm::atan2(rho.abs_im(), rho.w);
+            }
+            let q = match f4(p0, e_in, e_out, p1) {
+                Ok(q) => q,
+                Err(_) => {
+                    el.rule = Rule::Fallback;
+                    self.lin[v as usize]
+                }
+            };
+            self.set(v as usize, q, el);
+        }
+    }
+
+    /// A vertex point from the star's own form, or its linear rule.
+    fn vertex_point(&mut self, v: u32, m: Option<Point>) {
+        let k = v as usize;
+        let mut el = Elem {
+            kind: Kind::Vertex,
+            src: v,
+            rho_angle: f64::NAN,
+            weight: 1.0,
+            ..Default::default()
+        };
+        let mut q = match m {
+            Some(q) if present(&q) => q,
+            _ => {
+                el.rule = Rule::Fallback;
+                self.lin[k]
+            }
+        };
+        if self.proto.is_some() && el.rule != Rule::Fallback {
+            let w = self.trust_of(v);
+            el.weight = w;
+            if w < 1.0 {
+                el.rule = Rule::Blended;
+            }
+            q = Self::toward_linear(q, self.lin[k], w);
+        }
+        self.set(k, q, el);
+    }
+
+    // ---- Loop ----
+
+    fn run_loop(&mut self) {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        for v in 0..nv as u32 {
+            let p = self.p(v);
+            if topo.is_isolated(v).unwrap() {
+                self.set(v as usize, p, Elem::default());
+                continue;
+            }
+            let (cf, spokes) = form_of(topo, v);
+            let boundary = topo.is_boundary_vertex(v).unwrap();
+            let mut vertex = None;
+            if let Some(cf) = &cf {
+                let ring: Option<Vec<Point>> =
+                    spokes.iter().map(|s| self.canon(cf, v, s.neighbour)).collect();
+                if let Some(ring) = ring {
+                    let n = ring.len();
+                    if !boundary {
+                        vertex = loop_scheme::vertex_interior(ORIGIN, &ring)
+                            .and_then(|q| cf.from_normalised(q))
+                            .ok();
+                    }
+                    for (j, s) in spokes.iter().enumerate() {
+                        if !(!boundary || (j >= 1 && j + 1 < n)) || s.half_edge == NONE {
+                            continue;
+                        }
+                        let q = loop_scheme::edge_interior(
+                            ORIGIN,
+                            ring[j],
+                            ring[(j + 1) % n],
+                            ring[(j + n - 1) % n],
+                        );
+                        if let Ok(c) = cf.from_normalised(q) {
+                            if present(&c) {
+                                self.edge_c[s.half_edge as usize] = c;
+                                self.edge_pm[s.half_edge as usize] = pole_margin(cf, q);
+                            }
+                        }
+                    }
+                }
+            }
+            if !boundary {
+                self.vertex_point(v, vertex);
+            }
+        }
+        self.blend_interior_edges(nv);
+        self.boundary_edges(nv);
+        self.boundary_vertices_approximating(nv);
+    }
+
+    // ---- Catmull–Clark ----
+
+    fn form_vertex(&self, f: u32, i: usize) -> Option<u32> {
+        let verts = self.topo.face_vertices(f).unwrap();
+        let d = verts.len();
+        let own = verts[i];
+        if !is_ear(self.topo, own) {
+            return Some(own);
+        }
+        let h = d / 2;
+        for k in 0..d {
+            let step = k.div_ceil(2);
+            let off = if k % 2 == 1 { h + step } else { h + d - step };
+            let u = verts[(i + off) % d];
+            if !is_ear(self.topo, u) {
+                return Some(u);
+            }
+        }
+        None
+    }
+
+    fn face_centroid(&self, cf: &CanonicalForm, v: u32, f: u32) -> Option<Point> {
+        let pts: Option<Vec<Point>> = self
+            .topo
+            .face_vertices(f)
+            .unwrap()
+            .iter()
+            .map(|&u| self.canon(cf, v, u))
+            .collect();
+        centroid(&pts?).ok()
+    }
+
+    fn run_catmull_clark(&mut self) {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        let fp0 = nv + topo.num_edges();
+        // Ears: their face candidates in a substitute vertex's form.
+        for f in 0..topo.num_faces() as u32 {
+            for (i, h) in topo.face_half_edges(f).unwrap().enumerate() {
+                let v = topo.origin(h).unwrap();
+                if !is_ear(topo, v) {
+                    continue;
+                }
+                let Some(u) = self.form_vertex(f, i) else {
+                    continue;
+                };
+                let (Some(cf), _) = form_of(topo, u) else {
+                    continue;
+                };
+                if let Some(c) = self.face_centroid(&cf, u, f) {
+                    if let Ok(b) = cf.from_normalised(c) {
+                        self.face_c[h as usize] = b;
+                    }
+                }
+            }
+        }
+        for v in 0..nv as u32 {
+            let p = self.p(v);
+            if topo.is_isolated(v).unwrap() {
+                self.set(v as usize, p, Elem::default());
+                continue;
+            }
+            let boundary = topo.is_boundary_vertex(v).unwrap();
+            let (cf, spokes) = form_of(topo, v);
+            let mut vertex = None;
+            if let Some(cf) = &cf {
+                let n = spokes.len();
+                let mut ring = Vec::new();
+                let mut fc = Vec::new();
+                for s in &spokes {
+                    let c = if s.face == NONE {
+                        MISSING
+                    } else {
+                        self.face_centroid(cf, v, s.face).unwrap_or(MISSING)
+                    };
+                    if present(&c) {
+                        if let Ok(b) = cf.from_normalised(c) {
+                            self.face_c[s.half_edge as usize] = b;
+                        }
+                    }
+                    fc.push(c);
+                    ring.push(self.canon(cf, v, s.neighbour).unwrap_or(MISSING));
+                }
+                for (j, s) in spokes.iter().enumerate() {
+                    if !(!boundary || (j >= 1 && j + 1 < n)) {
+                        continue;
+                    }
+                    let b = ring[j];
+                    let f0 = fc[(j + n - 1) % n];
+                    let f1 = fc[j];
+                    if present(&b) && present(&f0) && present(&f1) && s.half_edge != NONE {
+                        let q = catmull_clark::edge_interior(ORIGIN, b, f0, f1);
+                        if let Ok(c) = cf.from_normalised(q) {
+                            if present(&c) {
+                                self.edge_c[s.half_edge as usize] = c;
+                                self.edge_pm[s.half_edge as usize] = pole_margin(cf, q);
+                            }
+                        }
+                    }
+                }
+                if !boundary && ring.iter().all(present) && fc.iter().all(present) {
+                    vertex = catmull_clark::vertex_interior(ORIGIN, &ring, &fc)
+                        .and_then(|q| cf.from_normalised(q))
+                        .ok();
+                }
+            }
+            if !boundary {
+                self.vertex_point(v, vertex);
+            }
+        }
+        // Face points.
+        for f in 0..topo.num_faces() as u32 {
+            let verts: Vec<Point> = topo
+                .face_vertices(f)
+                .unwrap()
+                .iter()
+                .map(|&u| self.p(u))
+                .collect();
+            let cands: Vec<Point> = topo
+                .face_half_edges(f)
+                .unwrap()
+                .map(|h| self.face_c[h as usize])
+                .collect();
+            let k = fp0 + f as usize;
+            let mut el = Elem {
+                kind: Kind::Face,
+                src: f,
+                rule: Rule::FaceChain,
+                rho_angle: f64::NAN,
+                weight: 1.0,
+                ..Default::default()
+            };
+            let c0 = centroid(&verts).unwrap();
+            let diam = verts
+                .iter()
+                .map(|p| norm(sub(*p, c0)))
+                .fold(0.0, f64::max)
+                .max(1e-300);
+            for c in &cands {
+                if present(c) {
+                    el.cand_far = el.cand_far.max(norm(sub(*c, c0)) / diam);
+                }
+            }
+            let q = if cands.iter().all(present) {
+                face_point_with_ids(&verts, &cands, topo.face_vertices(f).unwrap()).ok()
+            } else {
+                None
+            };
+            let mut q = match q {
+                Some(q) => q,
+                None => {
+                    el.rule = Rule::Fallback;
+                    self.lin[k]
+                }
+            };
+            if let Some(pr) = self.proto {
+                if el.rule != Rule::Fallback {
+                    // The face's corners: the least trust of their stars at the face.
+                    let mut w: f64 = 1.0;
+                    for (i, &u) in topo.face_vertices(f).unwrap().iter().enumerate() {
+                        let _ = i;
+                        let _ = pr;
+                        w = w.min(self.trust_of(u));
+                    }
+                    el.weight = w;
+                    if w < 1.0 {
+                        el.rule = Rule::Blended;
+                    }
+                    q = Self::toward_linear(q, self.lin[k], w);
+                }
+            }
+            self.set(k, q, el);
+        }
+        self.blend_interior_edges(nv);
+        self.boundary_edges(nv);
+        self.boundary_vertices_approximating(nv);
+    }
+
+    // ---- Modified Butterfly ----
+
+    fn across_in(&self, cf: &CanonicalForm, v: u32, g: u32) -> Option<Point> {
+        let topo = self.topo;
+        let t = topo.twin(g).unwrap();
+        if t == NONE {
+            let u = self.canon(cf, v, topo.origin(g).unwrap())?;
+            let w = self.canon(cf, v, topo.dest(g).unwrap())?;
+            let z = self.canon(cf, v, self.apex(g))?;
+            Some(butterfly::reflect(u, w, z))
+        } else {
+            self.canon(cf, v, self.apex(t))
+        }
+    }
+
+    fn run_butterfly(&mut self) {
+        let topo = self.topo;
+        let nv = topo.num_vertices();
+        for v in 0..nv as u32 {
+            let el = Elem {
+                kind: Kind::Old,
+                src: v,
+                rule: Rule::Copy,
+                rho_angle: f64::NAN,
+                weight: 1.0,
+                ..Default::default()
+            };
+            let p = self.p(v);
+            self.set(v as usize, p, el);
+        }
+        for v in 0..nv as u32 {
+            let (Some(cf), spokes) = form_of(topo, v) else {
+                continue;
+            };
+            let boundary = topo.is_boundary_vertex(v).unwrap();
+            let irregular = !boundary && topo.valence(v).unwrap() != 6;
+            let n = spokes.len();
+            for (j, s) in spokes.iter().enumerate() {
+                let h = s.half_edge;
+                if h == NONE || topo.twin(h).unwrap() == NONE {
+                    continue;
+                }
+                let other = s.neighbour;
+                let other_irregular = !topo.is_boundary_vertex(other).unwrap()
+                    && topo.valence(other).unwrap() != 6;
+                let cand: Option<Point> = (|| {
+                    if irregular {
+                        let ring: Option<Vec<Point>> = (0..n)
+                            .map(|k| self.canon(&cf, v, spokes[(j + k) % n].neighbour))
+                            .collect();
+                        return butterfly::zorin_stencil(ORIGIN, &ring?).ok();
+                    }
+                    if other_irregular {
+                        return None;
+                    }
+                    let t = topo.twin(h).unwrap();
+                    let a0 = ORIGIN;
+                    let a1 = self.canon(&cf, v, other)?;
+                    let b0 = self.canon(&cf, v, self.apex(h))?;
+                    let b1 = self.canon(&cf, v, self.apex(t))?;
+                    let c0 = self.across_in(&cf, v, topo.prev(h).unwrap())?;
+                    let c3 = self.across_in(&cf, v, topo.next(t).unwrap())?;
+                    Some([
+                        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125
+                            - (c0[0] + c3[0]) * 0.125,
+                        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125
+                            - (c0[1] + c3[1]) * 0.125,
+                        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125
+                            - (c0[2] + c3[2]) * 0.125,
+                    ])
+                })();
+                if let Some(q) = cand {
+                    if let Ok(c) = cf.from_normalised(q) {
+                        self.edge_c[h as usize] = c;
+                        self.edge_pm[h as usize] = pole_margin(&cf, q);
+                    }
+                }
+            }
+        }
+        self.blend_interior_edges(nv);
+        self.boundary_edges(nv);
+    }
+}
+
+/// One re-implemented Möbius step (`proto = None`: the paper's rules as the library runs
+/// them).
+fn my_step(s: Scheme, m: &OwnedMesh, proto: Option<Proto>) -> Step {
+    let (lin_mesh, _) = lib_step(s, m, false);
+    build(m, |topo| {
+        let nv = topo.num_vertices();
+        let nh = topo.num_half_edges();
+        let stars: Vec<StarDiag> = (0..nv as u32).map(|v| star_diag(topo, v)).collect();
+        let trust: Vec<f64> = match proto {
+            None => vec![1.0; nv],
+            Some(p) => stars.iter().map(|sd| star_trust(sd, &p)).collect(),
+        };
+        let mut ctx = Ctx {
+            topo,
+            s,
+            proto,
+            stars,
+            trust,
+            pos: vec![MISSING; lin_mesh.positions.len()],
+            elems: vec![Elem::default(); lin_mesh.positions.len()],
+            lin: lin_mesh.positions.clone(),
+            edge_c: vec![MISSING; nh],
+            face_c: vec![MISSING; nh],
+            edge_pm: vec![f64::INFINITY; nh],
+            _t: std::marker::PhantomData,
+        };
+        match s {
+            Scheme::Loop => ctx.run_loop(),
+            Scheme::CatmullClark => ctx.run_catmull_clark(),
+            Scheme::ModifiedButterfly => ctx.run_butterfly(),
+            _ => panic!("only loop, butterfly, catmull-clark"),
+        }
+        let flagged = ctx.trust.iter().filter(|&&t| t < 1.0).count() as u32;
+        let blended = ctx.elems.iter().filter(|e| e.weight < 1.0).count() as u32;
+        Step {
+            out: OwnedMesh {
+                positions: ctx.pos,
+                ..lin_mesh.clone()
+            },
+            lin: ctx.lin,
+            elems: ctx.elems,
+            stars: ctx.stars,
+            edge_c: ctx.edge_c,
+            flagged,
+            blended,
+        }
+    })
+}
+
+// ------------------------------------------------------------------------------------------
+// Commands
+// ------------------------------------------------------------------------------------------
+
+fn cmd_census(s: Scheme, levels: usize, files: &[String]) {
+    println!("mesh\tlevel\tmobius\tlinear\tfallbacks");
+    for f in files {
+        let m = load(f);
+        let (mut cm, mut cl) = (m.clone(), m.clone());
+        for l in 1..=levels {
+            let (nm, fb) = lib_step(s, &cm, true);
+            cm = nm;
+            cl = lib_step(s, &cl, false).0;
+            println!(
+                "{}\t{}\t{}\t{}\t{}",
+                stem(f),
+                l,
+                folds(&cm).len(),
+                folds(&cl).len(),
+                fb
+            );
+        }
+    }
+}
+
+fn cmd_check(s: Scheme, levels: usize, files: &[String]) {
+    for f in files {
+        let mut cur = load(f);
+        for l in 1..=levels {
+            let (lib, _) = lib_step(s, &cur, true);
+            let mine = my_step(s, &cur, None).out;
+            let mut diff = 0usize;
+            let mut worst: f64 = 0.0;
+            for (a, b) in lib.positions.iter().zip(&mine.positions) {
+                if a != b {
+                    diff += 1;
+                    worst = worst.max(norm(sub(*a, *b)));
+                }
+            }
+            let same_conn = lib.offsets == mine.offsets && lib.indices == mine.indices;
+            println!(
+                "{}\tlevel {}\tvertices {}\tdiffering {}\tworst {:e}\tconnectivity same: {}",
+                stem(f),
+                l,
+                lib.positions.len(),
+                diff,
+                worst,
+                same_conn
+            );
+            cur = lib;
+        }
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() < 4 {
+        eprintln!("usage: fold_census census|check|trace|proto|equiv SCHEME [LEVELS] IN.off...");
+        std::process::exit(1);
+    }
+    let s = scheme_arg(&args[2]);
+    match args[1].as_str() {
+        "census" => cmd_census(s, args[3].parse().unwrap(), &args[4..]),
+        "check" => cmd_check(s, args[3].parse().unwrap(), &args[4..]),
+        other => {
+            eprintln!("unknown command {other}");
+            std::process::exit(1)
+        }
+    }
+}
