@@ -35,6 +35,8 @@ use common::*;
 use nlsubdiv::blend::{f4, f4_hinted, face_point_with_ids, is_negative_real};
 use nlsubdiv::mesh::{MeshOut, Spoke, Topology, NONE};
 use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
+#[allow(unused_imports)]
+use nlsubdiv::mobius as _m;
 use nlsubdiv::point::{add, cross, dot, norm, scale, sub};
 use nlsubdiv::quat::{cross_ratio, Quat};
 use nlsubdiv::scheme::mobius::MobiusOptions;
@@ -246,8 +248,7 @@ fn star_diag(topo: &Topology<'_, '_>, v: u32) -> StarDiag {
         let c = cross(a, b);
         let s = dot(c, nt) / (ntl * norm(a) * norm(b));
         turn[i] = s;
-        let cosang = dot(a, b) / (norm(a) * norm(b));
-        let ang = libm::atan2(norm(c), cosang);
+        let ang = libm::atan2(norm(c), dot(a, b));
         turn_angle[i] = if s < 0.0 { -ang } else { ang };
     }
     let cimg: Vec<Point> = spokes
@@ -1088,9 +1089,330 @@ fn main() {
     match args[1].as_str() {
         "census" => cmd_census(s, args[3].parse().unwrap(), &args[4..]),
         "check" => cmd_check(s, args[3].parse().unwrap(), &args[4..]),
+        "trace" => {
+            let list = args.iter().any(|a| a == "--list");
+            let files: Vec<String> = args[4..].iter().filter(|a| *a != "--list").cloned().collect();
+            cmd_trace(s, args[3].parse().unwrap(), &files, list)
+        }
+        "selftest" => selftest(),
         other => {
             eprintln!("unknown command {other}");
             std::process::exit(1)
         }
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Tracing folds to elements
+// ------------------------------------------------------------------------------------------
+
+fn face_verts(m: &OwnedMesh, f: u32) -> &[u32] {
+    &m.indices[m.offsets[f as usize] as usize..m.offsets[f as usize + 1] as usize]
+}
+
+fn newell(pos: &[Point], idx: &[u32]) -> Point {
+    let mut n = [0.0; 3];
+    for i in 0..idx.len() {
+        n = add(
+            n,
+            cross(pos[idx[i] as usize], pos[idx[(i + 1) % idx.len()] as usize]),
+        );
+    }
+    n
+}
+
+/// The output vertex held responsible for the fold `(fa, fb)`: among the two faces'
+/// vertices, the one whose move to its linear position unfolds the edge, the farthest from
+/// its linear position first; `(vertex, unfolded_by_it)`.
+fn culprit(st: &Step, fa: u32, fb: u32) -> (u32, bool) {
+    let m = &st.out;
+    let (ia, ib) = (face_verts(m, fa).to_vec(), face_verts(m, fb).to_vec());
+    let mut cand: Vec<u32> = ia.iter().chain(ib.iter()).copied().collect();
+    cand.sort();
+    cand.dedup();
+    let dev = |k: u32| norm(sub(m.positions[k as usize], st.lin[k as usize]));
+    cand.sort_by(|a, b| dev(*b).partial_cmp(&dev(*a)).unwrap());
+    let mut pos = m.positions.clone();
+    for &k in &cand {
+        let keep = pos[k as usize];
+        pos[k as usize] = st.lin[k as usize];
+        let ok = dot(newell(&pos, &ia), newell(&pos, &ib)) >= 0.0;
+        pos[k as usize] = keep;
+        if ok {
+            return (k, true);
+        }
+    }
+    (cand[0], false)
+}
+
+/// The Euclidean opposite-angle sum of interior edge `e` of a triangle mesh (> π:
+/// non-Delaunay), NaN otherwise.
+fn opposite_angle_sum(topo: &Topology<'_, '_>, e: u32) -> f64 {
+    let h = topo.edge_half_edge(e).unwrap();
+    let t = topo.twin(h).unwrap();
+    if t == NONE || topo.face_size(topo.face(h).unwrap()).unwrap() != 3 {
+        return f64::NAN;
+    }
+    if topo.face_size(topo.face(t).unwrap()).unwrap() != 3 {
+        return f64::NAN;
+    }
+    let p = |v: u32| topo.position(v).unwrap();
+    let a = p(topo.origin(h).unwrap());
+    let b = p(topo.dest(h).unwrap());
+    let ang = |c: Point| {
+        let (x, y) = (sub(a, c), sub(b, c));
+        libm::atan2(norm(cross(x, y)), dot(x, y))
+    };
+    let c = p(topo.dest(topo.next(h).unwrap()).unwrap());
+    let d = p(topo.dest(topo.next(t).unwrap()).unwrap());
+    ang(c) + ang(d)
+}
+
+/// The cause of one traced fold (first match in this order; docs/folds.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Cause {
+    /// The element's own star (an endpoint's star at the edge's spoke, for edge points) has
+    /// a reflex tangent-polygon corner there: non-Delaunay in the Möbius sense.
+    NonDelaunaySpoke,
+    /// The spoke itself is convex but the star has a reflex corner elsewhere.
+    NonDelaunayStar,
+    /// F4's ρ within 10° of the negative-real cut.
+    F4NearCut,
+    /// A boundary curve rule.
+    Boundary,
+    /// A single (partial) candidate taken as the edge point.
+    SingleCandidate,
+    /// None of the above: a Delaunay neighbourhood.
+    Other,
+}
+
+struct Traced {
+    level: usize,
+    out_vertex: u32,
+    repaired: bool,
+    elem: Elem,
+    cause: Cause,
+    /// Turning angles (degrees) of the involved stars' corners at the element.
+    turn_at: f64,
+    /// Least turning angle (degrees) over the involved stars.
+    turn_min: f64,
+    c_fold: u32,
+    pole_ratio: f64,
+    eu_sum: f64,
+    inherited: bool,
+    dev_rel: f64,
+    where_: Point,
+    input_vertex: u32,
+}
+
+fn deg(x: f64) -> f64 {
+    x.to_degrees()
+}
+
+fn trace_step(
+    st: &Step,
+    topo_mesh: &OwnedMesh,
+    level: usize,
+    prev_fold_faces: &std::collections::HashSet<u32>,
+) -> Vec<Traced> {
+    let fl = folds(&st.out);
+    build(topo_mesh, |topo| {
+        let mut out = Vec::new();
+        // Faces of the previous level around a vertex.
+        let near_prev_fold = |v: u32| -> bool {
+            topo.star(v)
+                .chain(topo.star(v).flat_map(|s| topo.star(s.neighbour)))
+                .any(|s| s.face != NONE && prev_fold_faces.contains(&s.face))
+        };
+        for &(_, fa, fb) in &fl {
+            let (k, repaired) = culprit(st, fa, fb);
+            let el = st.elems[k as usize];
+            let mut involved: Vec<(u32, usize)> = Vec::new(); // (vertex, spoke index or MAX)
+            let mut eu_sum = f64::NAN;
+            let mut input_vertex = el.src;
+            match el.kind {
+                Kind::Vertex | Kind::BoundaryVertex | Kind::Old => {
+                    involved.push((el.src, usize::MAX));
+                }
+                Kind::Edge | Kind::BoundaryEdge => {
+                    let h = topo.edge_half_edge(el.src).unwrap();
+                    let t = topo.twin(h).unwrap();
+                    let (a, b) = (topo.origin(h).unwrap(), topo.dest(h).unwrap());
+                    input_vertex = a;
+                    let ja = topo.star(a).position(|s| s.edge == el.src).unwrap();
+                    let jb = topo.star(b).position(|s| s.edge == el.src).unwrap();
+                    involved.push((a, ja));
+                    involved.push((b, jb));
+                    if t != NONE {
+                        eu_sum = opposite_angle_sum(topo, el.src);
+                    }
+                }
+                Kind::Face => {
+                    let vs = topo.face_vertices(el.src).unwrap();
+                    input_vertex = vs[0];
+                    for &u in vs {
+                        let j = topo
+                            .star(u)
+                            .position(|s| s.face == el.src)
+                            .unwrap_or(usize::MAX);
+                        involved.push((u, j));
+                    }
+                }
+            }
+            let mut turn_at = f64::INFINITY;
+            let mut turn_min = f64::INFINITY;
+            let mut c_fold = 0;
+            let mut pole_ratio: f64 = 0.0;
+            for &(v, j) in &involved {
+                let sd = &st.stars[v as usize];
+                if !sd.form {
+                    continue;
+                }
+                for (i, &a) in sd.turn_angle.iter().enumerate() {
+                    if !a.is_finite() {
+                        continue;
+                    }
+                    turn_min = turn_min.min(a);
+                    // The spoke's own corner; for a face, the corners of its two spokes.
+                    let at = if el.kind == Kind::Face {
+                        j != usize::MAX && (i == j || i == (j + 1) % sd.n)
+                    } else {
+                        j == usize::MAX || i == j
+                    };
+                    if at {
+                        turn_at = turn_at.min(a);
+                    }
+                }
+                c_fold += sd.c_fold;
+                pole_ratio = pole_ratio.max(sd.pole_ratio);
+            }
+            let cause = if turn_at < 0.0 {
+                Cause::NonDelaunaySpoke
+            } else if turn_min < 0.0 {
+                Cause::NonDelaunayStar
+            } else if el.rho_angle.is_finite() && el.rho_angle > 170f64.to_radians() {
+                Cause::F4NearCut
+            } else if matches!(el.kind, Kind::BoundaryEdge | Kind::BoundaryVertex) {
+                Cause::Boundary
+            } else if el.rule == Rule::Single {
+                Cause::SingleCandidate
+            } else {
+                Cause::Other
+            };
+            let inherited = level > 1 && involved.iter().any(|&(v, _)| near_prev_fold(v));
+            // Local scale: the longest edge of the two faces.
+            let mut len: f64 = 0.0;
+            for f in [fa, fb] {
+                let idx = face_verts(&st.out, f);
+                for i in 0..idx.len() {
+                    let p = st.lin[idx[i] as usize];
+                    let q = st.lin[idx[(i + 1) % idx.len()] as usize];
+                    len = len.max(norm(sub(p, q)));
+                }
+            }
+            let dev_rel =
+                norm(sub(st.out.positions[k as usize], st.lin[k as usize])) / len.max(1e-300);
+            out.push(Traced {
+                level,
+                out_vertex: k,
+                repaired,
+                elem: el,
+                cause,
+                turn_at: deg(turn_at),
+                turn_min: deg(turn_min),
+                c_fold,
+                pole_ratio,
+                eu_sum: deg(eu_sum),
+                inherited,
+                dev_rel,
+                where_: st.out.positions[k as usize],
+                input_vertex,
+            });
+        }
+        out
+    })
+}
+
+fn fold_faces(m: &OwnedMesh) -> std::collections::HashSet<u32> {
+    let mut s = std::collections::HashSet::new();
+    for (_, a, b) in folds(m) {
+        s.insert(a);
+        s.insert(b);
+    }
+    s
+}
+
+fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
+    for f in files {
+        let mut cur = load(f);
+        let mut prev_faces = std::collections::HashSet::new();
+        for l in 1..=levels {
+            let st = my_step(s, &cur, None);
+            let tr = trace_step(&st, &cur, l, &prev_faces);
+            let mut by: std::collections::BTreeMap<(Cause, bool), usize> = Default::default();
+            let mut kinds: std::collections::BTreeMap<String, usize> = Default::default();
+            for t in &tr {
+                *by.entry((t.cause, t.inherited)).or_default() += 1;
+                *kinds
+                    .entry(format!("{:?}/{:?}", t.elem.kind, t.elem.rule))
+                    .or_default() += 1;
+                if list {
+                    println!(
+                        "  L{} out {} {:?}/{:?} src {} inv {} rep {} cause {:?} inh {} dev {:.3} rho {:.1} far {:.2} pm {:.3} turn_at {:.1} turn_min {:.1} cfold {} |c|/r {:.2} eu {:.1} at {:?}",
+                        t.level, t.out_vertex, t.elem.kind, t.elem.rule, t.elem.src,
+                        t.input_vertex, t.repaired, t.cause, t.inherited, t.dev_rel,
+                        deg(t.elem.rho_angle), t.elem.cand_far, t.elem.pole_margin,
+                        t.turn_at, t.turn_min, t.c_fold, t.pole_ratio, t.eu_sum, t.where_
+                    );
+                }
+            }
+            let single = tr.iter().filter(|t| t.repaired).count();
+            println!(
+                "{}\t{:?}\tlevel {}\tfolds {}\trepaired by one vertex {}",
+                stem(f),
+                s,
+                l,
+                tr.len(),
+                single
+            );
+            for ((c, inh), n) in &by {
+                println!("    cause {:?}{}\t{}", c, if *inh { " (near a fold of the previous level)" } else { "" }, n);
+            }
+            for (k, n) in &kinds {
+                println!("    element {k}\t{n}");
+            }
+            prev_faces = fold_faces(&st.out);
+            cur = st.out;
+        }
+    }
+}
+
+/// The sign convention of the tangent-polygon turning on planar stars: a regular hexagon
+/// star is convex everywhere; pushing `u_0` out makes the spoke `(v, u_0)` non-Delaunay
+/// (opposite angles sum > π), and only its corner must turn negative.
+fn selftest() {
+    for push in [1.0, 1.5, 2.5] {
+        let mut p = vec![[0.0, 0.0, 0.0]];
+        for i in 0..6 {
+            let t = std::f64::consts::PI / 3.0 * i as f64;
+            let r = if i == 0 { push } else { 1.0 };
+            p.push([r * libm::cos(t), r * libm::sin(t), 0.0]);
+        }
+        let faces: Vec<Vec<u32>> = (0..6).map(|i| vec![0, 1 + i, 1 + (i + 1) % 6]).collect();
+        let m = OwnedMesh::from_faces(p, &faces);
+        build(&m, |topo| {
+            let sd = star_diag(topo, 0);
+            let ring: Vec<u32> = topo.star(0).map(|s| s.neighbour).collect();
+            let eu: Vec<f64> = topo
+                .star(0)
+                .map(|s| deg(opposite_angle_sum(topo, s.edge)))
+                .collect();
+            println!(
+                "push {push}: ring {ring:?} turn {:?} eu {:?} cfold {}",
+                sd.turn_angle.iter().map(|a| deg(*a).round()).collect::<Vec<_>>(),
+                eu.iter().map(|a| a.round()).collect::<Vec<_>>(),
+                sd.c_fold
+            );
+        });
     }
 }
