@@ -169,6 +169,22 @@ struct StarDiag {
     /// `|c| / r`: the input's point at infinity sits at distance `r/|c|` from the centre in
     /// the normalised canonical frame (not Möbius-invariant).
     pole_ratio: f64,
+    /// `|C_i|` per spoke in the normalised canonical frame (`r / |T_i − c|`): 1 for every
+    /// spoke of a Möbius-regular star.
+    radial: Vec<f64>,
+}
+
+impl StarDiag {
+    /// The radial spread `max |C_i| / min |C_i|` of the canonical ring (1: regular).
+    fn spread(&self) -> f64 {
+        let lo = self.radial.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = self.radial.iter().copied().fold(0.0, f64::max);
+        if self.form {
+            hi / lo
+        } else {
+            f64::NAN
+        }
+    }
 }
 
 fn spoke_list(topo: &Topology<'_, '_>, v: u32) -> Vec<Spoke> {
@@ -274,6 +290,7 @@ fn star_diag(topo: &Topology<'_, '_>, v: u32) -> StarDiag {
         turn_angle,
         c_fold,
         pole_ratio: norm(cf.c) / cf.r,
+        radial: cimg.iter().map(|p| norm(*p)).collect(),
     }
 }
 
@@ -1095,6 +1112,8 @@ fn main() {
             cmd_trace(s, args[3].parse().unwrap(), &files, list)
         }
         "selftest" => selftest(),
+        "probe" => cmd_probe(s, &args[3], args[4].parse().unwrap()),
+        "features" => cmd_features(s, args[3].parse().unwrap(), &args[4..]),
         other => {
             eprintln!("unknown command {other}");
             std::process::exit(1)
@@ -1201,6 +1220,10 @@ struct Traced {
     eu_sum: f64,
     inherited: bool,
     dev_rel: f64,
+    /// Angle (degrees) between the two faces' normals with the linear rule's positions at
+    /// this level, and with the Möbius positions.
+    lin_angle: f64,
+    mob_angle: f64,
     where_: Point,
     input_vertex: u32,
 }
@@ -1312,7 +1335,16 @@ fn trace_step(
             }
             let dev_rel =
                 norm(sub(st.out.positions[k as usize], st.lin[k as usize])) / len.max(1e-300);
+            let ang = |pos: &[Point]| {
+                let (na, nb) = (
+                    newell(pos, face_verts(&st.out, fa)),
+                    newell(pos, face_verts(&st.out, fb)),
+                );
+                deg(libm::atan2(norm(cross(na, nb)), dot(na, nb)))
+            };
             out.push(Traced {
+                lin_angle: ang(&st.lin),
+                mob_angle: ang(&st.out.positions),
                 level,
                 out_vertex: k,
                 repaired,
@@ -1358,8 +1390,8 @@ fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
                     .or_default() += 1;
                 if list {
                     println!(
-                        "  L{} out {} {:?}/{:?} src {} inv {} rep {} cause {:?} inh {} dev {:.3} rho {:.1} far {:.2} pm {:.3} turn_at {:.1} turn_min {:.1} cfold {} |c|/r {:.2} eu {:.1} at {:?}",
-                        t.level, t.out_vertex, t.elem.kind, t.elem.rule, t.elem.src,
+                        "  L{} lin {:.0} mob {:.0} out {} {:?}/{:?} src {} inv {} rep {} cause {:?} inh {} dev {:.3} rho {:.1} far {:.2} pm {:.3} turn_at {:.1} turn_min {:.1} cfold {} |c|/r {:.2} eu {:.1} at {:?}",
+                        t.level, t.lin_angle, t.mob_angle, t.out_vertex, t.elem.kind, t.elem.rule, t.elem.src,
                         t.input_vertex, t.repaired, t.cause, t.inherited, t.dev_rel,
                         deg(t.elem.rho_angle), t.elem.cand_far, t.elem.pole_margin,
                         t.turn_at, t.turn_min, t.c_fold, t.pole_ratio, t.eu_sum, t.where_
@@ -1367,6 +1399,19 @@ fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
                 }
             }
             let single = tr.iter().filter(|t| t.repaired).count();
+            let bins = [0.0, 30.0, 60.0, 75.0, 90.0, 181.0];
+            let mut hist = [0usize; 5];
+            for t in &tr {
+                for i in 0..5 {
+                    if t.lin_angle >= bins[i] && t.lin_angle < bins[i + 1] {
+                        hist[i] += 1;
+                    }
+                }
+            }
+            println!(
+                "    linear angle of the folded pair: <30° {} | 30–60° {} | 60–75° {} | 75–90° {} | ≥90° {}",
+                hist[0], hist[1], hist[2], hist[3], hist[4]
+            );
             println!(
                 "{}\t{:?}\tlevel {}\tfolds {}\trepaired by one vertex {}",
                 stem(f),
@@ -1415,4 +1460,220 @@ fn selftest() {
             );
         });
     }
+}
+
+/// Least and greatest turning angle (degrees) of a star's tangent polygon, and the angle at
+/// spoke `j` (NaN without a form).
+fn star_turns(sd: &StarDiag, j: usize) -> (f64, f64, f64) {
+    if !sd.form {
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for a in sd.turn_angle.iter().filter(|a| a.is_finite()) {
+        lo = lo.min(*a);
+        hi = hi.max(*a);
+    }
+    let at = sd.turn_angle.get(j).copied().unwrap_or(f64::NAN);
+    (deg(lo), deg(hi), deg(at))
+}
+
+/// Every element of every level as one TSV row (for docs/folds.md's threshold study).
+fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
+    println!("mesh\tlevel\tk\tkind\trule\tculprit\tlo_a\thi_a\tat_a\tlo_b\thi_b\tat_b\trho\tcfold\tdis\tdev\tspread\tlograd");
+    for f in files {
+        let mut cur = load(f);
+        for l in 1..=levels {
+            let st = my_step(s, &cur, None);
+            let mut culprits = std::collections::HashSet::new();
+            for (_, fa, fb) in folds(&st.out) {
+                culprits.insert(culprit(&st, fa, fb).0);
+            }
+            build(&cur, |topo| {
+                for (k, el) in st.elems.iter().enumerate() {
+                    let (a, b) = match el.kind {
+                        Kind::Vertex => {
+                            let sd = &st.stars[el.src as usize];
+                            (star_turns(sd, usize::MAX), (f64::NAN, f64::NAN, f64::NAN))
+                        }
+                        Kind::Edge => {
+                            let h = topo.edge_half_edge(el.src).unwrap();
+                            let (va, vb) = (topo.origin(h).unwrap(), topo.dest(h).unwrap());
+                            let ja = topo.star(va).position(|s| s.edge == el.src).unwrap();
+                            let jb = topo.star(vb).position(|s| s.edge == el.src).unwrap();
+                            (
+                                star_turns(&st.stars[va as usize], ja),
+                                star_turns(&st.stars[vb as usize], jb),
+                            )
+                        }
+                        Kind::Face => {
+                            let vs = topo.face_vertices(el.src).unwrap();
+                            let mut lo = f64::INFINITY;
+                            let mut hi = f64::NEG_INFINITY;
+                            for &u in vs {
+                                let (l, h, _) = star_turns(&st.stars[u as usize], usize::MAX);
+                                if l.is_finite() {
+                                    lo = lo.min(l);
+                                    hi = hi.max(h);
+                                }
+                            }
+                            ((lo, hi, f64::NAN), (f64::NAN, f64::NAN, f64::NAN))
+                        }
+                        _ => continue,
+                    };
+                    let cf = match el.kind {
+                        Kind::Vertex => st.stars[el.src as usize].c_fold,
+                        _ => 0,
+                    };
+                    // Disagreement of an edge's two candidates: |log ρ|, ρ = cr[e_k, v_j, e_j, v_k].
+                    let mut dis = f64::NAN;
+                    let mut scale_len = f64::NAN;
+                    match el.kind {
+                        Kind::Edge => {
+                            let h = topo.edge_half_edge(el.src).unwrap();
+                            let t = topo.twin(h).unwrap();
+                            let a = topo.position(topo.origin(h).unwrap()).unwrap();
+                            let b = topo.position(topo.dest(h).unwrap()).unwrap();
+                            scale_len = norm(sub(a, b));
+                            let (ca, cb) = (st.edge_c[h as usize], st.edge_c[t as usize]);
+                            if present(&ca) && present(&cb) {
+                                if let Ok(r) = cross_ratio(cb, a, ca, b) {
+                                    if let Some(lg) = r.log() {
+                                        dis = lg.abs();
+                                    }
+                                }
+                            }
+                        }
+                        Kind::Vertex => {
+                            let p = topo.position(el.src).unwrap();
+                            let ls: Vec<f64> = topo
+                                .star(el.src)
+                                .map(|s| norm(sub(topo.position(s.neighbour).unwrap(), p)))
+                                .collect();
+                            scale_len = ls.iter().sum::<f64>() / ls.len() as f64;
+                        }
+                        _ => {
+                            let vs = topo.face_vertices(el.src).unwrap();
+                            let p0 = topo.position(vs[0]).unwrap();
+                            scale_len = vs
+                                .iter()
+                                .map(|&u| norm(sub(topo.position(u).unwrap(), p0)))
+                                .fold(0.0, f64::max);
+                        }
+                    }
+                    let dev = norm(sub(st.out.positions[k], st.lin[k])) / scale_len;
+                    // The largest radial spread of the involved stars, and the largest
+                    // |log |C_j|| at the element's spokes.
+                    let mut spread: f64 = f64::NAN;
+                    let mut lograd: f64 = f64::NAN;
+                    let mut take = |v: u32, j: usize| {
+                        let sd = &st.stars[v as usize];
+                        if !sd.form {
+                            return;
+                        }
+                        spread = if spread.is_nan() { sd.spread() } else { spread.max(sd.spread()) };
+                        let lr = if j == usize::MAX {
+                            sd.radial.iter().map(|x| x.ln().abs()).fold(0.0, f64::max)
+                        } else {
+                            sd.radial[j].ln().abs()
+                        };
+                        lograd = if lograd.is_nan() { lr } else { lograd.max(lr) };
+                    };
+                    match el.kind {
+                        Kind::Vertex => take(el.src, usize::MAX),
+                        Kind::Edge => {
+                            let h = topo.edge_half_edge(el.src).unwrap();
+                            let (va, vb) = (topo.origin(h).unwrap(), topo.dest(h).unwrap());
+                            take(va, topo.star(va).position(|s| s.edge == el.src).unwrap());
+                            take(vb, topo.star(vb).position(|s| s.edge == el.src).unwrap());
+                        }
+                        _ => {
+                            for &u in topo.face_vertices(el.src).unwrap() {
+                                take(u, usize::MAX);
+                            }
+                        }
+                    }
+                    println!(
+                        "{}\t{}\t{}\t{:?}\t{:?}\t{}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.4}",
+                        stem(f),
+                        l,
+                        k,
+                        el.kind,
+                        el.rule,
+                        culprits.contains(&(k as u32)) as u8,
+                        a.0,
+                        a.1,
+                        a.2,
+                        b.0,
+                        b.1,
+                        b.2,
+                        deg(el.rho_angle),
+                        cf,
+                        dis,
+                        dev,
+                        spread,
+                        lograd
+                    );
+                }
+            });
+            cur = st.out;
+        }
+    }
+}
+
+/// Everything about one edge element of the first level: both stars in their canonical
+/// frames, the Loop candidates there and back, the F4 blend and the linear point.
+fn cmd_probe(s: Scheme, file: &str, e: u32) {
+    let m = load(file);
+    let st = my_step(s, &m, None);
+    build(&m, |topo| {
+        let h = topo.edge_half_edge(e).unwrap();
+        let t = topo.twin(h).unwrap();
+        let nv = topo.num_vertices();
+        let k = nv + e as usize;
+        let (va, vb) = (topo.origin(h).unwrap(), topo.dest(h).unwrap());
+        let pa = topo.position(va).unwrap();
+        let pb = topo.position(vb).unwrap();
+        let len = norm(sub(pa, pb));
+        println!("edge {e}: {va} -> {vb}, length {len:.4e}");
+        println!(
+            "  mobius {:?}\n  linear {:?}\n  |mob-lin|/len {:.3}",
+            st.out.positions[k],
+            st.lin[k],
+            norm(sub(st.out.positions[k], st.lin[k])) / len
+        );
+        for (v, hh) in [(va, h), (vb, t)] {
+            let (cf, spokes) = form_of(topo, v);
+            let cf = cf.unwrap();
+            let sd = &st.stars[v as usize];
+            let pv = topo.position(v).unwrap();
+            println!(
+                "  star {v}: n {} c {:?} r {:.4e} |c|/r {:.3} cfold {}",
+                sd.n, cf.c, cf.r, sd.pole_ratio, sd.c_fold
+            );
+            let frame = |x: Point| sub(x, pv);
+            for (j, sp) in spokes.iter().enumerate() {
+                let u = topo.position(sp.neighbour).unwrap();
+                let ci = cf.to_normalised(u).unwrap();
+                println!(
+                    "    spoke {j} -> {} turn {:7.1}° |u-v|/len {:.3} C {:?}{}",
+                    sp.neighbour,
+                    deg(sd.turn_angle[j]),
+                    norm(sub(u, pv)) / len,
+                    ci.map(|x| (x * 1000.0).round() / 1000.0),
+                    if sp.half_edge == hh { "   <== the edge" } else { "" }
+                );
+                let _ = frame;
+            }
+            let c = st.edge_c[hh as usize];
+            let cn = cf.to_normalised(c).unwrap();
+            println!(
+                "    candidate (normalised) {:?}, back |c-mid|/len {:.3}, pole {:?}",
+                cn.map(|x| (x * 1000.0).round() / 1000.0),
+                norm(sub(c, scale(add(pa, pb), 0.5))) / len,
+                scale(cf.c, -cf.r / dot(cf.c, cf.c)).map(|x| (x * 1000.0).round() / 1000.0)
+            );
+        }
+        println!("  rho angle {:.1}°", deg(st.elems[k].rho_angle));
+    });
 }
