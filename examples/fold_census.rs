@@ -348,13 +348,48 @@ struct Elem {
     weight: f64,
 }
 
+/// How the prototype treats a star it does not trust.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Fallback {
+    /// Evaluate the star's stencils in its canonical form interpolated toward a similarity by
+    /// the trust `τ` ([`Form`]); blends unchanged.
+    Spectrum,
+    /// Keep the paper's point and move it toward the linear rule's: `τ p + (1 − τ) p_lin`,
+    /// `τ` the least trust of the element's stars.
+    Blend,
+}
+
 /// Prototype parameters: `None` runs the paper's rules.
 #[derive(Clone, Copy, Debug)]
 struct Proto {
-    /// Turning angle (radians) at or above which a tangent-polygon corner counts as fully
-    /// safe; below `lo` fully unsafe.
-    hi: f64,
-    lo: f64,
+    fallback: Fallback,
+    /// Radial spread `max |C_i| / min |C_i|` of the canonical ring: trust 1 at or below
+    /// `spread_lo`, 0 at or above `spread_hi` (linear in log between).
+    spread_lo: f64,
+    spread_hi: f64,
+    /// An edge candidate's position `t = ⟨E_j, C_j⟩ / |C_j|²` along its spoke in its own
+    /// canonical frame: trust 1 inside `[t_margin, 1 − t_margin]`, 0 at `t ≤ 0` or `t ≥ 1`.
+    t_margin: f64,
+    /// Angle of F4's `ρ` (degrees): trust 1 at or below `rho_lo`, 0 at or above `rho_hi`;
+    /// applied to both stars of the edge.
+    rho_lo: f64,
+    rho_hi: f64,
+}
+
+const PROTO_DEFAULT: Proto = Proto {
+    fallback: Fallback::Spectrum,
+    spread_lo: 4.0,
+    spread_hi: 8.0,
+    t_margin: 0.15,
+    rho_lo: 120.0,
+    rho_hi: 160.0,
+};
+
+fn ramp(x: f64, zero_at: f64, one_at: f64) -> f64 {
+    if !x.is_finite() {
+        return 1.0;
+    }
+    ((x - zero_at) / (one_at - zero_at)).clamp(0.0, 1.0)
 }
 
 struct Step {
@@ -382,23 +417,6 @@ fn pole_margin(cf: &CanonicalForm, p: Point) -> f64 {
     }
     let s = (dot(pole, p) / pp).clamp(0.0, 1.0);
     norm(sub(pole, scale(p, s))) / pp.sqrt()
-}
-
-/// The trust in a star's canonical form at the corner of spoke `j` (1 = safe, 0 = fall back).
-fn corner_trust(sd: &StarDiag, j: usize, p: &Proto) -> f64 {
-    let a = sd.turn_angle.get(j).copied().unwrap_or(f64::NAN);
-    if !a.is_finite() {
-        return 1.0;
-    }
-    ((a - p.lo) / (p.hi - p.lo)).clamp(0.0, 1.0)
-}
-
-/// The trust in a whole star: the least over its corners.
-fn star_trust(sd: &StarDiag, p: &Proto) -> f64 {
-    if !sd.form {
-        return 1.0;
-    }
-    (0..sd.n).map(|j| corner_trust(sd, j, p)).fold(1.0, f64::min)
 }
 
 /// `q^w` for a quaternion off the negative reals (principal branch, via log/exp).
@@ -434,7 +452,57 @@ fn f4_weighted(a: Point, b: Point, c: Point, d: Point, w: f64) -> Option<Point> 
     present(&p).then_some(p)
 }
 
+/// A vertex's evaluation frame: the canonical form (`tau = 1`, the library's maps bit for
+/// bit) or the form interpolated toward a similarity, `x ↦ −((x − v)⁻¹ − τc)⁻¹` (seed 000
+/// §7.2's spectrum): `τ = 0` is the point reflection `x ↦ v − x` up to the translation, on
+/// which every affine stencil gives the linear rule; `τ = 1` is the normalised canonical
+/// form up to the scale `r`, which affine stencils ignore.
+#[derive(Clone, Debug)]
+struct Form {
+    cf: CanonicalForm,
+    tau: f64,
+}
+
+/// `q⁻¹` of an imaginary quaternion: `−q / |q|²`.
+fn inv_im(q: Point) -> Option<Point> {
+    let d = dot(q, q);
+    (d > 0.0 && d.is_finite()).then(|| scale(q, -1.0 / d))
+}
+
+impl Form {
+    fn to_normalised(&self, x: Point) -> nlsubdiv::Result<Point> {
+        if self.tau >= 1.0 {
+            return self.cf.to_normalised(x);
+        }
+        let bad = nlsubdiv::Error::new(nlsubdiv::Status::DegenerateGeometry);
+        if x == self.cf.v {
+            return Ok(ORIGIN);
+        }
+        let t = inv_im(sub(x, self.cf.v)).ok_or(bad)?;
+        let y = inv_im(sub(t, scale(self.cf.c, self.tau))).ok_or(bad)?;
+        Ok(scale(y, -1.0))
+    }
+    fn from_normalised(&self, p: Point) -> nlsubdiv::Result<Point> {
+        if self.tau >= 1.0 {
+            return self.cf.from_normalised(p);
+        }
+        let bad = nlsubdiv::Error::new(nlsubdiv::Status::DegenerateGeometry);
+        if p == ORIGIN {
+            return Ok(self.cf.v);
+        }
+        let t = sub(scale(self.cf.c, self.tau), inv_im(p).ok_or(bad)?);
+        let x = add(self.cf.v, inv_im(t).ok_or(bad)?);
+        if present(&x) {
+            Ok(x)
+        } else {
+            Err(bad)
+        }
+    }
+}
+
 struct Ctx<'a, 't, 'm, 's> {
+    /// Per vertex: the interpolation weight of its form (1: canonical).
+    tau: Vec<f64>,
     topo: &'a Topology<'m, 's>,
     s: Scheme,
     proto: Option<Proto>,
@@ -451,11 +519,19 @@ struct Ctx<'a, 't, 'm, 's> {
 }
 
 impl Ctx<'_, '_, '_, '_> {
+    /// The form of `v` the step evaluates in: the canonical form, or (prototype) the form
+    /// interpolated toward the similarity by the star's trust.
+    fn form(&self, v: u32) -> (Option<Form>, Vec<Spoke>) {
+        let (cf, spokes) = form_of(self.topo, v);
+        let tau = self.tau.get(v as usize).copied().unwrap_or(1.0);
+        (cf.map(|cf| Form { cf, tau }), spokes)
+    }
+
     fn p(&self, v: u32) -> Point {
         self.topo.position(v).unwrap()
     }
 
-    fn canon(&self, cf: &CanonicalForm, v: u32, u: u32) -> Option<Point> {
+    fn canon(&self, cf: &Form, v: u32, u: u32) -> Option<Point> {
         if u == v {
             return Some(ORIGIN);
         }
@@ -471,16 +547,13 @@ impl Ctx<'_, '_, '_, '_> {
         self.elems[k] = e;
     }
 
-    /// The weight of the Möbius rule for spoke `j` of `v`'s star.
-    fn spoke_weight(&self, v: u32, j: usize) -> f64 {
-        match self.proto {
-            None => 1.0,
-            Some(p) => corner_trust(&self.stars[v as usize], j, &p).min(self.trust_of(v)),
-        }
-    }
-
     fn trust_of(&self, v: u32) -> f64 {
         self.trust[v as usize]
+    }
+
+    /// Whether elements are blended toward their linear rule (output-level fallback).
+    fn blending(&self) -> bool {
+        matches!(self.proto, Some(Proto { fallback: Fallback::Blend, .. }))
     }
 
     /// Blend the Möbius point `m` with the linear point `l`: `w m + (1 − w) l`.
@@ -549,14 +622,10 @@ impl Ctx<'_, '_, '_, '_> {
             };
             // Prototype: the edge point leans toward its linear rule by the trust of the two
             // stars at this spoke.
-            let p = if self.proto.is_some() && el.rule != Rule::Fallback {
-                let ja = self.spoke_index(va, h);
-                let jb = self.spoke_index(vb, t);
-                let w = self.spoke_weight(va, ja).min(self.spoke_weight(vb, jb));
-                el.weight = w;
-                if w < 1.0 {
-                    el.rule = Rule::Blended;
-                }
+            let w = self.trust_of(va).min(self.trust_of(vb));
+            el.weight = w;
+            let p = if self.blending() && el.rule != Rule::Fallback && w < 1.0 {
+                el.rule = Rule::Blended;
                 Self::toward_linear(p, self.lin[k], w)
             } else {
                 p
@@ -668,13 +737,10 @@ impl Ctx<'_, '_, '_, '_> {
                 self.lin[k]
             }
         };
-        if self.proto.is_some() && el.rule != Rule::Fallback {
-            let w = self.trust_of(v);
-            el.weight = w;
-            if w < 1.0 {
-                el.rule = Rule::Blended;
-            }
-            q = Self::toward_linear(q, self.lin[k], w);
+        el.weight = self.trust_of(v);
+        if self.blending() && el.rule != Rule::Fallback && el.weight < 1.0 {
+            el.rule = Rule::Blended;
+            q = Self::toward_linear(q, self.lin[k], el.weight);
         }
         self.set(k, q, el);
     }
@@ -690,7 +756,7 @@ impl Ctx<'_, '_, '_, '_> {
                 self.set(v as usize, p, Elem::default());
                 continue;
             }
-            let (cf, spokes) = form_of(topo, v);
+            let (cf, spokes) = self.form(v);
             let boundary = topo.is_boundary_vertex(v).unwrap();
             let mut vertex = None;
             if let Some(cf) = &cf {
@@ -716,7 +782,7 @@ impl Ctx<'_, '_, '_, '_> {
                         if let Ok(c) = cf.from_normalised(q) {
                             if present(&c) {
                                 self.edge_c[s.half_edge as usize] = c;
-                                self.edge_pm[s.half_edge as usize] = pole_margin(cf, q);
+                                self.edge_pm[s.half_edge as usize] = pole_margin(&cf.cf, q);
                             }
                         }
                     }
@@ -752,7 +818,7 @@ impl Ctx<'_, '_, '_, '_> {
         None
     }
 
-    fn face_centroid(&self, cf: &CanonicalForm, v: u32, f: u32) -> Option<Point> {
+    fn face_centroid(&self, cf: &Form, v: u32, f: u32) -> Option<Point> {
         let pts: Option<Vec<Point>> = self
             .topo
             .face_vertices(f)
@@ -777,7 +843,7 @@ impl Ctx<'_, '_, '_, '_> {
                 let Some(u) = self.form_vertex(f, i) else {
                     continue;
                 };
-                let (Some(cf), _) = form_of(topo, u) else {
+                let (Some(cf), _) = self.form(u) else {
                     continue;
                 };
                 if let Some(c) = self.face_centroid(&cf, u, f) {
@@ -794,7 +860,7 @@ impl Ctx<'_, '_, '_, '_> {
                 continue;
             }
             let boundary = topo.is_boundary_vertex(v).unwrap();
-            let (cf, spokes) = form_of(topo, v);
+            let (cf, spokes) = self.form(v);
             let mut vertex = None;
             if let Some(cf) = &cf {
                 let n = spokes.len();
@@ -826,7 +892,7 @@ impl Ctx<'_, '_, '_, '_> {
                         if let Ok(c) = cf.from_normalised(q) {
                             if present(&c) {
                                 self.edge_c[s.half_edge as usize] = c;
-                                self.edge_pm[s.half_edge as usize] = pole_margin(cf, q);
+                                self.edge_pm[s.half_edge as usize] = pole_margin(&cf.cf, q);
                             }
                         }
                     }
@@ -886,21 +952,14 @@ impl Ctx<'_, '_, '_, '_> {
                     self.lin[k]
                 }
             };
-            if let Some(pr) = self.proto {
-                if el.rule != Rule::Fallback {
-                    // The face's corners: the least trust of their stars at the face.
-                    let mut w: f64 = 1.0;
-                    for (i, &u) in topo.face_vertices(f).unwrap().iter().enumerate() {
-                        let _ = i;
-                        let _ = pr;
-                        w = w.min(self.trust_of(u));
-                    }
-                    el.weight = w;
-                    if w < 1.0 {
-                        el.rule = Rule::Blended;
-                    }
-                    q = Self::toward_linear(q, self.lin[k], w);
-                }
+            let mut w: f64 = 1.0;
+            for &u in topo.face_vertices(f).unwrap() {
+                w = w.min(self.trust_of(u));
+            }
+            el.weight = w;
+            if self.blending() && el.rule != Rule::Fallback && w < 1.0 {
+                el.rule = Rule::Blended;
+                q = Self::toward_linear(q, self.lin[k], w);
             }
             self.set(k, q, el);
         }
@@ -911,7 +970,7 @@ impl Ctx<'_, '_, '_, '_> {
 
     // ---- Modified Butterfly ----
 
-    fn across_in(&self, cf: &CanonicalForm, v: u32, g: u32) -> Option<Point> {
+    fn across_in(&self, cf: &Form, v: u32, g: u32) -> Option<Point> {
         let topo = self.topo;
         let t = topo.twin(g).unwrap();
         if t == NONE {
@@ -940,7 +999,7 @@ impl Ctx<'_, '_, '_, '_> {
             self.set(v as usize, p, el);
         }
         for v in 0..nv as u32 {
-            let (Some(cf), spokes) = form_of(topo, v) else {
+            let (Some(cf), spokes) = self.form(v) else {
                 continue;
             };
             let boundary = topo.is_boundary_vertex(v).unwrap();
@@ -983,7 +1042,7 @@ impl Ctx<'_, '_, '_, '_> {
                 if let Some(q) = cand {
                     if let Ok(c) = cf.from_normalised(q) {
                         self.edge_c[h as usize] = c;
-                        self.edge_pm[h as usize] = pole_margin(&cf, q);
+                        self.edge_pm[h as usize] = pole_margin(&cf.cf, q);
                     }
                 }
             }
@@ -996,16 +1055,75 @@ impl Ctx<'_, '_, '_, '_> {
 /// One re-implemented Möbius step (`proto = None`: the paper's rules as the library runs
 /// them).
 fn my_step(s: Scheme, m: &OwnedMesh, proto: Option<Proto>) -> Step {
+    let trust = proto.map(|p| star_trust(s, m, &p));
+    my_step_with(s, m, proto, trust)
+}
+
+/// The prototype's trust in every star (1: the paper's rule; docs/folds.md): the least of
+/// the radial spread's, its edge candidates' positions' and its edges' F4 angles' trusts.
+/// Every quantity is read in a normalised canonical frame or from a cross-ratio, so the
+/// trust is Möbius-invariant.
+fn star_trust(s: Scheme, m: &OwnedMesh, p: &Proto) -> Vec<f64> {
+    let paper = my_step_with(s, m, None, None);
+    build(m, |topo| {
+        let nv = topo.num_vertices();
+        let mut trust: Vec<f64> = paper
+            .stars
+            .iter()
+            .map(|sd| ramp(sd.spread().ln(), p.spread_hi.ln(), p.spread_lo.ln()))
+            .collect();
+        for v in 0..nv as u32 {
+            let (Some(cf), spokes) = form_of(topo, v) else {
+                continue;
+            };
+            for sp in &spokes {
+                if sp.half_edge == NONE {
+                    continue;
+                }
+                let c = paper.edge_c[sp.half_edge as usize];
+                if !present(&c) {
+                    continue;
+                }
+                let (Ok(e), Ok(u)) = (
+                    cf.to_normalised(c),
+                    cf.to_normalised(topo.position(sp.neighbour).unwrap()),
+                ) else {
+                    continue;
+                };
+                let t = dot(e, u) / dot(u, u);
+                let g = ramp(t, 0.0, p.t_margin).min(ramp(t, 1.0, 1.0 - p.t_margin));
+                trust[v as usize] = trust[v as usize].min(g);
+            }
+        }
+        let ne = topo.num_edges() as u32;
+        for e in 0..ne {
+            let k = nv + e as usize;
+            let el = paper.elems.get(k).copied().unwrap_or_default();
+            if el.kind != Kind::Edge || !el.rho_angle.is_finite() {
+                continue;
+            }
+            let g = ramp(deg(el.rho_angle), p.rho_hi, p.rho_lo);
+            let (a, b) = topo.edge_vertices(e).unwrap();
+            trust[a as usize] = trust[a as usize].min(g);
+            trust[b as usize] = trust[b as usize].min(g);
+        }
+        trust
+    })
+}
+
+fn my_step_with(s: Scheme, m: &OwnedMesh, proto: Option<Proto>, trust: Option<Vec<f64>>) -> Step {
     let (lin_mesh, _) = lib_step(s, m, false);
     build(m, |topo| {
         let nv = topo.num_vertices();
         let nh = topo.num_half_edges();
         let stars: Vec<StarDiag> = (0..nv as u32).map(|v| star_diag(topo, v)).collect();
-        let trust: Vec<f64> = match proto {
-            None => vec![1.0; nv],
-            Some(p) => stars.iter().map(|sd| star_trust(sd, &p)).collect(),
+        let trust: Vec<f64> = trust.unwrap_or_else(|| vec![1.0; nv]);
+        let tau = match proto {
+            Some(Proto { fallback: Fallback::Spectrum, .. }) => trust.clone(),
+            _ => vec![1.0; nv],
         };
         let mut ctx = Ctx {
+            tau,
             topo,
             s,
             proto,
@@ -1112,6 +1230,27 @@ fn main() {
             cmd_trace(s, args[3].parse().unwrap(), &files, list)
         }
         "selftest" => selftest(),
+        "proto" => {
+            let mut p = PROTO_DEFAULT;
+            let mut files = Vec::new();
+            for a in &args[4..] {
+                if let Some(v) = a.strip_prefix("--spread=") {
+                    let mut it = v.split(',').map(|x| x.parse::<f64>().unwrap());
+                    p.spread_lo = it.next().unwrap();
+                    p.spread_hi = it.next().unwrap();
+                } else if let Some(v) = a.strip_prefix("--t=") {
+                    p.t_margin = v.parse().unwrap();
+                } else if let Some(v) = a.strip_prefix("--rho=") {
+                    let mut it = v.split(',').map(|x| x.parse::<f64>().unwrap());
+                    p.rho_lo = it.next().unwrap();
+                    p.rho_hi = it.next().unwrap();
+                } else {
+                    files.push(a.clone());
+                }
+            }
+            eprintln!("{p:?}");
+            cmd_proto(s, args[3].parse().unwrap(), &files, p)
+        }
         "probe" => cmd_probe(s, &args[3], args[4].parse().unwrap()),
         "features" => cmd_features(s, args[3].parse().unwrap(), &args[4..]),
         other => {
@@ -1676,4 +1815,46 @@ fn cmd_probe(s: Scheme, file: &str, e: u32) {
         }
         println!("  rho angle {:.1}°", deg(st.elems[k].rho_angle));
     });
+}
+
+fn proto_levels(s: Scheme, m: &OwnedMesh, levels: usize, p: Proto) -> (OwnedMesh, Vec<(u32, u32)>) {
+    let mut cur = m.clone();
+    let mut flags = Vec::new();
+    for _ in 0..levels {
+        let st = my_step(s, &cur, Some(p));
+        let nv = st.stars.len() as u32;
+        let _ = nv;
+        flags.push((st.flagged, st.stars.len() as u32));
+        cur = st.out;
+    }
+    (cur, flags)
+}
+
+/// Folded edges of the paper's rules, the prototype (both fallbacks) and the linear scheme;
+/// stars flagged per level.
+fn cmd_proto(s: Scheme, levels: usize, files: &[String], p: Proto) {
+    println!("mesh\tlevels\tpaper\tspectrum\tblend\tlinear\tflagged stars per level (spectrum run)");
+    for f in files {
+        let m = load(f);
+        for l in 1..=levels {
+            let paper = folds(&lib_levels(s, &m, l, true)).len();
+            let lin = folds(&lib_levels(s, &m, l, false)).len();
+            let (spec, flags) = proto_levels(s, &m, l, Proto { fallback: Fallback::Spectrum, ..p });
+            let (blend, _) = proto_levels(s, &m, l, Proto { fallback: Fallback::Blend, ..p });
+            println!(
+                "{}\t{}\t{}\t{}\t{}\t{}\t{}",
+                stem(f),
+                l,
+                paper,
+                folds(&spec).len(),
+                folds(&blend).len(),
+                lin,
+                flags
+                    .iter()
+                    .map(|(a, b)| format!("{a}/{b}"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            );
+        }
+    }
 }
