@@ -1070,9 +1070,26 @@ fn star_trust(s: Scheme, m: &OwnedMesh, p: &Proto) -> Vec<f64> {
         let mut trust: Vec<f64> = paper
             .stars
             .iter()
-            .map(|sd| ramp(sd.spread().ln(), p.spread_hi.ln(), p.spread_lo.ln()))
+            .map(|sd| {
+                if sd.form && !sd.boundary {
+                    // A neighbour sent to infinity (spread ∞) is the least trusted.
+                    let sp = sd.spread();
+                    if sp.is_finite() {
+                        ramp(sp.ln(), p.spread_hi.ln(), p.spread_lo.ln())
+                    } else {
+                        0.0
+                    }
+                } else {
+                    1.0
+                }
+            })
             .collect();
         for v in 0..nv as u32 {
+            // Boundary stars keep the paper's rules (their forms have their own conditioning:
+            // a square corner sends its diagonal neighbour to infinity by construction).
+            if topo.is_boundary_vertex(v).unwrap() {
+                continue;
+            }
             let (Some(cf), spokes) = form_of(topo, v) else {
                 continue;
             };
@@ -1103,9 +1120,13 @@ fn star_trust(s: Scheme, m: &OwnedMesh, p: &Proto) -> Vec<f64> {
                 continue;
             }
             let g = ramp(deg(el.rho_angle), p.rho_hi, p.rho_lo);
+            // Only between two interior stars: a boundary star's candidate can vanish exactly
+            // (the paper's rule drops a candidate at infinity) and reappear in a Möbius image.
             let (a, b) = topo.edge_vertices(e).unwrap();
-            trust[a as usize] = trust[a as usize].min(g);
-            trust[b as usize] = trust[b as usize].min(g);
+            if !topo.is_boundary_vertex(a).unwrap() && !topo.is_boundary_vertex(b).unwrap() {
+                trust[a as usize] = trust[a as usize].min(g);
+                trust[b as usize] = trust[b as usize].min(g);
+            }
         }
         trust
     })
@@ -1230,6 +1251,9 @@ fn main() {
             cmd_trace(s, args[3].parse().unwrap(), &files, list)
         }
         "selftest" => selftest(),
+        "regular" => cmd_regular(),
+        "gridprobe" => cmd_gridprobe(),
+        "equiv" => cmd_equiv(s, &args[3..]),
         "proto" => {
             let mut p = PROTO_DEFAULT;
             let mut files = Vec::new();
@@ -1326,21 +1350,25 @@ fn opposite_angle_sum(topo: &Topology<'_, '_>, e: u32) -> f64 {
     ang(c) + ang(d)
 }
 
-/// The cause of one traced fold (first match in this order; docs/folds.md).
+/// The cause of one traced fold: the first of these that the culprit element shows (docs/folds.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Cause {
-    /// The element's own star (an endpoint's star at the edge's spoke, for edge points) has
-    /// a reflex tangent-polygon corner there: non-Delaunay in the Möbius sense.
-    NonDelaunaySpoke,
-    /// The spoke itself is convex but the star has a reflex corner elsewhere.
-    NonDelaunayStar,
-    /// F4's ρ within 10° of the negative-real cut.
-    F4NearCut,
-    /// A boundary curve rule.
+    /// A boundary curve rule made the point.
     Boundary,
+    /// F4 of the edge's two candidates within 20° of its negative-real cut (ρ angle ≥ 160°).
+    F4NearCut,
+    /// A candidate lies behind the star's centre or beyond the neighbour along its spoke in
+    /// its own canonical frame (`t = ⟨E_j, C_j⟩/|C_j|² ∉ [0, 1]`).
+    CandidateOutOfOrder,
+    /// An involved star's canonical ring has radial spread `max|C_i|/min|C_i| ≥ 8`.
+    HighSpread,
+    /// Milder versions: ρ angle in [120°, 160°), `t` within 0.15 of 0 or 1, or spread in [4, 8).
+    Marginal,
+    /// None of those, but an involved star is non-Delaunay (a reflex tangent-polygon corner).
+    NonDelaunayOnly,
     /// A single (partial) candidate taken as the edge point.
     SingleCandidate,
-    /// None of the above: a Delaunay neighbourhood.
+    /// Nothing above: Delaunay, well-conditioned neighbourhood.
     Other,
 }
 
@@ -1448,14 +1476,53 @@ fn trace_step(
                 c_fold += sd.c_fold;
                 pole_ratio = pole_ratio.max(sd.pole_ratio);
             }
-            let cause = if turn_at < 0.0 {
-                Cause::NonDelaunaySpoke
-            } else if turn_min < 0.0 {
-                Cause::NonDelaunayStar
-            } else if el.rho_angle.is_finite() && el.rho_angle > 170f64.to_radians() {
-                Cause::F4NearCut
-            } else if matches!(el.kind, Kind::BoundaryEdge | Kind::BoundaryVertex) {
+            // Candidate positions along their spokes, in their own canonical frames.
+            let mut t_bad: f64 = 0.0; // 0 fine, 1 marginal, 2 out of order
+            let mut spread: f64 = 0.0;
+            for &(v, _) in &involved {
+                let sd = &st.stars[v as usize];
+                if sd.form {
+                    spread = spread.max(sd.spread());
+                }
+                let (Some(cf), spokes) = form_of(topo, v) else {
+                    continue;
+                };
+                for sp in &spokes {
+                    if sp.half_edge == NONE {
+                        continue;
+                    }
+                    // Edge points: only the edge's own spoke; others: every spoke of the star.
+                    if matches!(el.kind, Kind::Edge) && sp.edge != el.src {
+                        continue;
+                    }
+                    let c = st.edge_c[sp.half_edge as usize];
+                    let (Ok(e), Ok(u)) = (
+                        cf.to_normalised(c),
+                        cf.to_normalised(topo.position(sp.neighbour).unwrap()),
+                    ) else {
+                        continue;
+                    };
+                    let t = dot(e, u) / dot(u, u);
+                    if !(0.0..=1.0).contains(&t) {
+                        t_bad = 2.0;
+                    } else if !(0.15..=0.85).contains(&t) {
+                        t_bad = t_bad.max(1.0);
+                    }
+                }
+            }
+            let rho = deg(el.rho_angle);
+            let cause = if matches!(el.kind, Kind::BoundaryEdge | Kind::BoundaryVertex) {
                 Cause::Boundary
+            } else if rho >= 160.0 {
+                Cause::F4NearCut
+            } else if t_bad >= 2.0 {
+                Cause::CandidateOutOfOrder
+            } else if spread >= 8.0 {
+                Cause::HighSpread
+            } else if rho >= 120.0 || t_bad >= 1.0 || spread >= 4.0 {
+                Cause::Marginal
+            } else if turn_min < 0.0 {
+                Cause::NonDelaunayOnly
             } else if el.rule == Rule::Single {
                 Cause::SingleCandidate
             } else {
@@ -1666,7 +1733,7 @@ fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
                     };
                     // Disagreement of an edge's two candidates: |log ρ|, ρ = cr[e_k, v_j, e_j, v_k].
                     let mut dis = f64::NAN;
-                    let mut scale_len = f64::NAN;
+                    let scale_len;
                     match el.kind {
                         Kind::Edge => {
                             let h = topo.edge_half_edge(el.src).unwrap();
@@ -1854,6 +1921,163 @@ fn cmd_proto(s: Scheme, levels: usize, files: &[String], p: Proto) {
                     .map(|(a, b)| format!("{a}/{b}"))
                     .collect::<Vec<_>>()
                     .join(" ")
+            );
+        }
+    }
+}
+
+/// A deterministic "random" Möbius map for mesh `m`: an inversion in a sphere centred
+/// outside the mesh, then a rotation and a translation.
+fn random_mobius(m: &OwnedMesh, seed: u64) -> MobiusMap {
+    let mut st = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut rnd = || {
+        st ^= st << 13;
+        st ^= st >> 7;
+        st ^= st << 17;
+        (st >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let n = m.positions.len() as f64;
+    let c = scale(m.positions.iter().fold([0.0; 3], |a, p| add(a, *p)), 1.0 / n);
+    let diam = m.positions.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max);
+    let dir = {
+        let d = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
+        scale(d, 1.0 / norm(d))
+    };
+    let centre = add(c, scale(dir, diam * (1.5 + rnd())));
+    let inv = MobiusMap::inversion(centre, diam * (0.5 + rnd()));
+    let axis = {
+        let d = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
+        scale(d, 1.0 / norm(d))
+    };
+    MobiusMap::rotation(axis, 6.0 * rnd())
+        .compose(&MobiusMap::translation([rnd(), rnd(), rnd()]))
+        .compose(&inv)
+}
+
+fn diameter(m: &OwnedMesh) -> f64 {
+    let c = m.positions[0];
+    2.0 * m.positions.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max)
+}
+
+/// Flags and outputs on Möbius images: the trust of every star on `M(X)` against `X`, and
+/// the first level of the paper's rules and of the prototype on `M(X)` against `M` of
+/// their output on `X`.
+fn cmd_equiv(s: Scheme, files: &[String]) {
+    println!("mesh\tseed\tflagged X\tflagged M(X)\tflag status differs\tmax |Δτ|\tpaper max dev/diam\tproto dev/diam (unflagged elements)\tproto dev/diam (flagged elements)");
+    for f in files {
+        let x = load(f);
+        let tx = star_trust(s, &x, &PROTO_DEFAULT);
+        let px = my_step(s, &x, Some(PROTO_DEFAULT));
+        let lx = lib_step(s, &x, true).0;
+        for seed in 1..=3u64 {
+            let map = random_mobius(&x, seed);
+            let y = x.map_positions(|p| map.apply(p).unwrap());
+            let ty = star_trust(s, &y, &PROTO_DEFAULT);
+            let fx = tx.iter().filter(|t| **t < 1.0).count();
+            let fy = ty.iter().filter(|t| **t < 1.0).count();
+            let differs = tx
+                .iter()
+                .zip(&ty)
+                .filter(|(a, b)| (**a < 1.0) != (**b < 1.0))
+                .count();
+            let dt = tx
+                .iter()
+                .zip(&ty)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            let d = diameter(&y);
+            let ly = lib_step(s, &y, true).0;
+            let paper_dev = lx
+                .positions
+                .iter()
+                .zip(&ly.positions)
+                .map(|(a, b)| norm(sub(map.apply(*a).unwrap(), *b)))
+                .fold(0.0, f64::max)
+                / d;
+            let py = my_step(s, &y, Some(PROTO_DEFAULT));
+            let (mut dev_ok, mut dev_fl): (f64, f64) = (0.0, 0.0);
+            for (k, (a, b)) in px.out.positions.iter().zip(&py.out.positions).enumerate() {
+                let dv = norm(sub(map.apply(*a).unwrap(), *b)) / d;
+                if px.elems[k].weight < 1.0 {
+                    dev_fl = dev_fl.max(dv);
+                } else {
+                    dev_ok = dev_ok.max(dv);
+                }
+            }
+            println!(
+                "{}\t{}\t{}\t{}\t{}\t{:.1e}\t{:.1e}\t{:.1e}\t{:.1e}",
+                stem(f),
+                seed,
+                fx,
+                fy,
+                differs,
+                dt,
+                paper_dev,
+                dev_ok,
+                dev_fl
+            );
+        }
+    }
+}
+
+/// Regular grids and their Möbius images: stars flagged, and whether the prototype's output
+/// equals the paper's bit for bit (it must, where nothing is flagged).
+fn cmd_regular() {
+    println!("mesh\tscheme\tflagged\tstars\tprototype == paper (bits)");
+    let cases: Vec<(&str, Scheme, OwnedMesh)> = vec![
+        ("quad_grid 8x8", Scheme::CatmullClark, quad_grid(8, 8)),
+        ("tri_grid 8x8", Scheme::Loop, tri_grid(8, 8)),
+        ("tri_grid 8x8", Scheme::ModifiedButterfly, tri_grid(8, 8)),
+        ("quad_torus 12x8", Scheme::CatmullClark, quad_torus(12, 8, 2.0, 0.5)),
+        ("tri_torus 12x8", Scheme::Loop, tri_torus(12, 8)),
+        ("tri_torus 12x8", Scheme::ModifiedButterfly, tri_torus(12, 8)),
+        ("icosahedron", Scheme::Loop, load_mesh("icosahedron")),
+        ("cube", Scheme::CatmullClark, load_mesh("cube")),
+    ];
+    for (name, s, m) in cases {
+        for (label, mesh) in [
+            ("", m.clone()),
+            (" (Möbius image)", {
+                let map = random_mobius(&m, 7);
+                m.map_positions(|p| map.apply(p).unwrap())
+            }),
+        ] {
+            let t = star_trust(s, &mesh, &PROTO_DEFAULT);
+            let fl = t.iter().filter(|x| **x < 1.0).count();
+            let a = my_step(s, &mesh, Some(PROTO_DEFAULT)).out;
+            let b = lib_step(s, &mesh, true).0;
+            println!(
+                "{name}{label}\t{}\t{fl}\t{}\t{}",
+                s.name(),
+                t.len(),
+                a.positions == b.positions
+            );
+        }
+    }
+}
+
+fn load_mesh(name: &str) -> OwnedMesh {
+    load(&format!("/work/shared/data/meshes/{name}.off"))
+}
+
+fn cmd_gridprobe() {
+    let m = tri_grid(8, 8);
+    let map = random_mobius(&m, 7);
+    let y = m.map_positions(|p| map.apply(p).unwrap());
+    let (tx, ty) = (
+        star_trust(Scheme::Loop, &m, &PROTO_DEFAULT),
+        star_trust(Scheme::Loop, &y, &PROTO_DEFAULT),
+    );
+    let px = my_step(Scheme::Loop, &m, None);
+    for v in 0..tx.len() {
+        if tx[v] < 1.0 || ty[v] < 1.0 {
+            println!(
+                "v {v} τ {} vs {} spread {} valence {} boundary {}",
+                tx[v],
+                ty[v],
+                px.stars[v].spread(),
+                px.stars[v].n,
+                px.stars[v].boundary
             );
         }
     }
