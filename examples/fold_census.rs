@@ -3,11 +3,16 @@
 //! (docs/folds.md).
 //!
 //! ```text
-//! fold_census census  SCHEME LEVELS IN.off...        folded edges, library Möbius vs linear
-//! fold_census check   SCHEME LEVELS IN.off...        re-implementation == library, bit for bit
-//! fold_census trace   SCHEME LEVELS IN.off [--list]  every fold traced to its element and cause
-//! fold_census proto   SCHEME LEVELS IN.off...        paper / prototype / linear fold counts, flags
-//! fold_census equiv   SCHEME IN.off...               flags and output under random Möbius maps
+//! fold_census census   SCHEME LEVELS IN.off...        folded edges, library Möbius vs linear
+//! fold_census check    SCHEME LEVELS IN.off...        re-implementation == library, bit for bit
+//! fold_census trace    SCHEME LEVELS IN.off [--list]  every fold traced to its element and cause
+//! fold_census features SCHEME LEVELS IN.off...        per-element features as TSV
+//! fold_census probe    SCHEME IN.off EDGE             both stars of one level-1 edge in detail
+//! fold_census proto    SCHEME LEVELS IN.off... [--spread=LO,HI] [--t=M] [--rho=LO,HI]
+//!                                                     paper / prototype / linear fold counts
+//! fold_census equiv    SCHEME IN.off...               flags and output under Möbius maps
+//! fold_census regular  SCHEME                         flags on regular grids and their images
+//! fold_census selftest SCHEME                         turning-angle sign, weighted F4
 //! ```
 //!
 //! A folded edge is an interior edge of the output whose two faces have (Newell) normals more
@@ -23,6 +28,7 @@
     clippy::indexing_slicing,
     clippy::too_many_arguments,
     clippy::type_complexity,
+    clippy::wrong_self_convention,
     dead_code
 )]
 
@@ -34,9 +40,9 @@ use std::path::Path;
 use common::*;
 use nlsubdiv::blend::{f4, f4_hinted, face_point_with_ids, is_negative_real};
 use nlsubdiv::mesh::{MeshOut, Spoke, Topology, NONE};
-use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
 #[allow(unused_imports)]
 use nlsubdiv::mobius as _m;
+use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
 use nlsubdiv::point::{add, cross, dot, norm, scale, sub};
 use nlsubdiv::quat::{cross_ratio, Quat};
 use nlsubdiv::scheme::mobius::MobiusOptions;
@@ -357,6 +363,13 @@ enum Fallback {
     /// Keep the paper's point and move it toward the linear rule's: `τ p + (1 − τ) p_lin`,
     /// `τ` the least trust of the element's stars.
     Blend,
+    /// Möbius-invariant, edges only: an edge with a distrusted star takes the weighted F4
+    /// ([`f4_weighted`]) leaning toward the more trusted star's candidate,
+    /// `w = τ_k / (τ_j + τ_k)`; vertex and face points keep the paper's rules.
+    WeightedF4,
+    /// [`Fallback::Spectrum`] for every distrusted star, and its edges blended by the
+    /// weighted F4 as in [`Fallback::WeightedF4`].
+    SpectrumWeighted,
 }
 
 /// Prototype parameters: `None` runs the paper's rules.
@@ -553,7 +566,13 @@ impl Ctx<'_, '_, '_, '_> {
 
     /// Whether elements are blended toward their linear rule (output-level fallback).
     fn blending(&self) -> bool {
-        matches!(self.proto, Some(Proto { fallback: Fallback::Blend, .. }))
+        matches!(
+            self.proto,
+            Some(Proto {
+                fallback: Fallback::Blend,
+                ..
+            })
+        )
     }
 
     /// Blend the Möbius point `m` with the linear point `l`: `w m + (1 − w) l`.
@@ -601,9 +620,22 @@ impl Ctx<'_, '_, '_, '_> {
                     el.rho_angle = libm::atan2(rho.abs_im(), rho.w);
                 }
             }
+            let (ta, tb) = (self.trust_of(va), self.trust_of(vb));
+            let weighted = matches!(
+                self.proto,
+                Some(Proto {
+                    fallback: Fallback::WeightedF4 | Fallback::SpectrumWeighted,
+                    ..
+                })
+            ) && ta.min(tb) < 1.0;
             let p = if present(&ca) && present(&cb) {
                 el.rule = Rule::F4Both;
-                f4_hinted(a, ca, cb, b, hint).ok()
+                if weighted {
+                    f4_weighted(a, ca, cb, b, tb / (ta + tb).max(1e-300))
+                        .or_else(|| f4_hinted(a, ca, cb, b, hint).ok())
+                } else {
+                    f4_hinted(a, ca, cb, b, hint).ok()
+                }
             } else if present(&ca) {
                 el.rule = Rule::Single;
                 Some(ca)
@@ -760,8 +792,10 @@ impl Ctx<'_, '_, '_, '_> {
             let boundary = topo.is_boundary_vertex(v).unwrap();
             let mut vertex = None;
             if let Some(cf) = &cf {
-                let ring: Option<Vec<Point>> =
-                    spokes.iter().map(|s| self.canon(cf, v, s.neighbour)).collect();
+                let ring: Option<Vec<Point>> = spokes
+                    .iter()
+                    .map(|s| self.canon(cf, v, s.neighbour))
+                    .collect();
                 if let Some(ring) = ring {
                     let n = ring.len();
                     if !boundary {
@@ -1011,8 +1045,8 @@ impl Ctx<'_, '_, '_, '_> {
                     continue;
                 }
                 let other = s.neighbour;
-                let other_irregular = !topo.is_boundary_vertex(other).unwrap()
-                    && topo.valence(other).unwrap() != 6;
+                let other_irregular =
+                    !topo.is_boundary_vertex(other).unwrap() && topo.valence(other).unwrap() != 6;
                 let cand: Option<Point> = (|| {
                     if irregular {
                         let ring: Option<Vec<Point>> = (0..n)
@@ -1140,7 +1174,10 @@ fn my_step_with(s: Scheme, m: &OwnedMesh, proto: Option<Proto>, trust: Option<Ve
         let stars: Vec<StarDiag> = (0..nv as u32).map(|v| star_diag(topo, v)).collect();
         let trust: Vec<f64> = trust.unwrap_or_else(|| vec![1.0; nv]);
         let tau = match proto {
-            Some(Proto { fallback: Fallback::Spectrum, .. }) => trust.clone(),
+            Some(Proto {
+                fallback: Fallback::Spectrum | Fallback::SpectrumWeighted,
+                ..
+            }) => trust.clone(),
             _ => vec![1.0; nv],
         };
         let mut ctx = Ctx {
@@ -1162,7 +1199,10 @@ fn my_step_with(s: Scheme, m: &OwnedMesh, proto: Option<Proto>, trust: Option<Ve
             Scheme::Loop => ctx.run_loop(),
             Scheme::CatmullClark => ctx.run_catmull_clark(),
             Scheme::ModifiedButterfly => ctx.run_butterfly(),
-            _ => panic!("only loop, butterfly, catmull-clark"),
+            _ => {
+                eprintln!("only loop, butterfly and catmull-clark are re-implemented");
+                std::process::exit(1)
+            }
         }
         let flagged = ctx.trust.iter().filter(|&&t| t < 1.0).count() as u32;
         let blended = ctx.elems.iter().filter(|e| e.weight < 1.0).count() as u32;
@@ -1247,7 +1287,11 @@ fn main() {
         "check" => cmd_check(s, args[3].parse().unwrap(), &args[4..]),
         "trace" => {
             let list = args.iter().any(|a| a == "--list");
-            let files: Vec<String> = args[4..].iter().filter(|a| *a != "--list").cloned().collect();
+            let files: Vec<String> = args[4..]
+                .iter()
+                .filter(|a| *a != "--list")
+                .cloned()
+                .collect();
             cmd_trace(s, args[3].parse().unwrap(), &files, list)
         }
         "selftest" => selftest(),
@@ -1386,6 +1430,9 @@ struct Traced {
     pole_ratio: f64,
     eu_sum: f64,
     inherited: bool,
+    /// An involved vertex is an ear (boundary, one face) or on the boundary.
+    ear: bool,
+    boundary: bool,
     dev_rel: f64,
     /// Angle (degrees) between the two faces' normals with the linear rule's positions at
     /// this level, and with the Möbius positions.
@@ -1548,7 +1595,13 @@ fn trace_step(
                 );
                 deg(libm::atan2(norm(cross(na, nb)), dot(na, nb)))
             };
+            let ear = involved.iter().any(|&(v, _)| is_ear(topo, v));
+            let boundary = involved
+                .iter()
+                .any(|&(v, _)| topo.is_boundary_vertex(v).unwrap());
             out.push(Traced {
+                ear,
+                boundary,
                 lin_angle: ang(&st.lin),
                 mob_angle: ang(&st.out.positions),
                 level,
@@ -1605,6 +1658,11 @@ fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
                 }
             }
             let single = tr.iter().filter(|t| t.repaired).count();
+            println!(
+                "    culprits touching an ear {} | touching a boundary vertex {}",
+                tr.iter().filter(|t| t.ear).count(),
+                tr.iter().filter(|t| t.boundary).count()
+            );
             let bins = [0.0, 30.0, 60.0, 75.0, 90.0, 181.0];
             let mut hist = [0usize; 5];
             for t in &tr {
@@ -1627,7 +1685,16 @@ fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
                 single
             );
             for ((c, inh), n) in &by {
-                println!("    cause {:?}{}\t{}", c, if *inh { " (near a fold of the previous level)" } else { "" }, n);
+                println!(
+                    "    cause {:?}{}\t{}",
+                    c,
+                    if *inh {
+                        " (near a fold of the previous level)"
+                    } else {
+                        ""
+                    },
+                    n
+                );
             }
             for (k, n) in &kinds {
                 println!("    element {k}\t{n}");
@@ -1638,10 +1705,41 @@ fn cmd_trace(s: Scheme, levels: usize, files: &[String], list: bool) {
     }
 }
 
+/// The weighted F4 against F4 (`w = ½`) and its ends (`w → 0`: `b`, `w → 1`: `c`).
+fn selftest_f4_weighted() {
+    let pts = [
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.2, 0.1],
+            [2.0, -0.1, 0.3],
+            [3.1, 0.0, -0.2],
+        ],
+        [
+            [0.3, 1.0, 0.0],
+            [1.0, 0.7, 0.4],
+            [1.8, 0.9, -0.3],
+            [2.2, 2.0, 0.5],
+        ],
+    ];
+    for [a, b, c, d] in pts {
+        let half = f4_weighted(a, b, c, d, 0.5).unwrap();
+        let f = f4(a, b, c, d).unwrap();
+        let lo = f4_weighted(a, b, c, d, 1e-6).unwrap();
+        let hi = f4_weighted(a, b, c, d, 1.0 - 1e-6).unwrap();
+        println!(
+            "f4_weighted: |w=½ − F4| {:.1e}, |w→0 − b| {:.1e}, |w→1 − c| {:.1e}",
+            norm(sub(half, f)),
+            norm(sub(lo, b)),
+            norm(sub(hi, c))
+        );
+    }
+}
+
 /// The sign convention of the tangent-polygon turning on planar stars: a regular hexagon
 /// star is convex everywhere; pushing `u_0` out makes the spoke `(v, u_0)` non-Delaunay
 /// (opposite angles sum > π), and only its corner must turn negative.
 fn selftest() {
+    selftest_f4_weighted();
     for push in [1.0, 1.5, 2.5] {
         let mut p = vec![[0.0, 0.0, 0.0]];
         for i in 0..6 {
@@ -1660,7 +1758,10 @@ fn selftest() {
                 .collect();
             println!(
                 "push {push}: ring {ring:?} turn {:?} eu {:?} cfold {}",
-                sd.turn_angle.iter().map(|a| deg(*a).round()).collect::<Vec<_>>(),
+                sd.turn_angle
+                    .iter()
+                    .map(|a| deg(*a).round())
+                    .collect::<Vec<_>>(),
                 eu.iter().map(|a| a.round()).collect::<Vec<_>>(),
                 sd.c_fold
             );
@@ -1777,7 +1878,11 @@ fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
                         if !sd.form {
                             return;
                         }
-                        spread = if spread.is_nan() { sd.spread() } else { spread.max(sd.spread()) };
+                        spread = if spread.is_nan() {
+                            sd.spread()
+                        } else {
+                            spread.max(sd.spread())
+                        };
                         let lr = if j == usize::MAX {
                             sd.radial.iter().map(|x| x.ln().abs()).fold(0.0, f64::max)
                         } else {
@@ -1867,7 +1972,11 @@ fn cmd_probe(s: Scheme, file: &str, e: u32) {
                     deg(sd.turn_angle[j]),
                     norm(sub(u, pv)) / len,
                     ci.map(|x| (x * 1000.0).round() / 1000.0),
-                    if sp.half_edge == hh { "   <== the edge" } else { "" }
+                    if sp.half_edge == hh {
+                        "   <== the edge"
+                    } else {
+                        ""
+                    }
                 );
                 let _ = frame;
             }
@@ -1900,21 +2009,59 @@ fn proto_levels(s: Scheme, m: &OwnedMesh, levels: usize, p: Proto) -> (OwnedMesh
 /// Folded edges of the paper's rules, the prototype (both fallbacks) and the linear scheme;
 /// stars flagged per level.
 fn cmd_proto(s: Scheme, levels: usize, files: &[String], p: Proto) {
-    println!("mesh\tlevels\tpaper\tspectrum\tblend\tlinear\tflagged stars per level (spectrum run)");
+    println!(
+        "mesh\tlevels\tpaper\tspectrum\tblend\tweighted-F4\tspectrum+weighted\tlinear\tflagged stars per level (spectrum run)"
+    );
     for f in files {
         let m = load(f);
         for l in 1..=levels {
             let paper = folds(&lib_levels(s, &m, l, true)).len();
             let lin = folds(&lib_levels(s, &m, l, false)).len();
-            let (spec, flags) = proto_levels(s, &m, l, Proto { fallback: Fallback::Spectrum, ..p });
-            let (blend, _) = proto_levels(s, &m, l, Proto { fallback: Fallback::Blend, ..p });
+            let (spec, flags) = proto_levels(
+                s,
+                &m,
+                l,
+                Proto {
+                    fallback: Fallback::Spectrum,
+                    ..p
+                },
+            );
+            let (blend, _) = proto_levels(
+                s,
+                &m,
+                l,
+                Proto {
+                    fallback: Fallback::Blend,
+                    ..p
+                },
+            );
+            let (wf4, _) = proto_levels(
+                s,
+                &m,
+                l,
+                Proto {
+                    fallback: Fallback::WeightedF4,
+                    ..p
+                },
+            );
+            let (swf4, _) = proto_levels(
+                s,
+                &m,
+                l,
+                Proto {
+                    fallback: Fallback::SpectrumWeighted,
+                    ..p
+                },
+            );
             println!(
-                "{}\t{}\t{}\t{}\t{}\t{}\t{}",
+                "{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}",
                 stem(f),
                 l,
                 paper,
                 folds(&spec).len(),
                 folds(&blend).len(),
+                folds(&wf4).len(),
+                folds(&swf4).len(),
                 lin,
                 flags
                     .iter()
@@ -1937,8 +2084,15 @@ fn random_mobius(m: &OwnedMesh, seed: u64) -> MobiusMap {
         (st >> 11) as f64 / (1u64 << 53) as f64
     };
     let n = m.positions.len() as f64;
-    let c = scale(m.positions.iter().fold([0.0; 3], |a, p| add(a, *p)), 1.0 / n);
-    let diam = m.positions.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max);
+    let c = scale(
+        m.positions.iter().fold([0.0; 3], |a, p| add(a, *p)),
+        1.0 / n,
+    );
+    let diam = m
+        .positions
+        .iter()
+        .map(|p| norm(sub(*p, c)))
+        .fold(0.0, f64::max);
     let dir = {
         let d = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
         scale(d, 1.0 / norm(d))
@@ -1956,14 +2110,18 @@ fn random_mobius(m: &OwnedMesh, seed: u64) -> MobiusMap {
 
 fn diameter(m: &OwnedMesh) -> f64 {
     let c = m.positions[0];
-    2.0 * m.positions.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max)
+    2.0 * m
+        .positions
+        .iter()
+        .map(|p| norm(sub(*p, c)))
+        .fold(0.0, f64::max)
 }
 
 /// Flags and outputs on Möbius images: the trust of every star on `M(X)` against `X`, and
 /// the first level of the paper's rules and of the prototype on `M(X)` against `M` of
 /// their output on `X`.
 fn cmd_equiv(s: Scheme, files: &[String]) {
-    println!("mesh\tseed\tflagged X\tflagged M(X)\tflag status differs\tmax |Δτ|\tpaper max dev/diam\tproto dev/diam (unflagged elements)\tproto dev/diam (flagged elements)");
+    println!("mesh\tseed\tflagged X\tflagged M(X)\tflag status differs\tmax |Δτ|\tpaper max dev/diam\tproto dev/diam (unflagged elements)\tproto dev/diam (flagged elements)\tweighted-F4 dev/diam (all)");
     for f in files {
         let x = load(f);
         let tx = star_trust(s, &x, &PROTO_DEFAULT);
@@ -2004,8 +2162,19 @@ fn cmd_equiv(s: Scheme, files: &[String]) {
                     dev_ok = dev_ok.max(dv);
                 }
             }
+            let wp = Proto {
+                fallback: Fallback::WeightedF4,
+                ..PROTO_DEFAULT
+            };
+            let (wx, wy) = (my_step(s, &x, Some(wp)).out, my_step(s, &y, Some(wp)).out);
+            let dev_w = wx
+                .positions
+                .iter()
+                .zip(&wy.positions)
+                .map(|(a, b)| norm(sub(map.apply(*a).unwrap(), *b)) / d)
+                .fold(0.0, f64::max);
             println!(
-                "{}\t{}\t{}\t{}\t{}\t{:.1e}\t{:.1e}\t{:.1e}\t{:.1e}",
+                "{}\t{}\t{}\t{}\t{}\t{:.1e}\t{:.1e}\t{:.1e}\t{:.1e}\t{:.1e}",
                 stem(f),
                 seed,
                 fx,
@@ -2014,7 +2183,8 @@ fn cmd_equiv(s: Scheme, files: &[String]) {
                 dt,
                 paper_dev,
                 dev_ok,
-                dev_fl
+                dev_fl,
+                dev_w
             );
         }
     }
@@ -2028,9 +2198,17 @@ fn cmd_regular() {
         ("quad_grid 8x8", Scheme::CatmullClark, quad_grid(8, 8)),
         ("tri_grid 8x8", Scheme::Loop, tri_grid(8, 8)),
         ("tri_grid 8x8", Scheme::ModifiedButterfly, tri_grid(8, 8)),
-        ("quad_torus 12x8", Scheme::CatmullClark, quad_torus(12, 8, 2.0, 0.5)),
+        (
+            "quad_torus 12x8",
+            Scheme::CatmullClark,
+            quad_torus(12, 8, 2.0, 0.5),
+        ),
         ("tri_torus 12x8", Scheme::Loop, tri_torus(12, 8)),
-        ("tri_torus 12x8", Scheme::ModifiedButterfly, tri_torus(12, 8)),
+        (
+            "tri_torus 12x8",
+            Scheme::ModifiedButterfly,
+            tri_torus(12, 8),
+        ),
         ("icosahedron", Scheme::Loop, load_mesh("icosahedron")),
         ("cube", Scheme::CatmullClark, load_mesh("cube")),
     ];
@@ -2057,7 +2235,8 @@ fn cmd_regular() {
 }
 
 fn load_mesh(name: &str) -> OwnedMesh {
-    load(&format!("/work/shared/data/meshes/{name}.off"))
+    let p = shared_meshes_dir().join(format!("{name}.off"));
+    load(&p.to_string_lossy())
 }
 
 fn cmd_gridprobe() {
