@@ -1787,7 +1787,7 @@ fn star_turns(sd: &StarDiag, j: usize) -> (f64, f64, f64) {
 
 /// Every element of every level as one TSV row (for docs/folds.md's threshold study).
 fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
-    println!("mesh\tlevel\tk\tkind\trule\tculprit\tlo_a\thi_a\tat_a\tlo_b\thi_b\tat_b\trho\tcfold\tdis\tdev\tspread\tlograd");
+    println!("mesh\tlevel\tk\tkind\trule\tculprit\tlo_a\thi_a\tat_a\tlo_b\thi_b\tat_b\trho\tcfold\tdis\tdev\tspread\tlograd\tfar");
     for f in files {
         let mut cur = load(f);
         for l in 1..=levels {
@@ -1905,7 +1905,7 @@ fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
                         }
                     }
                     println!(
-                        "{}\t{}\t{}\t{:?}\t{:?}\t{}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.4}",
+                        "{}\t{}\t{}\t{:?}\t{:?}\t{}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.4}\t{:.4}",
                         stem(f),
                         l,
                         k,
@@ -1923,7 +1923,8 @@ fn cmd_features(s: Scheme, levels: usize, files: &[String]) {
                         dis,
                         dev,
                         spread,
-                        lograd
+                        lograd,
+                        el.cand_far
                     );
                 }
             });
