@@ -130,7 +130,7 @@ fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
     Ok(if b0 == other { b1 } else { b0 })
 }
 
-fn copy_old(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+pub(crate) fn copy_old(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
     for (v, p) in topo.mesh().positions().enumerate() {
         set(pos, v, p)?;
     }
@@ -154,7 +154,7 @@ pub(crate) fn append_isolated(
 }
 
 /// The third vertex of the triangle of half-edge `h` (the vertex after `dest(h)`).
-fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
+pub(crate) fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
     topo.dest(topo.next(h)?)
 }
 
