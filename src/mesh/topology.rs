@@ -46,10 +46,6 @@
 
 use arrayvec::ArrayVec;
 
-mod derive;
-
-pub(crate) use derive::derivable;
-
 use super::sort::counting_sort;
 use super::{get, internal, set, Mesh, MAX_COUNT, NONE};
 use crate::error::{Error, Result, Status};
@@ -74,7 +70,7 @@ pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<u
 /// A validated mesh with its half-edge topology, held in caller scratch.
 ///
 /// Built by [`Topology::build`] (validating) or derived from a parent level's by
-/// `Topology::refined` (multi-level calls); every query is `O(1)` except star walks (`O(valence)`).
+/// `refine::child_topology` (multi-level calls); every query is `O(1)` except star walks (`O(valence)`).
 /// Queries return `Result` only to stay panic-free: on a built topology they cannot fail for
 /// indices in range.
 #[derive(Clone, Copy, Debug)]
@@ -97,17 +93,19 @@ pub struct Topology<'m, 's> {
 }
 
 /// The seven regions of a topology scratch ([`Topology::build`]'s layout).
-struct Regions<'s> {
-    face_of: &'s mut [u32],
-    twin: &'s mut [u32],
-    edge_of: &'s mut [u32],
-    edge_he: &'s mut [u32],
-    vert_he: &'s mut [u32],
-    valence: &'s mut [u32],
-    bnd_rank: &'s mut [u32],
+pub(crate) struct Regions<'s> {
+    pub(crate) face_of: &'s mut [u32],
+    pub(crate) twin: &'s mut [u32],
+    pub(crate) edge_of: &'s mut [u32],
+    pub(crate) edge_he: &'s mut [u32],
+    pub(crate) vert_he: &'s mut [u32],
+    pub(crate) valence: &'s mut [u32],
+    pub(crate) bnd_rank: &'s mut [u32],
 }
 
-fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
+/// The regions of a scratch for `nv` vertices and `nh` half-edges;
+/// [`Status::BufferTooSmall`] with the needed length when it is short.
+pub(crate) fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
     let need = topology_scratch_len(nv, nh)?;
     if scratch.len() < need {
         return Err(Error::too_small(need));
@@ -135,14 +133,14 @@ fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
 /// so a multi-level call can keep a topology across loop iterations without borrowing it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Counts {
-    n_edges: usize,
-    n_boundary_edges: usize,
-    n_boundary_vertices: usize,
-    n_isolated: usize,
-    interior_spokes: usize,
-    boundary_spokes: usize,
-    max_face: usize,
-    min_face: usize,
+    pub(crate) n_edges: usize,
+    pub(crate) n_boundary_edges: usize,
+    pub(crate) n_boundary_vertices: usize,
+    pub(crate) n_isolated: usize,
+    pub(crate) interior_spokes: usize,
+    pub(crate) boundary_spokes: usize,
+    pub(crate) max_face: usize,
+    pub(crate) min_face: usize,
 }
 
 /// The arrays of a [`Topology`] ([`Topology::raw`]); see the module docs for their meaning.
@@ -156,6 +154,7 @@ pub(crate) struct Raw<'m, 's> {
     pub(crate) edge_he: &'s [u32],
     pub(crate) vert_he: &'s [u32],
     pub(crate) valence: &'s [u32],
+    pub(crate) bnd_rank: &'s [u32],
     /// Every face is a quad, so face `f` is corners `4f..4f + 4` (every level of
     /// Catmull–Clark and Kobbelt after the first).
     pub(crate) quads: bool,
@@ -681,6 +680,7 @@ impl<'m, 's> Topology<'m, 's> {
             edge_he: self.edge_he,
             vert_he: self.vert_he,
             valence: self.valence,
+            bnd_rank: self.bnd_rank,
             quads: self.min_face == 4 && self.max_face == 4,
             triangles: self.min_face == 3 && self.max_face == 3,
         }
@@ -701,7 +701,7 @@ impl<'m, 's> Topology<'m, 's> {
     }
 
     /// The topology of `mesh` whose arrays [`Topology::build`] (or a derivation of
-    /// [`derive`]) left in `scratch`, with the `counts` it returned: the same view again in
+    /// `refine::child_topology`) left in `scratch`, with the `counts` it returned: the same view again in
     /// `O(1)`, nothing re-validated. Only the regions' lengths are checked.
     pub(crate) fn from_parts(
         mesh: Mesh<'m>,
