@@ -30,6 +30,7 @@
 //!
 //! See [`topology`] for the order of the checks and the element each status names.
 
+pub(crate) mod gather;
 pub mod refine;
 mod sort;
 pub mod topology;

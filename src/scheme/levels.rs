@@ -4,15 +4,21 @@
 //! [`plan`] validates the input, then follows a handful of counts from level to level
 //! (vertices, faces, corners, edges, boundary edges, isolated vertices, valence sums and
 //! maxima): for every pattern these counts of level `k + 1` are exact functions of the counts
-//! of level `k`, so no intermediate level has to be built to know its size. The plan's
-//! sizes are checked against what each step really writes.
+//! of level `k` (each pattern's own, in [`crate::mesh::refine`]), so no intermediate level
+//! has to be built to know its size. The plan's sizes are checked against what each step
+//! really writes.
+//!
+//! The level loop runs every level through the one-step function of the one-level calls
+//! (linear or Möbius), and for the patterns that allow it derives each level's topology from
+//! the previous one instead of validating the refined mesh again.
 //!
 //! Limits: at most [`MAX_LEVELS`] levels; a later level whose valence or face size would
 //! exceed the capacity is [`Status::ValenceTooHigh`] (no element: it does not exist yet).
 
-use super::linear::subdivide_size;
 use super::mobius::MobiusOptions;
-use super::{subdivide, Scheme};
+use super::size::subdivide_size;
+use super::step::step;
+use super::Scheme;
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::{child_topology, derivable, LevelCounts, Pattern};
 use crate::mesh::topology::Counts;
@@ -220,7 +226,8 @@ pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
 /// copies the input. Returns the output sizes.
 ///
 /// # Errors
-/// Those of [`plan`] and [`subdivide`]; [`Status::BufferTooSmall`] with the needed size.
+/// Those of [`plan`] and [`super::subdivide`]; [`Status::BufferTooSmall`] with the needed
+/// size.
 pub fn subdivide_levels(
     scheme: Scheme,
     mesh: Mesh<'_>,
@@ -229,16 +236,7 @@ pub fn subdivide_levels(
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
 ) -> Result<MeshSizes> {
-    run_levels(
-        scheme,
-        mesh,
-        levels,
-        scratch_u32,
-        scratch_points,
-        out,
-        |_| Ok(0),
-        |_, topo, step_out, _| subdivide(scheme, topo, step_out),
-    )
+    run_levels(scheme, None, mesh, levels, scratch_u32, scratch_points, out).map(|(s, _)| s)
 }
 
 /// [`subdivide_levels`] with the canonical Möbius version of `scheme`
@@ -259,42 +257,31 @@ pub fn subdivide_levels_mobius(
     out: &mut MeshOut<'_>,
     opts: MobiusOptions,
 ) -> Result<(MeshSizes, LevelsReport)> {
-    let mut report = LevelsReport::default();
-    let sizes = run_levels(
+    run_levels(
         scheme,
+        Some(opts),
         mesh,
         levels,
         scratch_u32,
         scratch_points,
         out,
-        LevelPlan::mobius_step_points,
-        |k, topo, step_out, cand| {
-            let (written, r) = super::mobius::subdivide(scheme, topo, step_out, cand, opts)?;
-            report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
-            if report.first_fallback_level == 0 && r.fallbacks > 0 {
-                report.first_fallback = r.first_fallback;
-                report.first_fallback_level = (k + 1) as u32;
-            }
-            Ok(written)
-        },
-    )?;
-    Ok((sizes, report))
+    )
 }
 
-/// The level loop shared by [`subdivide_levels`] and [`subdivide_levels_mobius`]:
-/// `step_points(plan)` extra points of scratch (after the intermediate levels) are handed to
-/// every `step(k, topology of level k, output of level k + 1, extra scratch)`.
-#[allow(clippy::too_many_arguments)]
+/// The level loop shared by [`subdivide_levels`] (`mobius` `None`) and
+/// [`subdivide_levels_mobius`]: every level is one [`step`]; with `mobius`, the candidate
+/// scratch of the largest step ([`LevelPlan::mobius_step_points`], after the intermediate
+/// levels) is handed to every step and the steps' reports are gathered.
 fn run_levels(
     scheme: Scheme,
+    mobius: Option<MobiusOptions>,
     mesh: Mesh<'_>,
     levels: usize,
     scratch_u32: &mut [u32],
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
-    step_points: impl Fn(&LevelPlan) -> Result<usize>,
-    mut step: impl FnMut(usize, &Topology<'_, '_>, &mut MeshOut<'_>, &mut [Point]) -> Result<MeshSizes>,
-) -> Result<MeshSizes> {
+) -> Result<(MeshSizes, LevelsReport)> {
+    let mut report = LevelsReport::default();
     let need_plan = plan_scratch_len(&mesh)?;
     if scratch_u32.len() < need_plan {
         return Err(Error::too_small(need_plan));
@@ -305,14 +292,17 @@ fn run_levels(
     if scratch_u32.len() < p.scratch_u32 {
         return Err(Error::too_small(p.scratch_u32));
     }
-    let extra = step_points(&p)?;
+    let extra = match mobius {
+        Some(_) => p.mobius_step_points()?,
+        None => 0,
+    };
     let need_points = cadd(p.scratch_points, extra)?;
     if scratch_points.len() < need_points {
         return Err(Error::too_small(need_points));
     }
     if levels == 0 {
         copy_mesh(mesh, out)?;
-        return Ok(final_sizes);
+        return Ok((final_sizes, report));
     }
     let pattern = scheme.pattern();
     let derive = derivable(pattern);
@@ -370,14 +360,19 @@ fn run_levels(
             Some(c) => Topology::from_parts(input, in_t, c)?,
             None => Topology::build(input, in_t)?,
         };
-        let written = if k + 1 == levels {
-            step(k, &topo, out, step_scratch)?
+        let (written, r) = if k + 1 == levels {
+            step(scheme, mobius, &topo, out, step_scratch)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(&mut *out_p, o, rest);
-            step(k, &topo, &mut step_out, step_scratch)?
+            step(scheme, mobius, &topo, &mut step_out, step_scratch)?
         };
+        report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
+        if report.first_fallback_level == 0 && r.fallbacks > 0 {
+            report.first_fallback = r.first_fallback;
+            report.first_fallback_level = (k + 1) as u32;
+        }
         if written != out_sizes {
             return Err(internal());
         }
@@ -392,7 +387,7 @@ fn run_levels(
             ready = Some(child_topology(&topo, pattern, child, out_t)?.counts());
         }
     }
-    Ok(final_sizes)
+    Ok((final_sizes, report))
 }
 
 fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {

@@ -14,16 +14,20 @@
 //! face points in face order; dual schemes document their own order
 //! ([`crate::mesh::refine`]). Contents of the output buffers are unspecified on error.
 
+mod carry;
 mod levels;
-pub mod linear;
+mod linear;
 pub mod mobius;
+mod size;
 pub mod spherelike;
+mod step;
 
 pub use levels::{
     plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
     MAX_LEVELS,
 };
-pub use linear::{subdivide, subdivide_size};
+pub use size::subdivide_size;
+pub use step::subdivide;
 
 use crate::error::Result;
 use crate::mesh::refine::Pattern;

@@ -63,9 +63,9 @@
 //! nothing is reported as success with a partial result. There is no Möbius form either
 //! ([`super::Scheme::has_mobius_form`]): the circle blend is not Möbius-equivariant.
 
-use super::linear::face_points;
 use crate::curve::circle_blend;
 use crate::error::{Error, Result, Status};
+use crate::mesh::gather::{boundary_beyond, face_points};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::Point;
 use crate::MAX_FACE_SIZE;
@@ -130,12 +130,6 @@ fn edge_point(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
         return circle_blend::blend_point(topo.position(a)?, p1, p2, topo.position(b)?);
     }
     segment_point(beyond(topo, v1, v2)?, p1, p2, beyond(topo, v2, v1)?)
-}
-
-/// The other boundary neighbour of boundary vertex `v` (not `other`).
-fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
-    let (b0, b1) = topo.boundary_neighbours(v)?;
-    Ok(if b0 == other { b1 } else { b0 })
 }
 
 /// The point `V0` beyond `v` on the grid line from `toward` through `v` (Fig. 3), or `None`

@@ -1,15 +1,11 @@
 //! The counts of a level that determine the counts of the next (vertices, faces, corners,
 //! edges, boundary edges, isolated vertices, valence sums and maxima): for every pattern the
-//! counts of level `k + 1` are exact functions of those of level `k` (each pattern's `next`),
-//! so a multi-level plan knows the size of every level without building any
-//! ([`crate::scheme::plan`]).
+//! counts of level `k + 1` are exact functions of those of level `k` (each pattern's `next`;
+//! [`LevelCounts::next`] dispatches), so a multi-level plan knows the size of every level
+//! without building any ([`crate::scheme::plan`]).
 
-use super::{
-    corner_cut, dual, dual_truncation, mid_edge, quads, split_1to4, vertex_insertion, Pattern,
-};
-use crate::error::{Error, Result, Status};
+use crate::error::Result;
 use crate::mesh::{cadd, MeshSizes, Topology, NONE};
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// Counts that determine the next level's counts.
 #[derive(Clone, Copy, Debug)]
@@ -84,26 +80,6 @@ impl LevelCounts {
             faces: self.f,
             indices: self.h,
         }
-    }
-
-    /// The counts of the next level of `pattern` (derivations in each pattern's `next`);
-    /// [`Status::ValenceTooHigh`] (no element: the vertex does not exist yet) when a valence
-    /// or a face size would exceed the capacity, [`Status::SizeOverflow`].
-    pub(crate) fn next(&self, pattern: Pattern) -> Result<LevelCounts> {
-        let n = match pattern {
-            Pattern::Split1To4 => split_1to4::next(self)?,
-            Pattern::Quads => quads::next(self)?,
-            Pattern::CornerCut => corner_cut::next(self)?,
-            Pattern::VertexInsertion => vertex_insertion::next(self)?,
-            Pattern::DualTruncation => dual_truncation::next(self)?,
-            Pattern::Dual => dual::next(self)?,
-            Pattern::MidEdge => mid_edge::next(self)?,
-        };
-        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_FACE_SIZE {
-            return Err(Error::new(Status::ValenceTooHigh));
-        }
-        n.sizes().check()?;
-        Ok(n)
     }
 }
 

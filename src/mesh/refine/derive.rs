@@ -30,39 +30,12 @@
 
 //!
 //! This file holds what both derivations share (the edges from old vertices to edge points,
-//! the old vertices' arrays) and the dispatch; each derivation lives with its pattern.
+//! the old vertices' arrays); each derivation lives with its pattern, and
+//! [`super::child_topology`] dispatches.
 
-use super::{quads, split_1to4, Pattern};
 use crate::error::Result;
 use crate::mesh::topology::{Raw, Regions};
-use crate::mesh::{get, internal, set, Mesh, Topology, NONE};
-
-/// Whether [`child_topology`] derives the child topology of `pattern`.
-pub(crate) fn derivable(pattern: Pattern) -> bool {
-    matches!(pattern, Pattern::Quads | Pattern::Split1To4)
-}
-
-/// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that
-/// [`super::write_pattern`] wrote from `parent`, in `scratch`
-/// ([`crate::mesh::topology_scratch_len`] of the child): the same arrays as
-/// [`Topology::build`] on `mesh` (module docs).
-///
-/// # Errors
-/// [`crate::Status::BufferTooSmall`] with the needed length; an internal error when `mesh`
-/// is not this pattern's child or the pattern is not derivable.
-pub(crate) fn child_topology<'m2, 's2>(
-    parent: &Topology<'_, '_>,
-    pattern: Pattern,
-    mesh: Mesh<'m2>,
-    scratch: &'s2 mut [u32],
-) -> Result<Topology<'m2, 's2>> {
-    let counts = match pattern {
-        Pattern::Quads => quads::derive(parent, &mesh, scratch)?,
-        Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch)?,
-        _ => return Err(internal()),
-    };
-    Topology::from_parts(mesh, scratch, counts)
-}
+use crate::mesh::{get, internal, set, Topology, NONE};
 
 /// `a == b`, or an internal error (the refined mesh is not the pattern's).
 #[inline]
@@ -152,10 +125,9 @@ pub(super) fn old_vertices(
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
-    use super::*;
     use crate::error::Error;
-    use crate::mesh::refine::{pattern_size, write_pattern};
-    use crate::mesh::{topology_scratch_len, Mesh};
+    use crate::mesh::refine::{child_topology, derivable, pattern_size, write_pattern, Pattern};
+    use crate::mesh::{topology_scratch_len, Mesh, Topology};
     use crate::point::Point;
     use arrayvec::ArrayVec;
 

@@ -24,6 +24,7 @@ impl<'a> FaceWriter<'a> {
     }
 
     /// Appends corner `v` to the current face.
+    #[inline]
     pub(super) fn push(&mut self, v: u32) -> Result<()> {
         set(self.indices, self.corner, v)?;
         self.corner += 1;
@@ -31,12 +32,14 @@ impl<'a> FaceWriter<'a> {
     }
 
     /// Closes the current face.
+    #[inline]
     pub(super) fn end_face(&mut self) -> Result<()> {
         self.face += 1;
         set(self.offsets, self.face, idx(self.corner)?)
     }
 
     /// Writes the face `vs`.
+    #[inline]
     pub(super) fn face(&mut self, vs: &[u32]) -> Result<()> {
         for &v in vs {
             self.push(v)?;

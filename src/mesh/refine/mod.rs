@@ -55,10 +55,11 @@ mod split_1to4;
 mod vertex_insertion;
 
 pub(crate) use counts::LevelCounts;
-pub(crate) use derive::{child_topology, derivable};
 
-use super::{get, idx, internal, MeshSizes, Topology};
-use crate::error::{Error, Result};
+use super::topology::Counts;
+use super::{get, idx, internal, Mesh, MeshSizes, Topology};
+use crate::error::{Error, Result, Status};
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// A refinement pattern (connectivity of one step; see the module table).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -159,4 +160,52 @@ pub fn write_pattern(
     }
     let _ = get(offsets, sizes.faces)?;
     Ok(sizes)
+}
+
+impl LevelCounts {
+    /// The counts of the next level of `pattern` (derivations in each pattern's `next`);
+    /// [`Status::ValenceTooHigh`] (no element: the vertex does not exist yet) when a valence
+    /// or a face size would exceed the capacity, [`Status::SizeOverflow`].
+    pub(crate) fn next(&self, pattern: Pattern) -> Result<LevelCounts> {
+        let n = match pattern {
+            Pattern::Split1To4 => split_1to4::next(self)?,
+            Pattern::Quads => quads::next(self)?,
+            Pattern::CornerCut => corner_cut::next(self)?,
+            Pattern::VertexInsertion => vertex_insertion::next(self)?,
+            Pattern::DualTruncation => dual_truncation::next(self)?,
+            Pattern::Dual => dual::next(self)?,
+            Pattern::MidEdge => mid_edge::next(self)?,
+        };
+        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_FACE_SIZE {
+            return Err(Error::new(Status::ValenceTooHigh));
+        }
+        n.sizes().check()?;
+        Ok(n)
+    }
+}
+
+/// Whether [`child_topology`] derives the child topology of `pattern`.
+pub(crate) fn derivable(pattern: Pattern) -> bool {
+    matches!(pattern, Pattern::Quads | Pattern::Split1To4)
+}
+
+/// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that [`write_pattern`]
+/// wrote from `parent`, in `scratch` ([`crate::mesh::topology_scratch_len`] of the child): the
+/// same arrays as [`Topology::build`] on `mesh` (`derive.rs`).
+///
+/// # Errors
+/// [`Status::BufferTooSmall`] with the needed length; an internal error when `mesh` is not
+/// this pattern's child or the pattern is not derivable.
+pub(crate) fn child_topology<'m2, 's2>(
+    parent: &Topology<'_, '_>,
+    pattern: Pattern,
+    mesh: Mesh<'m2>,
+    scratch: &'s2 mut [u32],
+) -> Result<Topology<'m2, 's2>> {
+    let counts: Counts = match pattern {
+        Pattern::Quads => quads::derive(parent, &mesh, scratch)?,
+        Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch)?,
+        _ => return Err(internal()),
+    };
+    Topology::from_parts(mesh, scratch, counts)
 }

@@ -7,7 +7,7 @@
 //! of ears only takes its linear rule, counted as a fallback (docs/DECISIONS.md).
 
 use super::driver::Driver;
-use super::form::{FacePts, Spokes};
+use super::form::{FacePts, MapBack, Spokes};
 use super::memo::StarForm;
 use crate::error::Result;
 use crate::mesh::{get, set, NONE};

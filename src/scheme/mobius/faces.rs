@@ -7,8 +7,8 @@ use super::driver::Driver;
 use super::form::{present, FacePts};
 use crate::blend;
 use crate::error::Result;
+use crate::mesh::gather::face_points_into;
 use crate::mesh::{get, internal, set};
-use crate::scheme::linear::face_points_into;
 use crate::stencil::centroid;
 
 impl Driver<'_, '_, '_, '_> {

@@ -14,12 +14,9 @@ use crate::error::{Error, Result, Status};
 use crate::mesh::Spoke;
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+use crate::MAX_VALENCE;
 
-/// Points of a vertex ring (neighbours, face centroids, candidates), one per spoke.
-pub(super) type Ring = ArrayVec<Point, MAX_VALENCE>;
-/// Points of one face, in face order.
-pub(super) type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
+pub(super) use crate::mesh::gather::{FacePts, Ring};
 /// The spokes of one vertex star, counter-clockwise.
 pub(super) type Spokes = ArrayVec<Spoke, MAX_VALENCE>;
 
@@ -28,6 +25,22 @@ pub(super) const ORIGIN: Point = [0.0; 3];
 
 /// Marker of a candidate that could not be computed (NaN: never [`present`]).
 pub(super) const MISSING: Point = [f64::NAN; 3];
+
+/// The map from a canonical form's normalised frame back to the mesh, `m_{C→B}` (seed 000
+/// §4.1 step 3): [`CanonicalForm::from_normalised`] of a form built from points (the tier-1
+/// rules) or of a mesh vertex's memoised form (the drivers). A trait rather than a closure so
+/// that the rules evaluated in a form always inline it (it runs once per candidate).
+pub(super) trait MapBack {
+    /// The point of the mesh whose image in the normalised frame is `p`.
+    fn back(&self, p: Point) -> Result<Point>;
+}
+
+impl MapBack for CanonicalForm {
+    #[inline(always)]
+    fn back(&self, p: Point) -> Result<Point> {
+        self.from_normalised(p)
+    }
+}
 
 /// Whether a candidate was computed (finite).
 #[inline]

@@ -7,7 +7,7 @@
 //! (the memo and the tangent polygon), and returning a fresh one per vertex moved it several
 //! times per vertex (memcpy was half of Möbius Catmull–Clark's instructions).
 
-use super::form::{FacePts, Ring, Spokes, ORIGIN};
+use super::form::{FacePts, MapBack, Ring, Spokes, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
@@ -218,10 +218,11 @@ impl StarForm {
         self.face(topo, f, pts)?;
         centroid(pts)
     }
+}
 
-    /// A point of the normalised frame mapped back to the mesh (step 3 of §4.1).
-    #[inline]
-    pub(super) fn back(&self, p: Point) -> Result<Point> {
+impl MapBack for StarForm {
+    #[inline(always)]
+    fn back(&self, p: Point) -> Result<Point> {
         self.cf.from_normalised(p)
     }
 }

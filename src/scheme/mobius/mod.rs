@@ -129,7 +129,7 @@ pub fn subdivide(
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
         return Err(Error::new(Status::InvalidArgument));
     }
-    let sizes = super::linear::subdivide_size(scheme, topo)?;
+    let sizes = super::subdivide_size(scheme, topo)?;
     out.check(&sizes)?;
     let need = scratch_len(topo)?;
     if scratch.len() < need {

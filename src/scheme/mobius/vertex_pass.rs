@@ -9,7 +9,7 @@
 //! given takes its linear rule later, counted as a fallback.
 
 use super::driver::Driver;
-use super::form::{present, FacePts, Ring, Spokes, MISSING};
+use super::form::{present, FacePts, MapBack, Ring, Spokes, MISSING};
 use super::memo::StarForm;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
@@ -31,6 +31,7 @@ pub(super) struct Star<'p> {
 impl Star<'_> {
     /// The images of the ring neighbours in star order into `ring` ([`MISSING`] for one the
     /// form sends to infinity); whether all exist.
+    #[inline(always)]
     pub(super) fn ring_images(&mut self, topo: &Topology<'_, '_>, ring: &mut Ring) -> Result<bool> {
         ring.clear();
         let mut all = true;
@@ -81,19 +82,26 @@ impl Driver<'_, '_, '_, '_> {
         form: &mut StarForm,
         spokes: &mut Spokes,
     ) -> Result<bool> {
+        Ok(self.retarget(v, form, spokes)?.is_some())
+    }
+
+    /// [`Driver::local_into`], returning with a form whether `v` lies on the boundary.
+    #[inline(always)]
+    fn retarget(&self, v: u32, form: &mut StarForm, spokes: &mut Spokes) -> Result<Option<bool>> {
         let topo = self.topo;
         // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
         let h = topo.vertex_half_edge(v)?;
         let boundary = h != NONE && topo.twin(h)? == NONE;
         if h == NONE || (boundary && topo.valence(v)? == 2) {
             form.clear();
-            return Ok(false);
+            return Ok(None);
         }
-        form.reset(topo, v, boundary, spokes)
+        Ok(form.reset(topo, v, boundary, spokes)?.then_some(boundary))
     }
 
     /// Runs `rule` on the star of every vertex that has a canonical form, in vertex order
     /// (module docs).
+    #[inline(always)]
     pub(super) fn vertex_pass(
         &mut self,
         mut rule: impl FnMut(&mut Self, &mut Star<'_>) -> Result<()>,
@@ -102,10 +110,9 @@ impl Driver<'_, '_, '_, '_> {
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
         for v in 0..topo.num_vertices() as u32 {
-            if !self.local_into(v, &mut form, &mut spokes)? {
+            let Some(boundary) = self.retarget(v, &mut form, &mut spokes)? else {
                 continue;
-            }
-            let boundary = topo.is_boundary_vertex(v)?;
+            };
             let mut star = Star {
                 v,
                 boundary,

@@ -5,11 +5,12 @@
 //! rule. Layouts are the linear schemes'.
 
 use super::super::driver::Driver;
-use super::super::form::{FacePts, Ring, ORIGIN};
+use super::super::form::{FacePts, MapBack, Ring, ORIGIN};
 use crate::blend::f4;
 use crate::error::Result;
+use crate::mesh::gather::ring_points;
 use crate::mesh::{set, NONE};
-use crate::scheme::linear::{append_isolated, boundary_vertices, copy_old, ring_points};
+use crate::scheme::carry::{append_isolated, boundary_vertices, copy_old};
 use crate::stencil::akleman;
 
 /// The face candidates of every corner (the face centroid in the corner's form, ears in a

@@ -5,12 +5,13 @@
 //! Möbius interpolating curve rule.
 
 use super::super::driver::Driver;
-use super::super::form::{Ring, MISSING};
+use super::super::form::{MapBack, Ring, MISSING};
 use super::super::rules::butterfly_star_in_form;
 use crate::error::Result;
 use crate::mesh::NONE;
 use crate::point::Point;
-use crate::scheme::linear::{butterfly_edge, copy_old};
+use crate::scheme::carry::copy_old;
+use crate::scheme::linear::butterfly_edge;
 use crate::stencil::butterfly;
 use crate::MAX_VALENCE;
 

@@ -8,9 +8,9 @@ use super::super::driver::Driver;
 use super::super::form::{FacePts, Ring, MISSING};
 use super::super::rules::catmull_clark_star_in_form;
 use crate::error::Result;
+use crate::mesh::gather::face_points;
 use crate::mesh::{internal, set};
 use crate::point::Point;
-use crate::scheme::linear::face_points;
 use crate::stencil::{catmull_clark, centroid};
 use crate::MAX_VALENCE;
 
@@ -33,8 +33,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         d.keep_face_candidates(star, &fc)?;
         star.ring_images(topo, &mut ring)?;
         let form = &*star.form;
-        let vertex =
-            catmull_clark_star_in_form(&ring, &fc, !star.boundary, |q| form.back(q), &mut cands)?;
+        let vertex = catmull_clark_star_in_form(&ring, &fc, !star.boundary, form, &mut cands)?;
         d.keep_edge_candidates(star.spokes, &cands)?;
         if let Some(q) = vertex {
             set(d.pos, star.v as usize, q)?;

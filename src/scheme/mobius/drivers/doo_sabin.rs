@@ -7,9 +7,10 @@ use super::super::form::{present, FacePts, Spokes, MISSING};
 use super::super::memo::StarForm;
 use super::super::rules::doo_sabin_corner_in_form;
 use crate::error::Result;
+use crate::mesh::gather::face_points_into;
 use crate::mesh::{get, set, NONE};
 use crate::point;
-use crate::scheme::linear::{append_isolated, face_points_into};
+use crate::scheme::carry::append_isolated;
 use crate::stencil::doo_sabin;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
@@ -29,7 +30,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             let form = &mut *star.form;
             let q = form
                 .face(topo, s.face, &mut pts)
-                .and_then(|()| doo_sabin_corner_in_form(&pts, i, |c| form.back(c)));
+                .and_then(|()| doo_sabin_corner_in_form(&pts, i, form));
             if let Ok(q) = q {
                 set(d.pos, s.half_edge as usize, q)?;
             }
@@ -57,7 +58,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                         return None;
                     }
                     form.face(topo, f, &mut pts).ok()?;
-                    doo_sabin_corner_in_form(&pts, i, |c| form.back(c)).ok()
+                    doo_sabin_corner_in_form(&pts, i, &form).ok()
                 })
             } else {
                 None

@@ -7,14 +7,15 @@
 
 use super::super::driver::Driver;
 use super::super::form::{present, Ring, MISSING};
-use super::super::rules::kobbelt_star_in_form;
+use super::super::rules::kobbelt_beyond_in_form;
 use crate::blend::{self, f4, f4_hinted};
 use crate::error::Result;
-use crate::mesh::{get, Topology, NONE};
+use crate::mesh::gather::apex;
+use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{midpoint, Point};
-use crate::scheme::linear::{apex, copy_old, kobbelt_edge};
+use crate::scheme::carry::copy_old;
+use crate::scheme::linear::kobbelt_edge;
 use crate::stencil::kobbelt;
-use crate::MAX_VALENCE;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
@@ -25,27 +26,32 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // (regular interior vertices give the actual grid neighbour).
     let mut ring = Ring::new();
     let mut diagonals = Ring::new();
-    let mut beyond = [MISSING; MAX_VALENCE];
     d.vertex_pass(|d, star| {
-        star.ring_images(topo, &mut ring)?;
+        // The images of the neighbours and, for a closed star, of the diagonals.
+        let mut complete = true;
+        ring.clear();
         diagonals.clear();
-        if !star.boundary {
-            for s in star.spokes {
+        for s in star.spokes {
+            let form = &mut *star.form;
+            let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
+            ring.try_push(q).map_err(|_| internal())?;
+            complete &= present(&q);
+            if !star.boundary {
                 let c = apex(topo, s.half_edge)
-                    .and_then(|a| star.form.canon(topo, a))
+                    .and_then(|a| form.canon(topo, a))
                     .unwrap_or(MISSING);
-                diagonals.try_push(c).map_err(|_| crate::mesh::internal())?;
+                diagonals.try_push(c).map_err(|_| internal())?;
+                complete &= present(&c);
             }
         }
         let form = &*star.form;
-        kobbelt_star_in_form(
-            &ring,
-            &diagonals,
-            !star.boundary,
-            |p| form.back(p),
-            &mut beyond,
-        )?;
-        d.keep_edge_candidates(star.spokes, &beyond)
+        for (j, s) in star.spokes.iter().enumerate() {
+            let p = kobbelt_beyond_in_form(&ring, &diagonals, !star.boundary, complete, j, form);
+            if let (Some(p), true) = (p, s.half_edge != NONE) {
+                set(d.edge_c, s.half_edge as usize, p)?;
+            }
+        }
+        Ok(())
     })?;
     // Edge points F4(r0, a0, a1, r1).
     for e in 0..ne as u32 {
@@ -71,7 +77,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                 kobbelt_edge(topo, e)?
             }
         };
-        crate::mesh::set(d.pos, k, q)?;
+        set(d.pos, k, q)?;
     }
     // Face points: F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7) over the two grid lines
     // of new edge points through the face (Fig. 14).
@@ -104,7 +110,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                 midpoint(fa, fb)
             }
         };
-        crate::mesh::set(d.pos, k, q)?;
+        set(d.pos, k, q)?;
     }
     Ok(())
 }

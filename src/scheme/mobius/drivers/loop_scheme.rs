@@ -6,9 +6,9 @@ use super::super::driver::Driver;
 use super::super::form::{Ring, MISSING};
 use super::super::rules::loop_star_in_form;
 use crate::error::Result;
+use crate::mesh::gather::{apex, ring_points};
 use crate::mesh::set;
 use crate::point::Point;
-use crate::scheme::linear::{apex, ring_points};
 use crate::stencil::loop_scheme;
 use crate::MAX_VALENCE;
 
@@ -22,7 +22,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         if star.ring_images(topo, &mut ring)? {
             // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
             let form = &*star.form;
-            let vertex = loop_star_in_form(&ring, !star.boundary, |q| form.back(q), &mut cands)?;
+            let vertex = loop_star_in_form(&ring, !star.boundary, form, &mut cands)?;
             d.keep_edge_candidates(star.spokes, &cands)?;
             if let Some(q) = vertex {
                 set(d.pos, star.v as usize, q)?;

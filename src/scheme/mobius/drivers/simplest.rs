@@ -4,11 +4,11 @@
 //! through in the linear layout.
 
 use super::super::driver::Driver;
-use super::super::form::ORIGIN;
+use super::super::form::{MapBack, ORIGIN};
 use crate::error::Result;
 use crate::mesh::{set, NONE};
 use crate::point::{midpoint, Point};
-use crate::scheme::linear::{append_isolated, boundary_vertices};
+use crate::scheme::carry::{append_isolated, boundary_vertices};
 use crate::stencil::simplest;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {

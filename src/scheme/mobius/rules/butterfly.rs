@@ -36,6 +36,7 @@ fn cyc(p: &[Point], j: usize, k: isize) -> Point {
 /// ≠ 6. `None` when the rule gives no candidate or an image it needs is [`MISSING`]. The
 /// result is in the normalised frame (not yet mapped back). The driver and
 /// [`butterfly_star`] both evaluate each spoke here.
+#[inline(always)]
 pub(in crate::scheme::mobius) fn butterfly_star_in_form(
     images: &[Point],
     closed: bool,

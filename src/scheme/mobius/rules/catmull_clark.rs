@@ -5,7 +5,7 @@
 
 use arrayvec::ArrayVec;
 
-use super::super::form::{interior_spoke, present, star_form, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
 use super::StarFaces;
 use crate::error::{Error, Result};
 use crate::mesh::{get, internal, set};
@@ -17,11 +17,12 @@ use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 /// the neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when
 /// not available). Writes the edge candidate `edge_interior(0, r_j, f_{j−1}, f_j)` of every
 /// interior spoke and returns the vertex point of a closed star, all mapped back with `back`.
+#[inline(always)]
 pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
     ring: &[Point],
     faces: &[Point],
     closed: bool,
-    back: impl Fn(Point) -> Result<Point>,
+    form: &impl MapBack,
     edge_candidates: &mut [Point],
 ) -> Result<Option<Point>> {
     let n = ring.len();
@@ -32,7 +33,9 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
             let f0 = get(faces, (j + n - 1) % n)?;
             let f1 = get(faces, j)?;
             if present(&b) && present(&f0) && present(&f1) {
-                c = back(catmull_clark::edge_interior(ORIGIN, b, f0, f1)).unwrap_or(MISSING);
+                c = form
+                    .back(catmull_clark::edge_interior(ORIGIN, b, f0, f1))
+                    .unwrap_or(MISSING);
             }
         }
         set(edge_candidates, j, c)?;
@@ -41,7 +44,7 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
     if closed && all(ring) && all(faces) {
         let faces = faces.get(..n).ok_or(internal())?;
         Ok(catmull_clark::vertex_interior(ORIGIN, ring, faces)
-            .and_then(&back)
+            .and_then(|p| form.back(p))
             .ok())
     } else {
         Ok(None)
@@ -124,11 +127,5 @@ pub fn catmull_clark_star(
             set(face_candidates, j, back)?;
         }
     }
-    catmull_clark_star_in_form(
-        &images,
-        &centroids,
-        closed,
-        |p| cf.from_normalised(p),
-        edge_candidates,
-    )
+    catmull_clark_star_in_form(&images, &centroids, closed, &cf, edge_candidates)
 }

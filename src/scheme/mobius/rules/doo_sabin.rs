@@ -3,7 +3,7 @@
 //! `v` ([`doo_sabin::corner_point`]) is evaluated on the face mapped into `v`'s canonical form,
 //! so every new point comes from exactly one form and needs no blend.
 
-use super::super::form::{star_form, MISSING};
+use super::super::form::{star_form, MapBack, MISSING};
 use super::StarFaces;
 use crate::error::{Error, Result, Status};
 use crate::mesh::set;
@@ -16,12 +16,13 @@ use arrayvec::ArrayVec;
 /// The corner point of corner `i` of a face given by its corners' images in a star's canonical
 /// form, mapped back with `back`. The driver and [`doo_sabin_star`] both evaluate every corner
 /// here.
+#[inline(always)]
 pub(in crate::scheme::mobius) fn doo_sabin_corner_in_form(
     face: &[Point],
     i: usize,
-    back: impl Fn(Point) -> Result<Point>,
+    form: &impl MapBack,
 ) -> Result<Point> {
-    doo_sabin::corner_point(face, i).and_then(back)
+    doo_sabin::corner_point(face, i).and_then(|p| form.back(p))
 }
 
 /// The canonical Möbius Doo–Sabin rule at the vertex star `v ring…`, exactly as
@@ -83,7 +84,7 @@ pub fn doo_sabin_star(
             }
         }
         if ok {
-            if let Ok(q) = doo_sabin_corner_in_form(&pts, i, |p| cf.from_normalised(p)) {
+            if let Ok(q) = doo_sabin_corner_in_form(&pts, i, &cf) {
                 set(corner_points, j, q)?;
             }
         }

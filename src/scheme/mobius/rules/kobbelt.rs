@@ -16,49 +16,40 @@
 //! the corner after `b` in the face on the left of `a → b`), `r_a` the point beyond `a` on
 //! the line from `b` and `r_b` the point beyond `b` on the line from `a`.
 
-use super::super::form::{interior_spoke, present, star_form, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
 use crate::error::{Error, Result, Status};
-use crate::mesh::{get, set};
+use crate::mesh::set;
 use crate::point::{self, Point};
 use crate::stencil::kobbelt;
 
-/// The points beyond the centre of a star in its canonical form (module docs): `ring` and
-/// `diagonals` are the images of the neighbours and of the corners opposite the centre in the
-/// quads after each spoke (read for a closed star only), [`MISSING`] where not available.
-/// Writes `beyond[j]` for every spoke, mapped back with `back` ([`MISSING`] where there is
-/// none). The driver and [`kobbelt_star`] both evaluate the star here.
-pub(in crate::scheme::mobius) fn kobbelt_star_in_form(
+/// The point beyond the centre of a star in its canonical form on the grid line of spoke `j`
+/// (module docs), mapped back with `form`; `None` where there is none. `ring` and `diagonals`
+/// are the images of the neighbours and of the corners opposite the centre in the quads
+/// after each spoke ([`MISSING`] where not available; `diagonals` read for a closed star
+/// only); `complete` says whether every image of a closed star exists (a closed star gives
+/// no points otherwise). The driver and [`kobbelt_star`] both evaluate every spoke here.
+#[inline(always)]
+pub(in crate::scheme::mobius) fn kobbelt_beyond_in_form(
     ring: &[Point],
     diagonals: &[Point],
     closed: bool,
-    back: impl Fn(Point) -> Result<Point>,
-    beyond: &mut [Point],
-) -> Result<()> {
-    let n = ring.len();
-    if !closed {
-        for j in 0..n {
-            let u = get(ring, j)?;
-            let c = if interior_spoke(closed, j, n) && present(&u) {
-                back(kobbelt::extrapolate(ORIGIN, u)).unwrap_or(MISSING)
-            } else {
-                MISSING
-            };
-            set(beyond, j, c)?;
+    complete: bool,
+    j: usize,
+    form: &impl MapBack,
+) -> Option<Point> {
+    if closed {
+        if !complete {
+            return None;
         }
-        return Ok(());
+        return kobbelt::virtual_point(ring, diagonals, j)
+            .and_then(|p| form.back(p))
+            .ok();
     }
-    let all = ring.iter().all(present) && diagonals.iter().take(n).all(present);
-    for j in 0..n {
-        let c = if all {
-            kobbelt::virtual_point(ring, diagonals, j)
-                .and_then(&back)
-                .unwrap_or(MISSING)
-        } else {
-            MISSING
-        };
-        set(beyond, j, c)?;
+    let u = ring.get(j).copied().filter(present)?;
+    if !interior_spoke(closed, j, ring.len()) {
+        return None;
     }
-    Ok(())
+    form.back(kobbelt::extrapolate(ORIGIN, u)).ok()
 }
 
 /// The canonical Möbius Kobbelt rule at the vertex star `v ring…` (`ring` and `closed` as
@@ -115,5 +106,10 @@ pub fn kobbelt_star(
         diag.try_push(cf.to_normalised(*d).unwrap_or(MISSING))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
     }
-    kobbelt_star_in_form(&images, &diag, closed, |p| cf.from_normalised(p), beyond)
+    let complete = images.iter().all(present) && diag.iter().all(present);
+    for j in 0..n {
+        let p = kobbelt_beyond_in_form(&images, &diag, closed, complete, j, &cf);
+        set(beyond, j, p.unwrap_or(MISSING))?;
+    }
+    Ok(())
 }

@@ -2,7 +2,7 @@
 //! a 1-ring scheme): Loop's vertex and edge stencils ([`crate::stencil::loop_scheme`]) on the
 //! 1-ring mapped into the star's canonical form.
 
-use super::super::form::{interior_spoke, present, star_form, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, set};
 use crate::point::Point;
@@ -14,16 +14,17 @@ use crate::stencil::loop_scheme;
 /// neighbours of the spoke), each mapped back with `back`. `ring` holds the images of the
 /// neighbours; a rule whose value cannot be mapped back leaves its slot [`MISSING`]
 /// (`None` for the vertex point). The driver and [`loop_star`] both evaluate the star here.
+#[inline(always)]
 pub(in crate::scheme::mobius) fn loop_star_in_form(
     ring: &[Point],
     closed: bool,
-    back: impl Fn(Point) -> Result<Point>,
+    form: &impl MapBack,
     edge_candidates: &mut [Point],
 ) -> Result<Option<Point>> {
     let n = ring.len();
     let vertex = if closed {
         loop_scheme::vertex_interior(ORIGIN, ring)
-            .and_then(&back)
+            .and_then(|p| form.back(p))
             .ok()
     } else {
         None
@@ -33,7 +34,8 @@ pub(in crate::scheme::mobius) fn loop_star_in_form(
             let b = get(ring, j)?;
             let c = get(ring, (j + 1) % n)?;
             let d = get(ring, (j + n - 1) % n)?;
-            back(loop_scheme::edge_interior(ORIGIN, b, c, d)).unwrap_or(MISSING)
+            form.back(loop_scheme::edge_interior(ORIGIN, b, c, d))
+                .unwrap_or(MISSING)
         } else {
             MISSING
         };
@@ -79,5 +81,5 @@ pub fn loop_star(
         // The driver takes no candidate from a star with a neighbour at infinity.
         return Err(Error::at(Status::DegenerateGeometry, i as u32));
     }
-    loop_star_in_form(&images, closed, |p| cf.from_normalised(p), edge_candidates)
+    loop_star_in_form(&images, closed, &cf, edge_candidates)
 }

@@ -30,8 +30,8 @@ pub use catmull_clark::catmull_clark_star;
 pub(super) use catmull_clark::catmull_clark_star_in_form;
 pub(super) use doo_sabin::doo_sabin_corner_in_form;
 pub use doo_sabin::doo_sabin_star;
+pub(super) use kobbelt::kobbelt_beyond_in_form;
 pub use kobbelt::kobbelt_star;
-pub(super) use kobbelt::kobbelt_star_in_form;
 pub use loop_scheme::loop_star;
 pub(super) use loop_scheme::loop_star_in_form;
 
