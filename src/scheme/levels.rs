@@ -108,7 +108,7 @@ impl Default for LevelsReport {
 /// # Errors
 /// Validation errors; those of [`subdivide_size`] for the first level;
 /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels; [`Status::SizeOverflow`];
-/// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`MAX_VALENCE`].
+/// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`crate::MAX_VALENCE`].
 pub fn plan(
     scheme: Scheme,
     mesh: Mesh<'_>,
