@@ -21,8 +21,9 @@
 //!   (the face opposite the edge). Ties: see `farthest`.
 //!
 //! Where the paper is silent (docs/DECISIONS.md, docs/spherelike.md):
-//! * **Boundary edges** follow the curve rule along their boundary loop, a closed curve
-//!   (DESIGN.md "Mesh boundaries"): `V0`, `V3` are the other boundary neighbours.
+//! * **Boundary edges** follow the curve rule along their boundary loop, a closed curve (as
+//!   every scheme subdivides its boundary loops, like CGAL's and OpenSubdiv's `EDGE_ONLY`
+//!   boundaries): `V0`, `V3` are the other boundary neighbours.
 //! * **Open ends**: an interior edge whose endpoint lies on the boundary has no continuation
 //!   beyond that endpoint (the star is a half-disk). The grid line ends there, so the edge is
 //!   the end segment of an open curve and takes the circle-blend open-end rule: the middle of

@@ -1,7 +1,8 @@
 //! Modified Butterfly (Dyn, Levin, Gregory 1990; Zorin, Schröder, Sweldens 1996) exactly as
-//! OpenMesh `ModifiedButterflyT`, the only peer (peer-rules.md, "Modified butterfly"): no
-//! tension parameter (w = 0), Zorin's stencils at interior extraordinary vertices, the
-//! 4-point rule on boundary edges, and reflected points across boundary edges.
+//! OpenMesh `ModifiedButterflyT`, the only peer: no tension parameter (w = 0), Zorin's
+//! stencils at interior extraordinary vertices, the 4-point rule on boundary edges, and
+//! reflected points across boundary edges. Seed 000 §4.3 converts it with partial
+//! candidates (each end point's half of the stencil, [`edge_half`]).
 //!
 //! Old vertices keep their positions (interpolating).
 

@@ -11,8 +11,8 @@
 //!   vertex `v` to the edge points of its edges, in vertex then parent-edge order (edge
 //!   points are numbered after all old vertices, `V + e`), then the edges that start at an
 //!   edge point `V + e`, in parent-edge order, each group sorted by its other end (a face
-//!   point `V + E + f` for [`Pattern::Quads`], a later edge point for
-//!   [`Pattern::Split1To4`]). A cursor per old vertex (the rank of `e` among `v`'s edges)
+//!   point `V + E + f` for [`super::Pattern::Quads`], a later edge point for
+//!   [`super::Pattern::Split1To4`]). A cursor per old vertex (the rank of `e` among `v`'s edges)
 //!   gives the first group, a running counter the second: no sort;
 //! * **stars**: an interior vertex's star starts at its lowest outgoing half-edge, a boundary
 //!   vertex's at its outgoing boundary half-edge. Child half-edge numbers grow with the parent

@@ -19,7 +19,7 @@ pub(crate) struct Regions<'s> {
 }
 
 /// The regions of a scratch for `nv` vertices and `nh` half-edges;
-/// [`Status::BufferTooSmall`] with the needed length when it is short.
+/// [`crate::Status::BufferTooSmall`] with the needed length when it is short.
 pub(crate) fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
     let need = topology_scratch_len(nv, nh)?;
     if scratch.len() < need {
@@ -146,8 +146,8 @@ impl<'m, 's> Topology<'m, 's> {
     }
 
     /// The topology of `mesh` whose arrays [`Topology::build`] (or a derivation of
-    /// `refine::child_topology`) left in `scratch`, with the `counts` it returned: the same view again in
-    /// `O(1)`, nothing re-validated. Only the regions' lengths are checked.
+    /// `refine::child_topology`) left in `scratch`, with the `counts` it returned: the same view
+    /// again in `O(1)`, nothing re-validated. Only the regions' lengths are checked.
     pub(crate) fn from_parts(
         mesh: Mesh<'m>,
         scratch: &'s mut [u32],

@@ -89,9 +89,9 @@ pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<u
 /// A validated mesh with its half-edge topology, held in caller scratch.
 ///
 /// Built by [`Topology::build`] (validating) or derived from a parent level's by
-/// `refine::child_topology` (multi-level calls); every query is `O(1)` except star walks (`O(valence)`).
-/// Queries return `Result` only to stay panic-free: on a built topology they cannot fail for
-/// indices in range.
+/// `refine::child_topology` (multi-level calls); every query is `O(1)` except star walks
+/// (`O(valence)`). Queries return `Result` only to stay panic-free: on a built topology they cannot
+/// fail for indices in range.
 #[derive(Clone, Copy, Debug)]
 pub struct Topology<'m, 's> {
     mesh: Mesh<'m>,

@@ -1,6 +1,6 @@
 //! Möbius Kobbelt (seed 000 §4.3, Fig. 11 left; §4.4.3, Fig. 14): old vertices stay
 //! (interpolating); the vertex pass gives every spoke the point beyond its centre
-//! ([`kobbelt_star_in_form`]: virtual points in interior forms, the end extrapolation in
+//! ([`kobbelt_beyond_in_form`]: virtual points in interior forms, the end extrapolation in
 //! boundary forms); an edge point is `F4(r_a, a, b, r_b)` of the points beyond its two ends
 //! (boundary edges: along their boundary loop), and a face point the F6 blend of the two
 //! grid lines of new edge points through the face.

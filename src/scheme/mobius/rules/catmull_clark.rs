@@ -13,10 +13,10 @@ use crate::point::Point;
 use crate::stencil::{catmull_clark, centroid};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
-/// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of
-/// the neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when
-/// not available). Writes the edge candidate `edge_interior(0, r_j, f_{j−1}, f_j)` of every
-/// interior spoke and returns the vertex point of a closed star, all mapped back with `back`.
+/// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of the
+/// neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when not
+/// available). Writes the edge candidate `edge_interior(0, r_j, f_{j−1}, f_j)` of every interior
+/// spoke and returns the vertex point of a closed star, all mapped back with `form`.
 #[inline(always)]
 pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
     ring: &[Point],

@@ -14,7 +14,7 @@ use crate::MAX_FACE_SIZE;
 use arrayvec::ArrayVec;
 
 /// The corner point of corner `i` of a face given by its corners' images in a star's canonical
-/// form, mapped back with `back`. The driver and [`doo_sabin_star`] both evaluate every corner
+/// form, mapped back with `form`. The driver and [`doo_sabin_star`] both evaluate every corner
 /// here.
 #[inline(always)]
 pub(in crate::scheme::mobius) fn doo_sabin_corner_in_form(

@@ -8,12 +8,12 @@ use crate::mesh::{get, set};
 use crate::point::Point;
 use crate::stencil::loop_scheme;
 
-/// The Loop rules in a star's canonical form (normalised frame, centre at the origin):
-/// the vertex point of a closed star, and the edge candidate of every interior spoke `j`,
-/// `edge_interior(0, r_j, r_{j+1}, r_{j−1})` (the two apexes of a triangle fan are the ring
-/// neighbours of the spoke), each mapped back with `back`. `ring` holds the images of the
-/// neighbours; a rule whose value cannot be mapped back leaves its slot [`MISSING`]
-/// (`None` for the vertex point). The driver and [`loop_star`] both evaluate the star here.
+/// The Loop rules in a star's canonical form (normalised frame, centre at the origin): the vertex
+/// point of a closed star, and the edge candidate of every interior spoke `j`, `edge_interior(0,
+/// r_j, r_{j+1}, r_{j−1})` (the two apexes of a triangle fan are the ring neighbours of the spoke),
+/// each mapped back with `form`. `ring` holds the images of the neighbours; a rule whose value
+/// cannot be mapped back leaves its slot [`MISSING`] (`None` for the vertex point). The driver and
+/// [`loop_star`] both evaluate the star here.
 #[inline(always)]
 pub(in crate::scheme::mobius) fn loop_star_in_form(
     ring: &[Point],
