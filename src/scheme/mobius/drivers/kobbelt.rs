@@ -18,12 +18,17 @@ use crate::scheme::linear::kobbelt_edge;
 use crate::stencil::kobbelt;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    copy_old(d.topo, d.pos)?;
+    points_beyond(d)?;
+    edge_points(d)?;
+    face_points(d)
+}
+
+/// The vertex pass: per half-edge `h = (v → u)`, the point beyond `v` away from `u`, from
+/// `v`'s canonical form (regular interior vertices give the actual grid neighbour), kept as
+/// `h`'s edge candidate.
+fn points_beyond(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    let nv = topo.num_vertices();
-    let ne = topo.num_edges();
-    copy_old(topo, d.pos)?;
-    // Per half-edge h = (v → u): the point beyond v away from u, from v's canonical form
-    // (regular interior vertices give the actual grid neighbour).
     let mut ring = Ring::new();
     let mut diagonals = Ring::new();
     d.vertex_pass(|d, star| {
@@ -53,7 +58,14 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         }
         Ok(())
     })?;
-    // Edge points F4(r0, a0, a1, r1).
+    Ok(())
+}
+
+/// Edge points `F4(r0, a0, a1, r1)` of the points beyond both ends (boundary edges: their
+/// boundary loop's neighbours); the linear rule where one is missing or the blend fails.
+fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
     for e in 0..ne as u32 {
         let h = topo.edge_half_edge(e)?;
         let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
@@ -79,8 +91,14 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         };
         set(d.pos, k, q)?;
     }
-    // Face points: F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7) over the two grid lines
-    // of new edge points through the face (Fig. 14).
+    Ok(())
+}
+
+/// Face points: `F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7)` over the two grid lines of new
+/// edge points through the face (Fig. 14); the linear rule where a blend fails.
+fn face_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
     for f in 0..topo.num_faces() as u32 {
         let r = topo.face_half_edges(f)?;
         let (h0, h1, h2, h3) = lines(topo, r.start)?;
