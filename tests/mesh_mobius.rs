@@ -602,28 +602,78 @@ fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
     );
 }
 
-/// The ring of `v` (star order) and, for each spoke with a face, that face's corners in
-/// face order.
-fn star_of(t: &Topology<'_, '_>, v: u32) -> (Vec<Point>, Vec<u32>, Vec<Point>, bool) {
-    let mut ring = Vec::new();
-    let mut offs = vec![0u32];
-    let mut corners = Vec::new();
-    for s in t.star(v) {
-        ring.push(t.position(s.neighbour).unwrap());
-        if s.face != nlsubdiv::mesh::NONE {
-            for &u in t.face_vertices(s.face).unwrap() {
-                corners.push(t.position(u).unwrap());
-            }
-            offs.push(corners.len() as u32);
-        }
-    }
-    (ring, offs, corners, !t.is_boundary_vertex(v).unwrap())
+/// The star of `v` as a host would hand it to the star rules: the ring (star order), for
+/// each spoke with a face that face's corners in face order (CSR), the diagonal of each such
+/// face (the corner after the spoke's neighbour), and whether the star is closed.
+struct HostStar {
+    ring: Vec<Point>,
+    offsets: Vec<u32>,
+    corners: Vec<Point>,
+    diagonals: Vec<Point>,
+    irregular: Vec<bool>,
+    closed: bool,
 }
 
-/// What a star rule gives: the vertex point, the edge and the face candidates.
+fn star_of(t: &Topology<'_, '_>, v: u32) -> HostStar {
+    let mut h = HostStar {
+        ring: Vec::new(),
+        offsets: vec![0],
+        corners: Vec::new(),
+        diagonals: Vec::new(),
+        irregular: Vec::new(),
+        closed: !t.is_boundary_vertex(v).unwrap(),
+    };
+    for s in t.star(v) {
+        h.ring.push(t.position(s.neighbour).unwrap());
+        h.irregular.push(
+            !t.is_boundary_vertex(s.neighbour).unwrap() && t.valence(s.neighbour).unwrap() != 6,
+        );
+        if s.face != nlsubdiv::mesh::NONE {
+            for &u in t.face_vertices(s.face).unwrap() {
+                h.corners.push(t.position(u).unwrap());
+            }
+            h.offsets.push(h.corners.len() as u32);
+            let d = t.dest(t.next(s.half_edge).unwrap()).unwrap();
+            h.diagonals.push(t.position(d).unwrap());
+        }
+    }
+    h
+}
+
+/// What a star rule gives: the vertex point, one value per spoke (edge candidates, Kobbelt's
+/// points beyond the centre), one value per face (face candidates, Doo–Sabin's corner
+/// points).
 type StarRule = (Option<Point>, Vec<Point>, Vec<Point>);
 
-/// The candidate of the edge from `v` to `u` in `v`'s star, via `rule`.
+/// The public star rule of `s` at vertex `v`, on the star as a host gives it; `None` when it
+/// fails.
+fn star_rule(s: Scheme, t: &Topology<'_, '_>, v: u32) -> Option<StarRule> {
+    let h = star_of(t, v);
+    let p = t.position(v).unwrap();
+    let mut e = vec![[0.0; 3]; h.ring.len()];
+    let mut f = vec![[0.0; 3]; h.offsets.len() - 1];
+    let vp = match s {
+        Scheme::Loop => mobius::loop_star(p, &h.ring, h.closed, &mut e),
+        Scheme::CatmullClark => {
+            mobius::catmull_clark_star(p, &h.ring, h.closed, &h.offsets, &h.corners, &mut e, &mut f)
+        }
+        Scheme::ModifiedButterfly => {
+            mobius::butterfly_star(p, &h.ring, h.closed, &h.irregular, &mut e).map(|()| None)
+        }
+        Scheme::Kobbelt => {
+            let d: &[Point] = if h.closed { &h.diagonals } else { &[] };
+            mobius::kobbelt_star(p, &h.ring, h.closed, d, &mut e).map(|()| None)
+        }
+        Scheme::DooSabin => {
+            mobius::doo_sabin_star(p, &h.ring, h.closed, &h.offsets, &h.corners, &mut f)
+                .map(|()| None)
+        }
+        _ => unreachable!("{s:?} has no star rule"),
+    };
+    vp.ok().map(|vp| (vp, e, f))
+}
+
+/// The value of the spoke from `v` to `u` in `v`'s star rule.
 fn candidate(
     t: &Topology<'_, '_>,
     v: u32,
@@ -637,9 +687,17 @@ fn candidate(
     edges[j]
 }
 
+/// Whether `u` is an ear: a boundary vertex with one face (the drivers evaluate what it
+/// contributes to its face in another corner's form).
+fn is_ear(t: &Topology<'_, '_>, u: u32) -> bool {
+    t.is_boundary_vertex(u).unwrap() && t.vertex_face_count(u).unwrap() == 1
+}
+
 #[test]
 fn star_rules_reproduce_the_driver_bit_for_bit() {
     use nlsubdiv::blend::{f4_hinted, face_point_with_ids};
+    let centred_cube =
+        || onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5]));
     let cases = [
         (Scheme::Loop, jitter(&tri_torus(7, 5), 0.05, 31)),
         (Scheme::Loop, jitter(&tri_grid(4, 4), 0.05, 32)),
@@ -650,98 +708,124 @@ fn star_rules_reproduce_the_driver_bit_for_bit() {
         ),
         (Scheme::CatmullClark, jitter(&quad_grid(4, 3), 0.05, 34)),
         (Scheme::CatmullClark, jitter(&prism(5), 0.05, 35)),
+        (Scheme::CatmullClark, centred_cube()),
         (
-            Scheme::CatmullClark,
-            onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5])),
+            Scheme::ModifiedButterfly,
+            jitter(&tri_torus(7, 5), 0.05, 36),
         ),
+        (Scheme::ModifiedButterfly, jitter(&tri_grid(4, 4), 0.05, 37)),
+        (Scheme::ModifiedButterfly, onto_sphere(&bipyramid(7))),
+        (
+            Scheme::Kobbelt,
+            jitter(&quad_torus(7, 5, 2.0, 0.7), 0.05, 38),
+        ),
+        (Scheme::Kobbelt, jitter(&quad_grid(4, 3), 0.05, 39)),
+        (Scheme::Kobbelt, centred_cube()),
+        (
+            Scheme::DooSabin,
+            jitter(&quad_torus(7, 5, 2.0, 0.7), 0.05, 40),
+        ),
+        (Scheme::DooSabin, jitter(&quad_grid(4, 3), 0.05, 41)),
+        (Scheme::DooSabin, jitter(&prism(5), 0.05, 42)),
+        (Scheme::DooSabin, centred_cube()),
     ];
-    let mut checked = [0usize; 3];
+    // Per scheme: vertex points, edge points, face points (corner points for Doo–Sabin).
+    let mut checked: Vec<(Scheme, [usize; 3])> = Vec::new();
     for (s, m) in &cases {
         let (out, rep) = msub(*s, m, false).unwrap();
         assert_eq!(rep.fallbacks, 0, "{s:?}");
+        let mut count = [0usize; 3];
         with_topology(m, |t| {
             let nv = t.num_vertices();
             let ne = t.num_edges();
-            let rule = |v: u32| -> Option<StarRule> {
-                let (ring, offs, corners, closed) = star_of(t, v);
-                let mut e = vec![[0.0; 3]; ring.len()];
-                let mut f = vec![[0.0; 3]; offs.len() - 1];
-                let vp = match s {
-                    Scheme::Loop => {
-                        mobius::loop_star(t.position(v).unwrap(), &ring, closed, &mut e)
+            let rule = |v: u32| star_rule(*s, t, v);
+            if matches!(s, Scheme::Loop | Scheme::CatmullClark) {
+                for v in 0..nv as u32 {
+                    if t.is_boundary_vertex(v).unwrap() {
+                        continue;
                     }
-                    _ => mobius::catmull_clark_star(
-                        t.position(v).unwrap(),
-                        &ring,
-                        closed,
-                        &offs,
-                        &corners,
-                        &mut e,
-                        &mut f,
-                    ),
-                };
-                vp.ok().map(|vp| (vp, e, f))
-            };
-            for v in 0..nv as u32 {
-                if t.is_boundary_vertex(v).unwrap() {
-                    continue;
+                    let (vp, _, _) = rule(v).unwrap();
+                    assert_eq!(vp.unwrap(), out.positions[v as usize], "{s:?} vertex {v}");
+                    count[0] += 1;
                 }
-                let (vp, _, _) = rule(v).unwrap();
-                assert_eq!(vp.unwrap(), out.positions[v as usize], "{s:?} vertex {v}");
-                checked[0] += 1;
             }
-            for e in 0..ne as u32 {
-                if t.is_boundary_edge(e).unwrap() {
-                    continue;
+            if *s != Scheme::DooSabin {
+                for e in 0..ne as u32 {
+                    if t.is_boundary_edge(e).unwrap() {
+                        continue;
+                    }
+                    let h = t.edge_half_edge(e).unwrap();
+                    let (a, b) = (t.origin(h).unwrap(), t.dest(h).unwrap());
+                    let (ca, cb) = (candidate(t, a, b, &rule), candidate(t, b, a, &rule));
+                    let hint = t.position(t.dest(t.next(h).unwrap()).unwrap()).unwrap();
+                    let (pa, pb) = (t.position(a).unwrap(), t.position(b).unwrap());
+                    let p = if *s == Scheme::Kobbelt {
+                        // The points beyond both ends of the edge's grid line.
+                        f4_hinted(ca, pa, pb, cb, hint).unwrap()
+                    } else {
+                        match (ca[0].is_nan(), cb[0].is_nan()) {
+                            (false, false) => f4_hinted(pa, ca, cb, pb, hint).unwrap(),
+                            (false, true) => ca,
+                            (true, false) => cb,
+                            (true, true) => panic!("{s:?}: no candidate for edge {e}"),
+                        }
+                    };
+                    assert_eq!(p, out.positions[nv + e as usize], "{s:?} edge {e}");
+                    count[1] += 1;
                 }
-                let h = t.edge_half_edge(e).unwrap();
-                let (a, b) = (t.origin(h).unwrap(), t.dest(h).unwrap());
-                let (ca, cb) = (candidate(t, a, b, &rule), candidate(t, b, a, &rule));
-                let hint = t.position(t.dest(t.next(h).unwrap()).unwrap()).unwrap();
-                let (pa, pb) = (t.position(a).unwrap(), t.position(b).unwrap());
-                let p = match (ca[0].is_nan(), cb[0].is_nan()) {
-                    (false, false) => f4_hinted(pa, ca, cb, pb, hint).unwrap(),
-                    (false, true) => ca,
-                    (true, false) => cb,
-                    (true, true) => panic!("{s:?}: no candidate for edge {e}"),
-                };
-                assert_eq!(p, out.positions[nv + e as usize], "{s:?} edge {e}");
-                checked[1] += 1;
             }
             if *s == Scheme::CatmullClark {
                 for f in 0..t.num_faces() as u32 {
-                    let verts: Vec<Point> = t
-                        .face_vertices(f)
-                        .unwrap()
-                        .iter()
-                        .map(|&u| t.position(u).unwrap())
-                        .collect();
-                    if t.face_vertices(f).unwrap().iter().any(|&u| {
-                        t.is_boundary_vertex(u).unwrap() && t.vertex_face_count(u).unwrap() == 1
-                    }) {
+                    let ids = t.face_vertices(f).unwrap();
+                    if ids.iter().any(|&u| is_ear(t, u)) {
                         continue; // ears take a substitute's form (documented)
                     }
-                    let cands: Vec<Point> = t
-                        .face_half_edges(f)
-                        .unwrap()
-                        .map(|h| {
-                            let u = t.origin(h).unwrap();
+                    let verts: Vec<Point> = ids.iter().map(|&u| t.position(u).unwrap()).collect();
+                    let cands: Vec<Point> = ids
+                        .iter()
+                        .map(|&u| {
                             let (_, _, fc) = rule(u).unwrap();
                             let j = t.star(u).position(|sp| sp.face == f).unwrap();
                             fc[j]
                         })
                         .collect();
-                    let p =
-                        face_point_with_ids(&verts, &cands, t.face_vertices(f).unwrap()).unwrap();
+                    let p = face_point_with_ids(&verts, &cands, ids).unwrap();
                     assert_eq!(p, out.positions[nv + ne + f as usize], "face {f}");
-                    checked[2] += 1;
+                    count[2] += 1;
+                }
+            }
+            if *s == Scheme::DooSabin {
+                for h in 0..t.num_half_edges() as u32 {
+                    let u = t.origin(h).unwrap();
+                    if is_ear(t, u) {
+                        continue; // a substitute's form (documented)
+                    }
+                    let (_, _, corners) = rule(u).unwrap();
+                    let f = t.face(h).unwrap();
+                    let j = t.star(u).position(|sp| sp.face == f).unwrap();
+                    assert_eq!(corners[j], out.positions[h as usize], "corner {h}");
+                    count[2] += 1;
                 }
             }
         })
         .unwrap();
+        match checked.iter_mut().find(|(t, _)| t == s) {
+            Some((_, c)) => (0..3).for_each(|k| c[k] += count[k]),
+            None => checked.push((*s, count)),
+        }
     }
-    println!("star rules = driver: {checked:?} (vertices, edges, faces)");
-    assert!(checked.iter().all(|&c| c > 50));
+    println!("star rules = driver (vertices, edges, faces or corners): {checked:?}");
+    for (s, c) in &checked {
+        let expect = match s {
+            Scheme::Loop => [true, true, false],
+            Scheme::CatmullClark => [true, true, true],
+            Scheme::ModifiedButterfly | Scheme::Kobbelt => [false, true, false],
+            _ => [false, false, true],
+        };
+        for k in 0..3 {
+            assert!(!expect[k] || c[k] > 50, "{s:?}: only {c:?} checked");
+        }
+    }
 }
 
 /// The same mesh with every face's corner list rotated by one (same faces, same orientation).

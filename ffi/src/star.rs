@@ -1,8 +1,8 @@
-//! Tier-1 exports of the Möbius mesh schemes (DESIGN.md "Two API tiers"): the rules at one
-//! vertex star, for a host mesh library (OpenMesh, CGAL, a CAD kernel) that drives the
-//! schemes with its own connectivity. They are the code paths of `nls_mesh_subdivide` with
-//! `NLS_SUBDIVIDE_MOBIUS`: the driver evaluates every star through the same core functions
-//! (`nlsubdiv::scheme::mobius::{loop_star, catmull_clark_star}`).
+//! Tier-1 exports of the Möbius mesh schemes: the rules at one vertex star, for a host mesh
+//! library (OpenMesh, CGAL, a CAD kernel) that drives the schemes with its own connectivity.
+//! Each export only checks and converts its C arguments and calls the core rule
+//! (`nlsubdiv::scheme::mobius::{loop_star, catmull_clark_star, butterfly_star}`), which the
+//! driver of `nls_mesh_subdivide` with `NLS_SUBDIVIDE_MOBIUS` evaluates too.
 //!
 //! How a host assembles a whole level from them: the docs of [`nls_mobius_loop_star`].
 
@@ -237,77 +237,6 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
     })
 }
 
-// ---- Möbius Modified Butterfly (issue 8: tier 1 for host integrations) ----
-
-/// `p[(j + k) mod n]` for a signed offset `k`, NaN when out of range.
-fn cyc(p: &[Point], j: usize, k: isize) -> Point {
-    let n = p.len() as isize;
-    if n == 0 {
-        return NAN3;
-    }
-    let i = (j as isize + k).rem_euclid(n) as usize;
-    p.get(i).copied().unwrap_or(NAN3)
-}
-
-fn finite3(p: &Point) -> bool {
-    p.iter().all(|c| c.is_finite())
-}
-
-/// The candidate of spoke `j` of the star `images` (the ring in the star's normalised
-/// canonical frame, centre at the origin) by the rules of the Möbius Modified Butterfly
-/// driver (seed 000 §4.3, Fig. 11 right): Zorin's stencil of an irregular interior centre
-/// (ring from the spoke's neighbour); none when only the neighbour is irregular; else the
-/// centre's half of the 8-point stencil, doubled, with OpenMesh's reflection `u + w − z`
-/// for a wing across a boundary edge. `None` when an image it needs is at infinity.
-fn butterfly_spoke(
-    images: &[Point],
-    closed: bool,
-    j: usize,
-    neighbour_irregular: bool,
-) -> Option<Point> {
-    use nlsubdiv::stencil::butterfly;
-    let n = images.len();
-    let o: Point = [0.0; 3];
-    if closed && n != 6 {
-        let mut rot = [NAN3; MAX_VALENCE];
-        let r = rot.get_mut(..n)?;
-        for (k, slot) in r.iter_mut().enumerate() {
-            *slot = cyc(images, j, k as isize);
-        }
-        if !r.iter().all(finite3) {
-            return None;
-        }
-        return butterfly::zorin_stencil(o, r).ok();
-    }
-    if neighbour_irregular {
-        return None;
-    }
-    let a0 = o;
-    let a1 = cyc(images, j, 0);
-    let b0 = cyc(images, j, 1);
-    let b1 = cyc(images, j, -1);
-    // The wings across the triangle edges at the centre: (v, ring[j+1]) and (v, ring[j−1]);
-    // in an open star the first and last spokes are boundary edges.
-    let c0 = if !closed && j + 2 == n {
-        butterfly::reflect(b0, o, a1)
-    } else {
-        cyc(images, j, 2)
-    };
-    let c3 = if !closed && j == 1 {
-        butterfly::reflect(o, b1, a1)
-    } else {
-        cyc(images, j, -2)
-    };
-    if ![a1, b0, b1, c0, c3].iter().all(finite3) {
-        return None;
-    }
-    Some([
-        a0[0] * 0.5 + a1[0] * 0.5 + (b0[0] + b1[0]) * 0.125 - (c0[0] + c3[0]) * 0.125,
-        a0[1] * 0.5 + a1[1] * 0.5 + (b0[1] + b1[1]) * 0.125 - (c0[1] + c3[1]) * 0.125,
-        a0[2] * 0.5 + a1[2] * 0.5 + (b0[2] + b1[2]) * 0.125 - (c0[2] + c3[2]) * 0.125,
-    ])
-}
-
 /// The canonical Möbius Modified Butterfly rules at the vertex star `v ring[0..ring_len]`
 /// (`ring` and `closed` as for [`nls_mobius_loop_star`]; triangles), as `nls_mesh_subdivide`
 /// evaluates them for `NLS_SCHEME_MODIFIED_BUTTERFLY` with `NLS_SUBDIVIDE_MOBIUS` (seed 000
@@ -384,36 +313,10 @@ pub unsafe extern "C" fn nls_mobius_butterfly_star(
         for (slot, &f) in irregular.iter_mut().zip(flags) {
             *slot = flag(f)?;
         }
-        if ring_len < 2 {
-            return Err(Status::TooFewPoints);
-        }
-        let kind = if closed {
-            nlsubdiv::mobius::StarKind::Interior
-        } else {
-            nlsubdiv::mobius::StarKind::Boundary
-        };
+        let irregular = irregular.get(..flags_len).ok_or(Status::ValenceTooHigh)?;
         let mut cands = [NAN3; MAX_VALENCE];
-        // An ear (open star of one face): the driver gives it no form, so no candidates.
-        if closed || ring_len > 2 {
-            let cf =
-                nlsubdiv::mobius::CanonicalForm::new(v, ring_pts, kind).map_err(|e| e.status)?;
-            let mut images = [NAN3; MAX_VALENCE];
-            let im = images.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
-            for (slot, u) in im.iter_mut().zip(ring_pts) {
-                *slot = cf.to_normalised(*u).unwrap_or(NAN3);
-            }
-            let im = images.get(..ring_len).ok_or(Status::ValenceTooHigh)?;
-            for (j, slot) in cands.iter_mut().enumerate().take(ring_len) {
-                let interior = closed || (j >= 1 && j + 1 < ring_len);
-                if !interior {
-                    continue;
-                }
-                let nb = irregular.get(j).copied().unwrap_or(false);
-                if let Some(p) = butterfly_spoke(im, closed, j, nb) {
-                    *slot = cf.from_normalised(p).unwrap_or(NAN3);
-                }
-            }
-        }
+        let c = cands.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        smobius::butterfly_star(v, ring_pts, closed, irregular, c).map_err(|e| e.status)?;
         let out = cands.get(..ring_len).ok_or(Status::ValenceTooHigh)?;
         // SAFETY: checked above for `3*ring_len` doubles.
         unsafe { write_points(out_edge_candidates, out) };

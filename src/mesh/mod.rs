@@ -14,7 +14,7 @@
 //! Every count (vertices, faces, corners, output sizes) must be at most [`MAX_COUNT`] so that
 //! every index fits a `u32` and `u32::MAX` stays free as the "none" marker [`NONE`].
 //!
-//! # Policies (DESIGN.md "Anything else left open: decide, write it down")
+//! # Policies (decisions where the papers are silent)
 //!
 //! * **Empty mesh** (no faces, any number of vertices, `offsets = [0]`) is valid: every scheme
 //!   returns it with its vertices carried through and no faces. `offsets = []` is
@@ -30,6 +30,7 @@
 //!
 //! See [`topology`] for the order of the checks and the element each status names.
 
+pub(crate) mod gather;
 pub mod refine;
 mod sort;
 pub mod topology;

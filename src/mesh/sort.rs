@@ -1,6 +1,7 @@
-//! A hand-written, panic-free stable counting sort on `u32` ids (reliability-anchors.md
-//! §3.1, §4.4: no hashing, and `core`'s `sort_unstable` keeps a `panic_on_ord_violation`
-//! path even for integers).
+//! A hand-written, panic-free stable counting sort on `u32` ids, for numbering the edges of a
+//! topology: no hashing (its order would be the hasher's, and the numbering must not depend
+//! on it), and not `core`'s `sort_unstable`, which keeps a `panic_on_ord_violation` path even
+//! for integers (the core has no panic paths).
 //!
 //! Ids are ordered by `key(id)`, ties kept in input order: two passes, least significant key
 //! first, sort by a pair of keys; with ids fed in ascending order the result is ordered by

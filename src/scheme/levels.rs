@@ -4,23 +4,28 @@
 //! [`plan`] validates the input, then follows a handful of counts from level to level
 //! (vertices, faces, corners, edges, boundary edges, isolated vertices, valence sums and
 //! maxima): for every pattern these counts of level `k + 1` are exact functions of the counts
-//! of level `k`, so no intermediate level has to be built to know its size. The plan's
-//! sizes are checked against what each step really writes.
+//! of level `k` (each pattern's own, in [`crate::mesh::refine`]), so no intermediate level
+//! has to be built to know its size. The plan's sizes are checked against what each step
+//! really writes.
+//!
+//! The level loop runs every level through the one-step function of the one-level calls
+//! (linear or Möbius), and for the patterns that allow it derives each level's topology from
+//! the previous one instead of validating the refined mesh again.
 //!
 //! Limits: at most [`MAX_LEVELS`] levels; a later level whose valence or face size would
 //! exceed the capacity is [`Status::ValenceTooHigh`] (no element: it does not exist yet).
 
-use super::linear::subdivide_size;
 use super::mobius::MobiusOptions;
-use super::{subdivide, Scheme};
+use super::size::subdivide_size;
+use super::step::step;
+use super::Scheme;
 use crate::error::{Error, Result, Status};
-use crate::mesh::refine::Pattern;
-use crate::mesh::topology::{derivable, Counts};
+use crate::mesh::refine::{child_topology, derivable, LevelCounts, Pattern};
+use crate::mesh::topology::Counts;
 use crate::mesh::{
-    cadd, cmul, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
+    cadd, internal, topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT,
 };
 use crate::point::Point;
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// The largest number of levels of one [`subdivide_levels`] call.
 pub const MAX_LEVELS: usize = 16;
@@ -96,213 +101,6 @@ impl Default for LevelsReport {
     }
 }
 
-/// Counts that determine the next level's counts.
-#[derive(Clone, Copy, Debug)]
-struct Stats {
-    v: usize,
-    f: usize,
-    h: usize,
-    e: usize,
-    eb: usize,
-    iso: usize,
-    /// Σ valence of interior vertices.
-    si: usize,
-    /// Σ valence of boundary vertices.
-    sb: usize,
-    max_vi: usize,
-    max_vb: usize,
-    max_face: usize,
-    /// max over faces of (corners + interior edges): dual-truncation face-point valence.
-    max_dt: usize,
-}
-
-impl Stats {
-    fn of(topo: &Topology<'_, '_>) -> Result<Stats> {
-        let mut s = Stats {
-            v: topo.num_vertices(),
-            f: topo.num_faces(),
-            h: topo.num_half_edges(),
-            e: topo.num_edges(),
-            eb: topo.num_boundary_edges(),
-            iso: topo.num_isolated_vertices(),
-            si: topo.interior_valence_sum(),
-            sb: 0,
-            max_vi: 0,
-            max_vb: 0,
-            max_face: topo.max_face_size(),
-            max_dt: 0,
-        };
-        for v in 0..s.v as u32 {
-            let n = topo.valence(v)?;
-            if topo.is_boundary_vertex(v)? {
-                s.sb = cadd(s.sb, n)?;
-                s.max_vb = s.max_vb.max(n);
-            } else {
-                s.max_vi = s.max_vi.max(n);
-            }
-        }
-        for f in 0..s.f as u32 {
-            let mut n = 0usize;
-            for h in topo.face_half_edges(f)? {
-                n += if topo.twin(h)? == crate::mesh::NONE {
-                    1
-                } else {
-                    2
-                };
-            }
-            s.max_dt = s.max_dt.max(n);
-        }
-        Ok(s)
-    }
-
-    fn vi(&self) -> usize {
-        self.v.saturating_sub(self.eb).saturating_sub(self.iso)
-    }
-
-    fn ei(&self) -> usize {
-        self.e.saturating_sub(self.eb)
-    }
-
-    fn sizes(&self) -> MeshSizes {
-        MeshSizes {
-            vertices: self.v,
-            faces: self.f,
-            indices: self.h,
-        }
-    }
-
-    /// The counts of the next level (module docs; derivations in the comments).
-    fn next(&self, pattern: Pattern) -> Result<Stats> {
-        let s = *self;
-        let (ei, vi) = (s.ei(), s.vi());
-        let some = |c: bool, x: usize| if c { x } else { 0 };
-        let n = match pattern {
-            // Edge points: interior valence 6, boundary 4; old vertices keep theirs.
-            Pattern::Split1To4 => Stats {
-                v: cadd(s.v, s.e)?,
-                f: cmul(s.f, 4)?,
-                h: cmul(s.h, 4)?,
-                e: cadd(cmul(s.e, 2)?, cmul(s.f, 3)?)?,
-                eb: cmul(s.eb, 2)?,
-                iso: s.iso,
-                si: cadd(s.si, cmul(ei, 6)?)?,
-                sb: cadd(s.sb, cmul(s.eb, 4)?)?,
-                max_vi: s.max_vi.max(some(ei > 0, 6)),
-                max_vb: s.max_vb.max(some(s.eb > 0, 4)),
-                max_face: 3,
-                max_dt: 6,
-            },
-            // Edge points: interior valence 4, boundary 3; face points interior, valence n.
-            Pattern::Quads => Stats {
-                v: cadd(cadd(s.v, s.e)?, s.f)?,
-                f: s.h,
-                h: cmul(s.h, 4)?,
-                e: cadd(cmul(s.e, 2)?, s.h)?,
-                eb: cmul(s.eb, 2)?,
-                iso: s.iso,
-                si: cadd(cadd(s.si, cmul(ei, 4)?)?, s.h)?,
-                sb: cadd(s.sb, cmul(s.eb, 3)?)?,
-                max_vi: s.max_vi.max(some(ei > 0, 4)).max(s.max_face),
-                max_vb: s.max_vb.max(some(s.eb > 0, 3)),
-                max_face: 4,
-                max_dt: 8,
-            },
-            // Corner points at interior vertices: interior, valence 4. At a boundary vertex
-            // with k faces: valence 2 + (interior edges of the face at the vertex), which sums
-            // to 2k + 2(k − 1). New boundary edges: the old ones plus one per interior edge at
-            // a boundary vertex (Σ_b (valence − 2)).
-            Pattern::CornerCut => {
-                let sb4 = cmul(s.sb, 4)?;
-                let eb6 = cmul(s.eb, 6)?;
-                Stats {
-                    v: cadd(s.h, s.iso)?,
-                    f: cadd(cadd(s.f, ei)?, vi)?,
-                    h: cadd(cadd(s.h, cmul(ei, 4)?)?, s.si)?,
-                    e: cadd(s.h, cmul(ei, 2)?)?,
-                    eb: s.sb.checked_sub(s.eb).ok_or(internal())?,
-                    iso: s.iso,
-                    si: cmul(s.si, 4)?,
-                    sb: sb4.checked_sub(eb6).ok_or(internal())?,
-                    max_vi: some(s.si > 0, 4),
-                    max_vb: some(s.eb > 0, 4),
-                    max_face: s.max_face.max(some(ei > 0, 4)).max(some(vi > 0, s.max_vi)),
-                    max_dt: 0,
-                }
-            }
-            // Old interior vertices double their valence, boundary ones go to 2n − 1; face
-            // points are interior with valence n. Old edges stay, plus one per corner.
-            Pattern::VertexInsertion => Stats {
-                v: cadd(s.v, s.f)?,
-                f: s.h,
-                h: cmul(s.h, 3)?,
-                e: cadd(s.e, s.h)?,
-                eb: s.eb,
-                iso: s.iso,
-                si: cadd(cmul(s.si, 2)?, s.h)?,
-                sb: cmul(s.sb, 2)?.checked_sub(s.eb).ok_or(internal())?,
-                max_vi: cmul(s.max_vi, 2)?.max(s.max_face),
-                max_vb: cmul(s.max_vb, 2)?.saturating_sub(1),
-                max_face: 3,
-                max_dt: 6,
-            },
-            // Interior vertices keep their valence, boundary ones gain one; face points are
-            // interior with valence n + (interior edges of the face). Edges: one per corner,
-            // one per interior edge (between face points), the boundary edges.
-            Pattern::DualTruncation => Stats {
-                v: cadd(s.v, s.f)?,
-                f: cadd(cmul(ei, 2)?, s.eb)?,
-                h: cmul(cadd(cmul(ei, 2)?, s.eb)?, 3)?,
-                e: cadd(s.h, s.e)?,
-                eb: s.eb,
-                iso: s.iso,
-                si: cadd(cadd(s.si, s.h)?, cmul(ei, 2)?)?,
-                sb: cadd(s.sb, s.eb)?,
-                max_vi: s.max_vi.max(s.max_dt),
-                max_vb: s.max_vb + some(s.eb > 0, 1),
-                max_face: 3,
-                max_dt: 6,
-            },
-            // Face points are interior with valence n. Boundary: edge midpoints (valence 3)
-            // and the old boundary vertices (valence 2).
-            Pattern::Dual => Stats {
-                v: cadd(cadd(s.f, cmul(s.eb, 2)?)?, s.iso)?,
-                f: cadd(vi, s.eb)?,
-                h: cadd(cadd(s.si, s.sb)?, cmul(s.eb, 2)?)?,
-                e: cadd(ei, cmul(s.eb, 3)?)?,
-                eb: cmul(s.eb, 2)?,
-                iso: s.iso,
-                si: s.h,
-                sb: cmul(s.eb, 5)?,
-                max_vi: s.max_face,
-                max_vb: some(s.eb > 0, 3),
-                max_face: s.max_vi.max(some(s.eb > 0, s.max_vb + 2)),
-                max_dt: 0,
-            },
-            // Interior edge midpoints: interior, valence 4; boundary edge midpoints: valence 4;
-            // old boundary vertices: valence 2.
-            Pattern::MidEdge => Stats {
-                v: cadd(cadd(s.e, s.eb)?, s.iso)?,
-                f: cadd(cadd(s.f, vi)?, s.eb)?,
-                h: cadd(cadd(s.h, s.si)?, cadd(s.sb, s.eb)?)?,
-                e: cadd(s.h, cmul(s.eb, 2)?)?,
-                eb: cmul(s.eb, 2)?,
-                iso: s.iso,
-                si: cmul(ei, 4)?,
-                sb: cmul(s.eb, 6)?,
-                max_vi: some(ei > 0, 4),
-                max_vb: some(s.eb > 0, 4),
-                max_face: s.max_face.max(s.max_vi).max(some(s.eb > 0, s.max_vb + 1)),
-                max_dt: 0,
-            },
-        };
-        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_FACE_SIZE {
-            return Err(Error::new(Status::ValenceTooHigh));
-        }
-        n.sizes().check()?;
-        Ok(n)
-    }
-}
-
 /// Validates `mesh` (topology in `scratch`, [`super::scratch_len`] entries) and plans
 /// `levels` steps of `scheme`: the exact sizes of every level and the scratch that
 /// [`subdivide_levels`] needs.
@@ -310,7 +108,7 @@ impl Stats {
 /// # Errors
 /// Validation errors; those of [`subdivide_size`] for the first level;
 /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels; [`Status::SizeOverflow`];
-/// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`MAX_VALENCE`].
+/// [`Status::ValenceTooHigh`] (no element) when a later level would exceed [`crate::MAX_VALENCE`].
 pub fn plan(
     scheme: Scheme,
     mesh: Mesh<'_>,
@@ -333,7 +131,7 @@ fn plan_with_topology(
     }
     let topo = Topology::build(mesh, scratch)?;
     let counts = topo.counts();
-    let mut stats = Stats::of(&topo)?;
+    let mut stats = LevelCounts::of(&topo)?;
     let mut p = LevelPlan {
         levels,
         sizes: [MeshSizes::default(); MAX_LEVELS + 1],
@@ -428,7 +226,8 @@ pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
 /// copies the input. Returns the output sizes.
 ///
 /// # Errors
-/// Those of [`plan`] and [`subdivide`]; [`Status::BufferTooSmall`] with the needed size.
+/// Those of [`plan`] and [`super::subdivide`]; [`Status::BufferTooSmall`] with the needed
+/// size.
 pub fn subdivide_levels(
     scheme: Scheme,
     mesh: Mesh<'_>,
@@ -437,16 +236,7 @@ pub fn subdivide_levels(
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
 ) -> Result<MeshSizes> {
-    run_levels(
-        scheme,
-        mesh,
-        levels,
-        scratch_u32,
-        scratch_points,
-        out,
-        |_| Ok(0),
-        |_, topo, step_out, _| subdivide(scheme, topo, step_out),
-    )
+    run_levels(scheme, None, mesh, levels, scratch_u32, scratch_points, out).map(|(s, _)| s)
 }
 
 /// [`subdivide_levels`] with the canonical Möbius version of `scheme`
@@ -467,42 +257,31 @@ pub fn subdivide_levels_mobius(
     out: &mut MeshOut<'_>,
     opts: MobiusOptions,
 ) -> Result<(MeshSizes, LevelsReport)> {
-    let mut report = LevelsReport::default();
-    let sizes = run_levels(
+    run_levels(
         scheme,
+        Some(opts),
         mesh,
         levels,
         scratch_u32,
         scratch_points,
         out,
-        LevelPlan::mobius_step_points,
-        |k, topo, step_out, cand| {
-            let (written, r) = super::mobius::subdivide(scheme, topo, step_out, cand, opts)?;
-            report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
-            if report.first_fallback_level == 0 && r.fallbacks > 0 {
-                report.first_fallback = r.first_fallback;
-                report.first_fallback_level = (k + 1) as u32;
-            }
-            Ok(written)
-        },
-    )?;
-    Ok((sizes, report))
+    )
 }
 
-/// The level loop shared by [`subdivide_levels`] and [`subdivide_levels_mobius`]:
-/// `step_points(plan)` extra points of scratch (after the intermediate levels) are handed to
-/// every `step(k, topology of level k, output of level k + 1, extra scratch)`.
-#[allow(clippy::too_many_arguments)]
+/// The level loop shared by [`subdivide_levels`] (`mobius` `None`) and
+/// [`subdivide_levels_mobius`]: every level is one [`step`]; with `mobius`, the candidate
+/// scratch of the largest step ([`LevelPlan::mobius_step_points`], after the intermediate
+/// levels) is handed to every step and the steps' reports are gathered.
 fn run_levels(
     scheme: Scheme,
+    mobius: Option<MobiusOptions>,
     mesh: Mesh<'_>,
     levels: usize,
     scratch_u32: &mut [u32],
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
-    step_points: impl Fn(&LevelPlan) -> Result<usize>,
-    mut step: impl FnMut(usize, &Topology<'_, '_>, &mut MeshOut<'_>, &mut [Point]) -> Result<MeshSizes>,
-) -> Result<MeshSizes> {
+) -> Result<(MeshSizes, LevelsReport)> {
+    let mut report = LevelsReport::default();
     let need_plan = plan_scratch_len(&mesh)?;
     if scratch_u32.len() < need_plan {
         return Err(Error::too_small(need_plan));
@@ -513,14 +292,17 @@ fn run_levels(
     if scratch_u32.len() < p.scratch_u32 {
         return Err(Error::too_small(p.scratch_u32));
     }
-    let extra = step_points(&p)?;
+    let extra = match mobius {
+        Some(_) => p.mobius_step_points()?,
+        None => 0,
+    };
     let need_points = cadd(p.scratch_points, extra)?;
     if scratch_points.len() < need_points {
         return Err(Error::too_small(need_points));
     }
     if levels == 0 {
         copy_mesh(mesh, out)?;
-        return Ok(final_sizes);
+        return Ok((final_sizes, report));
     }
     let pattern = scheme.pattern();
     let derive = derivable(pattern);
@@ -578,14 +360,19 @@ fn run_levels(
             Some(c) => Topology::from_parts(input, in_t, c)?,
             None => Topology::build(input, in_t)?,
         };
-        let written = if k + 1 == levels {
-            step(k, &topo, out, step_scratch)?
+        let (written, r) = if k + 1 == levels {
+            step(scheme, mobius, &topo, out, step_scratch)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(&mut *out_p, o, rest);
-            step(k, &topo, &mut step_out, step_scratch)?
+            step(scheme, mobius, &topo, &mut step_out, step_scratch)?
         };
+        report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
+        if report.first_fallback_level == 0 && r.fallbacks > 0 {
+            report.first_fallback = r.first_fallback;
+            report.first_fallback_level = (k + 1) as u32;
+        }
         if written != out_sizes {
             return Err(internal());
         }
@@ -597,10 +384,10 @@ fn run_levels(
             let idx = out_u.get(no..no + out_sizes.indices).ok_or(internal())?;
             let pts: &[Point] = out_p;
             let child = Mesh::new(pts.get(..out_sizes.vertices).ok_or(internal())?, offs, idx);
-            ready = Some(topo.refined(pattern, child, out_t)?.counts());
+            ready = Some(child_topology(&topo, pattern, child, out_t)?.counts());
         }
     }
-    Ok(final_sizes)
+    Ok((final_sizes, report))
 }
 
 fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {

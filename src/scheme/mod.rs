@@ -1,5 +1,8 @@
-//! Drivers: they own the topology walk and call the rules of [`crate::stencil`] on each
-//! neighbourhood (DESIGN.md "Two API tiers", tier 2).
+//! The subdivision schemes over whole meshes: the drivers own the topology walk and call a
+//! rule on each neighbourhood, the linear rules of [`crate::stencil`] or their canonical
+//! Möbius versions (seed 000 §4, [`mobius`]). The rules see one neighbourhood and never a
+//! mesh, so a host mesh library with its own connectivity can call them directly; the
+//! drivers are for callers whose mesh is a pair of index arrays.
 //!
 //! One level per call over caller buffers: [`subdivide_size`] gives the exact output sizes
 //! before the call, [`subdivide`] writes one level. [`subdivide_mesh`] and
@@ -9,21 +12,33 @@
 //! Möbius version ([`mobius`]), through the same level loop. [`Scheme::Spherelike`] (seed 003
 //! §3, [`spherelike`]) runs through the same one-level and multi-level entry points.
 //!
-//! Output vertex order (DESIGN.md): primal schemes write the old vertices first at the same
-//! indices, then edge points in edge-id order (edges sorted by `(min, max)` vertex key), then
-//! face points in face order; dual schemes document their own order
-//! ([`crate::mesh::refine`]). Contents of the output buffers are unspecified on error.
+//! Output vertex order, fixed so that hosts can map old vertices and know where each new point
+//! comes from: primal schemes write the old vertices first at the same indices, then edge points in
+//! edge-id order (edges sorted by `(min, max)` vertex key), then face points in face order; dual
+//! schemes document their own order ([`crate::mesh::refine`]). Contents of the output buffers are
+//! unspecified on error.
+//!
+//! # Where things are
+//!
+//! `size.rs` (the exact sizes of one step), `step.rs` (one step, and the internal step both
+//! level paths call), `linear.rs` (the linear position rules), `spherelike.rs`,
+//! `mobius/`, `levels.rs` (plans and the level loop), `carry.rs` (old vertices carried
+//! through).
 
+mod carry;
 mod levels;
-pub mod linear;
+mod linear;
 pub mod mobius;
+mod size;
 pub mod spherelike;
+mod step;
 
 pub use levels::{
     plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
     MAX_LEVELS,
 };
-pub use linear::{subdivide, subdivide_size};
+pub use size::subdivide_size;
+pub use step::subdivide;
 
 use crate::error::Result;
 use crate::mesh::refine::Pattern;
@@ -81,7 +96,7 @@ impl Scheme {
         Scheme::ALL.iter().copied().find(|s| s.code() == code)
     }
 
-    /// The command-line name (DESIGN.md, "The `nlsubdiv` command").
+    /// The command-line name (the scheme names of the `nlsubdiv` command and of the docs).
     pub const fn name(self) -> &'static str {
         match self {
             Scheme::Loop => "loop",

@@ -21,8 +21,9 @@
 //!   (the face opposite the edge). Ties: see `farthest`.
 //!
 //! Where the paper is silent (docs/DECISIONS.md, docs/spherelike.md):
-//! * **Boundary edges** follow the curve rule along their boundary loop, a closed curve
-//!   (DESIGN.md "Mesh boundaries"): `V0`, `V3` are the other boundary neighbours.
+//! * **Boundary edges** follow the curve rule along their boundary loop, a closed curve (as
+//!   every scheme subdivides its boundary loops, like CGAL's and OpenSubdiv's `EDGE_ONLY`
+//!   boundaries): `V0`, `V3` are the other boundary neighbours.
 //! * **Open ends**: an interior edge whose endpoint lies on the boundary has no continuation
 //!   beyond that endpoint (the star is a half-disk). The grid line ends there, so the edge is
 //!   the end segment of an open curve and takes the circle-blend open-end rule: the middle of
@@ -63,9 +64,9 @@
 //! nothing is reported as success with a partial result. There is no Möbius form either
 //! ([`super::Scheme::has_mobius_form`]): the circle blend is not Möbius-equivariant.
 
-use super::linear::face_points;
 use crate::curve::circle_blend;
 use crate::error::{Error, Result, Status};
+use crate::mesh::gather::{boundary_beyond, face_points};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::Point;
 use crate::MAX_FACE_SIZE;
@@ -130,12 +131,6 @@ fn edge_point(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
         return circle_blend::blend_point(topo.position(a)?, p1, p2, topo.position(b)?);
     }
     segment_point(beyond(topo, v1, v2)?, p1, p2, beyond(topo, v2, v1)?)
-}
-
-/// The other boundary neighbour of boundary vertex `v` (not `other`).
-fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
-    let (b0, b1) = topo.boundary_neighbours(v)?;
-    Ok(if b0 == other { b1 } else { b0 })
 }
 
 /// The point `V0` beyond `v` on the grid line from `toward` through `v` (Fig. 3), or `None`

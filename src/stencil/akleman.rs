@@ -2,7 +2,7 @@
 //! 1-ring "subdivision-like operators", with their linear rules. The patterns are
 //! [`crate::mesh::refine::Pattern::Dual`], `VertexInsertion` and `DualTruncation`.
 //!
-//! Decisions (DESIGN.md: "decide, write it down"):
+//! Decisions where the paper is silent:
 //!
 //! * **Dual**: one vertex per face, its centroid; one face per interior vertex joining the
 //!   centroids of its faces counter-clockwise. A boundary vertex keeps its position and gets

@@ -1,7 +1,8 @@
 //! Modified Butterfly (Dyn, Levin, Gregory 1990; Zorin, Schröder, Sweldens 1996) exactly as
-//! OpenMesh `ModifiedButterflyT`, the only peer (peer-rules.md, "Modified butterfly"): no
-//! tension parameter (w = 0), Zorin's stencils at interior extraordinary vertices, the
-//! 4-point rule on boundary edges, and reflected points across boundary edges.
+//! OpenMesh `ModifiedButterflyT`, the only peer: no tension parameter (w = 0), Zorin's
+//! stencils at interior extraordinary vertices, the 4-point rule on boundary edges, and
+//! reflected points across boundary edges. Seed 000 §4.3 converts it with partial
+//! candidates (each end point's half of the stencil, [`edge_half`]).
 //!
 //! Old vertices keep their positions (interpolating).
 
@@ -15,14 +16,36 @@ pub fn edge_boundary(p0: Point, a0: Point, a1: Point, p1: Point) -> Point {
     lin2(0.5625, add(a0, a1), -0.0625, add(p0, p1))
 }
 
+/// Weight of each end point of the edge in the regular 8-point stencil.
+pub const W_END: f64 = 0.5;
+/// Weight of each opposite vertex (the third corners of the edge's two triangles).
+pub const W_OPPOSITE: f64 = 0.125;
+/// Weight of each of the four wings (the vertices across the triangles' outer edges).
+pub const W_WING: f64 = -0.0625;
+
 /// The regular 8-point butterfly `1/2 (a0 + a1) + 1/8 (b0 + b1) − 1/16 (c0 + c1 + c2 + c3)`:
 /// `b` the opposite vertices of the edge's two triangles, `c` the vertices across their four
 /// outer edges (use [`reflect`] across a boundary edge).
 pub fn edge_regular(a0: Point, a1: Point, b0: Point, b1: Point, c: [Point; 4]) -> Point {
     add(
-        lin2(0.5, add(a0, a1), 0.125, add(b0, b1)),
-        scale(sum(&c), -0.0625),
+        lin2(W_END, add(a0, a1), W_OPPOSITE, add(b0, b1)),
+        scale(sum(&c), W_WING),
     )
+}
+
+/// One end point's half of the regular 8-point stencil, doubled: the end points `a0`, `a1`
+/// and the opposite vertices `b0`, `b1` with their weights of [`edge_regular`], and the two
+/// wings `c0`, `c1` on `a0`'s side with twice theirs, `−1/8`. The two halves of an edge,
+/// one per end point, average to [`edge_regular`]. The Möbius Modified Butterfly evaluates
+/// each half in its end point's canonical form, which sees only that end point's wings
+/// (seed 000 §4.3, "partial candidates").
+pub fn edge_half(a0: Point, a1: Point, b0: Point, b1: Point, c0: Point, c1: Point) -> Point {
+    let wing = -2.0 * W_WING;
+    [
+        a0[0] * W_END + a1[0] * W_END + (b0[0] + b1[0]) * W_OPPOSITE - (c0[0] + c1[0]) * wing,
+        a0[1] * W_END + a1[1] * W_END + (b0[1] + b1[1]) * W_OPPOSITE - (c0[1] + c1[1]) * wing,
+        a0[2] * W_END + a1[2] * W_END + (b0[2] + b1[2]) * W_OPPOSITE - (c0[2] + c1[2]) * wing,
+    ]
 }
 
 /// The point standing in for the vertex across a boundary edge `(u, w)` of the triangle

@@ -1,7 +1,8 @@
 //! Catmull–Clark subdivision (Catmull and Clark 1978) as OpenMesh `CatmullClarkT`, CGAL
 //! `CatmullClark_mask_3` and OpenSubdiv `catmarkScheme` on closed meshes; the boundary is the
-//! cubic B-spline crease rule of CGAL and OpenSubdiv `EDGE_ONLY` (peer-rules.md,
-//! "Catmull–Clark"; OpenMesh's 2/3, 1/6 boundary variant is not the standard).
+//! cubic B-spline crease rule of CGAL and OpenSubdiv `EDGE_ONLY` (OpenMesh's 2/3, 1/6
+//! boundary variant is not the standard). Seed 000 §4.3 converts it (face points by the
+//! F4/F6 algorithm of §4.4.3).
 
 use super::centroid;
 use crate::error::{Error, Result, Status};

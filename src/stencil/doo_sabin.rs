@@ -1,6 +1,6 @@
 //! Doo–Sabin corner cutting (Doo and Sabin 1978) exactly as CGAL `DooSabin_mask_3` with
-//! `DQQ_1step`, the only peer (peer-rules.md, "Doo–Sabin"): one point per (face, corner),
-//! no boundary rule.
+//! `DQQ_1step`, the only peer: one point per (face, corner), no boundary rule. Seed 000 §4.3
+//! evaluates each corner point in its vertex's canonical form.
 
 use crate::error::{Error, Result, Status};
 use crate::point::{add, scale, Point};

@@ -9,7 +9,7 @@
 //!   directions (Fig. 14: `w1..w4` and `w5..w8`); the linear rule averages the two results,
 //!   which are equal on regular grids (tensor product).
 //!
-//! Decisions (written down as DESIGN.md asks):
+//! Decisions where the sources are silent:
 //!
 //! * Interior vertex of valence 4: the virtual point is the real opposite neighbour.
 //! * Interior vertex of valence `n ≠ 4` (neighbours `q_i`, diagonal vertices `d_i` between
@@ -33,19 +33,19 @@
 //!
 //!   *Provenance.* Kobbelt, L., "Interpolatory subdivision on open quadrilateral nets with
 //!   arbitrary topology", Computer Graphics Forum 15(3) (Eurographics '96), 409–420,
-//!   doi:10.1111/1467-8659.1530409. Its text was not available to us (docs/DECISIONS.md lists
-//!   what was searched): the rule is *derived* from the property above, not transcribed. A
-//!   public geometry-central-based C++ implementation of the same form used `ŵ = ω/(4 + ω)` with its 4-point rule
-//!   written `(8 + ω)/16, −ω/16` (`ω = 16 w`), i.e. `1/5`; an earlier version here used
-//!   `w/(4 + w) = 1/65`. Neither makes the two directions agree (mismatch `∝ d_{j+2} −
-//!   d_{j−2}`), so both were dropped. The common offset (`mean r = mean q`) is the one of
-//!   that implementation and is not pinned by the property; it only moves the rotation-
-//!   invariant (`k = 0`) eigenvalues of the local subdivision matrix.
+//!   doi:10.1111/1467-8659.1530409. Its text was not available to us (docs/DECISIONS.md lists what
+//!   was searched): the rule is *derived* from the property above, not transcribed. A public
+//!   geometry-central-based C++ implementation of the same form uses `ŵ = ω/(4 + ω)` with its
+//!   4-point rule written `(8 + ω)/16, −ω/16` (`ω = 16 w`), i.e. `1/5`; the same form in `w`,
+//!   `w/(4+w)`, gives `1/65`. Neither makes the two directions agree (mismatch `∝ d_{j+2} −
+//!   d_{j−2}`), so neither is used. The common offset (`mean r = mean q`) is the one of that
+//!   implementation and is not pinned by the property; it only moves the rotation-invariant
+//!   (`k = 0`) eigenvalues of the local subdivision matrix.
 //! * Boundary vertex (any valence): the line through `(v, x)` ends at `v`; the virtual point
-//!   is the 4-point curve's end extrapolation `2v − x` (DESIGN.md, "Open ends": `P_−1 = 2P_0 −
-//!   P_1`).
+//!   is the 4-point curve's end extrapolation `2v − x` (the open-end rule of the 4-point
+//!   curve, `P_−1 = 2P_0 − P_1`).
 //! * Boundary edges: the 4-point rule along the boundary loop, as a closed curve through all
-//!   its vertices (DESIGN.md "Mesh boundaries").
+//!   its vertices (every scheme subdivides its boundary loops as curves).
 //! * A face edge on the boundary has no face beyond it: the outer edge point of the face rule
 //!   is extrapolated the same way, `2 e − e_opposite`.
 

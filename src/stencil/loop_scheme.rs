@@ -1,5 +1,6 @@
 //! Loop subdivision (Loop 1987) with the original weights, as OpenMesh `LoopT`, CGAL
-//! `Loop_mask_3` and OpenSubdiv `loopScheme` (peer-rules.md, "Loop"): not Warren's β.
+//! `Loop_mask_3` and OpenSubdiv `loopScheme`: not Warren's β. Seed 000 §4.3 converts it to
+//! its Möbius version (a 1-ring scheme).
 
 use crate::error::{Error, Result, Status};
 use crate::point::{add, lin2, midpoint, scale, sum, Point};
@@ -46,7 +47,7 @@ mod tests {
 
     #[test]
     fn alpha_matches_peer_table() {
-        // β = α/n from peer-rules.md.
+        // β = α/n, the peers' values (OpenSubdiv `loopScheme`, CGAL `Loop_mask_3`).
         let table = [
             (3, 0.1875),
             (4, 0.121094),

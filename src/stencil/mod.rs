@@ -1,11 +1,12 @@
-//! Linear subdivision rules on one neighbourhood, given as slices of points (DESIGN.md "Two
-//! API tiers", tier 1). Nothing here knows a mesh: the drivers in [`crate::scheme`] gather
-//! the neighbourhoods, and the Möbius schemes evaluate the same rules on canonical forms of
-//! vertex stars (seed 000 §4.3).
+//! Linear subdivision rules on one neighbourhood, given as slices of points. Nothing here
+//! knows a mesh, so a host with its own connectivity can call them: the drivers in
+//! [`crate::scheme`] gather the neighbourhoods, and the Möbius schemes evaluate the same
+//! rules on canonical forms of vertex stars (seed 000 §4.1, §4.3).
 //!
-//! The weights are exactly those of the peer libraries (`reference/peer-rules.md`); each
-//! module cites its rule. Sums run in the documented order of their arguments, in plain
-//! `f64` arithmetic without fused multiply-add, so results are deterministic.
+//! The weights are exactly those of the peer libraries (OpenMesh, CGAL, OpenSubdiv), so that
+//! results can be compared with theirs; each module names its peer and cites its rule. Sums run in
+//! the documented order of their arguments, in plain `f64` arithmetic without fused multiply-add,
+//! so results are deterministic.
 //!
 //! Rings are counter-clockwise seen from outside and, unless a function says otherwise,
 //! may start anywhere.
@@ -34,7 +35,8 @@ pub fn centroid(points: &[Point]) -> Result<Point> {
 
 /// The crease (boundary) vertex rule of the cubic B-spline, `3/4 v + 1/8 (b0 + b1)`: the
 /// boundary rule of Loop and of Catmull–Clark as CGAL and OpenSubdiv (`EDGE_ONLY`) apply it,
-/// one-face corners included (peer-rules.md; DESIGN.md "Mesh boundaries").
+/// one-face corners included: every boundary loop is subdivided as a closed cubic B-spline
+/// curve through its vertices.
 #[inline]
 pub fn crease_vertex(v: Point, b0: Point, b1: Point) -> Point {
     lin2(0.75, v, 0.125, add(b0, b1))

@@ -1,0 +1,64 @@
+//! Neighbourhood gathers: the points a rule reads around a vertex, a face or an edge, in the
+//! order the rules expect them (stars counter-clockwise from their first spoke, faces in face
+//! order). Every driver, linear, spherelike and Möbius, gathers through these, so one
+//! neighbourhood is read the same way everywhere.
+
+use arrayvec::ArrayVec;
+
+use super::Topology;
+use crate::error::{Error, Result, Status};
+use crate::point::Point;
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+
+/// Points of a vertex ring, one per spoke.
+pub(crate) type Ring = ArrayVec<Point, MAX_VALENCE>;
+
+/// Points of one face, in face order.
+pub(crate) type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
+
+/// Positions of `v`'s neighbours, counter-clockwise.
+pub(crate) fn ring_points(topo: &Topology<'_, '_>, v: u32) -> Result<Ring> {
+    let mut r = Ring::new();
+    ring_points_into(topo, v, &mut r)?;
+    Ok(r)
+}
+
+/// [`ring_points`] into a reused buffer (no 3 KB array returned per vertex).
+pub(crate) fn ring_points_into(topo: &Topology<'_, '_>, v: u32, r: &mut Ring) -> Result<()> {
+    r.clear();
+    for s in topo.star(v) {
+        r.try_push(topo.position(s.neighbour)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+    }
+    Ok(())
+}
+
+/// Positions of the corners of face `f`, in face order.
+pub(crate) fn face_points(topo: &Topology<'_, '_>, f: u32) -> Result<FacePts> {
+    let mut r = FacePts::new();
+    face_points_into(topo, f, &mut r)?;
+    Ok(r)
+}
+
+/// [`face_points`] into a reused buffer.
+pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts) -> Result<()> {
+    r.clear();
+    for &v in topo.face_vertices(f)? {
+        r.try_push(topo.position(v)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
+    }
+    Ok(())
+}
+
+/// The other boundary neighbour of boundary vertex `v` (not `other`): the next point along
+/// the boundary loop beyond `v`, away from `other`.
+pub(crate) fn boundary_beyond(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<u32> {
+    let (b0, b1) = topo.boundary_neighbours(v)?;
+    Ok(if b0 == other { b1 } else { b0 })
+}
+
+/// The corner after `dest(h)` in the face of half-edge `h`: the third vertex of a
+/// triangle, the corner opposite `origin(h)` in a quad.
+pub(crate) fn apex(topo: &Topology<'_, '_>, h: u32) -> Result<u32> {
+    topo.dest(topo.next(h)?)
+}

@@ -1,0 +1,211 @@
+//! Refinement patterns: the connectivity of one subdivision step, its exact sizes, and the
+//! numbering of the new vertices. Positions are the schemes' business ([`crate::scheme`]).
+//!
+//! Notation: `V, E, F, H` vertices, edges, faces, half-edges (corners) of the input; `I`
+//! isolated vertices; `E_i` interior edges; `V_i` interior vertices; `Σ_i` the sum of the
+//! valences of the interior vertices. Edges are numbered in `(min, max)` key order
+//! ([`Topology`]). All faces keep the input orientation (counter-clockwise from outside).
+//!
+//! | pattern | vertices (in this order) | faces (in this order) |
+//! |---|---|---|
+//! | [`Split1To4`](Pattern::Split1To4) (triangles only) | `V` old, `E` edge points | triangle `f` → `4f..4f+4`: `(v0,e0,e2) (v1,e1,e0) (v2,e2,e1) (e0,e1,e2)`, `e_i` on corner `i`'s edge `(v_i, v_{i+1})` |
+//! | [`Quads`](Pattern::Quads) | `V` old, `E` edge points, `F` face points | corner `h` of face `f` → quad `h`: `(v_i, e_i, f, e_{i−1})` |
+//! | [`CornerCut`](Pattern::CornerCut) (Doo–Sabin) | `H` corner points (corner `h` → point `h`), then the `I` isolated vertices | `F` F-faces (corners in face order), `E_i` E-faces in edge order `(c(next h), c(h), c(next t), c(t))` with `h` the `min→max` half-edge and `t` its twin, `V_i` V-faces in vertex order (corners of the star, CCW) |
+//! | [`MidEdge`](Pattern::MidEdge) (Simplest) | `E` edge midpoints, then the `V_b` boundary vertices (in index order), then the `I` isolated vertices | `F` face-faces (the midpoints of the face's edges, in corner order), then one vertex-face per referenced vertex, in vertex order: the midpoints of its spokes (CCW), closed on the boundary by the vertex itself |
+//! | [`Dual`](Pattern::Dual) | `F` face points, then the midpoints of the `V_b` outgoing boundary edges of the boundary vertices, then the `V_b` boundary vertices (both in vertex index order), then the `I` isolated vertices | one face per referenced vertex, in vertex order: the face points of its star (CCW); on the boundary `(m(v→b0), c_0, …, c_{k−1}, m(b1→v), v)` |
+//! | [`VertexInsertion`](Pattern::VertexInsertion) | `V` old, `F` face points | corner `h = (a → b)` of face `f` → triangle `h`: `(a, b, f)` |
+//! | [`DualTruncation`](Pattern::DualTruncation) | `V` old, `F` face points | per edge, in edge order: interior `h = (a → b)` in `f`, twin in `g`: `(a, g, f)` and `(b, f, g)`; boundary `(a → b)` in `f`: `(a, b, f)` |
+//!
+//! Boundaries: [`CornerCut`](Pattern::CornerCut) makes faces only around interior edges and
+//! vertices (CGAL's `DQQ_1step`), so its new boundary runs through the corner points of the
+//! boundary faces. [`MidEdge`](Pattern::MidEdge) and [`Dual`](Pattern::Dual) close the face of
+//! every boundary vertex with the vertex itself (and, for the dual, the midpoints of its two
+//! boundary edges): the new boundary is the old boundary polygon refined at its edge
+//! midpoints, every vertex has a face, and the Euler characteristic is preserved (otherwise
+//! the mid-edge boundary would never be refined and the dual would drop its boundary ring
+//! and leave stray face points).
+//!
+//! The dual patterns ([`CornerCut`](Pattern::CornerCut), [`MidEdge`](Pattern::MidEdge),
+//! [`Dual`](Pattern::Dual), and [`DualTruncation`](Pattern::DualTruncation), whose truncation
+//! polygons are dual faces) need every interior vertex to have valence ≥ 3 (its face would be
+//! a 2-gon): an interior vertex of valence 2 is [`Status::FaceTooSmall`] naming the vertex.
+//! [`Dual`](Pattern::Dual) and [`DualTruncation`](Pattern::DualTruncation) join the face points
+//! of neighbouring faces; two faces that share two edges would give a double edge, so such a
+//! face is [`Status::UnsupportedFaceType`] naming the later face.
+
+//! # Where things are
+//!
+//! One file per pattern, each owning what the pattern decides: its output sizes (`size`), the
+//! faces it writes (`write`), the counts of the next level for multi-level plans (`next`; the
+//! counts in `counts.rs`), and for [`Pattern::Split1To4`] and [`Pattern::Quads`] the
+//! derivation of the child topology from the parent's (`derive`; the shared parts in
+//! `derive.rs`). Also shared: `face_writer.rs` (the CSR cursor), `dual_checks.rs` (the
+//! preconditions of the dual patterns).
+
+mod corner_cut;
+pub(crate) mod counts;
+pub(crate) mod derive;
+mod dual;
+mod dual_checks;
+mod dual_truncation;
+mod face_writer;
+mod mid_edge;
+mod quads;
+mod split_1to4;
+mod vertex_insertion;
+
+pub(crate) use counts::LevelCounts;
+
+use super::topology::Counts;
+use super::{get, idx, internal, Mesh, MeshSizes, Topology};
+use crate::error::{Error, Result, Status};
+use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+
+/// A refinement pattern (connectivity of one step; see the module table).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pattern {
+    /// Triangle 1→4 split (Loop, Modified Butterfly).
+    Split1To4,
+    /// n-gon → n quads (Catmull–Clark, Kobbelt).
+    Quads,
+    /// Corner cutting with F-, E- and V-faces (Doo–Sabin).
+    CornerCut,
+    /// Mid-edge: face-faces and vertex-faces of edge midpoints (Peters–Reif Simplest).
+    MidEdge,
+    /// Dual mesh: face points joined around interior vertices (Akleman et al. 2005).
+    Dual,
+    /// Each n-gon → n triangles to a face point, old edges kept (Akleman et al. 2005).
+    VertexInsertion,
+    /// Truncation followed by the dual: a face point per face, each old edge replaced by the
+    /// edge between its two face points (the √3 connectivity; Akleman et al. 2005).
+    DualTruncation,
+}
+
+impl Pattern {
+    /// Whether the old vertices are kept at their indices (primal patterns).
+    pub fn keeps_old_vertices(self) -> bool {
+        matches!(
+            self,
+            Pattern::Split1To4
+                | Pattern::Quads
+                | Pattern::VertexInsertion
+                | Pattern::DualTruncation
+        )
+    }
+}
+
+/// The first index of each group of the parent's elements as output vertex numbers: `v`
+/// vertices, `e` edges, `f` faces (checked to fit a `u32`).
+#[derive(Clone, Copy, Debug)]
+struct Parent {
+    v: u32,
+    e: u32,
+    f: u32,
+}
+
+/// The exact output sizes of `pattern` on `topo`, checked: [`crate::Status::SizeOverflow`]
+/// when a count exceeds [`super::MAX_COUNT`], [`crate::Status::UnsupportedFaceType`] (naming
+/// the face) for [`Pattern::Split1To4`] on a non-triangle, [`crate::Status::ValenceTooHigh`]
+/// when a vertex of the output would exceed [`crate::MAX_VALENCE`] (naming the old vertex, or
+/// for [`Pattern::DualTruncation`] face points, the face); the preconditions of the dual
+/// patterns (module docs).
+pub fn pattern_size(pattern: Pattern, topo: &Topology<'_, '_>) -> Result<MeshSizes> {
+    let sizes = match pattern {
+        Pattern::Split1To4 => split_1to4::size(topo)?,
+        Pattern::Quads => quads::size(topo)?,
+        Pattern::CornerCut => corner_cut::size(topo)?,
+        Pattern::MidEdge => mid_edge::size(topo)?,
+        Pattern::Dual => dual::size(topo)?,
+        Pattern::VertexInsertion => vertex_insertion::size(topo)?,
+        Pattern::DualTruncation => dual_truncation::size(topo)?,
+    };
+    sizes.check()
+}
+
+/// Writes the faces of `pattern` (see the module table) into `offsets` and `indices`, which
+/// must hold `sizes` from [`pattern_size`] (checked: [`crate::Status::BufferTooSmall`]).
+pub fn write_pattern(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+) -> Result<MeshSizes> {
+    let sizes = pattern_size(pattern, topo)?;
+    if offsets.len() < sizes.offsets()? {
+        return Err(Error::too_small(sizes.offsets()?));
+    }
+    if indices.len() < sizes.indices {
+        return Err(Error::too_small(sizes.indices));
+    }
+    let n = Parent {
+        v: idx(topo.num_vertices())?,
+        e: idx(topo.num_edges())?,
+        f: topo.num_faces() as u32,
+    };
+    match pattern {
+        Pattern::Split1To4 => split_1to4::write(topo, n, offsets, indices)?,
+        Pattern::Quads => quads::write(topo, n, offsets, indices)?,
+        Pattern::CornerCut => corner_cut::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::MidEdge => mid_edge::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::Dual => dual::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::VertexInsertion => vertex_insertion::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::DualTruncation => dual_truncation::write(topo, n, &sizes, offsets, indices)?,
+    }
+    // The output numbering must stay within the vertex count (checked, never trusted).
+    let used = indices.get(..sizes.indices).ok_or(internal())?;
+    // One branch-free pass (the largest index), vectorised by the compiler.
+    let largest = used.iter().fold(0u32, |m, &i| m.max(i));
+    if !used.is_empty() && largest as usize >= sizes.vertices {
+        return Err(internal());
+    }
+    let _ = get(offsets, sizes.faces)?;
+    Ok(sizes)
+}
+
+impl LevelCounts {
+    /// The counts of the next level of `pattern` (derivations in each pattern's `next`);
+    /// [`Status::ValenceTooHigh`] (no element: the vertex does not exist yet) when a valence
+    /// or a face size would exceed the capacity, [`Status::SizeOverflow`].
+    pub(crate) fn next(&self, pattern: Pattern) -> Result<LevelCounts> {
+        let n = match pattern {
+            Pattern::Split1To4 => split_1to4::next(self)?,
+            Pattern::Quads => quads::next(self)?,
+            Pattern::CornerCut => corner_cut::next(self)?,
+            Pattern::VertexInsertion => vertex_insertion::next(self)?,
+            Pattern::DualTruncation => dual_truncation::next(self)?,
+            Pattern::Dual => dual::next(self)?,
+            Pattern::MidEdge => mid_edge::next(self)?,
+        };
+        if n.max_vi > MAX_VALENCE || n.max_vb > MAX_VALENCE || n.max_face > MAX_FACE_SIZE {
+            return Err(Error::new(Status::ValenceTooHigh));
+        }
+        n.sizes().check()?;
+        Ok(n)
+    }
+}
+
+/// Whether [`child_topology`] derives the child topology of `pattern`.
+pub(crate) fn derivable(pattern: Pattern) -> bool {
+    matches!(pattern, Pattern::Quads | Pattern::Split1To4)
+}
+
+/// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that [`write_pattern`]
+/// wrote from `parent`, in `scratch` ([`crate::mesh::topology_scratch_len`] of the child): the
+/// same arrays as [`Topology::build`] on `mesh` (`derive.rs`).
+///
+/// # Errors
+/// [`Status::BufferTooSmall`] with the needed length; an internal error when `mesh` is not
+/// this pattern's child or the pattern is not derivable.
+pub(crate) fn child_topology<'m2, 's2>(
+    parent: &Topology<'_, '_>,
+    pattern: Pattern,
+    mesh: Mesh<'m2>,
+    scratch: &'s2 mut [u32],
+) -> Result<Topology<'m2, 's2>> {
+    let counts: Counts = match pattern {
+        Pattern::Quads => quads::derive(parent, &mesh, scratch)?,
+        Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch)?,
+        _ => return Err(internal()),
+    };
+    Topology::from_parts(mesh, scratch, counts)
+}

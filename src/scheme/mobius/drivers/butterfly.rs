@@ -1,0 +1,45 @@
+//! Möbius Modified Butterfly (seed 000 §4.3, Fig. 11 right, "partial candidates"): old
+//! vertices stay (interpolating); every interior spoke of a star with a form gets the
+//! candidate of [`butterfly_star_in_form`], interior edges blend the candidates of their two
+//! end points (or take the single one next to an irregular vertex), boundary loops follow the
+//! Möbius interpolating curve rule.
+
+use super::super::driver::Driver;
+use super::super::form::{MapBack, Ring, MISSING};
+use super::super::rules::butterfly_star_in_form;
+use crate::error::Result;
+use crate::mesh::NONE;
+use crate::point::Point;
+use crate::scheme::carry::copy_old;
+use crate::scheme::linear::butterfly_edge;
+use crate::stencil::butterfly;
+use crate::MAX_VALENCE;
+
+pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let nv = topo.num_vertices();
+    copy_old(topo, d.pos)?;
+    let mut ring = Ring::new();
+    let mut cands = [MISSING; MAX_VALENCE];
+    d.vertex_pass(|d, star| {
+        star.ring_images(topo, &mut ring)?;
+        let n = star.spokes.len();
+        for (j, (s, c)) in star.spokes.iter().zip(cands.iter_mut()).enumerate() {
+            *c = MISSING;
+            let h = s.half_edge;
+            if h == NONE || topo.twin(h)? == NONE {
+                continue;
+            }
+            let other = s.neighbour;
+            let other_irregular = !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
+            if let Some(p) = butterfly_star_in_form(&ring, !star.boundary, j, other_irregular) {
+                *c = star.form.back(p).unwrap_or(MISSING);
+            }
+        }
+        d.keep_edge_candidates(star.spokes, cands.get(..n).unwrap_or(&[]))
+    })?;
+    let linear =
+        |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> { butterfly_edge(d.topo, e) };
+    d.blend_interior_edges(nv, &linear)?;
+    d.boundary_edges(nv, butterfly::edge_boundary)
+}

@@ -1,0 +1,189 @@
+//! Möbius Kobbelt (seed 000 §4.3, Fig. 11 left; §4.4.3, Fig. 14): old vertices stay
+//! (interpolating); the vertex pass gives every spoke the point beyond its centre
+//! ([`kobbelt_beyond_in_form`]: virtual points in interior forms, the end extrapolation in
+//! boundary forms); an edge point is `F4(r_a, a, b, r_b)` of the points beyond its two ends
+//! (boundary edges: along their boundary loop), and a face point the F6 blend of the two
+//! grid lines of new edge points through the face.
+
+use super::super::driver::Driver;
+use super::super::form::{present, Ring, MISSING};
+use super::super::rules::kobbelt_beyond_in_form;
+use crate::blend::{self, f4, f4_hinted};
+use crate::error::Result;
+use crate::mesh::gather::apex;
+use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::point::{midpoint, Point};
+use crate::scheme::carry::copy_old;
+use crate::scheme::linear::kobbelt_edge;
+use crate::stencil::kobbelt;
+
+pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    copy_old(d.topo, d.pos)?;
+    points_beyond(d)?;
+    edge_points(d)?;
+    face_points(d)
+}
+
+/// The vertex pass: per half-edge `h = (v → u)`, the point beyond `v` away from `u`, from
+/// `v`'s canonical form (regular interior vertices give the actual grid neighbour), kept as
+/// `h`'s edge candidate.
+fn points_beyond(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let mut ring = Ring::new();
+    let mut diagonals = Ring::new();
+    d.vertex_pass(|d, star| {
+        // The images of the neighbours and, for a closed star, of the diagonals.
+        let mut complete = true;
+        ring.clear();
+        diagonals.clear();
+        for s in star.spokes {
+            let form = &mut *star.form;
+            let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
+            ring.try_push(q).map_err(|_| internal())?;
+            complete &= present(&q);
+            if !star.boundary {
+                let c = apex(topo, s.half_edge)
+                    .and_then(|a| form.canon(topo, a))
+                    .unwrap_or(MISSING);
+                diagonals.try_push(c).map_err(|_| internal())?;
+                complete &= present(&c);
+            }
+        }
+        let form = &*star.form;
+        for (j, s) in star.spokes.iter().enumerate() {
+            let p = kobbelt_beyond_in_form(&ring, &diagonals, !star.boundary, complete, j, form);
+            if let (Some(p), true) = (p, s.half_edge != NONE) {
+                set(d.edge_c, s.half_edge as usize, p)?;
+            }
+        }
+        Ok(())
+    })?;
+    Ok(())
+}
+
+/// Edge points `F4(r0, a0, a1, r1)` of the points beyond both ends (boundary edges: their
+/// boundary loop's neighbours); the linear rule where one is missing or the blend fails.
+fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
+    for e in 0..ne as u32 {
+        let h = topo.edge_half_edge(e)?;
+        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+        let (a0, a1) = (topo.position(i0)?, topo.position(i1)?);
+        let k = nv + e as usize;
+        let (r0, r1) = if topo.twin(h)? == NONE {
+            let (o0, o3) = d.boundary_outer(h)?;
+            (Some(topo.position(o0)?), Some(topo.position(o3)?))
+        } else {
+            (beyond_of(d, h)?, beyond_of(d, topo.twin(h)?)?)
+        };
+        let hint = topo.position(topo.dest(topo.next(h)?)?)?;
+        let q = match (r0, r1) {
+            (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
+            _ => None,
+        };
+        let q = match q {
+            Some(q) => q,
+            None => {
+                d.fallback(k)?;
+                kobbelt_edge(topo, e)?
+            }
+        };
+        set(d.pos, k, q)?;
+    }
+    Ok(())
+}
+
+/// Face points: `F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7)` over the two grid lines of new
+/// edge points through the face (Fig. 14); the linear rule where a blend fails.
+fn face_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
+    for f in 0..topo.num_faces() as u32 {
+        let r = topo.face_half_edges(f)?;
+        let (h0, h1, h2, h3) = lines(topo, r.start)?;
+        let k = nv + ne + f as usize;
+        let line = |d: &Driver<'_, '_, '_, '_>, hx: u32, hy: u32| -> Result<[Point; 4]> {
+            Ok([
+                outer_edge_point(d, hx, hy)?,
+                edge_point(d, hx)?,
+                edge_point(d, hy)?,
+                outer_edge_point(d, hy, hx)?,
+            ])
+        };
+        let w = line(d, h0, h2)?;
+        let x = line(d, h1, h3)?;
+        let q = f4(w[0], w[1], w[2], w[3])
+            .and_then(|pa| {
+                let pb = f4(x[0], x[1], x[2], x[3])?;
+                blend::f6(w[1], pa, w[2], x[1], pb, x[2])
+            })
+            .ok();
+        let q = match q {
+            Some(q) => q,
+            None => {
+                d.fallback(k)?;
+                let fa = kobbelt::four_point(w[0], w[1], w[2], w[3]);
+                let fb = kobbelt::four_point(x[0], x[1], x[2], x[3]);
+                midpoint(fa, fb)
+            }
+        };
+        set(d.pos, k, q)?;
+    }
+    Ok(())
+}
+
+/// The point beyond the origin of half-edge `h` on the line from its far end, as the vertex
+/// pass left it; `None` when the origin has no form.
+fn beyond_of(d: &Driver<'_, '_, '_, '_>, h: u32) -> Result<Option<Point>> {
+    let c = get(d.edge_c, h as usize)?;
+    Ok(present(&c).then_some(c))
+}
+
+/// The new edge point of the edge of half-edge `h`.
+fn edge_point(d: &Driver<'_, '_, '_, '_>, h: u32) -> Result<Point> {
+    get(d.pos, d.topo.num_vertices() + d.topo.edge(h)? as usize)
+}
+
+/// The new edge point beyond edge `hx` of a quad, away from its opposite edge `hy`: the
+/// edge point of the neighbouring quad's opposite edge, or at the boundary an extrapolation.
+fn outer_edge_point(d: &Driver<'_, '_, '_, '_>, hx: u32, hy: u32) -> Result<Point> {
+    let topo = d.topo;
+    let t = topo.twin(hx)?;
+    if t != NONE {
+        return edge_point(d, topo.next(topo.next(t)?)?);
+    }
+    // The Möbius-invariant open-end extrapolation of the curve rules
+    // (`cr[P_2, P_1, P_0, P_−1] = −1/3`, on the circle through the first three points) along
+    // the face's grid line; a strip one face wide has no third point and takes the linear
+    // `2e − e'` of the 4-point curve.
+    let (e0, e1) = (edge_point(d, hx)?, edge_point(d, hy)?);
+    let ty = topo.twin(hy)?;
+    if ty != NONE {
+        let e2 = edge_point(d, topo.next(topo.next(ty)?)?)?;
+        if let Ok(p) = crate::curve::mobius::virtual_end_point(e0, e1, e2) {
+            return Ok(p);
+        }
+    }
+    Ok(kobbelt::extrapolate(e0, e1))
+}
+
+/// The half-edges `(h0, h1, h2, h3)` of the quad whose first half-edge is `first`, arranged so
+/// that Kobbelt's face point `F6(w1, F4(w), w2, x1, F4(x), x2)` over the grid lines `(h0, h2)`
+/// and `(h1, h3)` does not depend on where the face starts: F6 is symmetric neither in its two
+/// lines nor in their directions, so each line runs from its edge of smaller id, and the line
+/// holding the smallest edge id comes first. Edge ids are untouched by Möbius maps, so the
+/// rule keeps Möbius equivariance (docs/DECISIONS.md).
+fn lines(topo: &Topology<'_, '_>, first: u32) -> Result<(u32, u32, u32, u32)> {
+    let edge_of = |h: u32| topo.edge(h).map(|e| (e, h));
+    let [p, q, r, t] = [first, first + 1, first + 2, first + 3];
+    let (e0, e1, e2, e3) = (edge_of(p)?, edge_of(q)?, edge_of(r)?, edge_of(t)?);
+    // Each line from its edge of smaller id; (edge id, half-edge) pairs compare by id first.
+    let (a0, a1) = (e0.min(e2), e0.max(e2));
+    let (b0, b1) = (e1.min(e3), e1.max(e3));
+    Ok(if a0 <= b0 {
+        (a0.1, b0.1, a1.1, b1.1)
+    } else {
+        (b0.1, a0.1, b1.1, a1.1)
+    })
+}

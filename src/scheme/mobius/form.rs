@@ -1,0 +1,78 @@
+//! The canonical form of one vertex star given by its points (seed 000 §4.2, step 1 of §4.1),
+//! and the conventions every Möbius rule shares: rules are evaluated in the form's
+//! *normalised* frame `x ↦ −r (T − c)⁻¹`, where the centre vertex is the [`ORIGIN`], and a
+//! value that cannot be computed is [`MISSING`].
+//!
+//! Why the normalised frame: it is the same Möbius class as the paper's `c − r²(T − c)⁻¹` (a
+//! similarity apart), without the cancellation in that difference when `|c|` is large; every
+//! linear stencil is affine, so nothing else changes (docs/DECISIONS.md, "Möbius mesh
+//! schemes").
+
+use arrayvec::ArrayVec;
+
+use crate::error::{Error, Result, Status};
+use crate::mesh::Spoke;
+use crate::mobius::{CanonicalForm, StarKind};
+use crate::point::{self, Point};
+use crate::MAX_VALENCE;
+
+pub(super) use crate::mesh::gather::{FacePts, Ring};
+/// The spokes of one vertex star, counter-clockwise.
+pub(super) type Spokes = ArrayVec<Spoke, MAX_VALENCE>;
+
+/// The image of the centre vertex in the normalised canonical frame.
+pub(super) const ORIGIN: Point = [0.0; 3];
+
+/// Marker of a candidate that could not be computed (NaN: never [`present`]).
+pub(super) const MISSING: Point = [f64::NAN; 3];
+
+/// The map from a canonical form's normalised frame back to the mesh, `m_{C→B}` (seed 000
+/// §4.1 step 3): [`CanonicalForm::from_normalised`] of a form built from points (the tier-1
+/// rules) or of a mesh vertex's memoised form (the drivers). A trait rather than a closure so
+/// that the rules evaluated in a form always inline it (it runs once per candidate).
+pub(super) trait MapBack {
+    /// The point of the mesh whose image in the normalised frame is `p`.
+    fn back(&self, p: Point) -> Result<Point>;
+}
+
+impl MapBack for CanonicalForm {
+    #[inline(always)]
+    fn back(&self, p: Point) -> Result<Point> {
+        self.from_normalised(p)
+    }
+}
+
+/// Whether a candidate was computed (finite).
+#[inline]
+pub(super) fn present(p: &Point) -> bool {
+    point::is_finite(p)
+}
+
+/// The star kind of a cyclic (`closed`) or open ring.
+pub(super) const fn kind_of(closed: bool) -> StarKind {
+    if closed {
+        StarKind::Interior
+    } else {
+        StarKind::Boundary
+    }
+}
+
+/// Whether spoke `j` of a star of `n` spokes is an interior edge: every spoke of a closed
+/// star, the spokes `1 ..= n − 2` of an open one (its first and last spokes are boundary
+/// edges).
+pub(super) const fn interior_spoke(closed: bool, j: usize, n: usize) -> bool {
+    closed || (j >= 1 && j + 1 < n)
+}
+
+/// The canonical form of the star `v ring…` and the ring's images in its normalised frame
+/// ([`MISSING`] for a neighbour the form sends to infinity).
+pub(super) fn star_form(v: Point, ring: &[Point], closed: bool) -> Result<(CanonicalForm, Ring)> {
+    let cf = CanonicalForm::new(v, ring, kind_of(closed))?;
+    let mut images = Ring::new();
+    for u in ring {
+        images
+            .try_push(cf.to_normalised(*u).unwrap_or(MISSING))
+            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    }
+    Ok((cf, images))
+}

@@ -1,0 +1,163 @@
+//! Canonical Möbius subdivision (seed 000 §4): the Möbius version of every linear scheme.
+//!
+//! Per vertex `v` (§4.1, Fig. 6):
+//! 1. the canonical form `C_v` of its star ([`crate::mobius::CanonicalForm`], §4.2; interior
+//!    stars use the barycentre of the tangent polygon, boundary stars the mean of the two
+//!    boundary neighbours' images);
+//! 2. the linear stencils of [`crate::stencil`] evaluated on the 1-ring mapped into `C_v`;
+//! 3. the candidate points mapped back with `m_{C→B}`;
+//! 4. blends across stars: an edge point is `F4(v_j, e_j, e_k, v_k)` (§4.4.3), a face point the
+//!    sorted F4/F6 chain of [`crate::blend::face_point`]; vertex points come from the vertex's
+//!    own form.
+//!
+//! Boundary loops are curves and use the Möbius curve rules (§4.3 "Boundary curves",
+//! §4.4.1): the approximating rule for approximating schemes (odd
+//! `E_{i+½} = F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})`, even
+//! `P'_i = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`), the interpolating rule (odd points only)
+//! for the others.
+//!
+//! **Ear vertices** (boundary vertices with one face) have no usable form for a quad: their
+//! canonical form sends the opposite corner to infinity. Anything an ear would contribute to
+//! its face (a face candidate, a Doo–Sabin corner point) is evaluated in the canonical form
+//! of the first non-ear vertex of the face at offset `h, h+1, h−1, h+2, …` (`h = ⌊d/2⌋`),
+//! which keeps the rule Möbius-invariant and exact on Möbius images of regular grids. A face
+//! of ears only takes its linear centroid, counted as a fallback.
+//!
+//! **Degenerate neighbourhoods** (coincident points, a star whose canonical form does not
+//! exist, a blend at infinity): the element takes its linear rule, evaluated on the original
+//! positions; it is counted in the [`MobiusReport`] (count and first output vertex), and with
+//! [`MobiusOptions::strict`] it is an error instead ([`Status::FallbackInStrictMode`]). No
+//! non-finite value reaches the output.
+//!
+//! # Where things are
+//!
+//! * the rules at one vertex star, public for hosts that own the connectivity (tier 1):
+//!   [`loop_star`], [`catmull_clark_star`], [`butterfly_star`], [`kobbelt_star`],
+//!   [`doo_sabin_star`] (`rules/`, one file per scheme);
+//! * steps 1–3 per vertex: `form.rs` (the canonical form of a star given by points and the
+//!   conventions of the normalised frame), `memo.rs` (the form of a mesh vertex with a memo
+//!   of canonical images), `vertex_pass.rs` (the pass every driver runs), `ears.rs`
+//!   (substitute forms for ears);
+//! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
+//!   (boundary curves);
+//! * `drivers/`: one per scheme, choosing the rule and the blends; `driver.rs`: the state of
+//!   one step and the fallback report. [`subdivide`] below dispatches.
+
+mod boundary;
+mod driver;
+mod drivers;
+mod ears;
+mod edges;
+mod faces;
+mod form;
+mod memo;
+mod rules;
+mod vertex_pass;
+
+pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star, loop_star};
+
+use super::Scheme;
+use crate::error::{Error, Result, Status, NO_ELEMENT};
+use crate::mesh::refine::write_pattern;
+use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
+use crate::point::{self, Point};
+use driver::Driver;
+
+/// Options of the Möbius schemes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MobiusOptions {
+    /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
+    /// vertex.
+    pub strict: bool,
+}
+
+/// What a Möbius subdivision step had to do besides the paper's rules.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MobiusReport {
+    /// Output vertices that took their linear rule (degenerate neighbourhood).
+    pub fallbacks: u32,
+    /// The first such output vertex, or [`NO_ELEMENT`].
+    pub first_fallback: u32,
+}
+
+impl Default for MobiusReport {
+    fn default() -> Self {
+        MobiusReport {
+            fallbacks: 0,
+            first_fallback: NO_ELEMENT,
+        }
+    }
+}
+
+/// Scratch points [`subdivide`] needs: an edge candidate and a face candidate per half-edge.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn scratch_len(topo: &Topology<'_, '_>) -> Result<usize> {
+    scratch_len_for(topo.num_half_edges())
+}
+
+/// [`scratch_len`] from the number of corners (= half-edges) alone, for callers that size
+/// buffers before the mesh is validated (the C ABI): two points per corner.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn scratch_len_for(num_corners: usize) -> Result<usize> {
+    num_corners
+        .checked_mul(2)
+        .ok_or(Error::new(Status::SizeOverflow))
+}
+
+/// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
+/// of at least [`scratch_len`] points. The connectivity and the output vertex order are those
+/// of the linear scheme ([`super::subdivide`]).
+///
+/// # Errors
+/// Those of [`super::subdivide_size`]; [`Status::InvalidArgument`] for a scheme without a
+/// Möbius form ([`Scheme::has_mobius_form`]); [`Status::BufferTooSmall`] for `out` or
+/// `scratch`; [`Status::FallbackInStrictMode`] (element = output vertex) with
+/// [`MobiusOptions::strict`]; [`Status::NumericalFailure`] naming an output vertex that is
+/// not finite.
+pub fn subdivide(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    scratch: &mut [Point],
+    opts: MobiusOptions,
+) -> Result<(MeshSizes, MobiusReport)> {
+    if !scheme.has_mobius_form() {
+        // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    let sizes = super::subdivide_size(scheme, topo)?;
+    out.check(&sizes)?;
+    let need = scratch_len(topo)?;
+    if scratch.len() < need {
+        return Err(Error::too_small(need));
+    }
+    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
+    let nh = topo.num_half_edges();
+    let (edge_c, rest) = scratch.split_at_mut(nh);
+    let face_c = rest.get_mut(..nh).ok_or(internal())?;
+    let mut d = Driver::new(topo, pos, edge_c, face_c, opts.strict);
+    match scheme {
+        Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
+        Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
+        Scheme::ModifiedButterfly => drivers::butterfly::run(&mut d)?,
+        Scheme::Kobbelt => drivers::kobbelt::run(&mut d)?,
+        Scheme::DooSabin => drivers::doo_sabin::run(&mut d)?,
+        Scheme::Simplest => drivers::simplest::run(&mut d)?,
+        Scheme::Dual => drivers::akleman::dual(&mut d)?,
+        Scheme::VertexInsertion => drivers::akleman::vertex_insertion(&mut d)?,
+        Scheme::DualTruncation => drivers::akleman::dual_truncation(&mut d)?,
+        // No Möbius form (refused above).
+        Scheme::Spherelike => return Err(Error::new(Status::InvalidArgument)),
+    }
+    for (i, p) in d.pos.iter().enumerate() {
+        if !point::is_finite(p) {
+            return Err(Error::at(Status::NumericalFailure, i as u32));
+        }
+    }
+    Ok((sizes, d.report))
+}

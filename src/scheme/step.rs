@@ -1,0 +1,74 @@
+//! One subdivision step over caller buffers: the sizes, the pattern's connectivity, then the
+//! positions of the scheme's rules, linear ([`super::linear`]), spherelike
+//! ([`super::spherelike`]) or canonical Möbius ([`super::mobius`]). [`step`] is the one
+//! internal entry both the one-level calls and the multi-level loop
+//! ([`super::levels`]) go through.
+
+use super::mobius::{self, MobiusOptions, MobiusReport};
+use super::size::subdivide_size;
+use super::{linear, spherelike, Scheme};
+use crate::error::{Error, Result, Status};
+use crate::mesh::refine::write_pattern;
+use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
+use crate::point::{self, Point};
+
+/// One step of `scheme` on `topo` into `out`: the linear (or spherelike) rules with `mobius`
+/// `None`, the canonical Möbius version with its options otherwise, `candidates` its scratch
+/// ([`mobius::scratch_len`]; unused by the other rules). Returns the sizes written and the
+/// Möbius report (empty for the other rules).
+///
+/// # Errors
+/// Those of [`subdivide`] and [`mobius::subdivide`].
+pub(crate) fn step(
+    scheme: Scheme,
+    mobius: Option<MobiusOptions>,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    candidates: &mut [Point],
+) -> Result<(MeshSizes, MobiusReport)> {
+    match mobius {
+        None => subdivide(scheme, topo, out).map(|s| (s, MobiusReport::default())),
+        Some(opts) => mobius::subdivide(scheme, topo, out, candidates, opts),
+    }
+}
+
+/// Writes one step of `scheme` on `topo` into `out` and returns the sizes written: the
+/// linear rules, or for [`Scheme::Spherelike`] its circle-blend rules (seed 003 §3), which
+/// share this entry point (and so the level loop and the C ABI).
+///
+/// # Errors
+/// Those of [`subdivide_size`]; [`Status::BufferTooSmall`] (with the needed size) when an
+/// output buffer is short, before any write; [`Status::NumericalFailure`] naming the first
+/// output vertex that is not finite (overflow on huge coordinates); the statuses of
+/// [`super::spherelike`].
+pub fn subdivide(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+) -> Result<MeshSizes> {
+    let sizes = subdivide_size(scheme, topo)?;
+    out.check(&sizes)?;
+    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
+    match scheme {
+        Scheme::Spherelike => spherelike::positions(topo, pos)?,
+        _ => linear::positions(scheme, topo, pos)?,
+    }
+    if let Some(i) = first_non_finite(pos) {
+        return Err(Error::at(Status::NumericalFailure, i as u32));
+    }
+    Ok(sizes)
+}
+
+/// The index of the first point with a NaN or infinite coordinate. A branch-free pass first
+/// (`|x| ≤ f64::MAX` is false exactly for NaN and ±∞), the search only when it fails.
+fn first_non_finite(pos: &[Point]) -> Option<usize> {
+    let finite = pos
+        .as_flattened()
+        .iter()
+        .fold(true, |ok, x| ok & (x.abs() <= f64::MAX));
+    if finite {
+        return None;
+    }
+    pos.iter().position(|p| !point::is_finite(p))
+}
