@@ -6,7 +6,7 @@
                                              paragraphs are not these (a crate added, gone
                                              or of another version)
 
-The binary packages link these crates statically (the library: libm, arrayvec, glam; the
+The binary packages link these crates statically (the library: libm, arrayvec; the
 command: clap, png, serde_json, ... as well), and a source package made with a vendor/ folder
 (`cargo vendor --locked vendor`, debian/README.source) ships their sources: debian/copyright
 names each one's folder there, its copyright holders (the Copyright lines of its licence files,
