@@ -39,14 +39,13 @@ use std::path::Path;
 
 use common::*;
 use nlsubdiv::blend::{f4, f4_hinted, face_point_with_ids, is_negative_real};
-use nlsubdiv::mesh::{MeshOut, Spoke, Topology, NONE};
+use nlsubdiv::mesh::{Spoke, Topology, NONE};
 #[allow(unused_imports)]
 use nlsubdiv::mobius as _m;
 use nlsubdiv::mobius::{CanonicalForm, MobiusMap, StarKind};
 use nlsubdiv::point::{add, cross, dot, norm, scale, sub};
 use nlsubdiv::quat::{cross_ratio, Quat};
-use nlsubdiv::scheme::mobius::MobiusOptions;
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::scheme::{self, Options, Scheme};
 use nlsubdiv::stencil::{butterfly, catmull_clark, centroid, loop_scheme};
 use nlsubdiv::Point;
 
@@ -62,33 +61,15 @@ fn present(p: &Point) -> bool {
 // ------------------------------------------------------------------------------------------
 
 fn build<R>(m: &OwnedMesh, f: impl FnOnce(&Topology<'_, '_>) -> R) -> R {
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
+    let mut scratch = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
     let topo = Topology::build(m.view(), &mut scratch).unwrap();
     f(&topo)
 }
 
-/// One library step, linear or Möbius (default options), and the number of fallbacks.
+/// One library step, linear or Möbius (not strict), and the number of fallbacks.
 fn lib_step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> (OwnedMesh, u32) {
-    build(m, |topo| {
-        let sizes = scheme::subdivide_size(s, topo).unwrap();
-        let mut out = OwnedMesh {
-            positions: vec![[0.0; 3]; sizes.vertices],
-            offsets: vec![0; sizes.faces + 1],
-            indices: vec![0; sizes.indices],
-        };
-        let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
-        let mut fb = 0;
-        if mobius_on {
-            let mut sp = vec![[0.0; 3]; scheme::mobius::scratch_len(topo).unwrap()];
-            let (_, rep) =
-                scheme::mobius::subdivide(s, topo, &mut mo, &mut sp, MobiusOptions::default())
-                    .unwrap();
-            fb = rep.fallbacks;
-        } else {
-            scheme::subdivide(s, topo, &mut mo).unwrap();
-        }
-        (out, fb)
-    })
+    let (out, report) = run(m, &Options::new(s).mobius(mobius_on)).unwrap();
+    (out, report.fallbacks)
 }
 
 fn lib_levels(s: Scheme, m: &OwnedMesh, levels: usize, mobius_on: bool) -> OwnedMesh {

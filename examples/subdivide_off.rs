@@ -15,43 +15,31 @@ use std::path::Path;
 
 use common::*;
 use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::mobius::MobiusOptions;
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch};
 
-/// `levels` steps in one multi-level call ([`scheme::plan`] + [`scheme::subdivide_levels`] /
-/// [`scheme::subdivide_levels_mobius`]), buffers allocated here: what a host does. The
-/// result equals the chain of one-level calls bit for bit (checked by
-/// the tests of `subdivide_levels`).
+/// `levels` steps in one call of the public path (`scheme::plan`, then `scheme::subdivide`),
+/// buffers allocated here: what a host does. The result equals the chain of one-level calls
+/// bit for bit (checked by the tests of the multi-level call).
 fn levels_call(
     s: Scheme,
     m: &OwnedMesh,
     levels: usize,
     mobius_on: bool,
 ) -> nlsubdiv::Result<OwnedMesh> {
-    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view())?];
-    let p = scheme::plan(s, m.view(), levels, &mut su)?;
+    let opts = Options::new(s).mobius(mobius_on).levels(levels);
+    let mut su = vec![0u32; scheme::plan_scratch_size(&m.view())?];
+    let p = scheme::plan(m.view(), &opts, &mut su)?;
     let o = p.output();
-    let np = if mobius_on {
-        p.mobius_scratch_points()?
-    } else {
-        p.scratch_points
-    };
-    // The call needs the plan's `scratch_u32` (the topologies of the levels), which is never
-    // less than what `plan` itself used.
-    su.resize(p.scratch_u32.max(su.len()), 0);
-    let mut sp = vec![[0.0f64; 3]; np];
+    // The call needs the plan's scratch, which is never less than what `plan` itself used.
+    su.resize(p.scratch.u32s, 0);
+    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
     let mut out = OwnedMesh {
         positions: vec![[0.0; 3]; o.vertices],
         offsets: vec![0; o.faces + 1],
         indices: vec![0; o.indices],
     };
     let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
-    if mobius_on {
-        let opts = MobiusOptions { strict: false };
-        scheme::subdivide_levels_mobius(s, m.view(), levels, &mut su, &mut sp, &mut mo, opts)?;
-    } else {
-        scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo)?;
-    }
+    scheme::subdivide(m.view(), &opts, Scratch::new(&mut su, &mut sp), &mut mo)?;
     // Kernel memory of this call: the caller's output buffers plus the scratch the plan asks
     // for (everything the kernel touches), for scripts/bench_peers.py.
     let out_bytes = 24 * o.vertices + 4 * (o.faces + 1) + 4 * o.indices;

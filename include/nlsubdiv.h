@@ -477,6 +477,8 @@ typedef struct nls_canonical_form {
 
 
 
+
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus

@@ -16,25 +16,46 @@
 //! Layers depend one way, top to bottom: [`quat`] (quaternions, cross-ratio, corner
 //! tangents) → [`mobius`] (Möbius maps, canonical forms) → [`blend`] (F4, F6) →
 //! [`metrics`], [`curve`] (curve subdivision: linear, Möbius, circle blend, differential);
-//! [`stencil`] (linear rules on one neighbourhood) → [`mesh`] (caller-buffer
-//! meshes, validation, half-edge topology in scratch, refinement patterns) → [`scheme`]
-//! (drivers: one level per call, multi-level plans; [`scheme::mobius`] the canonical Möbius
-//! version of every scheme, seed 000 §4).
+//! [`stencil`] (linear rules on one neighbourhood) → [`mesh`] (caller-buffer meshes,
+//! validation, half-edge topology in scratch, refinement patterns) → [`scheme`] (the mesh
+//! schemes: one options value, one plan, one subdivide call; [`scheme::mobius`] the canonical
+//! Möbius version of every scheme, seed 000 §4, and its star rules for hosts with their own
+//! connectivity) → [`differential`] (differential-space subdivision, the same shape).
+//!
+//! # Subdividing a mesh
+//!
+//! One path for every mesh scheme, linear or Möbius, one level or many: an [`Options`]
+//! value, [`plan`] for the exact sizes of the output and the scratch, then [`subdivide`].
+//! Parameters come in the order input, options, scratch, output; sizes are counted in
+//! elements of the buffer they size (points, `u32` entries, faces).
 //!
 //! ```
-//! use nlsubdiv::mesh::{Mesh, MeshOut};
-//! use nlsubdiv::scheme::{self, Scheme};
-//! // One quad, one Catmull–Clark step into caller buffers.
+//! use nlsubdiv::{plan, plan_scratch_size, subdivide, Mesh, MeshOut, Options, Scheme, Scratch};
+//! // One quad, two Catmull–Clark levels into caller buffers.
 //! let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = Mesh::new(&p, &[0, 4], &[0, 1, 2, 3]);
-//! let mut scratch = [0u32; 64];
-//! assert!(scheme::scratch_len(&mesh).unwrap() <= scratch.len());
-//! let sizes = scheme::subdivide_mesh_size(Scheme::CatmullClark, mesh, &mut scratch).unwrap();
-//! let (mut pos, mut offs, mut idx) = ([[0.0; 3]; 9], [0u32; 5], [0u32; 16]);
+//! let opts = Options::new(Scheme::CatmullClark).levels(2);
+//! // Sizes: the plan validates the mesh in `plan_scratch_size` u32 entries.
+//! let mut u32s = [0u32; 256];
+//! assert!(plan_scratch_size(&mesh).unwrap() <= u32s.len());
+//! let plan = plan(mesh, &opts, &mut u32s).unwrap();
+//! let o = plan.output();
+//! assert_eq!((o.vertices, o.faces, o.indices), (25, 16, 64));
+//! assert!(plan.scratch.u32s <= u32s.len());
+//! let mut points = [[0.0; 3]; 64];
+//! assert!(plan.scratch.points <= points.len());
+//! // The call: input, options, scratch, output.
+//! let (mut pos, mut offs, mut idx) = ([[0.0; 3]; 25], [0u32; 17], [0u32; 64]);
 //! let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
-//! let written = scheme::subdivide_mesh(Scheme::CatmullClark, mesh, &mut scratch, &mut out).unwrap();
-//! assert_eq!((written, sizes.vertices, sizes.faces), (sizes, 9, 4));
-//! assert_eq!(pos[8], [0.5, 0.5, 0.0]); // the face point
+//! let report = subdivide(mesh, &opts, Scratch::new(&mut u32s, &mut points), &mut out).unwrap();
+//! assert_eq!(report.sizes, o);
+//! assert!(pos.iter().all(|q| q[2] == 0.0)); // a planar quad stays in its plane
+//! assert_eq!(pos[8], [0.5, 0.5, 0.0]); // the centre, by symmetry
+//! // The Möbius version: the same sizes, more point scratch (candidates).
+//! let mobius = Options::new(Scheme::CatmullClark).mobius(true).levels(2);
+//! let mp = nlsubdiv::plan(mesh, &mobius, &mut u32s).unwrap();
+//! assert_eq!(mp.output(), o);
+//! assert!(mp.scratch.points > plan.scratch.points);
 //! ```
 //!
 //! ```
@@ -61,8 +82,13 @@ pub mod scheme;
 pub mod stencil;
 
 pub use error::{Error, Result, Status, NO_ELEMENT};
+pub use mesh::{Mesh, MeshOut, MeshSizes};
 pub use point::Point;
 pub use quat::Quat;
+pub use scheme::{
+    plan, plan_scratch_size, subdivide, Options, Plan, Report, Scheme, Scratch, ScratchSizes,
+    MAX_LEVELS,
+};
 
 /// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held
 /// in fixed-capacity stack arrays of this size; larger ones give [`Status::ValenceTooHigh`].

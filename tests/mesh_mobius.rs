@@ -14,12 +14,12 @@ use common::*;
 use nlsubdiv::mesh::{MeshOut, Topology};
 use nlsubdiv::metrics::mobius_regularity;
 use nlsubdiv::mobius::MobiusMap;
-use nlsubdiv::scheme::mobius::{self, MobiusOptions, MobiusReport};
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::scheme::mobius;
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch};
 use nlsubdiv::{Point, Status};
 
 /// One Möbius step ([`mobius_subdivide`] of the shared test support).
-fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, MobiusReport)> {
+fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, Report)> {
     mobius_subdivide(s, m, strict)
 }
 
@@ -55,8 +55,9 @@ fn diameter(m: &OwnedMesh) -> f64 {
 
 /// Whether the Möbius driver accepts `m` for `s` (schemes without a Möbius form never).
 fn accepts(s: Scheme, m: &OwnedMesh) -> bool {
+    let mut scratch = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
     s.has_mobius_form()
-        && with_topology(m, |t| scheme::subdivide_size(s, t).is_ok()).unwrap_or(false)
+        && scheme::plan(m.view(), &Options::new(s).mobius(true), &mut scratch).is_ok()
 }
 
 /// SplitMix64 in [-1, 1).
@@ -516,29 +517,27 @@ fn mobius_levels_equal_repeated_steps() {
                 continue;
             }
             for levels in 0..=3usize {
-                let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-                let Ok(p) = scheme::plan(s, m.view(), levels, &mut su) else {
+                let opts = Options::new(s).mobius(true).levels(levels);
+                let mut su = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
+                let Ok(p) = scheme::plan(m.view(), &opts, &mut su) else {
                     continue; // a later level above the valence capacity
                 };
                 let sizes = p.output();
-                su.resize(p.scratch_u32.max(su.len()), 0);
-                let mut sp = vec![[0.0; 3]; p.mobius_scratch_points().unwrap()];
+                su.resize(p.scratch.u32s, 0);
+                let mut sp = vec![[0.0; 3]; p.scratch.points];
                 let mut out = OwnedMesh {
                     positions: vec![[f64::NAN; 3]; sizes.vertices],
                     offsets: vec![u32::MAX; sizes.faces + 1],
                     indices: vec![u32::MAX; sizes.indices],
                 };
-                let (written, rep) = scheme::subdivide_levels_mobius(
-                    s,
+                let rep = scheme::subdivide(
                     m.view(),
-                    levels,
-                    &mut su,
-                    &mut sp,
+                    &opts,
+                    Scratch::new(&mut su, &mut sp),
                     &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-                    MobiusOptions::default(),
                 )
                 .unwrap();
-                assert_eq!(written, sizes);
+                assert_eq!(rep.sizes, sizes);
                 let (want, fallbacks) = msub_n(s, m, levels);
                 assert_eq!(hash(&out), hash(&want), "{s:?} x{levels}");
                 assert_eq!(rep.fallbacks, fallbacks, "{s:?} x{levels}");
@@ -546,14 +545,11 @@ fn mobius_levels_equal_repeated_steps() {
                 runs += 1;
                 // One point too few is refused before anything is computed.
                 if let Some(short) = sp.len().checked_sub(1) {
-                    let e = scheme::subdivide_levels_mobius(
-                        s,
+                    let e = scheme::subdivide(
                         m.view(),
-                        levels,
-                        &mut su,
-                        &mut sp[..short],
+                        &opts,
+                        Scratch::new(&mut su, &mut sp[..short]),
                         &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-                        MobiusOptions::default(),
                     )
                     .unwrap_err();
                     assert_eq!((e.status, e.needed), (Status::BufferTooSmall, sp.len()));
@@ -569,9 +565,10 @@ fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
     let mut m = onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5]));
     m.positions[1] = m.positions[0];
     let s = Scheme::CatmullClark;
+    let opts = Options::new(s).mobius(true).levels(2);
     let mut su = vec![0u32; 4096];
-    let p = scheme::plan(s, m.view(), 2, &mut su).unwrap();
-    let mut sp = vec![[0.0; 3]; p.mobius_scratch_points().unwrap()];
+    let p = scheme::plan(m.view(), &opts, &mut su).unwrap();
+    let mut sp = vec![[0.0; 3]; p.scratch.points];
     let sizes = p.output();
     let mut out = OwnedMesh {
         positions: vec![[f64::NAN; 3]; sizes.vertices],
@@ -579,17 +576,14 @@ fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
         indices: vec![u32::MAX; sizes.indices],
     };
     let run = |strict: bool, su: &mut [u32], sp: &mut [Point], out: &mut OwnedMesh| {
-        scheme::subdivide_levels_mobius(
-            s,
+        scheme::subdivide(
             m.view(),
-            2,
-            su,
-            sp,
+            &opts.strict(strict),
+            Scratch::new(su, sp),
             &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-            MobiusOptions { strict },
         )
     };
-    let (_, rep) = run(false, &mut su, &mut sp, &mut out).unwrap();
+    let rep = run(false, &mut su, &mut sp, &mut out).unwrap();
     let (_, first) = msub(s, &m, false).unwrap();
     assert!(first.fallbacks > 0);
     assert_eq!(rep.first_fallback_level, 1);

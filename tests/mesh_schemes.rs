@@ -15,7 +15,7 @@ mod common;
 
 use common::*;
 use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, Scheme, MAX_LEVELS};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch, MAX_LEVELS};
 use nlsubdiv::{Point, Status};
 use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::PI;
@@ -699,8 +699,9 @@ fn plans_are_exact_and_multi_level_equals_single_steps() {
             } else {
                 3
             };
-            let mut scratch = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-            let plan = scheme::plan(s, m.view(), levels, &mut scratch);
+            let opts = Options::new(s).levels(levels);
+            let mut scratch = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
+            let plan = scheme::plan(m.view(), &opts, &mut scratch);
             let plan = plan.unwrap_or_else(|e| panic!("{name} {s:?}: {e}"));
             let mut cur = m.clone();
             assert_eq!(plan.sizes[0], sizes_of(&cur));
@@ -709,66 +710,62 @@ fn plans_are_exact_and_multi_level_equals_single_steps() {
                 assert_eq!(plan.sizes[k], sizes_of(&cur), "{name} {s:?} level {k}");
             }
             // One multi-level call gives the same bits as the single steps.
-            let mut su = vec![0u32; plan.scratch_u32];
-            let mut sp = vec![[0.0; 3]; plan.scratch_points];
+            let mut su = vec![0u32; plan.scratch.u32s];
+            let mut sp = vec![[0.0; 3]; plan.scratch.points];
             let o = plan.output();
             let mut out = OwnedMesh {
                 positions: vec![[0.0; 3]; o.vertices],
                 offsets: vec![0; o.faces + 1],
                 indices: vec![0; o.indices],
             };
-            let got = scheme::subdivide_levels(
-                s,
+            let got = scheme::subdivide(
                 m.view(),
-                levels,
-                &mut su,
-                &mut sp,
+                &opts,
+                Scratch::new(&mut su, &mut sp),
                 &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
             )
             .unwrap();
-            assert_eq!(got, o);
+            assert_eq!(got.sizes, o);
+            assert_eq!((got.fallbacks, got.first_fallback_level), (0, 0));
             assert_eq!(hash(&out), hash(&cur), "{name} {s:?}");
             // Short scratch is reported with the needed size.
-            let mut su_short = vec![0u32; plan.scratch_u32 - 1];
-            let e = scheme::subdivide_levels(
-                s,
+            let mut su_short = vec![0u32; plan.scratch.u32s - 1];
+            let e = scheme::subdivide(
                 m.view(),
-                levels,
-                &mut su_short,
-                &mut sp,
+                &opts,
+                Scratch::new(&mut su_short, &mut sp),
                 &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
             )
             .unwrap_err();
             assert_eq!(
                 e,
-                nlsubdiv::Error::too_small(plan.scratch_u32),
+                nlsubdiv::Error::too_small(plan.scratch.u32s),
                 "{name} {s:?}"
             );
-            if plan.scratch_points > 0 {
-                let mut sp = vec![[0.0; 3]; plan.scratch_points - 1];
-                let e = scheme::subdivide_levels(
-                    s,
+            if plan.scratch.points > 0 {
+                let mut sp = vec![[0.0; 3]; plan.scratch.points - 1];
+                let e = scheme::subdivide(
                     m.view(),
-                    levels,
-                    &mut su,
-                    &mut sp,
+                    &opts,
+                    Scratch::new(&mut su, &mut sp),
                     &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
                 )
                 .unwrap_err();
-                assert_eq!(e, nlsubdiv::Error::too_small(plan.scratch_points));
+                assert_eq!(e, nlsubdiv::Error::too_small(plan.scratch.points));
             }
         }
     }
     // Level 0 copies; too many levels is an argument error.
     let m = cube();
     let mut scratch = vec![0u32; 1000];
+    let cc = Options::new(Scheme::CatmullClark);
     assert_eq!(
-        scheme::plan(Scheme::CatmullClark, m.view(), MAX_LEVELS + 1, &mut scratch)
+        scheme::plan(m.view(), &cc.levels(MAX_LEVELS + 1), &mut scratch)
             .unwrap_err()
             .status,
         Status::InvalidArgument
     );
-    let plan = scheme::plan(Scheme::CatmullClark, m.view(), 0, &mut scratch).unwrap();
+    let plan = scheme::plan(m.view(), &cc.levels(0), &mut scratch).unwrap();
     assert_eq!(plan.output(), sizes_of(&m));
 }
 
@@ -782,42 +779,43 @@ fn zero_level_plan_reports_the_validation_scratch() {
             if !accepts(s, &m) {
                 continue;
             }
-            let need = scheme::plan_scratch_len(&m.view()).unwrap();
-            let mut scratch = vec![0u32; need];
-            let plan = scheme::plan(s, m.view(), 0, &mut scratch).unwrap();
-            assert_eq!(plan.scratch_u32, need, "{name} {s:?}");
-            assert_eq!(plan.scratch_points, 0, "{name} {s:?}");
-            assert_eq!(plan.mobius_scratch_points().unwrap(), 0, "{name} {s:?}");
-            let o = plan.output();
-            assert_eq!(o, sizes_of(&m));
-            let mut out = OwnedMesh {
-                positions: vec![[0.0; 3]; o.vertices],
-                offsets: vec![0; o.faces + 1],
-                indices: vec![0; o.indices],
-            };
-            let mut su = vec![0u32; plan.scratch_u32];
-            let got = scheme::subdivide_levels(
-                s,
-                m.view(),
-                0,
-                &mut su,
-                &mut [],
-                &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-            )
-            .unwrap();
-            assert_eq!(got, o);
-            assert_eq!(hash(&out), hash(&m), "{name} {s:?}: level 0 is the input");
-            let mut su = vec![0u32; plan.scratch_u32 - 1];
-            let e = scheme::subdivide_levels(
-                s,
-                m.view(),
-                0,
-                &mut su,
-                &mut [],
-                &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-            )
-            .unwrap_err();
-            assert_eq!(e, nlsubdiv::Error::too_small(need), "{name} {s:?}");
+            let need = scheme::plan_scratch_size(&m.view()).unwrap();
+            for mobius in [false, true] {
+                if mobius && !s.has_mobius_form() {
+                    continue;
+                }
+                let opts = Options::new(s).mobius(mobius).levels(0);
+                let mut scratch = vec![0u32; need];
+                let plan = scheme::plan(m.view(), &opts, &mut scratch).unwrap();
+                assert_eq!(plan.scratch.u32s, need, "{name} {s:?}");
+                assert_eq!(plan.scratch.points, 0, "{name} {s:?}");
+                let o = plan.output();
+                assert_eq!(o, sizes_of(&m));
+                let mut out = OwnedMesh {
+                    positions: vec![[0.0; 3]; o.vertices],
+                    offsets: vec![0; o.faces + 1],
+                    indices: vec![0; o.indices],
+                };
+                let mut su = vec![0u32; plan.scratch.u32s];
+                let got = scheme::subdivide(
+                    m.view(),
+                    &opts,
+                    Scratch::new(&mut su, &mut []),
+                    &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+                )
+                .unwrap();
+                assert_eq!(got.sizes, o);
+                assert_eq!(hash(&out), hash(&m), "{name} {s:?}: level 0 is the input");
+                let mut su = vec![0u32; plan.scratch.u32s - 1];
+                let e = scheme::subdivide(
+                    m.view(),
+                    &opts,
+                    Scratch::new(&mut su, &mut []),
+                    &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+                )
+                .unwrap_err();
+                assert_eq!(e, nlsubdiv::Error::too_small(need), "{name} {s:?}");
+            }
         }
     }
 }
@@ -826,10 +824,12 @@ fn zero_level_plan_reports_the_validation_scratch() {
 fn plan_reports_overflow_at_high_levels() {
     let m = cube();
     let mut scratch = vec![0u32; 1000];
-    let e = scheme::plan(Scheme::CatmullClark, m.view(), MAX_LEVELS, &mut scratch).unwrap_err();
+    let opts = Options::new(Scheme::CatmullClark).levels(MAX_LEVELS);
+    let e = scheme::plan(m.view(), &opts, &mut scratch).unwrap_err();
     assert_eq!(e.status, Status::SizeOverflow);
     // Vertex insertion doubles valences: the plan sees the cap before any level is built.
-    let e = scheme::plan(Scheme::VertexInsertion, m.view(), 8, &mut scratch).unwrap_err();
+    let opts = Options::new(Scheme::VertexInsertion).levels(8);
+    let e = scheme::plan(m.view(), &opts, &mut scratch).unwrap_err();
     assert_eq!(e.status, Status::ValenceTooHigh);
 }
 
@@ -1000,12 +1000,12 @@ fn strided_positions_read_in_place() {
         Mesh::with_stride(&coords, stride, m.positions.len(), &m.offsets, &m.indices).unwrap();
     for s in [Scheme::CatmullClark, Scheme::Kobbelt, Scheme::Dual] {
         let want = subdivide(s, &m).unwrap();
-        let mut scratch = vec![0u32; scheme::scratch_len(&view).unwrap()];
+        let mut scratch = vec![0u32; scheme::plan_scratch_size(&view).unwrap()];
         let mut got = want.clone();
-        scheme::subdivide_mesh(
-            s,
+        scheme::subdivide(
             view,
-            &mut scratch,
+            &Options::new(s),
+            Scratch::new(&mut scratch, &mut []),
             &mut MeshOut::new(&mut got.positions, &mut got.offsets, &mut got.indices),
         )
         .unwrap();

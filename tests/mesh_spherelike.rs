@@ -7,8 +7,8 @@
 mod common;
 
 use common::*;
-use nlsubdiv::mesh::{MeshOut, Topology};
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::mesh::MeshOut;
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch};
 use nlsubdiv::{Point, Status};
 use std::f64::consts::PI;
 
@@ -275,25 +275,7 @@ fn connectivity_and_sizes_are_catmull_clarks() {
 fn multi_level_call_is_the_chain_of_one_level_calls() {
     for (name, m) in generated() {
         let levels = 3;
-        let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-        let p = scheme::plan(S, m.view(), levels, &mut su).unwrap();
-        let o = p.output();
-        let mut su = vec![0u32; p.scratch_u32];
-        let mut sp = vec![[0.0; 3]; p.scratch_points];
-        let mut out = OwnedMesh {
-            positions: vec![[f64::NAN; 3]; o.vertices],
-            offsets: vec![u32::MAX; o.faces + 1],
-            indices: vec![u32::MAX; o.indices],
-        };
-        scheme::subdivide_levels(
-            S,
-            m.view(),
-            levels,
-            &mut su,
-            &mut sp,
-            &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        )
-        .unwrap();
+        let (out, _) = run(&m, &Options::new(S).levels(levels)).unwrap();
         let chain = subdivide_n(S, &m, levels).unwrap();
         assert_eq!(hash(&out), hash(&chain), "{name}");
     }
@@ -391,8 +373,8 @@ fn degenerate_inputs_give_statuses() {
     // The multi-level call reports it too and the size query still succeeds (sizes do not
     // depend on geometry).
     assert!(subdivide_n(S, &m, 2).is_err());
-    let mut sc = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
-    assert!(scheme::subdivide_mesh_size(S, m.view(), &mut sc).is_ok());
+    let mut sc = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
+    assert!(scheme::plan(m.view(), &Options::new(S), &mut sc).is_ok());
     // The same on an open grid (vertices 4 and 5 are neighbours in the first inner row).
     let mut grid = quad_grid(3, 3);
     grid.positions[5] = grid.positions[4];
@@ -426,14 +408,19 @@ fn degenerate_inputs_give_statuses() {
 #[test]
 fn short_output_buffers_are_refused_before_any_write() {
     let m = prism(5);
-    let mut sc = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
-    let topo = Topology::build(m.view(), &mut sc).unwrap();
-    let sizes = scheme::subdivide_size(S, &topo).unwrap();
+    let opts = Options::new(S);
+    let mut sc = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
+    let sizes = scheme::plan(m.view(), &opts, &mut sc).unwrap().output();
     let mut pos = vec![[7.0; 3]; sizes.vertices - 1];
     let mut off = vec![9u32; sizes.faces + 1];
     let mut idx = vec![9u32; sizes.indices];
-    let e =
-        scheme::subdivide(S, &topo, &mut MeshOut::new(&mut pos, &mut off, &mut idx)).unwrap_err();
+    let e = scheme::subdivide(
+        m.view(),
+        &opts,
+        Scratch::new(&mut sc, &mut []),
+        &mut MeshOut::new(&mut pos, &mut off, &mut idx),
+    )
+    .unwrap_err();
     assert_eq!(
         (e.status, e.needed),
         (Status::BufferTooSmall, sizes.vertices)

@@ -12,8 +12,8 @@
 mod common;
 
 use common::*;
-use nlsubdiv::mesh::{topology_scratch_len, Mesh, MeshOut, Topology};
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::mesh::{topology_scratch_size, Mesh, MeshOut, Topology};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch};
 use nlsubdiv::{Error, Status, MAX_FACE_SIZE, MAX_VALENCE, NO_ELEMENT};
 
 fn check(m: &OwnedMesh) -> Result<(), Error> {
@@ -245,7 +245,7 @@ fn check_order_is_topology_first() {
     let e = Topology::build(m.view(), &mut small).unwrap_err();
     assert_eq!(e.status, Status::FaceTooSmall);
     let t = tetrahedron();
-    let need = topology_scratch_len(4, 12).unwrap();
+    let need = topology_scratch_size(4, 12).unwrap();
     let mut small = vec![0u32; need - 1];
     let e = Topology::build(t.view(), &mut small).unwrap_err();
     assert_eq!(e, Error::too_small(need));
@@ -284,11 +284,11 @@ fn empty_mesh_and_isolated_vertices_are_valid() {
 #[test]
 fn size_overflow_is_reported_not_wrapped() {
     assert_eq!(
-        topology_scratch_len(usize::MAX / 2, 1).unwrap_err().status,
+        topology_scratch_size(usize::MAX / 2, 1).unwrap_err().status,
         Status::SizeOverflow
     );
     assert_eq!(
-        topology_scratch_len(0, usize::MAX / 3).unwrap_err().status,
+        topology_scratch_size(0, usize::MAX / 3).unwrap_err().status,
         Status::SizeOverflow
     );
 }
@@ -301,16 +301,19 @@ fn short_output_buffers_are_rejected_before_writing() {
         } else {
             cube()
         };
-        let mut scratch = vec![0u32; scheme::scratch_len(&m.view()).unwrap()];
-        let sz = scheme::subdivide_mesh_size(s, m.view(), &mut scratch).unwrap();
+        let opts = Options::new(s);
+        let mut scratch = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
+        let plan = scheme::plan(m.view(), &opts, &mut scratch).unwrap();
+        let sz = plan.output();
+        assert_eq!(plan.scratch.u32s, scratch.len());
         for which in 0..3 {
             let mut p = vec![[7.0; 3]; sz.vertices - usize::from(which == 0)];
             let mut o = vec![7u32; sz.faces + 1 - usize::from(which == 1)];
             let mut i = vec![7u32; sz.indices - usize::from(which == 2)];
-            let e = scheme::subdivide_mesh(
-                s,
+            let e = scheme::subdivide(
                 m.view(),
-                &mut scratch,
+                &opts,
+                Scratch::new(&mut scratch, &mut []),
                 &mut MeshOut::new(&mut p, &mut o, &mut i),
             )
             .unwrap_err();

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use nlsubdiv::differential::metrics::thin_plate_energy;
 use nlsubdiv::differential::{self as diff, DifferentialOptions, DifferentialReport, Stencil};
-use nlsubdiv::mesh::{topology_scratch_len, Mesh as CoreMesh, MeshOut, Topology};
+use nlsubdiv::mesh::{topology_scratch_size, Mesh as CoreMesh, MeshOut, Topology};
 use nlsubdiv::{Status, NO_ELEMENT};
 
 use crate::cmd::Ctx;
@@ -196,7 +196,7 @@ pub fn thin_plate(mesh: &Mesh) -> Option<f64> {
         return None;
     }
     let view = CoreMesh::new(&mesh.positions, &mesh.offsets, &mesh.indices);
-    let mut su = vec![0u32; topology_scratch_len(mesh.num_vertices(), mesh.indices.len()).ok()?];
+    let mut su = vec![0u32; topology_scratch_size(mesh.num_vertices(), mesh.indices.len()).ok()?];
     let topo = Topology::build(view, &mut su).ok()?;
     let mut sc = vec![[0.0; 3]; mesh.num_vertices()];
     thin_plate_energy(&topo, &mut sc).ok()

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use nlsubdiv::mesh::refine::Pattern;
 use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut, MeshSizes, Topology as CoreTopology};
-use nlsubdiv::scheme::{self, mobius, Scheme, MAX_LEVELS};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch, MAX_LEVELS};
 use nlsubdiv::{Error, Status, MAX_FACE_SIZE, MAX_VALENCE, NO_ELEMENT};
 
 use crate::cmd::Ctx;
@@ -227,6 +227,8 @@ fn describe_output_vertex(
             None => format!("boundary point {}", i - nf - nb),
         },
         Pattern::Dual => isolated(i - nf - 2 * nb),
+        // A pattern of a later core version.
+        _ => format!("output vertex {i}"),
     }
 }
 
@@ -362,6 +364,37 @@ fn core_error(
     }
 }
 
+/// [`describe_output_vertex`] for output vertex `i` of one step of `ms` on `mesh` (a
+/// fallback), with `mesh`'s topology built here.
+fn describe_fallback(ms: MeshScheme, mesh: CoreMesh<'_>, i: u32, n: &Namer<'_>) -> String {
+    let topology = scheme::plan_scratch_size(&mesh)
+        .ok()
+        .and_then(|len| memory::filled(len, 0u32, "the topology").ok());
+    match topology {
+        Some(mut scratch) => match CoreTopology::build(mesh, &mut scratch) {
+            Ok(topo) => describe_output_vertex(ms.scheme.pattern(), &topo, i, n),
+            Err(_) => "an element".to_string(),
+        },
+        None => "an element".to_string(),
+    }
+}
+
+/// The message of a failed core call (`plan` or `subdivide`) on `mesh`, the input of step
+/// `n.level + 1`: a validation error names the element of `mesh`; any other error is the
+/// step's, described with `mesh`'s topology (built here, on the error path only).
+fn call_error(e: Error, ms: MeshScheme, mesh: CoreMesh<'_>, n: &Namer<'_>) -> CliError {
+    let Some(mut scratch) = scheme::plan_scratch_size(&mesh)
+        .ok()
+        .and_then(|len| memory::filled(len, 0u32, "the topology").ok())
+    else {
+        return core_error(e, Stage::Build, ms, None, &mesh, n);
+    };
+    match CoreTopology::build(mesh, &mut scratch) {
+        Err(_) => core_error(e, Stage::Build, ms, None, &mesh, n),
+        Ok(topo) => core_error(e, Stage::Step, ms, Some(&topo), &mesh, n),
+    }
+}
+
 /// The sizes of every level, with a message naming the first level that cannot be made.
 fn plan_sizes(
     ms: MeshScheme,
@@ -370,11 +403,12 @@ fn plan_sizes(
     n: &Namer<'_>,
 ) -> CliResult<Vec<MeshSizes>> {
     let mut scratch = memory::filled(
-        scheme::plan_scratch_len(&mesh).unwrap_or(0),
+        scheme::plan_scratch_size(&mesh).unwrap_or(0),
         0u32,
         "the topology",
     )?;
-    match scheme::plan(ms.scheme, mesh, levels, &mut scratch) {
+    let opts = |levels: usize| Options::new(ms.scheme).levels(levels);
+    match scheme::plan(mesh, &opts(levels), &mut scratch) {
         Ok(p) => Ok(p
             .sizes
             .get(..=levels)
@@ -386,7 +420,7 @@ fn plan_sizes(
         {
             // Find the first level that fails (each plan is cheap: counts only).
             let first = (1..=levels)
-                .find(|&k| scheme::plan(ms.scheme, mesh, k, &mut scratch).is_err())
+                .find(|&k| scheme::plan(mesh, &opts(k), &mut scratch).is_err())
                 .unwrap_or(levels);
             let why = if e.status == Status::ValenceTooHigh {
                 format!("would have a vertex of valence (or a face of size) above the kernel's {MAX_VALENCE}")
@@ -433,15 +467,11 @@ pub fn run(
     let n0 = Namer { src, level: 0 };
     // Validation and the first step's requirements, with the file's elements named.
     {
-        let len = scheme::scratch_len(&mesh0)
+        let len = scheme::plan_scratch_size(&mesh0)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;
-        let topo = CoreTopology::build(mesh0, &mut scratch)
-            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
-        if levels > 0 {
-            scheme::subdivide_size(ms.scheme, &topo)
-                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh0, &n0))?;
-        }
+        let first = Options::new(ms.scheme).levels(levels.min(1));
+        scheme::plan(mesh0, &first, &mut scratch).map_err(|e| call_error(e, ms, mesh0, &n0))?;
     }
     let sizes = plan_sizes(ms, mesh0, levels, &n0)?;
     // Peak memory of the largest step: input and output meshes, topology, Möbius scratch.
@@ -473,50 +503,39 @@ pub fn run(
         let out_sizes = sizes.get(level + 1).copied().unwrap_or_default();
         let namer = Namer { src, level };
         let mesh = CoreMesh::new(&current.positions, &current.offsets, &current.indices);
-        let len = scheme::scratch_len(&mesh)
+        let opts = Options::new(ms.scheme).mobius(ms.mobius).strict(strict);
+        let len = scheme::plan_scratch_size(&mesh)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;
-        let topo = CoreTopology::build(mesh, &mut scratch)
-            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
+        let plan =
+            scheme::plan(mesh, &opts, &mut scratch).map_err(|e| call_error(e, ms, mesh, &namer))?;
+        let mut scratch = memory::filled(plan.scratch.u32s, 0u32, "the topology")?;
+        let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the Möbius candidates")?;
         let mut next = Mesh {
             positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
             offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
             indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
         };
         let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
-        let written = if ms.mobius {
-            let need = mobius::scratch_len(&topo)
-                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?;
-            let mut points = memory::filled(need, [0.0; 3], "the Möbius candidates")?;
-            let (written, report) = mobius::subdivide(
-                ms.scheme,
-                &topo,
-                &mut out,
-                &mut points,
-                mobius::MobiusOptions { strict },
-            )
-            .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?;
-            if report.fallbacks > 0 {
-                fallbacks += u64::from(report.fallbacks);
-                if first_fallback.is_none() {
-                    let what = describe_output_vertex(
-                        ms.scheme.pattern(),
-                        &topo,
-                        report.first_fallback,
-                        &namer,
-                    );
-                    first_fallback = Some(format!(
-                        "step {}, output vertex {} ({what})",
-                        level + 1,
-                        report.first_fallback
-                    ));
-                }
+        let report = scheme::subdivide(
+            mesh,
+            &opts,
+            Scratch::new(&mut scratch, &mut points),
+            &mut out,
+        )
+        .map_err(|e| call_error(e, ms, mesh, &namer))?;
+        if report.fallbacks > 0 {
+            fallbacks += u64::from(report.fallbacks);
+            if first_fallback.is_none() {
+                let what = describe_fallback(ms, mesh, report.first_fallback, &namer);
+                first_fallback = Some(format!(
+                    "step {}, output vertex {} ({what})",
+                    level + 1,
+                    report.first_fallback
+                ));
             }
-            written
-        } else {
-            scheme::subdivide(ms.scheme, &topo, &mut out)
-                .map_err(|e| core_error(e, Stage::Step, ms, Some(&topo), &mesh, &namer))?
-        };
+        }
+        let written = report.sizes;
         if written != out_sizes {
             return Err(CliError::internal(format!(
                 "step {} of {}: wrote {written:?}, planned {out_sizes:?}",

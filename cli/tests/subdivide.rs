@@ -13,54 +13,29 @@
 mod common;
 
 use common::*;
-use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut, Topology};
-use nlsubdiv::scheme::{self, mobius, Scheme};
+use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch};
 
-/// The library's result: `subdivide_levels` for the linear schemes (a different entry point
-/// from the command's per-level calls), one `mobius::subdivide` per level for the Möbius
-/// ones. `Err` with the status when the library refuses the mesh.
+/// The library's result: one `scheme::subdivide` call of all the levels, linear or Möbius
+/// (the command makes one call per level), buffers from `scheme::plan`. `Err` with the
+/// status when the library refuses the mesh.
 fn library(m: &TMesh, s: Scheme, is_mobius: bool, levels: usize) -> Result<TMesh, String> {
     let (offsets, indices) = m.csr();
-    if !is_mobius {
-        let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
-        let mut s0 = vec![0u32; scheme::plan_scratch_len(&mesh).unwrap()];
-        let plan = scheme::plan(s, mesh, levels, &mut s0).map_err(|e| e.to_string())?;
-        let mut su = vec![0u32; plan.scratch_u32.max(s0.len())];
-        let mut sp = vec![[0.0; 3]; plan.scratch_points];
-        let o = plan.output();
-        let (mut pos, mut offs, mut idx) = (
-            vec![[0.0; 3]; o.vertices],
-            vec![0u32; o.faces + 1],
-            vec![0u32; o.indices],
-        );
-        let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
-        scheme::subdivide_levels(s, mesh, levels, &mut su, &mut sp, &mut out)
-            .map_err(|e| e.to_string())?;
-        return Ok(TMesh::from_csr(pos, &offs, &idx));
-    }
-    let (mut pos, mut offs, mut idx) = (m.positions.clone(), offsets, indices);
-    for _ in 0..levels {
-        let mesh = CoreMesh::new(&pos, &offs, &idx);
-        let mut s0 = vec![0u32; scheme::scratch_len(&mesh).unwrap()];
-        let topo = Topology::build(mesh, &mut s0).map_err(|e| e.to_string())?;
-        let o = scheme::subdivide_size(s, &topo).map_err(|e| e.to_string())?;
-        let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo).unwrap()];
-        let (mut p2, mut o2, mut i2) = (
-            vec![[0.0; 3]; o.vertices],
-            vec![0u32; o.faces + 1],
-            vec![0u32; o.indices],
-        );
-        let mut out = MeshOut::new(&mut p2, &mut o2, &mut i2);
-        mobius::subdivide(
-            s,
-            &topo,
-            &mut out,
-            &mut pts,
-            mobius::MobiusOptions::default(),
-        )
+    let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
+    let opts = Options::new(s).mobius(is_mobius).levels(levels);
+    let mut s0 = vec![0u32; scheme::plan_scratch_size(&mesh).unwrap()];
+    let plan = scheme::plan(mesh, &opts, &mut s0).map_err(|e| e.to_string())?;
+    let mut su = vec![0u32; plan.scratch.u32s];
+    let mut sp = vec![[0.0; 3]; plan.scratch.points];
+    let o = plan.output();
+    let (mut pos, mut offs, mut idx) = (
+        vec![[0.0; 3]; o.vertices],
+        vec![0u32; o.faces + 1],
+        vec![0u32; o.indices],
+    );
+    let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
+    scheme::subdivide(mesh, &opts, Scratch::new(&mut su, &mut sp), &mut out)
         .map_err(|e| e.to_string())?;
-        (pos, offs, idx) = (p2, o2, i2);
-    }
     Ok(TMesh::from_csr(pos, &offs, &idx))
 }
 

@@ -9,9 +9,8 @@
 
 use core::mem::size_of;
 
-use nlsubdiv::mesh::{topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology, MAX_COUNT};
-use nlsubdiv::scheme::mobius::{self as smobius, MobiusOptions};
-use nlsubdiv::scheme::{self, LevelPlan, Scheme};
+use nlsubdiv::mesh::{topology_scratch_size, Mesh, MeshOut, MeshSizes, MAX_COUNT};
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
 use crate::guard::{check_fp_env, check_ptr};
@@ -82,14 +81,8 @@ pub struct nls_subdivide_report {
     pub first_fallback_level: u32,
 }
 
-/// A scheme code and flag bits, parsed.
-#[derive(Clone, Copy)]
-struct Options {
-    scheme: Scheme,
-    mobius: bool,
-    strict: bool,
-}
-
+/// A scheme code and flag bits, parsed into the options of the Rust path (one level; the
+/// multi-level exports set their levels).
 fn options(scheme: u32, flags: u32) -> Result<Options, Status> {
     let scheme = Scheme::from_code(scheme).ok_or(Status::InvalidArgument)?;
     if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT) != 0 {
@@ -98,11 +91,9 @@ fn options(scheme: u32, flags: u32) -> Result<Options, Status> {
     if flags & NLS_SUBDIVIDE_MOBIUS != 0 && !scheme.has_mobius_form() {
         return Err(Status::InvalidArgument);
     }
-    Ok(Options {
-        scheme,
-        mobius: flags & NLS_SUBDIVIDE_MOBIUS != 0,
-        strict: flags & NLS_SUBDIVIDE_STRICT != 0,
-    })
+    Ok(Options::new(scheme)
+        .mobius(flags & NLS_SUBDIVIDE_MOBIUS != 0)
+        .strict(flags & NLS_SUBDIVIDE_STRICT != 0))
 }
 
 /// A failure: the status and the element written to `out_element`.
@@ -391,26 +382,66 @@ fn topology_need(mesh: &RawMesh) -> Result<usize, Status> {
     if mesh.vertex_count > MAX_COUNT || mesh.index_count > MAX_COUNT {
         return Err(Status::SizeOverflow);
     }
-    topology_scratch_len(mesh.vertex_count, mesh.index_count).map_err(|e| e.status)
+    topology_scratch_size(mesh.vertex_count, mesh.index_count).map_err(|e| e.status)
 }
 
-/// The scratch sizes of [`nls_mesh_scratch_size`].
+/// The scratch sizes of [`nls_mesh_scratch_size`], from the counts alone: the scratch of a
+/// one-level plan ([`scheme::Plan::scratch`]), which is the input's topology (`u32`) and, for
+/// the Möbius version, two candidate points per corner (an edge and a face candidate per
+/// half-edge, seed 000 §4.1); the tests check it against the plan.
 fn scratch_need(opts: Options, mesh: &RawMesh) -> Result<(usize, usize), Status> {
     let u = topology_need(mesh)?;
     let p = if opts.mobius {
-        smobius::scratch_len_for(mesh.index_count).map_err(|e| e.status)?
+        mesh.index_count
+            .checked_mul(2)
+            .ok_or(Status::SizeOverflow)?
     } else {
         0
     };
     Ok((u, p))
 }
 
-/// The report of a linear call or of one Möbius level.
-fn report_of(r: smobius::MobiusReport) -> nls_subdivide_report {
+/// The C report of a Rust one.
+fn report_of(r: &Report) -> nls_subdivide_report {
     nls_subdivide_report {
         fallbacks: r.fallbacks,
         first_fallback: r.first_fallback,
-        first_fallback_level: u32::from(r.fallbacks > 0),
+        first_fallback_level: r.first_fallback_level,
+    }
+}
+
+/// The one call of the Rust path ([`scheme::subdivide`]) behind [`nls_mesh_subdivide`] and
+/// [`nls_mesh_subdivide_levels`]. On `NLS_STATUS_BUFFER_TOO_SMALL` the plan (computed again,
+/// on the error path only) names the first short buffer in the order `scratch_u32`,
+/// `scratch_points`, positions, offsets, indices, and `needed` receives the output sizes when
+/// the short buffer is an output buffer.
+fn subdivide_call(
+    view: Mesh<'_>,
+    opts: &Options,
+    su: &mut [u32],
+    sp: &mut [Point],
+    out: &mut MeshOut<'_>,
+    raw: &RawOut,
+    needed: &mut Option<MeshSizes>,
+) -> Result<Report, Fail> {
+    match scheme::subdivide(view, opts, Scratch::new(&mut *su, &mut *sp), out) {
+        Ok(report) => Ok(report),
+        Err(e) if e.status == Status::BufferTooSmall => {
+            let plan = scheme::plan(view, opts, su)?;
+            if su.len() < plan.scratch.u32s {
+                return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
+            }
+            if sp.len() < plan.scratch.points {
+                return Err(too_small(NLS_MESH_BUFFER_SCRATCH_POINTS));
+            }
+            if let Err(f) = raw.check_sizes(&plan.output()) {
+                *needed = Some(plan.output());
+                return Err(f);
+            }
+            // Every buffer holds the plan: the error was not a buffer's.
+            Err(e.into())
+        }
+        Err(e) => Err(e.into()),
     }
 }
 
@@ -530,8 +561,7 @@ pub unsafe extern "C" fn nls_mesh_subdivide_size(
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) =
             unsafe { (mesh.view(), slice_mut(scratch_u32, scratch_u32_capacity)) };
-        let topo = Topology::build(view, scratch)?;
-        let sizes = scheme::subdivide_size(opts.scheme, &topo)?;
+        let sizes = scheme::plan(view, &opts, scratch)?.output();
         // SAFETY: checked above.
         unsafe { counts.write(&sizes) };
         Ok(())
@@ -647,27 +677,8 @@ pub unsafe extern "C" fn nls_mesh_subdivide(
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.view(), raw.slices()) };
-        let topo = Topology::build(view, su)?;
-        let sizes = scheme::subdivide_size(opts.scheme, &topo)?;
-        if let Err(f) = raw.check_sizes(&sizes) {
-            needed = Some(sizes);
-            return Err(f);
-        }
-        let (written, report) = if opts.mobius {
-            let (w, r) = smobius::subdivide(
-                opts.scheme,
-                &topo,
-                &mut out,
-                sp,
-                MobiusOptions {
-                    strict: opts.strict,
-                },
-            )?;
-            (w, report_of(r))
-        } else {
-            let w = scheme::subdivide(opts.scheme, &topo, &mut out)?;
-            (w, report_of(smobius::MobiusReport::default()))
-        };
+        let report = subdivide_call(view, &opts, su, sp, &mut out, &raw, &mut needed)?;
+        let (written, report) = (report.sizes, report_of(&report));
         // SAFETY: checked above.
         unsafe {
             counts.write(&written);
@@ -749,33 +760,15 @@ pub unsafe extern "C" fn nls_mesh_subdivide_levels_size(
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) =
             unsafe { (mesh.view(), slice_mut(scratch_u32, scratch_u32_capacity)) };
-        let (plan, need_u, need_p) = plan_of(opts, view, levels, scratch)?;
+        let plan = scheme::plan(view, &opts.levels(levels as usize), scratch)?;
         // SAFETY: checked above.
         unsafe {
             counts.write(&plan.output());
-            store(out_scratch_u32, need_u);
-            store(out_scratch_points, need_p);
+            store(out_scratch_u32, plan.scratch.u32s);
+            store(out_scratch_points, plan.scratch.points);
         }
         Ok(())
     })
-}
-
-/// The plan of `levels` levels and the scratch of the multi-level call.
-fn plan_of(
-    opts: Options,
-    view: Mesh<'_>,
-    levels: u32,
-    scratch: &mut [u32],
-) -> Result<(LevelPlan, usize, usize), Fail> {
-    let input_topology = scheme::plan_scratch_len(&view)?;
-    let plan = scheme::plan(opts.scheme, view, levels as usize, scratch)?;
-    let need_u = plan.scratch_u32.max(input_topology);
-    let need_p = if opts.mobius {
-        plan.mobius_scratch_points()?
-    } else {
-        plan.scratch_points
-    };
-    Ok((plan, need_u, need_p))
 }
 
 /// `levels` levels (at most `NLS_MAX_LEVELS`; 0 copies the mesh) of `scheme` with `flags` in
@@ -862,34 +855,9 @@ pub unsafe extern "C" fn nls_mesh_subdivide_levels(
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.view(), raw.slices()) };
-        let (plan, need_u, need_p) = plan_of(opts, view, levels, su)?;
-        if su.len() < need_u {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
-        }
-        if sp.len() < need_p {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_POINTS));
-        }
-        if let Err(f) = raw.check_sizes(&plan.output()) {
-            needed = Some(plan.output());
-            return Err(f);
-        }
-        let lv = levels as usize;
-        let (written, report) = if opts.mobius {
-            let mo = MobiusOptions {
-                strict: opts.strict,
-            };
-            let (w, r) =
-                scheme::subdivide_levels_mobius(opts.scheme, view, lv, su, sp, &mut out, mo)?;
-            let r = nls_subdivide_report {
-                fallbacks: r.fallbacks,
-                first_fallback: r.first_fallback,
-                first_fallback_level: r.first_fallback_level,
-            };
-            (w, r)
-        } else {
-            let w = scheme::subdivide_levels(opts.scheme, view, lv, su, sp, &mut out)?;
-            (w, report_of(smobius::MobiusReport::default()))
-        };
+        let opts = opts.levels(levels as usize);
+        let report = subdivide_call(view, &opts, su, sp, &mut out, &raw, &mut needed)?;
+        let (written, report) = (report.sizes, report_of(&report));
         // SAFETY: checked above.
         unsafe {
             counts.write(&written);
@@ -930,6 +898,54 @@ mod tests {
         }
         assert_eq!(NLS_MAX_LEVELS as usize, scheme::MAX_LEVELS);
         assert_eq!((NLS_SUBDIVIDE_MOBIUS, NLS_SUBDIVIDE_STRICT), (1, 2));
+    }
+
+    /// The counts-only scratch of `nls_mesh_scratch_size` is the scratch of a one-level plan
+    /// of the Rust path, for every scheme, linear and Möbius.
+    #[test]
+    fn counts_only_scratch_is_the_one_level_plan() {
+        // A triangle fan, a quad strip and a pentagon: every scheme accepts some of them.
+        let p: [[f64; 3]; 7] = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.2],
+            [0.0, 1.0, 0.0],
+            [-1.0, 0.5, 0.1],
+            [-0.5, -0.8, 0.0],
+            [2.0, 0.5, 0.3],
+        ];
+        let meshes: [(&[u32], &[u32]); 3] = [
+            (&[0, 3, 6, 9], &[0, 1, 2, 0, 2, 3, 0, 3, 4]),
+            (&[0, 4, 8], &[0, 1, 2, 3, 5, 1, 0, 4]),
+            (&[0, 5], &[0, 5, 1, 6, 2]),
+        ];
+        let mut checked = 0;
+        for (offsets, indices) in meshes {
+            let view = Mesh::new(&p, offsets, indices);
+            let raw = RawMesh {
+                positions: p.as_ptr().cast(),
+                vertex_count: p.len(),
+                offsets: offsets.as_ptr(),
+                face_count: offsets.len() - 1,
+                indices: indices.as_ptr(),
+                index_count: indices.len(),
+            };
+            for s in Scheme::ALL {
+                for flags in [0, NLS_SUBDIVIDE_MOBIUS] {
+                    let Ok(opts) = options(s.code(), flags) else {
+                        continue;
+                    };
+                    let mut su = vec![0u32; scheme::plan_scratch_size(&view).unwrap()];
+                    let Ok(plan) = scheme::plan(view, &opts, &mut su) else {
+                        continue;
+                    };
+                    let (u, q) = scratch_need(opts, &raw).unwrap();
+                    assert_eq!((u, q), (plan.scratch.u32s, plan.scratch.points), "{s:?}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked >= 20, "{checked}");
     }
 
     #[test]

@@ -54,6 +54,10 @@ use crate::error::{Error, Result, Status};
 use crate::point::{add, scale, sub, Point};
 
 /// The linear scheme used on the differential polygon.
+///
+/// `#[non_exhaustive]`: a later version may add a variant, so a `match` outside this crate
+/// needs a wildcard arm.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DifferentialBase {
     /// The 4-point scheme ([`four_point`]).

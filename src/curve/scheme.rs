@@ -3,7 +3,11 @@
 
 /// A curve subdivision scheme. The discriminants are stable codes of the C ABI
 /// (`NLS_CURVE_*`), never reused.
+///
+/// `#[non_exhaustive]`: a later version may add a variant, so a `match` outside this crate
+/// needs a wildcard arm; [`CurveScheme::ALL`] lists every scheme.
 #[repr(u32)]
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum CurveScheme {
     /// The linear interpolating 4-point scheme of Dyn, Levin and Gregory with `w = 1/16`

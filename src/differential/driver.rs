@@ -370,7 +370,7 @@ fn subdivide_field(
     let m = Mesh::new(field.get(..n).ok_or(internal())?, offsets, indices);
     let topo = Topology::build(m, topo_buf).map_err(non_finite_intermediate)?;
     let mut o = MeshOut::new(dst, offs, idx);
-    crate::scheme::subdivide(scheme, &topo, &mut o)?;
+    crate::scheme::step_linear(scheme, &topo, &mut o)?;
     Ok(())
 }
 

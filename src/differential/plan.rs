@@ -150,7 +150,7 @@ pub fn plan(
             }
         }
     }
-    let lp = crate::scheme::plan(opts.stencil.scheme(), mesh, opts.levels, scratch)?;
+    let lp = crate::scheme::plan_levels(opts.stencil.scheme(), mesh, opts.levels, scratch)?;
     let mut p = DifferentialPlan {
         levels: opts.levels,
         sizes: lp.sizes,

@@ -35,7 +35,9 @@ pub mod refine;
 mod sort;
 pub mod topology;
 
-pub use topology::{topology_scratch_len, Spoke, Star, Topology};
+pub use topology::{topology_scratch_size, Spoke, Star, Topology};
+// The name differential-space subdivision imports.
+pub(crate) use topology::topology_scratch_size as topology_scratch_len;
 
 use crate::error::{Error, Result, Status};
 use crate::point::Point;

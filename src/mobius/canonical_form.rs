@@ -15,6 +15,10 @@ use crate::quat::{inverse_point, Quat};
 use crate::MAX_VALENCE;
 
 /// Which construction of seed 000 §4.2 a canonical form uses.
+///
+/// `#[non_exhaustive]`: a later version may add a variant, so a `match` outside this crate
+/// needs a wildcard arm; [`StarKind::ALL`] lists every kind.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StarKind {
     /// A closed star: `c` is the barycentre of the tangent polygon.
@@ -25,6 +29,11 @@ pub enum StarKind {
     /// A valence-2 boundary vertex with one face: the star is the face's other vertices,
     /// from one boundary neighbour to the other; `c` as for [`StarKind::Boundary`].
     Ear,
+}
+
+impl StarKind {
+    /// Every kind (for callers that map kinds to codes of their own, such as the C ABI).
+    pub const ALL: [StarKind; 3] = [StarKind::Interior, StarKind::Boundary, StarKind::Ear];
 }
 
 /// The canonical form `C_v` of a vertex star `v u_1 … u_n` (seed 000 §4.2, Fig. 7).

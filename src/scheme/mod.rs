@@ -1,16 +1,22 @@
 //! The subdivision schemes over whole meshes: the drivers own the topology walk and call a
 //! rule on each neighbourhood, the linear rules of [`crate::stencil`] or their canonical
 //! Möbius versions (seed 000 §4, [`mobius`]). The rules see one neighbourhood and never a
-//! mesh, so a host mesh library with its own connectivity can call them directly; the
-//! drivers are for callers whose mesh is a pair of index arrays.
+//! mesh, so a host mesh library with its own connectivity can call them directly (the star
+//! rules of [`mobius`]); the drivers are for callers whose mesh is a pair of index arrays.
 //!
-//! One level per call over caller buffers: [`subdivide_size`] gives the exact output sizes
-//! before the call, [`subdivide`] writes one level. [`subdivide_mesh`] and
-//! [`subdivide_mesh_size`] take the raw mesh slices and a scratch buffer
-//! ([`scratch_len`]) for callers that do not keep a [`Topology`]; [`plan`] and
-//! [`subdivide_levels`] run several levels, [`subdivide_levels_mobius`] several levels of the
-//! Möbius version ([`mobius`]), through the same level loop. [`Scheme::Spherelike`] (seed 003
-//! §3, [`spherelike`]) runs through the same one-level and multi-level entry points.
+//! # One path: options → plan → subdivide
+//!
+//! [`Options`] names the scheme, linear or Möbius ([`Options::mobius`]), strictness about
+//! Möbius fallbacks and the number of levels. [`plan`] validates the mesh (its topology in
+//! [`plan_scratch_size`] `u32` entries of scratch) and returns a [`Plan`]: the exact sizes of
+//! every level and the exact scratch ([`ScratchSizes`]) of [`subdivide`], which then writes
+//! the last level into the caller's [`MeshOut`](crate::mesh::MeshOut), the intermediate
+//! levels in the caller's [`Scratch`], and returns a [`Report`]. Parameters come in the order
+//! input, options, scratch, output. [`Scheme::Spherelike`] (seed 003 §3, [`spherelike`]) runs
+//! through the same path.
+//!
+//! Sizes are counted in elements of the buffer they size (points, `u32` entries, faces); a
+//! function named `…_size` returns an exact size, one named `…_bound` a worst case.
 //!
 //! Output vertex order, fixed so that hosts can map old vertices and know where each new point
 //! comes from: primal schemes write the old vertices first at the same indices, then edge points in
@@ -20,32 +26,42 @@
 //!
 //! # Where things are
 //!
-//! `size.rs` (the exact sizes of one step), `step.rs` (one step, and the internal step both
-//! level paths call), `linear.rs` (the linear position rules), `spherelike.rs`,
-//! `mobius/`, `levels.rs` (plans and the level loop), `carry.rs` (old vertices carried
-//! through).
+//! The public path: `options.rs` ([`Options`]), `plan.rs` ([`plan`], [`Plan`],
+//! [`ScratchSizes`]), `subdivide.rs` ([`subdivide`], [`Scratch`], [`Report`]). Behind it:
+//! `levels.rs` (the level loop and where it keeps the levels in the scratch), `step.rs` (one
+//! step on a built topology, the one function every level goes through), `size.rs` (the
+//! exact sizes of one step), `linear.rs` (the linear position rules), `spherelike.rs`,
+//! `mobius/`, `carry.rs` (old vertices carried through).
 
 mod carry;
 mod levels;
 mod linear;
 pub mod mobius;
+mod options;
+mod plan;
 mod size;
 pub mod spherelike;
 mod step;
+mod subdivide;
 
-pub use levels::{
-    plan, plan_scratch_len, subdivide_levels, subdivide_levels_mobius, LevelPlan, LevelsReport,
-    MAX_LEVELS,
-};
-pub use size::subdivide_size;
-pub use step::subdivide;
+pub use levels::MAX_LEVELS;
+pub use options::Options;
+pub use plan::{plan, plan_scratch_size, Plan, ScratchSizes};
+pub use subdivide::{subdivide, Report, Scratch};
+
+pub(crate) use plan::plan_levels;
+pub(crate) use step::linear as step_linear;
 
 use crate::error::Result;
 use crate::mesh::refine::Pattern;
-use crate::mesh::{topology_scratch_len, Mesh, MeshOut, MeshSizes, Topology};
+use crate::mesh::Mesh;
 
 /// A subdivision scheme. Codes are stable (the C ABI passes them as `uint32_t`).
+///
+/// `#[non_exhaustive]`: a later version may add a scheme (a new code, never a changed one), so
+/// a `match` outside this crate needs a wildcard arm; [`Scheme::ALL`] lists every scheme.
 #[repr(u32)]
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Scheme {
     /// Loop (triangles; 1→4; approximating).
@@ -149,39 +165,8 @@ impl Scheme {
     }
 }
 
-/// Scratch (`u32` entries) that [`subdivide_mesh`] and [`subdivide_mesh_size`] need for
-/// `mesh`: the topology of [`Topology::build`].
-///
-/// # Errors
-/// [`crate::Status::SizeOverflow`].
-pub fn scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
-    topology_scratch_len(mesh.num_vertices(), mesh.num_corners())
-}
-
-/// Validates `mesh` and returns the exact output sizes of one step of `scheme`.
-///
-/// # Errors
-/// Any validation error of [`Topology::build`], then those of [`subdivide_size`].
-pub fn subdivide_mesh_size(
-    scheme: Scheme,
-    mesh: Mesh<'_>,
-    scratch: &mut [u32],
-) -> Result<MeshSizes> {
-    let topo = Topology::build(mesh, scratch)?;
-    subdivide_size(scheme, &topo)
-}
-
-/// Validates `mesh` and writes one step of `scheme` into `out`; returns the sizes written.
-/// This is the entry point for callers holding plain slices (an OFF reader, the C ABI).
-///
-/// # Errors
-/// Any validation error of [`Topology::build`], then those of [`subdivide`].
-pub fn subdivide_mesh(
-    scheme: Scheme,
-    mesh: Mesh<'_>,
-    scratch: &mut [u32],
-    out: &mut MeshOut<'_>,
-) -> Result<MeshSizes> {
-    let topo = Topology::build(mesh, scratch)?;
-    subdivide(scheme, &topo, out)
+/// The `u32` scratch of [`plan`] ([`plan_scratch_size`]), under the name differential-space
+/// subdivision calls.
+pub(crate) fn scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
+    plan_scratch_size(mesh)
 }

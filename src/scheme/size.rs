@@ -15,7 +15,7 @@ use crate::mesh::{MeshSizes, Topology};
 /// Modified Butterfly: non-triangles; Kobbelt: non-quads); [`Status::SizeOverflow`];
 /// [`Status::ValenceTooHigh`] for an output vertex above [`crate::MAX_VALENCE`]
 /// ([`crate::mesh::refine::pattern_size`]).
-pub fn subdivide_size(scheme: Scheme, topo: &Topology<'_, '_>) -> Result<MeshSizes> {
+pub(crate) fn step_size(scheme: Scheme, topo: &Topology<'_, '_>) -> Result<MeshSizes> {
     if scheme == Scheme::Kobbelt {
         for f in 0..topo.num_faces() as u32 {
             if topo.face_size(f)? != 4 {

@@ -1,11 +1,10 @@
-//! One subdivision step over caller buffers: the sizes, the pattern's connectivity, then the
-//! positions of the scheme's rules, linear ([`super::linear`]), spherelike
-//! ([`super::spherelike`]) or canonical Möbius ([`super::mobius`]). [`step`] is the one
-//! internal entry both the one-level calls and the multi-level loop
-//! ([`super::levels`]) go through.
+//! One subdivision step on a built topology, over caller buffers: the sizes, the pattern's
+//! connectivity, then the positions of the scheme's rules, linear ([`super::linear`]),
+//! spherelike ([`super::spherelike`]) or canonical Möbius ([`super::mobius`]). [`step`] is
+//! the one entry the level loop ([`super::levels`]) goes through.
 
 use super::mobius::{self, MobiusOptions, MobiusReport};
-use super::size::subdivide_size;
+use super::size::step_size;
 use super::{linear, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::write_pattern;
@@ -14,11 +13,11 @@ use crate::point::{self, Point};
 
 /// One step of `scheme` on `topo` into `out`: the linear (or spherelike) rules with `mobius`
 /// `None`, the canonical Möbius version with its options otherwise, `candidates` its scratch
-/// ([`mobius::scratch_len`]; unused by the other rules). Returns the sizes written and the
-/// Möbius report (empty for the other rules).
+/// ([`mobius::candidate_points`]; unused by the other rules). Returns the sizes written and
+/// the Möbius report (empty for the other rules).
 ///
 /// # Errors
-/// Those of [`subdivide`] and [`mobius::subdivide`].
+/// Those of [`linear`] and [`mobius::step`].
 pub(crate) fn step(
     scheme: Scheme,
     mobius: Option<MobiusOptions>,
@@ -27,26 +26,27 @@ pub(crate) fn step(
     candidates: &mut [Point],
 ) -> Result<(MeshSizes, MobiusReport)> {
     match mobius {
-        None => subdivide(scheme, topo, out).map(|s| (s, MobiusReport::default())),
-        Some(opts) => mobius::subdivide(scheme, topo, out, candidates, opts),
+        None => linear(scheme, topo, out).map(|s| (s, MobiusReport::default())),
+        Some(opts) => mobius::step(scheme, topo, out, candidates, opts),
     }
 }
 
 /// Writes one step of `scheme` on `topo` into `out` and returns the sizes written: the
 /// linear rules, or for [`Scheme::Spherelike`] its circle-blend rules (seed 003 §3), which
-/// share this entry point (and so the level loop and the C ABI).
+/// share this step (and so the level loop). Differential-space subdivision steps its fields
+/// with it too.
 ///
 /// # Errors
-/// Those of [`subdivide_size`]; [`Status::BufferTooSmall`] (with the needed size) when an
+/// Those of [`step_size`]; [`Status::BufferTooSmall`] (with the needed size) when an
 /// output buffer is short, before any write; [`Status::NumericalFailure`] naming the first
 /// output vertex that is not finite (overflow on huge coordinates); the statuses of
 /// [`super::spherelike`].
-pub fn subdivide(
+pub(crate) fn linear(
     scheme: Scheme,
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
 ) -> Result<MeshSizes> {
-    let sizes = subdivide_size(scheme, topo)?;
+    let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;

@@ -9,8 +9,8 @@
     clippy::panic
 )]
 
-use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, Topology};
-use nlsubdiv::scheme::{self, Scheme};
+use nlsubdiv::mesh::{topology_scratch_size, Mesh, MeshOut, MeshSizes, Topology};
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch};
 use nlsubdiv::{Point, Result};
 use std::path::{Path, PathBuf};
 
@@ -69,7 +69,7 @@ impl OwnedMesh {
 
 /// Builds the topology (owning its scratch) and runs `f` on it.
 pub fn with_topology<R>(m: &OwnedMesh, f: impl FnOnce(&Topology<'_, '_>) -> R) -> Result<R> {
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
+    let mut scratch = vec![0u32; topology_scratch_size(m.positions.len(), m.indices.len())?];
     let topo = Topology::build(m.view(), &mut scratch)?;
     Ok(f(&topo))
 }
@@ -78,23 +78,37 @@ pub fn validate(m: &OwnedMesh) -> Result<()> {
     with_topology(m, |_| ())
 }
 
-/// One step of `s`, with buffers sized by the size query.
-pub fn subdivide(s: Scheme, m: &OwnedMesh) -> Result<OwnedMesh> {
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
-    let sizes = scheme::subdivide_mesh_size(s, m.view(), &mut scratch)?;
+/// The public path with owned buffers: `plan` (in a scratch of `plan_scratch_size`
+/// entries), then `subdivide` with buffers of exactly the planned sizes. The output starts as
+/// NaN/`u32::MAX` so that an unwritten entry cannot pass unnoticed.
+pub fn run(m: &OwnedMesh, opts: &Options) -> Result<(OwnedMesh, Report)> {
+    let mut su = vec![0u32; scheme::plan_scratch_size(&m.view())?];
+    let p = scheme::plan(m.view(), opts, &mut su)?;
+    assert!(
+        p.scratch.u32s >= su.len(),
+        "the plan's scratch is below its own"
+    );
+    let o = p.output();
+    su.resize(p.scratch.u32s, 0);
+    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
     let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; sizes.vertices],
-        offsets: vec![u32::MAX; sizes.faces + 1],
-        indices: vec![u32::MAX; sizes.indices],
+        positions: vec![[f64::NAN; 3]; o.vertices],
+        offsets: vec![u32::MAX; o.faces + 1],
+        indices: vec![u32::MAX; o.indices],
     };
-    let written = scheme::subdivide_mesh(
-        s,
+    let report = scheme::subdivide(
         m.view(),
-        &mut scratch,
+        opts,
+        Scratch::new(&mut su, &mut sp),
         &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
     )?;
-    assert_eq!(written, sizes, "sizes written differ from the size query");
-    Ok(out)
+    assert_eq!(report.sizes, o, "sizes written differ from the plan");
+    Ok((out, report))
+}
+
+/// One linear step of `s` ([`run`]).
+pub fn subdivide(s: Scheme, m: &OwnedMesh) -> Result<OwnedMesh> {
+    run(m, &Options::new(s)).map(|(o, _)| o)
 }
 
 pub fn subdivide_n(s: Scheme, m: &OwnedMesh, levels: usize) -> Result<OwnedMesh> {
@@ -501,32 +515,9 @@ pub fn icosahedron() -> OwnedMesh {
 
 // ---------------------------------------------------------------- Möbius steps and measures
 
-/// One canonical Möbius step (`scheme::mobius`) with buffers sized by the size queries; the
-/// output starts as NaN/`u32::MAX` so that an unwritten entry cannot pass unnoticed.
-pub fn mobius_subdivide(
-    s: Scheme,
-    m: &OwnedMesh,
-    strict: bool,
-) -> Result<(OwnedMesh, nlsubdiv::scheme::mobius::MobiusReport)> {
-    use nlsubdiv::scheme::mobius;
-    let mut scratch = vec![0u32; scheme::scratch_len(&m.view())?];
-    let topo = Topology::build(m.view(), &mut scratch)?;
-    let sizes = scheme::subdivide_size(s, &topo)?;
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; sizes.vertices],
-        offsets: vec![u32::MAX; sizes.faces + 1],
-        indices: vec![u32::MAX; sizes.indices],
-    };
-    let mut pts = vec![[0.0; 3]; mobius::scratch_len(&topo)?];
-    let (written, report) = mobius::subdivide(
-        s,
-        &topo,
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        &mut pts,
-        mobius::MobiusOptions { strict },
-    )?;
-    assert_eq!(written, sizes, "sizes written differ from the size query");
-    Ok((out, report))
+/// One canonical Möbius step (seed 000 §4) of `s` ([`run`]).
+pub fn mobius_subdivide(s: Scheme, m: &OwnedMesh, strict: bool) -> Result<(OwnedMesh, Report)> {
+    run(m, &Options::new(s).mobius(true).strict(strict))
 }
 
 /// The longest edge of any face.
@@ -606,34 +597,12 @@ pub fn differential_subdivide(
     }
 }
 
-/// `levels` steps in one multi-level call, linear or Möbius, as a host makes it (`plan`,
-/// then `subdivide_levels` / `subdivide_levels_mobius` with buffers of the planned sizes):
-/// the benchmarks time this.
+/// `levels` steps in one call, linear or Möbius, as a host makes it ([`run`]: `plan`, then
+/// `subdivide` with buffers of the planned sizes): the benchmarks time this.
 pub fn levels_call(s: Scheme, m: &OwnedMesh, levels: usize, mobius: bool) -> OwnedMesh {
-    let mut su = vec![0u32; scheme::plan_scratch_len(&m.view()).unwrap()];
-    let p = scheme::plan(s, m.view(), levels, &mut su).unwrap();
-    let o = p.output();
-    let np = if mobius {
-        p.mobius_scratch_points().unwrap()
-    } else {
-        p.scratch_points
-    };
-    su.resize(p.scratch_u32, 0);
-    let mut sp = vec![[0.0f64; 3]; np];
-    let mut out = OwnedMesh {
-        positions: vec![[0.0; 3]; o.vertices],
-        offsets: vec![0; o.faces + 1],
-        indices: vec![0; o.indices],
-    };
-    let mut mo = MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices);
-    if mobius {
-        let opts = scheme::mobius::MobiusOptions { strict: false };
-        scheme::subdivide_levels_mobius(s, m.view(), levels, &mut su, &mut sp, &mut mo, opts)
-            .unwrap();
-    } else {
-        scheme::subdivide_levels(s, m.view(), levels, &mut su, &mut sp, &mut mo).unwrap();
-    }
-    out
+    run(m, &Options::new(s).mobius(mobius).levels(levels))
+        .unwrap()
+        .0
 }
 
 /// The benchmark rows of the Möbius speed target (issue 5, DESIGN.md "Performance"): mesh

@@ -127,7 +127,7 @@ pub(super) fn old_vertices(
 mod tests {
     use crate::error::Error;
     use crate::mesh::refine::{child_topology, derivable, pattern_size, write_pattern, Pattern};
-    use crate::mesh::{topology_scratch_len, Mesh, Topology};
+    use crate::mesh::{topology_scratch_size, Mesh, Topology};
     use crate::point::Point;
     use arrayvec::ArrayVec;
 
@@ -188,7 +188,7 @@ mod tests {
         let mut arena_u32: &mut [u32] = &mut store_u32;
         let mut arena_points: &mut [Point] = &mut store_points;
         let mesh = Mesh::new(pos, offs, idx);
-        let need = topology_scratch_len(mesh.num_vertices(), mesh.num_corners()).unwrap();
+        let need = topology_scratch_size(mesh.num_vertices(), mesh.num_corners()).unwrap();
         let mut topo = Topology::build(mesh, take(&mut arena_u32, need)).unwrap();
         let mut short = [0u32; 1 << 14];
         for k in 1..=levels {
@@ -203,7 +203,7 @@ mod tests {
                 *q = [v as f64, 0.5, -1.0];
             }
             let child = Mesh::new(p, o, i);
-            let need = topology_scratch_len(sz.vertices, sz.indices).unwrap();
+            let need = topology_scratch_size(sz.vertices, sz.indices).unwrap();
             // Garbage in the derived scratch: every entry the topology uses must be written.
             let sd = take(&mut arena_u32, need);
             sd.fill(0xdead_beef);
@@ -291,7 +291,7 @@ mod tests {
         let (offs, idx) = ([0u32, 3, 6], [0u32, 1, 2, 0, 2, 3]);
         let mesh = Mesh::new(&pos, &offs, &idx);
         let mut sc = [0u32; 64];
-        let need = topology_scratch_len(4, 6).unwrap();
+        let need = topology_scratch_size(4, 6).unwrap();
         let topo = Topology::build(mesh, &mut sc[..need]).unwrap();
         let sz = pattern_size(Pattern::Split1To4, &topo).unwrap();
         let (mut o, mut i) = ([0u32; 64], [0u32; 64]);
@@ -301,7 +301,7 @@ mod tests {
         let p = [[0.0; 3]; 64];
         let child = Mesh::new(&p[..sz.vertices], o, i);
         let mut s2 = [0u32; 512];
-        let s2 = &mut s2[..topology_scratch_len(sz.vertices, sz.indices).unwrap()];
+        let s2 = &mut s2[..topology_scratch_size(sz.vertices, sz.indices).unwrap()];
         assert!(child_topology(&topo, Pattern::Split1To4, child, s2).is_err());
         assert!(child_topology(&topo, Pattern::Quads, child, s2).is_err());
         assert!(child_topology(&topo, Pattern::Dual, child, s2).is_err());

@@ -62,6 +62,10 @@ use crate::error::{Error, Result, Status};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// A refinement pattern (connectivity of one step; see the module table).
+///
+/// `#[non_exhaustive]`: a later version may add a variant, so a `match` outside this crate
+/// needs a wildcard arm.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pattern {
     /// Triangle 1→4 split (Loop, Modified Butterfly).
@@ -190,7 +194,7 @@ pub(crate) fn derivable(pattern: Pattern) -> bool {
 }
 
 /// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that [`write_pattern`]
-/// wrote from `parent`, in `scratch` ([`crate::mesh::topology_scratch_len`] of the child): the
+/// wrote from `parent`, in `scratch` ([`crate::mesh::topology_scratch_size`] of the child): the
 /// same arrays as [`Topology::build`] on `mesh` (`derive.rs`).
 ///
 /// # Errors

@@ -3,7 +3,7 @@
 //! drivers ([`Raw`]), and the scalar counts ([`Counts`]) with which a multi-level call
 //! rebuilds the view of a topology whose arrays are already in scratch.
 
-use super::{topology_scratch_len, Topology};
+use super::{topology_scratch_size, Topology};
 use crate::error::{Error, Result};
 use crate::mesh::{get, internal, Mesh};
 
@@ -21,7 +21,7 @@ pub(crate) struct Regions<'s> {
 /// The regions of a scratch for `nv` vertices and `nh` half-edges;
 /// [`crate::Status::BufferTooSmall`] with the needed length when it is short.
 pub(crate) fn regions(scratch: &mut [u32], nv: usize, nh: usize) -> Result<Regions<'_>> {
-    let need = topology_scratch_len(nv, nh)?;
+    let need = topology_scratch_size(nv, nh)?;
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }

@@ -131,7 +131,7 @@ fn key_in(indices: &[u32], dest: &[u32], h: u32) -> u64 {
 
 impl<'m, 's> Topology<'m, 's> {
     /// Validates `mesh` (see the module docs for the order of checks) and builds its topology
-    /// in `scratch`, which must hold [`super::topology_scratch_len`] entries.
+    /// in `scratch`, which must hold [`super::topology_scratch_size`] entries.
     ///
     /// # Errors
     /// The first failed check, naming its element; [`Status::BufferTooSmall`] with the needed

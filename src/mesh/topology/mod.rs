@@ -32,7 +32,7 @@
 //! | 3 | `ValenceTooHigh`: more than [`MAX_FACE_SIZE`] corners | face |
 //! | 4 | `IndexOutOfRange` | face |
 //! | 5 | `RepeatedVertex` | face |
-//! | 6 | `BufferTooSmall`: scratch below [`topology_scratch_len`] | none |
+//! | 6 | `BufferTooSmall`: scratch below [`topology_scratch_size`] | none |
 //! | 7 | `DuplicateFace`: two faces on one edge with the same vertex set | the later face |
 //! | 7 | `InconsistentOrientation`: two half-edges of one edge in the same direction | the later face |
 //! | 7 | `NonManifoldEdge`: three or more faces on one edge | the last face on it |
@@ -71,12 +71,12 @@ use crate::mesh::MAX_COUNT;
 #[cfg(doc)]
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
-/// Scratch (`u32` entries) that [`Topology::build`] needs for a mesh with `num_vertices`
-/// vertices and `num_corners` corners: `4·corners + 3·vertices`.
+/// The exact scratch (`u32` entries) that [`Topology::build`] needs for a mesh with
+/// `num_vertices` vertices and `num_corners` corners: `4·corners + 3·vertices`.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`] when the size does not fit `usize`.
-pub fn topology_scratch_len(num_vertices: usize, num_corners: usize) -> Result<usize> {
+pub fn topology_scratch_size(num_vertices: usize, num_corners: usize) -> Result<usize> {
     let a = num_corners
         .checked_mul(4)
         .ok_or(Error::new(Status::SizeOverflow))?;

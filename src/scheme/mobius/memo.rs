@@ -231,7 +231,7 @@ impl MapBack for StarForm {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{topology_scratch_len, Mesh};
+    use crate::mesh::{topology_scratch_size, Mesh};
 
     /// The drivers' star walk is [`Topology::spokes_into`] spoke for spoke, on all-triangle,
     /// all-quad and mixed meshes with boundaries and on a closed one (the walk's arithmetic
@@ -281,7 +281,7 @@ mod tests {
         let mut buf = [0u32; 1024];
         for (p, offs, idx) in cases {
             let mesh = Mesh::new(p, offs, idx);
-            let scratch = &mut buf[..topology_scratch_len(p.len(), idx.len()).unwrap()];
+            let scratch = &mut buf[..topology_scratch_size(p.len(), idx.len()).unwrap()];
             let topo = Topology::build(mesh, scratch).unwrap();
             let (mut a, mut b) = (Spokes::new(), Spokes::new());
             for v in 0..p.len() as u32 {

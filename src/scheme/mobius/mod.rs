@@ -25,9 +25,9 @@
 //!
 //! **Degenerate neighbourhoods** (coincident points, a star whose canonical form does not
 //! exist, a blend at infinity): the element takes its linear rule, evaluated on the original
-//! positions; it is counted in the [`MobiusReport`] (count and first output vertex), and with
-//! [`MobiusOptions::strict`] it is an error instead ([`Status::FallbackInStrictMode`]). No
-//! non-finite value reaches the output.
+//! positions; it is counted in the [`Report`](super::Report) (count and first output vertex),
+//! and with [`Options::strict`](super::Options::strict) it is an error instead
+//! ([`Status::FallbackInStrictMode`]). No non-finite value reaches the output.
 //!
 //! # Where things are
 //!
@@ -41,7 +41,8 @@
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
 //!   (boundary curves);
 //! * `drivers/`: one per scheme, choosing the rule and the blends; `driver.rs`: the state of
-//!   one step and the fallback report. [`subdivide`] below dispatches.
+//!   one step and the fallback report. `step` below dispatches; the public entry is
+//!   [`super::subdivide`] with [`Options::mobius`](super::Options::mobius).
 
 mod boundary;
 mod driver;
@@ -63,21 +64,22 @@ use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
 use driver::Driver;
 
-/// Options of the Möbius schemes.
+/// Options of one Möbius step (from [`super::Options`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct MobiusOptions {
+pub(crate) struct MobiusOptions {
     /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
     /// vertex.
-    pub strict: bool,
+    pub(crate) strict: bool,
 }
 
-/// What a Möbius subdivision step had to do besides the paper's rules.
+/// What one Möbius step had to do besides the paper's rules (gathered over the levels into
+/// [`super::Report`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MobiusReport {
+pub(crate) struct MobiusReport {
     /// Output vertices that took their linear rule (degenerate neighbourhood).
-    pub fallbacks: u32,
+    pub(crate) fallbacks: u32,
     /// The first such output vertex, or [`NO_ELEMENT`].
-    pub first_fallback: u32,
+    pub(crate) first_fallback: u32,
 }
 
 impl Default for MobiusReport {
@@ -89,36 +91,28 @@ impl Default for MobiusReport {
     }
 }
 
-/// Scratch points [`subdivide`] needs: an edge candidate and a face candidate per half-edge.
+/// The candidate points one step needs on a level of `num_corners` corners (= half-edges):
+/// an edge candidate and a face candidate per half-edge.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub fn scratch_len(topo: &Topology<'_, '_>) -> Result<usize> {
-    scratch_len_for(topo.num_half_edges())
-}
-
-/// [`scratch_len`] from the number of corners (= half-edges) alone, for callers that size
-/// buffers before the mesh is validated (the C ABI): two points per corner.
-///
-/// # Errors
-/// [`Status::SizeOverflow`].
-pub fn scratch_len_for(num_corners: usize) -> Result<usize> {
+pub(crate) fn candidate_points(num_corners: usize) -> Result<usize> {
     num_corners
         .checked_mul(2)
         .ok_or(Error::new(Status::SizeOverflow))
 }
 
 /// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
-/// of at least [`scratch_len`] points. The connectivity and the output vertex order are those
-/// of the linear scheme ([`super::subdivide`]).
+/// of at least [`candidate_points`] points. The connectivity and the output vertex order are
+/// those of the linear scheme ([`super::step::linear`]).
 ///
 /// # Errors
-/// Those of [`super::subdivide_size`]; [`Status::InvalidArgument`] for a scheme without a
+/// Those of [`super::size::step_size`]; [`Status::InvalidArgument`] for a scheme without a
 /// Möbius form ([`Scheme::has_mobius_form`]); [`Status::BufferTooSmall`] for `out` or
 /// `scratch`; [`Status::FallbackInStrictMode`] (element = output vertex) with
 /// [`MobiusOptions::strict`]; [`Status::NumericalFailure`] naming an output vertex that is
 /// not finite.
-pub fn subdivide(
+pub(crate) fn step(
     scheme: Scheme,
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
@@ -129,9 +123,9 @@ pub fn subdivide(
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
         return Err(Error::new(Status::InvalidArgument));
     }
-    let sizes = super::subdivide_size(scheme, topo)?;
+    let sizes = super::size::step_size(scheme, topo)?;
     out.check(&sizes)?;
-    let need = scratch_len(topo)?;
+    let need = candidate_points(topo.num_half_edges())?;
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }

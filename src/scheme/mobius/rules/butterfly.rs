@@ -82,7 +82,7 @@ pub(in crate::scheme::mobius) fn butterfly_star_in_form(
 
 /// The canonical Möbius Modified Butterfly rule at the vertex star `v ring…` (`ring` and
 /// `closed` as for [`super::loop_star`]; the faces are triangles), exactly as
-/// [`super::super::subdivide`] evaluates it for
+/// the Möbius mesh driver ([`crate::scheme::subdivide`]) evaluates it for
 /// [`crate::scheme::Scheme::ModifiedButterfly`]: the star's canonical form, then for each
 /// interior spoke `j` the candidate of the edge to `ring[j]` by the module's rule, mapped
 /// back. `irregular_neighbours[j]` says whether `ring[j]` is an interior vertex of valence

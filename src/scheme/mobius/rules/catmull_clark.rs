@@ -51,9 +51,9 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
     }
 }
 
-/// The canonical Möbius Catmull–Clark rules at one vertex star, exactly as
-/// [`super::super::subdivide`] evaluates them for [`crate::scheme::Scheme::CatmullClark`].
-/// `ring` as for [`super::loop_star`]; face `j`
+/// The canonical Möbius Catmull–Clark rules at one vertex star, exactly as the Möbius mesh
+/// driver ([`crate::scheme::subdivide`]) evaluates them for
+/// [`crate::scheme::Scheme::CatmullClark`]. `ring` as for [`super::loop_star`]; face `j`
 /// (`face_corners[face_offsets[j]..face_offsets[j + 1]]`) is the face between spoke `j` and
 /// spoke `j + 1` counter-clockwise, given by the positions of all its corners in face order
 /// (`v` included, anywhere in the cycle): `ring.len()` faces for a closed star, one fewer for

@@ -25,9 +25,10 @@ pub(in crate::scheme::mobius) fn doo_sabin_corner_in_form(
     doo_sabin::corner_point(face, i).and_then(|p| form.back(p))
 }
 
-/// The canonical Möbius Doo–Sabin rule at the vertex star `v ring…`, exactly as
-/// [`super::super::subdivide`] evaluates it for [`crate::scheme::Scheme::DooSabin`]: `ring`
-/// and `closed` as for [`super::loop_star`], the faces as for [`super::catmull_clark_star`]
+/// The canonical Möbius Doo–Sabin rule at the vertex star `v ring…`, exactly as the Möbius
+/// mesh driver ([`crate::scheme::subdivide`]) evaluates it for
+/// [`crate::scheme::Scheme::DooSabin`]: `ring` and `closed` as for [`super::loop_star`], the
+/// faces as for [`super::catmull_clark_star`]
 /// (face `j` between spoke `j` and spoke `j + 1`, all its corners in face order, `v`
 /// included). Writes `corner_points[j]`, the new point of `v`'s corner in face `j`, computed
 /// on face `j` mapped into the star's canonical form and mapped back; NaN where a corner of

@@ -53,8 +53,9 @@ pub(in crate::scheme::mobius) fn kobbelt_beyond_in_form(
 }
 
 /// The canonical Möbius Kobbelt rule at the vertex star `v ring…` (`ring` and `closed` as
-/// for [`super::loop_star`]; the faces are quads), exactly as [`super::super::subdivide`]
-/// evaluates it for [`crate::scheme::Scheme::Kobbelt`]: for every spoke `j`, the point beyond
+/// for [`super::loop_star`]; the faces are quads), exactly as the Möbius mesh driver
+/// ([`crate::scheme::subdivide`]) evaluates it for [`crate::scheme::Scheme::Kobbelt`]: for
+/// every spoke `j`, the point beyond
 /// `v` on the grid line from `ring[j]` through `v` (module docs), computed in the star's
 /// canonical form and mapped back. `diagonals[j]` is the corner opposite `v` in the quad
 /// between spoke `j` and spoke `j + 1`; a closed star needs `ring.len()` of them, an open star

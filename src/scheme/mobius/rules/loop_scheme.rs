@@ -45,8 +45,9 @@ pub(in crate::scheme::mobius) fn loop_star_in_form(
 }
 
 /// The canonical Möbius Loop rules at one vertex star (seed 000 §4.1 steps 1–3), exactly as
-/// [`super::super::subdivide`] evaluates them for [`crate::scheme::Scheme::Loop`]: the
-/// canonical form of `v ring…` (`closed`: a cyclic ring of an interior vertex; otherwise the
+/// the Möbius mesh driver ([`crate::scheme::subdivide`]) evaluates them for
+/// [`crate::scheme::Scheme::Loop`]: the canonical form of `v ring…` (`closed`: a cyclic ring
+/// of an interior vertex; otherwise the
 /// ring runs from one boundary neighbour to the other, counter-clockwise), Loop's stencils on
 /// the mapped 1-ring, the results mapped back.
 ///

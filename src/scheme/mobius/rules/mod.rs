@@ -5,8 +5,9 @@
 //! (`v`, its ring counter-clockwise, for some schemes the faces or the diagonals), builds the
 //! star's canonical form (seed 000 §4.2) and maps the ring into it; and the rule *in form*,
 //! which evaluates the scheme's linear stencils of [`crate::stencil`] on the images and maps
-//! the results back (seed 000 §4.1 steps 2–3). The driver ([`super::subdivide`]) calls the
-//! same in-form rule on the images its memo holds, so a host that gives a star in the
+//! the results back (seed 000 §4.1 steps 2–3). The Möbius mesh driver
+//! ([`crate::scheme::subdivide`] with [`Options::mobius`](crate::scheme::Options::mobius))
+//! calls the same in-form rule on the images its memo holds, so a host that gives a star in the
 //! driver's order gets the driver's bits (`tests/mesh_mobius.rs`
 //! `star_rules_reproduce_the_driver_bit_for_bit`).
 //!

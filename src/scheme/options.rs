@@ -1,0 +1,77 @@
+//! What a mesh subdivision is asked to do: the scheme, its linear or canonical Möbius version
+//! (seed 000 §4), strictness about Möbius fallbacks, and the number of levels. One value
+//! drives both [`super::plan`] and [`super::subdivide`], so the sizes planned are the sizes
+//! written.
+
+use super::{Scheme, MAX_LEVELS};
+#[cfg(doc)]
+use crate::error::Status;
+
+/// Options of [`plan`](super::plan()) and [`subdivide`](super::subdivide): start from
+/// [`Options::new`] and chain the builder methods (all `const`):
+///
+/// ```
+/// use nlsubdiv::{Options, Scheme};
+/// const OPTS: Options = Options::new(Scheme::Loop).mobius(true).levels(3);
+/// assert!(OPTS.mobius && !OPTS.strict && OPTS.levels == 3);
+/// ```
+///
+/// `#[non_exhaustive]`: a later version may add a field (with a default that keeps today's
+/// behaviour) without breaking callers, which is why the struct is built through
+/// [`Options::new`] rather than a struct literal. Only `PartialEq` for the same reason: a
+/// later field may be a weight (`f64`).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// The scheme.
+    pub scheme: Scheme,
+    /// The canonical Möbius version of the scheme (seed 000 §4; [`super::mobius`]).
+    /// [`Status::InvalidArgument`] for a scheme without one ([`Scheme::has_mobius_form`]).
+    pub mobius: bool,
+    /// A Möbius fallback (a degenerate neighbourhood taking its linear rule) is
+    /// [`Status::FallbackInStrictMode`] naming the output vertex instead of a count in the
+    /// [`Report`](super::Report). Accepted and without effect for the linear schemes, which
+    /// never fall back.
+    pub strict: bool,
+    /// Levels, `0..=`[`MAX_LEVELS`]; 0 validates the input and copies it.
+    pub levels: usize,
+}
+
+impl Options {
+    /// The linear version of `scheme`, not strict, one level.
+    pub const fn new(scheme: Scheme) -> Options {
+        Options {
+            scheme,
+            mobius: false,
+            strict: false,
+            levels: 1,
+        }
+    }
+
+    /// The canonical Möbius version (`true`) or the linear one (`false`).
+    #[must_use]
+    pub const fn mobius(self, on: bool) -> Options {
+        Options { mobius: on, ..self }
+    }
+
+    /// Fallbacks are errors (`true`) or counted (`false`).
+    #[must_use]
+    pub const fn strict(self, on: bool) -> Options {
+        Options { strict: on, ..self }
+    }
+
+    /// The number of levels (checked against [`MAX_LEVELS`] by the calls).
+    #[must_use]
+    pub const fn levels(self, levels: usize) -> Options {
+        Options { levels, ..self }
+    }
+
+    /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or the Möbius version
+    /// of a scheme without one; checked before the mesh is read.
+    pub(crate) fn check(&self) -> crate::Result<()> {
+        if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) {
+            return Err(crate::Error::new(crate::Status::InvalidArgument));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,172 @@
+//! Planning a mesh subdivision: validation of the mesh and the options, the exact sizes of
+//! every level and the exact scratch of [`super::subdivide`], all before any point is
+//! computed, so that a caller allocates once (the crate allocates nothing).
+//!
+//! [`plan`] builds the input's topology (the validation), then follows a handful of counts
+//! from level to level (vertices, faces, corners, edges, boundary edges, isolated vertices,
+//! valence sums and maxima): for every pattern these counts of level `k + 1` are exact
+//! functions of the counts of level `k` (each pattern's own, in [`crate::mesh::refine`]), so
+//! no intermediate level has to be built to know its size. The level loop checks every
+//! planned size against what the step really writes.
+
+use super::levels::Layout;
+use super::size::step_size;
+use super::{Options, Scheme, MAX_LEVELS};
+use crate::error::{Error, Result, Status};
+use crate::mesh::refine::LevelCounts;
+use crate::mesh::topology::Counts;
+use crate::mesh::{cadd, internal, topology_scratch_size, Mesh, MeshSizes, Topology, MAX_COUNT};
+
+/// Scratch sizes, each counted in elements of the buffer it sizes: `u32` entries and points
+/// (`[f64; 3]`, 24 bytes each).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ScratchSizes {
+    /// Entries of the `u32` scratch ([`Scratch::u32s`](super::Scratch::u32s)).
+    pub u32s: usize,
+    /// Points of the point scratch ([`Scratch::points`](super::Scratch::points)).
+    pub points: usize,
+}
+
+/// The exact sizes of every level of a [`subdivide`](super::subdivide) call and the exact
+/// scratch it needs, from [`plan`].
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Plan {
+    /// Number of levels.
+    pub levels: usize,
+    /// `sizes[0]` is the input, `sizes[k]` level `k`; entries above `levels` are zero.
+    pub sizes: [MeshSizes; MAX_LEVELS + 1],
+    /// Exactly the scratch [`subdivide`](super::subdivide) needs for these options (a
+    /// shorter buffer is [`Status::BufferTooSmall`]):
+    ///
+    /// * `u32s`: the topologies of the levels that are stepped from, plus the offsets and
+    ///   indices of the intermediate levels (two alternating buffers). The topology buffer
+    ///   is one (the largest level stepped from) for most patterns; for those whose child
+    ///   topology is derived from the parent's (Catmull–Clark, Kobbelt, Spherelike, Loop,
+    ///   Modified Butterfly) two alternate (a derivation reads one while writing the other).
+    ///   Never less than [`plan_scratch_size`]: with zero levels it is the input's topology,
+    ///   since the call still validates the input.
+    /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
+    ///   for the Möbius version, the candidates of the largest step (two per corner of the
+    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1).
+    pub scratch: ScratchSizes,
+}
+
+impl Plan {
+    /// The sizes of the last level: what the output buffers must hold.
+    pub fn output(&self) -> MeshSizes {
+        self.sizes.get(self.levels).copied().unwrap_or_default()
+    }
+
+    /// The candidate points of the largest Möbius step: two per corner of the largest level
+    /// stepped from (0 for zero levels).
+    pub(super) fn mobius_step_points(&self) -> Result<usize> {
+        let mut corners = 0usize;
+        for k in 0..self.levels {
+            corners = corners.max(self.sizes.get(k).ok_or(internal())?.indices);
+        }
+        super::mobius::candidate_points(corners)
+    }
+}
+
+/// The `u32` scratch entries [`plan`] needs for `mesh`: the input's half-edge topology
+/// ([`topology_scratch_size`], `4·corners + 3·vertices`), from the counts alone (nothing
+/// is read).
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
+    topology_scratch_size(mesh.num_vertices(), mesh.num_corners())
+}
+
+/// Validates `mesh` and `opts` and returns the exact sizes of every level and the exact
+/// scratch of [`subdivide`](super::subdivide) with the same arguments. `scratch_u32` holds
+/// at least [`plan_scratch_size`] entries; its contents are unspecified afterwards.
+///
+/// # Errors
+/// In this order: [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or
+/// [`Options::mobius`] with a scheme without a Möbius form; [`Status::BufferTooSmall`] (with
+/// the needed size) when `scratch_u32` is below [`plan_scratch_size`]; the validation errors
+/// of [`Topology::build`] (naming the face or vertex); for one or more levels, the scheme's
+/// own refusals of the input ([`Status::UnsupportedFaceType`] naming the face: Loop and
+/// Modified Butterfly accept triangles, Kobbelt quads; those of
+/// [`crate::mesh::refine::pattern_size`]); [`Status::SizeOverflow`] when a level has more
+/// than [`MAX_COUNT`] vertices, faces or corners; [`Status::ValenceTooHigh`] (no element:
+/// the vertex does not exist yet) when a later level would exceed [`crate::MAX_VALENCE`] or
+/// [`crate::MAX_FACE_SIZE`].
+pub fn plan(mesh: Mesh<'_>, opts: &Options, scratch_u32: &mut [u32]) -> Result<Plan> {
+    plan_with_topology(mesh, opts, scratch_u32).map(|(p, _)| p)
+}
+
+/// [`plan`], also returning the counts of the input's topology, which stays in
+/// `scratch_u32[..plan_scratch_size(mesh)]` for the first step of the level loop.
+pub(super) fn plan_with_topology(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    scratch_u32: &mut [u32],
+) -> Result<(Plan, Counts)> {
+    opts.check()?;
+    let need = plan_scratch_size(&mesh)?;
+    if scratch_u32.len() < need {
+        return Err(Error::too_small(need));
+    }
+    levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)
+}
+
+/// The plan of `levels` linear levels of `scheme`, validating `mesh` into `scratch`: the
+/// sizes of differential-space subdivision (seed 001), which steps its fields with the
+/// linear rules.
+pub(crate) fn plan_levels(
+    scheme: Scheme,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch: &mut [u32],
+) -> Result<Plan> {
+    levels_plan(scheme, false, mesh, levels, scratch).map(|(p, _)| p)
+}
+
+/// The plan of `levels` levels of `scheme` (linear, or Möbius with `mobius`), validating
+/// `mesh` into `scratch` (the options are checked by the callers).
+fn levels_plan(
+    scheme: Scheme,
+    mobius: bool,
+    mesh: Mesh<'_>,
+    levels: usize,
+    scratch: &mut [u32],
+) -> Result<(Plan, Counts)> {
+    if levels > MAX_LEVELS {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    let topo = Topology::build(mesh, scratch)?;
+    let counts = topo.counts();
+    let mut stats = LevelCounts::of(&topo)?;
+    let mut p = Plan {
+        levels,
+        sizes: [MeshSizes::default(); MAX_LEVELS + 1],
+        scratch: ScratchSizes::default(),
+    };
+    *p.sizes.get_mut(0).ok_or(internal())? = stats.sizes();
+    let pattern = scheme.pattern();
+    if levels > 0 {
+        // Level 1 exactly as the single step computes it (face types, per-vertex valences).
+        let first = step_size(scheme, &topo)?;
+        for k in 1..=levels {
+            stats = stats.next(pattern)?;
+            let sz = stats.sizes();
+            if k == 1 && sz != first {
+                return Err(internal());
+            }
+            *p.sizes.get_mut(k).ok_or(internal())? = sz;
+        }
+    }
+    let lay = Layout::of(&p, pattern)?;
+    let candidates = if mobius { p.mobius_step_points()? } else { 0 };
+    p.scratch = ScratchSizes {
+        u32s: lay.total_u32()?,
+        points: cadd(cadd(lay.points[0], lay.points[1])?, candidates)?,
+    };
+    if p.scratch.u32s > MAX_COUNT.saturating_mul(8) {
+        return Err(Error::new(Status::SizeOverflow));
+    }
+    Ok((p, counts))
+}

@@ -1,0 +1,87 @@
+//! The one call that subdivides a mesh: any scheme, linear or Möbius, one level or many,
+//! into caller buffers sized by [`super::plan`].
+
+use super::levels::run;
+use super::Options;
+#[cfg(doc)]
+use crate::error::Status;
+use crate::error::{Result, NO_ELEMENT};
+use crate::mesh::{Mesh, MeshOut, MeshSizes};
+use crate::point::Point;
+
+/// Caller scratch of [`subdivide`]: two typed buffers, `u32` entries (topologies and the
+/// connectivity of intermediate levels) and points (positions of intermediate levels and
+/// Möbius candidates), sized by [`Plan::scratch`](super::Plan::scratch). Two arrays rather
+/// than one byte buffer: one byte buffer would need casts and an alignment rule (unsafe code
+/// in the core) for no gain. Contents are unspecified after a call.
+#[derive(Debug)]
+pub struct Scratch<'a> {
+    /// At least [`ScratchSizes::u32s`](super::ScratchSizes::u32s) entries.
+    pub u32s: &'a mut [u32],
+    /// At least [`ScratchSizes::points`](super::ScratchSizes::points) points.
+    pub points: &'a mut [Point],
+}
+
+impl<'a> Scratch<'a> {
+    /// Bundles the two scratch buffers.
+    pub fn new(u32s: &'a mut [u32], points: &'a mut [Point]) -> Self {
+        Scratch { u32s, points }
+    }
+}
+
+/// What [`subdivide`] wrote and what the Möbius steps had to do besides the paper's rules.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Report {
+    /// The sizes written (those of [`Plan::output`](super::Plan::output)).
+    pub sizes: MeshSizes,
+    /// Output vertices that took their linear rule (a degenerate neighbourhood of a Möbius
+    /// step: coincident points, a star without a canonical form, a blend at infinity),
+    /// summed over the levels; 0 for the linear schemes.
+    pub fallbacks: u32,
+    /// The first such vertex of the first level that had one (an index into that level), or
+    /// [`NO_ELEMENT`].
+    pub first_fallback: u32,
+    /// That level, counted from 1, or 0 when there was no fallback.
+    pub first_fallback_level: u32,
+}
+
+impl Report {
+    /// The report of a call that wrote `sizes` without fallbacks.
+    pub(crate) const fn empty(sizes: MeshSizes) -> Report {
+        Report {
+            sizes,
+            fallbacks: 0,
+            first_fallback: NO_ELEMENT,
+            first_fallback_level: 0,
+        }
+    }
+}
+
+/// Subdivides `mesh` with `opts`: [`Options::levels`] steps of [`Options::scheme`], linear or
+/// canonical Möbius ([`Options::mobius`]), the intermediate levels in `scratch`, the last in
+/// `out`; zero levels validate the mesh and copy it. The result of `k` levels equals `k`
+/// calls of one level, bit for bit. Buffer sizes come from [`plan`](super::plan()) with the
+/// same `mesh` and `opts`; nothing is written to `out` before every size has been checked.
+///
+/// Output vertex order, faces and the per-scheme refusals are those of the module
+/// documentation ([`crate::scheme`]).
+///
+/// # Errors
+/// Those of [`plan`](super::plan()) (options, validation, the scheme's refusals, sizes), with
+/// `scratch.u32s` as its scratch; then [`Status::BufferTooSmall`] with the needed size,
+/// checked in the order `out.positions`, `out.offsets`, `out.indices`, `scratch.u32s`,
+/// `scratch.points`; during a step: [`Status::FallbackInStrictMode`] (with
+/// [`Options::strict`]) naming the output vertex of the level being computed,
+/// [`Status::DegenerateGeometry`] ([`super::Scheme::Spherelike`]: coincident points of one
+/// circle, or a spike) naming the output vertex, [`Status::NumericalFailure`] naming the
+/// first output vertex that is not finite (coordinates near the ends of the `f64` range).
+/// Contents of `out` and `scratch` are unspecified on error.
+pub fn subdivide(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+) -> Result<Report> {
+    run(mesh, opts, scratch, out)
+}
