@@ -8,7 +8,12 @@
 //! meshes epcot, pawn_tri and fertility (a missing file is printed as skipped). Cases: Loop,
 //! Modified Butterfly, DirMag 1 and 2 levels, levels 0–3 (fertility: 2), and the edit options
 //! set to values that change nothing (unit curvature scale, zero normals).
-#![allow(clippy::expect_used, clippy::unwrap_used, clippy::indexing_slicing, dead_code)]
+#![allow(
+    clippy::expect_used,
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    dead_code
+)]
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -111,12 +116,18 @@ fn main() {
                         curvature_scale: Some(&ones),
                         ..base
                     };
-                    println!("{name} {label} k={k} unit-scale {:016x}", hash(&differential_subdivide(m, &o)));
+                    println!(
+                        "{name} {label} k={k} unit-scale {:016x}",
+                        hash(&differential_subdivide(m, &o))
+                    );
                     let o = DifferentialOptions {
                         normals: Some(&zeros),
                         ..base
                     };
-                    println!("{name} {label} k={k} zero-normals {:016x}", hash(&differential_subdivide(m, &o)));
+                    println!(
+                        "{name} {label} k={k} zero-normals {:016x}",
+                        hash(&differential_subdivide(m, &o))
+                    );
                 }
             }
         }
