@@ -4,7 +4,7 @@
 //! `u32` codes, never reused. Codes 1–27 are the row numbers of their classes in the bad-input
 //! catalogue (`docs/bad-input-catalogue.md`), so that a number seen in a C host's log can be
 //! looked up there (a class that is accepted or reported with another class's status has no
-//! code of its own); 28 and 29 are numbered after the catalogue's rows.
+//! code of its own); 28–30 are numbered after the catalogue's rows.
 //!
 //! Both [`Status`] and [`Error`] are `#[non_exhaustive]`: a later version may add a status (a
 //! new code, never a changed one) or a field of the error without breaking callers, so a
@@ -73,11 +73,14 @@ pub enum Status {
     TooFewPoints = 28,
     /// The `strict` option was set and an element needed the documented linear fallback.
     FallbackInStrictMode = 29,
+    /// The `strict` option was set and an edit folded the surface (differential-space
+    /// editing: a face turned by more than 90° from the unedited result, or a folded edge).
+    FoldedSurface = 30,
 }
 
 impl Status {
     /// Every status, in code order (private so that cbindgen does not export it).
-    const LIST: [Status; 24] = [
+    const LIST: [Status; 25] = [
         Status::Ok,
         Status::NullParameter,
         Status::MisalignedPointer,
@@ -102,6 +105,7 @@ impl Status {
         Status::InvalidArgument,
         Status::TooFewPoints,
         Status::FallbackInStrictMode,
+        Status::FoldedSurface,
     ];
 
     /// Every status, in code order.
@@ -163,6 +167,7 @@ impl Status {
             Status::FallbackInStrictMode => {
                 c"an element needed the linear fallback and the strict option is set"
             }
+            Status::FoldedSurface => c"an edit folded the surface and the strict option is set",
         }
     }
 }

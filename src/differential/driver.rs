@@ -13,11 +13,11 @@ use super::laplacian::{self, Laplacian};
 use super::options::{DifferentialOptions, DifferentialReport};
 use super::placement::{self, Anchors};
 use super::plan::{plan, plan_scratch_len, DifferentialPlan, Layout};
-use super::solve::{self, SolveLevel, System};
-use super::{dirmag, edit};
-use crate::error::{Error, Result, Status};
+use super::solve::{self, SolveLevel, SolveReport, System};
+use super::{dirmag, edit, folds, normal_edit};
+use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::mesh::{cadd, cmul, get, internal, set, Mesh, MeshOut, MeshSizes, Topology};
-use crate::point::Point;
+use crate::point::{add, sub, Point};
 use crate::scheme::{Scheme, MAX_LEVELS};
 
 /// Differential-space subdivision of `mesh` (see the [module docs](super)) into `out`
@@ -55,20 +55,26 @@ pub fn subdivide(
     let dm = opts.dirmag_levels.min(k);
     let n0 = mesh.num_vertices();
     let nk = out_sizes.vertices;
+    let scheme = opts.stencil.scheme();
 
     let mut u = U32Buffers::carve(&plan, &lay, scratch_u32, n0, nk)?;
     let p = PointBuffers::carve(&lay, scratch_points, n0, nk)?;
     // The fields live in the solver's scratch, which the solve reuses once `δ` is copied out.
     let mut f = Fields::carve(&mut *p.work, n0, nk)?;
 
-    let anchors = level_zero(mesh, opts, dm, &mut u, &mut f)?;
-    let degenerate = subdivide_fields(mesh, &plan, opts.stencil.scheme(), dm, &mut u, out, &mut f)?;
-    let out_pos = out.positions.get_mut(..nk).ok_or(internal())?;
+    // The unedited reconstruction (with edits: the reference they are measured against).
+    let anchors = level_zero(mesh, dm, &mut u, &mut f)?;
+    let degenerate = subdivide_fields(mesh, &plan, scheme, dm, &mut u, out, &mut f)?;
     if k == 0 {
         set_faces(mesh, out.offsets, out.indices)?;
     }
     report.dirmag_degenerate = degenerate;
     report.anchors = anchors.count as u32;
+    report.reference_solve = SolveReport::default();
+    report.folded_faces = 0;
+    report.first_folded_face = NO_ELEMENT;
+    report.folded_edges = 0;
+    report.first_folded_edge = [NO_ELEMENT; 2];
 
     // The positions of the meshes `build_hierarchy` builds topologies of: `p.rhs`, zeroed
     // (only the connectivity is read), which then receives `δ`.
@@ -81,10 +87,99 @@ pub fn subdivide(
         &mut u,
         anchors,
     )?;
-    let levels = solve_levels(&u, k)?;
     scaled_delta(k, f.da, p.rhs, nk);
-    placement::spatial_centroid_sums(u.labels, out_pos, p.sums_x, p.sums_s, p.counts)?;
+    {
+        let out_pos = out.positions.get_mut(..nk).ok_or(internal())?;
+        placement::spatial_centroid_sums(u.labels, out_pos, p.sums_x, p.sums_s, p.counts)?;
+    }
+    let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+    report.solve = r;
+    if !r.converged {
+        return Err(Error::new(Status::NotConverged));
+    }
 
+    let edited = opts.curvature_scale.is_some() || opts.normals.is_some();
+    if edited {
+        report.reference_solve = r;
+        let out_pos = out.positions.get(..nk).ok_or(internal())?;
+        copy_points(out_pos, p.reference)?;
+    }
+    // A scale of 1 everywhere changes nothing (`1 · δ = δ`): no second solve.
+    if let Some(sc) = opts.curvature_scale.filter(|s| s.iter().any(|&x| x != 1.0)) {
+        // §4.4 curvature edit: `Δ⁰` scaled, subdivided again and solved from the unedited
+        // result (the anchors keep their values).
+        let mut f = Fields::carve(&mut *p.work, n0, nk)?;
+        {
+            let topo = Topology::build(mesh, u.topo)?;
+            let (r, c, bf) = u.laps.first().ok_or(internal())?;
+            let lap = Laplacian {
+                rows: r,
+                cols: c,
+                boundary: bf,
+            };
+            delta_level_zero(mesh, &topo, lap, Some(sc), dm, &mut f)?;
+        }
+        report.dirmag_degenerate = subdivide_delta(mesh, &plan, scheme, dm, &mut u, out, &mut f)?;
+        scaled_delta(k, f.da, p.rhs, nk);
+        let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+        report.solve = r;
+        if !r.converged {
+            return Err(Error::new(Status::NotConverged));
+        }
+    }
+    if let Some(normals) = opts.normals {
+        // §4.4 normal edit (`normal_edit.rs`): `δ ← δ + L_k D`, solved from `X + D`.
+        if turn_normals(mesh, &plan, normals, &mut u, out, p.rhs, p.work)? > 0 {
+            let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+            report.solve = r;
+            if !r.converged {
+                return Err(Error::new(Status::NotConverged));
+            }
+        }
+    }
+    {
+        let out_pos = out.positions.get_mut(..nk).ok_or(internal())?;
+        placement::place(u.labels, out_pos, p.sums_x, p.sums_s, p.counts)?;
+    }
+    if edited {
+        let pos = out.positions.get(..nk).ok_or(internal())?;
+        let m = Mesh::new(
+            pos,
+            out.offsets.get(..out_sizes.offsets()?).ok_or(internal())?,
+            out.indices.get(..out_sizes.indices).ok_or(internal())?,
+        );
+        let topo = Topology::build(m, u.topo)?;
+        let fo = folds::census(&topo, pos, p.reference)?;
+        report.folded_faces = fo.faces;
+        report.first_folded_face = fo.first_face;
+        report.folded_edges = fo.edges;
+        report.first_folded_edge = fo.first_edge;
+        if let (true, Some(face)) = (opts.strict, fo.culprit()) {
+            return Err(Error::at(Status::FoldedSurface, face));
+        }
+    }
+    Ok(out_sizes)
+}
+
+/// `dst[..src.len()] = src`.
+fn copy_points(src: &[Point], dst: &mut [Point]) -> Result<()> {
+    let d = dst.get_mut(..src.len()).ok_or(internal())?;
+    d.copy_from_slice(src);
+    Ok(())
+}
+
+/// One reconstruction (§3.5 step 4) of `δ` (in `rhs`) from the warm start in
+/// `out.positions`, overwritten with the solution; the anchors keep their warm-start values.
+fn reconstruct(
+    u: &U32Buffers<'_>,
+    k: usize,
+    anchors: Anchors,
+    rhs: &[Point],
+    out: &mut MeshOut<'_>,
+    work: &mut [Point],
+    opts: &solve::SolveOptions,
+) -> Result<solve::SolveReport> {
+    let levels = solve_levels(u, k)?;
     let sys = System {
         levels: &levels,
         anchors: u.anchors.get(..anchors.count).ok_or(internal())?,
@@ -93,13 +188,124 @@ pub fn subdivide(
         components: u.labels,
         open: u.open,
     };
-    let r = solve::solve(&sys, p.rhs, out_pos, p.work, &opts.solve)?;
-    report.solve = r;
-    if !r.converged {
-        return Err(Error::new(Status::NotConverged));
+    let n = rhs.len();
+    let x = out.positions.get_mut(..n).ok_or(internal())?;
+    solve::solve(&sys, rhs, x, work, opts)
+}
+
+/// The normal edit of `normal_edit.rs` on the solved positions in `out.positions` (`nk`
+/// vertices, not yet placed): the rotation field seeded at each edited vertex's seed level and
+/// subdivided with Loop over the stored faces of every level, the displacement `D`,
+/// `rhs += L_k D` and
+/// `out.positions += D`. `work` is the solver's scratch (free between solves). Returns the
+/// number of edited vertices (0: nothing changed).
+fn turn_normals(
+    mesh: Mesh<'_>,
+    plan: &DifferentialPlan,
+    normals: &[Point],
+    u: &mut U32Buffers<'_>,
+    out: &mut MeshOut<'_>,
+    rhs: &mut [Point],
+    work: &mut [Point],
+) -> Result<usize> {
+    let k = plan.levels;
+    let nk = plan.output().vertices;
+    let mut w: &mut [Point] = work;
+    let star = take(&mut w, nk)?;
+    let mut wa = take(&mut w, nk)?;
+    let mut wb = take(&mut w, nk)?;
+    let mut ca = take(&mut w, nk)?;
+    let mut cb = take(&mut w, nk)?;
+    let d = take(&mut w, nk)?;
+    let ld = take(&mut w, nk)?;
+    let top = plan.output();
+    {
+        let x = out.positions.get(..nk).ok_or(internal())?;
+        let m = Mesh::new(
+            x,
+            out.offsets.get(..top.offsets()?).ok_or(internal())?,
+            out.indices.get(..top.indices).ok_or(internal())?,
+        );
+        let topo = Topology::build(m, u.topo)?;
+        normal_edit::star_normals(&topo, star)?;
     }
-    placement::place(u.labels, out_pos, p.sums_x, p.sums_s, p.counts)?;
-    Ok(out_sizes)
+    // Per control vertex: its rotation vector (in `d`) and seed level (in `ld`), until `d`
+    // and `ld` receive `D` and `L_k D`.
+    let (omegas, levels) = (&mut *d, &mut *ld);
+    let edited = {
+        let topo0 = Topology::build(mesh, u.topo)?;
+        normal_edit::rotations(&topo0, normals, star, k, omegas, levels)?
+    };
+    if edited == 0 {
+        return Ok(0);
+    }
+    {
+        let x = out.positions.get(..nk).ok_or(internal())?;
+        for (i, (w, c)) in wa
+            .iter_mut()
+            .zip(ca.iter_mut())
+            .enumerate()
+            .take(mesh.num_vertices())
+        {
+            *w = [0.0; 3];
+            *c = get(x, i)?;
+        }
+    }
+    {
+        let x: &[Point] = out.positions.get(..nk).ok_or(internal())?;
+        let seeds = normal_edit::Seeds {
+            normals,
+            omegas,
+            levels,
+            x,
+        };
+        for_each_level(
+            mesh,
+            plan,
+            u,
+            out.offsets,
+            out.indices,
+            |j, src, offs, idx, topo| {
+                {
+                    // The topology of level j (its positions are not read by the seeding).
+                    let (o, i, n) = src;
+                    let m = Mesh::new(x.get(..n).ok_or(internal())?, o, i);
+                    let t = Topology::build(m, &mut *topo)?;
+                    seeds.seed(&t, j, wa, ca)?;
+                }
+                subdivide_field(Scheme::Loop, src, wa, wb, offs, idx, topo)?;
+                subdivide_field(Scheme::Loop, src, ca, cb, offs, idx, topo)?;
+                core::mem::swap(&mut wa, &mut wb);
+                core::mem::swap(&mut ca, &mut cb);
+                Ok(())
+            },
+        )?;
+        // Seeds of level k (edited vertices that k does not leave room for).
+        let m = Mesh::new(
+            x,
+            out.offsets.get(..top.offsets()?).ok_or(internal())?,
+            out.indices.get(..top.indices).ok_or(internal())?,
+        );
+        let t = Topology::build(m, u.topo)?;
+        seeds.seed(&t, k, wa, ca)?;
+    }
+    let x = out.positions.get_mut(..nk).ok_or(internal())?;
+    for i in 0..nk {
+        let v = sub(get(x, i)?, get(ca, i)?);
+        set(d, i, normal_edit::rotation_displacement(get(wa, i)?, v))?;
+    }
+    let (r, c, bf) = u.laps.get(k).ok_or(internal())?;
+    let lap = Laplacian {
+        rows: r,
+        cols: c,
+        boundary: bf,
+    };
+    lap.apply(d, 1.0, ld)?;
+    for (i, (xi, ri)) in x.iter_mut().zip(rhs.iter_mut()).enumerate().take(nk) {
+        *xi = add(*xi, get(d, i)?);
+        *ri = add(*ri, get(ld, i)?);
+    }
+    Ok(edited)
 }
 
 /// The `u32` scratch of [`subdivide`], carved in the order of [`Layout`].
@@ -180,6 +386,8 @@ struct PointBuffers<'a> {
     sums_s: &'a mut [Point],
     /// Per component: its vertex count (`[n, 0, 0]`).
     counts: &'a mut [Point],
+    /// With edits: the unedited result, the reference of the fold census.
+    reference: &'a mut [Point],
 }
 
 impl<'a> PointBuffers<'a> {
@@ -196,6 +404,7 @@ impl<'a> PointBuffers<'a> {
             sums_x: take(&mut ps, n0)?,
             sums_s: take(&mut ps, n0)?,
             counts: take(&mut ps, n0)?,
+            reference: take(&mut ps, lay.reference)?,
         })
     }
 }
@@ -246,12 +455,10 @@ fn take<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
     Ok(a)
 }
 
-/// Level 0: the Laplacian `L₀` (into `u.laps[0]`), `Δ⁰ = L₀ V⁰` (Eq. (2)–(3), Eq. (8) on the
-/// boundary) into `f.da`, edited and split into `H` and `n` (§4.4, `edit.rs`), and the
-/// components and anchors of the control mesh (`placement.rs`).
+/// Level 0: the Laplacian `L₀` (into `u.laps[0]`), the unedited `Δ⁰` ([`delta_level_zero`])
+/// and the components and anchors of the control mesh (`placement.rs`).
 fn level_zero(
     mesh: Mesh<'_>,
-    opts: &DifferentialOptions<'_>,
     dm: usize,
     u: &mut U32Buffers<'_>,
     f: &mut Fields<'_>,
@@ -265,23 +472,77 @@ fn level_zero(
         cols: c,
         boundary: bf,
     };
+    delta_level_zero(mesh, &topo, lap, None, dm, f)?;
+    placement::components_and_anchors(&topo, n0, u.labels, u.open, u.anchors, u.loop_mark)
+}
+
+/// `Δ⁰ = L₀ V⁰` (Eq. (2)–(3), Eq. (8) on the boundary) of the control mesh `mesh` (topology
+/// `topo`, Laplacian `lap`) into `f.da`, scaled by the curvature edit `scale` and split into
+/// `H` and `n` (§4.4, `edit.rs`).
+fn delta_level_zero(
+    mesh: Mesh<'_>,
+    topo: &Topology<'_, '_>,
+    lap: Laplacian<'_>,
+    scale: Option<&[f64]>,
+    dm: usize,
+    f: &mut Fields<'_>,
+) -> Result<()> {
+    let n0 = mesh.num_vertices();
     let pos0 = f.spatial_tmp.get_mut(..n0).ok_or(internal())?;
     for (v, p) in mesh.positions().enumerate() {
         set(pos0, v, p)?;
     }
     lap.apply(pos0, 1.0, f.da)?;
-    if dm > 0 || opts.normals.is_some() {
-        dirmag::angle_weighted_normals(&topo, f.nbar)?;
+    if dm > 0 {
+        dirmag::angle_weighted_normals(topo, f.nbar)?;
     }
-    edit::edit_differentials(opts, n0, f.da, f.ha, f.na, f.nbar)?;
-    placement::components_and_anchors(&topo, n0, u.labels, u.open, u.anchors, u.loop_mark)
+    edit::edit_differentials(scale, n0, f.da, f.ha, f.na, f.nbar)
 }
 
-/// Levels `1..k`: the spatial subdivision (the solver's warm start, ending in `out_pos`) and
-/// `Δ` — or, for the first `dm` levels, DirMag's `H` and `n` (§3.4), recombined into `Δ` after
-/// level `dm` — each subdivided with the linear `scheme`. The faces of levels `1..k−1` go to
-/// `u.faces`, those of level `k` to `out`. Returns the number of DirMag normals too short to
-/// normalise.
+/// Runs `step(j, source, offsets, indices, topology scratch)` for every level `j` in
+/// `0..k`: `source` is level `j`'s faces and vertex count, `offsets` and `indices` receive
+/// level `j + 1`'s faces (those of levels `1..k−1` in `u.faces`, level `k`'s in `out`). A
+/// step that subdivides writes them; rewriting them gives the same values.
+fn for_each_level(
+    mesh: Mesh<'_>,
+    plan: &DifferentialPlan,
+    u: &mut U32Buffers<'_>,
+    out_offs: &mut [u32],
+    out_idx: &mut [u32],
+    mut step: impl FnMut(
+        usize,
+        (&[u32], &[u32], usize),
+        &mut [u32],
+        &mut [u32],
+        &mut [u32],
+    ) -> Result<()>,
+) -> Result<()> {
+    let k = plan.levels;
+    for j in 0..k {
+        let sj = plan.size(j)?;
+        let nf = u.faces.len();
+        let (lo, hi) = u.faces.split_at_mut_checked(j.min(nf)).ok_or(internal())?;
+        let (src_o, src_i): (&[u32], &[u32]) = if j == 0 {
+            (mesh.offsets, mesh.indices)
+        } else {
+            let prev = lo.last().ok_or(internal())?;
+            (&*prev.0, &*prev.1)
+        };
+        let (doffs, didx): (&mut [u32], &mut [u32]) = if j + 1 == k {
+            (&mut *out_offs, &mut *out_idx)
+        } else {
+            let next = hi.first_mut().ok_or(internal())?;
+            (&mut *next.0, &mut *next.1)
+        };
+        step(j, (src_o, src_i, sj.vertices), doffs, didx, u.topo)?;
+    }
+    Ok(())
+}
+
+/// Levels `1..k`: the spatial subdivision (the solver's warm start, ending in `out.positions`)
+/// and `Δ` ([`delta_step`]), each subdivided with the linear `scheme`; the faces of levels
+/// `1..k−1` go to `u.faces`, those of level `k` to `out`. Returns the number of DirMag normals
+/// too short to normalise.
 fn subdivide_fields(
     mesh: Mesh<'_>,
     plan: &DifferentialPlan,
@@ -295,62 +556,98 @@ fn subdivide_fields(
     let nk = plan.output().vertices;
     let mut degenerate = 0u32;
     // The spatial level j lives in `out.positions` when k − j is even, else in `f.spatial_tmp`.
-    let out_pos = out.positions.get_mut(..nk).ok_or(internal())?;
+    let op = out.positions.get_mut(..nk).ok_or(internal())?;
     if k % 2 == 0 {
         for (v, p) in mesh.positions().enumerate() {
-            set(out_pos, v, p)?;
+            set(op, v, p)?;
         }
     }
-    let (out_offs, out_idx) = (&mut *out.offsets, &mut *out.indices);
-    for j in 0..k {
-        let sj = plan.size(j)?;
-        let sn = plan.size(j + 1)?;
-        let nf = u.faces.len();
-        let (lo, hi) = u.faces.split_at_mut_checked(j.min(nf)).ok_or(internal())?;
-        let (src_o, src_i): (&[u32], &[u32]) = if j == 0 {
-            (mesh.offsets, mesh.indices)
-        } else {
-            let prev = lo.last().ok_or(internal())?;
-            (&*prev.0, &*prev.1)
-        };
-        let src = (src_o, src_i, sj.vertices);
-        // Destination faces of level j + 1.
-        let dst_faces: (&mut [u32], &mut [u32]) = if j + 1 == k {
-            (&mut *out_offs, &mut *out_idx)
-        } else {
-            let next = hi.first_mut().ok_or(internal())?;
-            (&mut *next.0, &mut *next.1)
-        };
-        let (doffs, didx) = dst_faces;
-        // Spatial warm start.
-        let (src_sp, dst_sp): (&[Point], &mut [Point]) = if (k - j) % 2 == 0 {
-            (&*out_pos, &mut *f.spatial_tmp)
-        } else {
-            (&*f.spatial_tmp, &mut *out_pos)
-        };
-        subdivide_field(scheme, src, src_sp, dst_sp, doffs, didx, u.topo)?;
-        if j < dm {
-            subdivide_field(scheme, src, f.ha, f.hb, doffs, didx, u.topo)?;
-            subdivide_field(scheme, src, f.na, f.nb, doffs, didx, u.topo)?;
-            for p in f.nb.iter_mut().take(sn.vertices) {
-                match dirmag::normalized(*p) {
-                    Some(u) => *p = u,
-                    None => degenerate += 1,
-                }
+    for_each_level(
+        mesh,
+        plan,
+        u,
+        out.offsets,
+        out.indices,
+        |j, src, doffs, didx, topo| {
+            // Spatial warm start.
+            let (src_sp, dst_sp): (&[Point], &mut [Point]) = if (k - j) % 2 == 0 {
+                (&*op, &mut *f.spatial_tmp)
+            } else {
+                (&*f.spatial_tmp, &mut *op)
+            };
+            subdivide_field(scheme, src, src_sp, dst_sp, doffs, didx, topo)?;
+            let sn = plan.size(j + 1)?.vertices;
+            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f)?;
+            Ok(())
+        },
+    )?;
+    Ok(degenerate)
+}
+
+/// Levels `1..k` of `Δ` alone ([`delta_step`]) over the faces already in `u.faces` and `out`.
+/// Returns the number of DirMag normals too short to normalise.
+fn subdivide_delta(
+    mesh: Mesh<'_>,
+    plan: &DifferentialPlan,
+    scheme: Scheme,
+    dm: usize,
+    u: &mut U32Buffers<'_>,
+    out: &mut MeshOut<'_>,
+    f: &mut Fields<'_>,
+) -> Result<u32> {
+    let mut degenerate = 0u32;
+    for_each_level(
+        mesh,
+        plan,
+        u,
+        out.offsets,
+        out.indices,
+        |j, src, doffs, didx, topo| {
+            let sn = plan.size(j + 1)?.vertices;
+            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f)?;
+            Ok(())
+        },
+    )?;
+    Ok(degenerate)
+}
+
+/// Step `j → j + 1` of `Δ` with the linear `scheme` — or, for the first `dm` levels, of
+/// DirMag's `H` and `n` (§3.4), recombined into `Δ` after level `dm`. `sn` is the vertex count
+/// of level `j + 1`. Returns the number of DirMag normals too short to normalise.
+#[allow(clippy::too_many_arguments)]
+fn delta_step(
+    scheme: Scheme,
+    j: usize,
+    dm: usize,
+    sn: usize,
+    src: (&[u32], &[u32], usize),
+    doffs: &mut [u32],
+    didx: &mut [u32],
+    topo: &mut [u32],
+    f: &mut Fields<'_>,
+) -> Result<u32> {
+    let mut degenerate = 0u32;
+    if j < dm {
+        subdivide_field(scheme, src, f.ha, f.hb, doffs, didx, topo)?;
+        subdivide_field(scheme, src, f.na, f.nb, doffs, didx, topo)?;
+        for p in f.nb.iter_mut().take(sn) {
+            match dirmag::normalized(*p) {
+                Some(u) => *p = u,
+                None => degenerate += 1,
             }
-            core::mem::swap(&mut f.ha, &mut f.hb);
-            core::mem::swap(&mut f.na, &mut f.nb);
-            if j + 1 == dm {
-                for i in 0..sn.vertices {
-                    let h = get(f.ha, i)?[0];
-                    let u = get(f.na, i)?;
-                    set(f.da, i, [h * u[0], h * u[1], h * u[2]])?;
-                }
-            }
-        } else {
-            subdivide_field(scheme, src, f.da, f.db, doffs, didx, u.topo)?;
-            core::mem::swap(&mut f.da, &mut f.db);
         }
+        core::mem::swap(&mut f.ha, &mut f.hb);
+        core::mem::swap(&mut f.na, &mut f.nb);
+        if j + 1 == dm {
+            for i in 0..sn {
+                let h = get(f.ha, i)?[0];
+                let u = get(f.na, i)?;
+                set(f.da, i, [h * u[0], h * u[1], h * u[2]])?;
+            }
+        }
+    } else {
+        subdivide_field(scheme, src, f.da, f.db, doffs, didx, topo)?;
+        core::mem::swap(&mut f.da, &mut f.db);
     }
     Ok(degenerate)
 }

@@ -53,6 +53,8 @@ pub mod solve;
 
 mod driver;
 mod edit;
+mod folds;
+mod normal_edit;
 mod options;
 mod placement;
 mod plan;

@@ -21,6 +21,8 @@ pub struct DifferentialPlan {
     pub scratch_u32: usize,
     /// Point scratch entries.
     pub scratch_points: usize,
+    /// Whether edits are planned (they need the unedited result kept as the reference).
+    edited: bool,
 }
 
 impl DifferentialPlan {
@@ -67,7 +69,8 @@ impl DifferentialPlan {
         }
         let fields = cadd(cmul(nk, 7)?, n0)?;
         u.work = solve::solve_scratch_len(&counts)?.max(fields);
-        u.points = cadd(cadd(u.work, nk)?, cmul(n0, 3)?)?;
+        u.reference = if self.edited { nk } else { 0 };
+        u.points = cadd(cadd(cadd(u.work, nk)?, cmul(n0, 3)?)?, u.reference)?;
         u.u32s = cadd(
             cadd(cadd(u.topo, u.faces)?, cadd(u.lap, u.edges)?)?,
             u.marks,
@@ -94,7 +97,11 @@ pub(super) struct Layout {
     pub(super) marks: usize,
     /// Points: the solver's scratch, which first holds the subdivided fields.
     pub(super) work: usize,
-    /// Points in all: `work`, the right-hand side and three per-component sums.
+    /// Points: the unedited result, kept as the reference of the edits (`nk` when the call
+    /// has edits, else 0).
+    pub(super) reference: usize,
+    /// Points in all: `work`, the right-hand side, three per-component sums and the
+    /// reference.
     pub(super) points: usize,
     /// `u32` in all.
     pub(super) u32s: usize,
@@ -113,7 +120,8 @@ pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
 /// # Errors
 /// Validation errors of [`Topology::build`]; [`Status::UnsupportedFaceType`] naming the first
 /// face that is not a triangle; [`Status::InvalidArgument`] for more than [`MAX_LEVELS`]
-/// levels, a bad tolerance, or an edit slice whose length is not the vertex count;
+/// levels or a bad tolerance, and for an edit slice whose length is not the vertex count
+/// (naming the first index without a partner, [`check_len`]);
 /// [`Status::NonFiniteInput`] for a non-finite edit value (naming the vertex);
 /// [`Status::SizeOverflow`]; [`Status::ValenceTooHigh`].
 pub fn plan(
@@ -127,17 +135,13 @@ pub fn plan(
     }
     let n = mesh.num_vertices();
     if let Some(s) = opts.curvature_scale {
-        if s.len() != n {
-            return Err(Error::new(Status::InvalidArgument));
-        }
+        check_len(s.len(), n)?;
         if let Some(i) = s.iter().position(|x| !x.is_finite()) {
             return Err(Error::at(Status::NonFiniteInput, i as u32));
         }
     }
     if let Some(s) = opts.normals {
-        if s.len() != n {
-            return Err(Error::new(Status::InvalidArgument));
-        }
+        check_len(s.len(), n)?;
         if let Some(i) = s.iter().position(|x| !crate::point::is_finite(x)) {
             return Err(Error::at(Status::NonFiniteInput, i as u32));
         }
@@ -156,9 +160,22 @@ pub fn plan(
         sizes: lp.sizes,
         scratch_u32: 0,
         scratch_points: 0,
+        edited: false,
     };
+    p.edited = opts.curvature_scale.is_some() || opts.normals.is_some();
     let l = p.layout()?;
     p.scratch_u32 = l.u32s;
     p.scratch_points = l.points;
     Ok(p)
+}
+
+/// An edit slice must have one entry per control vertex; otherwise
+/// [`Status::InvalidArgument`] naming the first index that has no partner: the first vertex
+/// without a value (a short slice) or the first value without a vertex (a long one).
+fn check_len(len: usize, n: usize) -> Result<()> {
+    if len == n {
+        Ok(())
+    } else {
+        Err(Error::at(Status::InvalidArgument, len.min(n) as u32))
+    }
 }
