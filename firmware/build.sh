@@ -62,6 +62,17 @@ case "$target" in
         # use it for f64; its own target directory, since RUSTFLAGS differ from m4f's.
         lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-m7-o$opt" "-C target-cpu=cortex-m7")
         cortex_m "-mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard" "$lib" ;;
+    riscv32)
+        # RV32IMAC: no FPU, f64 in software. picolibc with semihosting (its own start-up code
+        # and linker script), on QEMU's virt board: RAM from 0x80000000.
+        lib=$(staticlib riscv32imac-unknown-none-elf "$ROOT/target/firmware/cargo-o$opt")
+        riscv64-unknown-elf-gcc -march=rv32imac -mabi=ilp32 $CFLAGS_COMMON -DFW_BARE_METAL \
+            -ffunction-sections -fdata-sections "${SOURCES[@]}" \
+            --specs=picolibc.specs --oslib=semihost --crt0=semihost \
+            -Wl,--defsym=__flash=0x80000000 -Wl,--defsym=__flash_size=0x00400000 \
+            -Wl,--defsym=__ram=0x80400000 -Wl,--defsym=__ram_size=0x00400000 \
+            -Wl,--defsym=__stack_size=0x40000 -Wl,--gc-sections "$lib" -lm -o "$out/harness.elf"
+        echo "$out/harness.elf" ;;
     *)
         echo "unknown target $target" >&2; exit 2 ;;
 esac
