@@ -8,6 +8,7 @@
 #   m4f      Cortex-M4F (f64 in software), bare metal under qemu-system-arm -M mps2-an386
 #   m7       Cortex-M7 (double-precision FPU), bare metal under qemu-system-arm -M mps2-an500
 #   riscv32  RV32IMAC (no FPU), bare metal under qemu-system-riscv32 -M virt
+#   example  c_examples/bare-metal built with its Makefile and run on the Cortex-M4F
 #
 # Each run must end with "harness: N cases, P passed, 0 failed", and its case lines (one
 # output hash per case) must equal the x86_64 ones. The M4F run also measures each case's
@@ -43,7 +44,7 @@ missing() {
             have_std aarch64-unknown-linux-gnu || m+=("rustup target aarch64-unknown-linux-gnu")
             command -v aarch64-linux-gnu-gcc >/dev/null || m+=(gcc-aarch64-linux-gnu)
             command -v qemu-aarch64 >/dev/null || m+=("qemu-user (qemu-aarch64)") ;;
-        m4f|m7)
+        m4f|m7|example)
             have_std thumbv7em-none-eabihf || m+=("rustup target thumbv7em-none-eabihf")
             command -v arm-none-eabi-gcc >/dev/null || m+=(gcc-arm-none-eabi)
             if command -v arm-none-eabi-gcc >/dev/null; then
@@ -76,6 +77,27 @@ run() {
 }
 
 cases_of() { grep '^case ' "$OUT/$1/run.txt"; }
+
+# The bare-metal example: its own Makefile, the harness's M4F cargo directory (no rebuild),
+# exit status 0 when its results are on their circle and sphere.
+example() {
+    local t0=$SECONDS lacking log=$OUT/example/run.txt
+    lacking=$(missing example)
+    if [ -n "$lacking" ]; then
+        echo "SKIP  example — missing: $lacking (scripts/setup.sh installs it)"
+        skipped=$((skipped+1)); return
+    fi
+    mkdir -p "$OUT/example"
+    if make -s -C c_examples/bare-metal run CARGO_TARGET_DIR="$OUT/cargo-o3" OUT="$OUT/example" >"$log" 2>&1 &&
+        grep -q "largest distance from the sphere" "$log"; then
+        echo "PASS  example ($((SECONDS-t0)) s): $(grep -c . "$log") lines, exit status 0 (results on their circle and sphere)"
+        passed=$((passed+1))
+    else
+        echo "FAIL  example ($((SECONDS-t0)) s); last lines of $log:"
+        tail -n 15 "$log" | sed 's/^/      /'
+        failed=$((failed+1))
+    fi
+}
 
 # check TARGET: builds and runs TARGET; compares with the reference unless TARGET is it.
 check() {
@@ -131,10 +153,11 @@ stack_table() {
 }
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32)
+[ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
 # The reference first: every other target is compared with it.
 if [[ " ${targets[*]} " != *" x86_64 "* ]]; then targets=(x86_64 "${targets[@]}"); fi
 for t in "${targets[@]}"; do
+    if [ "$t" = example ]; then example; continue; fi
     check "$t"
     if [ "$t" = x86_64 ] && [ ! -f "$OUT/x86_64/run.txt" ]; then
         echo "SKIP  every other target — no x86_64 reference"
