@@ -4,7 +4,11 @@
 set -euo pipefail
 pkgs=(gcc g++ make cmake pkg-config valgrind libopenmesh-dev libcgal-dev libosd-dev libeigen3-dev python3
     # the Debian packages (scripts/test-packages.sh), the manual page, the C API reference
-    dpkg-dev debhelper lintian man-db doxygen)
+    dpkg-dev debhelper lintian man-db doxygen
+    # scripts/test-firmware.sh: cross compilers, C libraries and emulators for aarch64 Linux,
+    # Cortex-M4F/M7 (newlib with semihosting) and riscv32imac (picolibc)
+    gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user gcc-arm-none-eabi libnewlib-arm-none-eabi
+    qemu-system-arm gcc-riscv64-unknown-elf picolibc-riscv64-unknown-elf qemu-system-misc)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -14,6 +18,17 @@ if [ ${#missing[@]} -gt 0 ]; then
     echo "setup: installing ${missing[*]}"
     $SUDO apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+# The Rust standard libraries of the firmware targets (scripts/test-firmware.sh).
+if command -v rustup >/dev/null; then
+    fw_targets=(thumbv7em-none-eabihf aarch64-unknown-linux-gnu riscv32imac-unknown-none-elf)
+    installed=$(rustup target list --installed)
+    for t in "${fw_targets[@]}"; do
+        if ! grep -qx "$t" <<<"$installed"; then
+            echo "setup: rustup target add $t"
+            rustup target add "$t"
+        fi
+    done
 fi
 if ! (command -v cbindgen >/dev/null && cbindgen --version | grep -q "0.29.4"); then
     echo "setup: installing cbindgen 0.29.4"

@@ -6,11 +6,12 @@ use core::mem::{align_of, size_of};
 use nlsubdiv::{Point, Status};
 
 // The floating-point environment of the calling thread (docs/DECISIONS.md, "Host
-// floating-point traps").
+// floating-point traps"; docs/firmware.md, "Floating-point environment", for each
+// architecture).
 //
-// * Modes that change results (flush-to-zero, denormals-are-zero, a rounding mode other
-//   than to nearest) are refused with `NLS_STATUS_FP_ENVIRONMENT`: the documented bits
-//   would not come out. [`fp_env_is_default`] reads them.
+// * Modes that change results (flush-to-zero, denormals-are-zero, default-NaN, a rounding
+//   mode other than to nearest) are refused with `NLS_STATUS_FP_ENVIRONMENT`: the documented
+//   bits would not come out. [`fp_env_is_default`] reads them.
 // * Unmasked exception traps (a host that called `feenableexcept`) do not change any result
 //   — a masked exception gives the IEEE default result, which is what the library computes
 //   with and then checks (an overflow becomes `NLS_STATUS_NUMERICAL_FAILURE`, never a
@@ -30,7 +31,11 @@ mod fpcr {
     /// All six exception masks set: no traps.
     pub(crate) const TRAPS_MASKED: Reg = 0x1F80;
     /// Rounding control, flush-to-zero, denormals-are-zero.
-    pub(crate) const MODE_BITS: Reg = 0xE040;
+    const MODE_BITS: Reg = 0xE040;
+
+    pub(crate) fn modes_set(csr: Reg) -> bool {
+        csr & MODE_BITS != 0
+    }
 
     pub(crate) fn read() -> Reg {
         let mut csr: u32 = 0;
@@ -59,17 +64,31 @@ mod fpcr {
     pub(crate) fn traps_unmasked(csr: Reg) -> bool {
         csr & TRAPS_MASKED != TRAPS_MASKED
     }
+
+    /// SSE computes every `f64` operation, so a mode bit that is set applies to them.
+    pub(crate) fn modes_reach_f64() -> bool {
+        true
+    }
 }
 
 /// FPCR (aarch64): trap enables IOE, DZE, OFE, UFE, IXE (bits 8-12) and IDE (bit 15);
-/// rounding mode bits 22-23, flush-to-zero bit 24. Not tested on hardware by this
-/// project's CI (x86_64 only); most cores do not implement the trap enables (they read as
-/// zero), which this code handles the same way.
+/// rounding mode RMode bits 22-23, flush-to-zero FZ bit 24, default-NaN DN bit 25 (a NaN
+/// result is the default NaN instead of the operand's payload), and, on cores with
+/// FEAT_AFP, FIZ bit 0 (flush denormal inputs) and AH bit 1 (alternate NaN and denormal
+/// handling), which read as zero elsewhere. The half-precision FZ16 (bit 19) is not a mode
+/// of `f64`. Most cores do not implement the trap enables (they read as zero, as they do
+/// under QEMU), which this code handles the same way. Tested under QEMU by the firmware
+/// harness (docs/firmware.md): FZ, DN and each rounding mode are refused; FIZ, AH and the
+/// trap enables are not implemented there.
 #[cfg(target_arch = "aarch64")]
 mod fpcr {
     pub(crate) type Reg = u64;
     const TRAP_ENABLES: Reg = 0x9F00;
-    pub(crate) const MODE_BITS: Reg = 0x01C0_0000;
+    const MODE_BITS: Reg = 0x03C0_0003;
+
+    pub(crate) fn modes_set(v: Reg) -> bool {
+        v & MODE_BITS != 0
+    }
 
     pub(crate) fn read() -> Reg {
         let v: u64;
@@ -95,19 +114,37 @@ mod fpcr {
     pub(crate) fn traps_unmasked(v: Reg) -> bool {
         v & TRAP_ENABLES != 0
     }
+
+    /// The FPU computes every `f64` operation (AArch64 always has double precision).
+    pub(crate) fn modes_reach_f64() -> bool {
+        true
+    }
 }
 
-/// FPSCR (32-bit Arm with VFP): the same trap-enable, rounding and flush-to-zero bits as
-/// aarch64's FPCR. Not tested by this project (no such target here).
-#[cfg(all(target_arch = "arm", target_feature = "vfp2"))]
+/// FPSCR (32-bit Arm with a hardware-float ABI, `eabihf`: an FPU is present): the same
+/// RMode, FZ and DN bits as aarch64's FPCR (bits 22-25); trap enables at bits 8-12 and 15
+/// on A/R-profile cores that implement trapping, reserved (zero) on M-profile cores.
+///
+/// Whether those modes reach `f64` depends on how this library was compiled, not on the
+/// chip: `thumbv7em-none-eabihf` for a Cortex-M4F (single-precision FPU) computes `f64` in
+/// software (compiler-builtins), which FPSCR does not affect, while `-C
+/// target-cpu=cortex-m7` (double-precision FPU) computes it on the FPU. Stable Rust exposes
+/// no `cfg` for double-precision VFP on this architecture, so when a mode bit is set the
+/// guard asks the arithmetic itself ([`f64_follows_ieee_defaults`]): refused if `f64`
+/// results change, accepted (with the same bits) if they cannot.
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
 mod fpcr {
     pub(crate) type Reg = u32;
     const TRAP_ENABLES: Reg = 0x9F00;
-    pub(crate) const MODE_BITS: Reg = 0x01C0_0000;
+    const MODE_BITS: Reg = 0x03C0_0000;
+
+    pub(crate) fn modes_set(v: Reg) -> bool {
+        v & MODE_BITS != 0
+    }
 
     pub(crate) fn read() -> Reg {
         let v: u32;
-        // SAFETY: reading FPSCR has no side effect.
+        // SAFETY: reading FPSCR has no side effect; the eabihf ABI guarantees an FPU.
         unsafe { core::arch::asm!("vmrs {}, fpscr", out(reg) v, options(nomem, nostack)) };
         v
     }
@@ -125,19 +162,26 @@ mod fpcr {
     pub(crate) fn traps_unmasked(v: Reg) -> bool {
         v & TRAP_ENABLES != 0
     }
+
+    pub(crate) fn modes_reach_f64() -> bool {
+        !super::f64_follows_ieee_defaults()
+    }
 }
 
 /// Other targets: no register this crate knows how to read; the default environment is
-/// assumed (documented in docs/DECISIONS.md).
+/// assumed (documented in docs/DECISIONS.md). Soft-float targets (riscv32imac, thumbv6m,
+/// Arm `eabi`) have no floating-point state at all.
 #[cfg(not(any(
     target_arch = "x86_64",
     all(target_arch = "x86", target_feature = "sse2"),
     target_arch = "aarch64",
-    all(target_arch = "arm", target_feature = "vfp2")
+    all(target_arch = "arm", target_abi = "eabihf")
 )))]
 mod fpcr {
     pub(crate) type Reg = u32;
-    pub(crate) const MODE_BITS: Reg = 0;
+    pub(crate) fn modes_set(_: Reg) -> bool {
+        false
+    }
     pub(crate) fn read() -> Reg {
         0
     }
@@ -148,14 +192,44 @@ mod fpcr {
     pub(crate) fn traps_unmasked(_: Reg) -> bool {
         false
     }
+    pub(crate) fn modes_reach_f64() -> bool {
+        false
+    }
+}
+
+/// Whether `f64` arithmetic, as this build performs it, gives the IEEE default results in
+/// the current environment: round to nearest, subnormals kept, NaN payloads propagated.
+/// Each operand goes through `black_box`, so the operations run now, not at compile time.
+#[cfg(any(test, all(target_arch = "arm", target_abi = "eabihf")))]
+fn f64_follows_ieee_defaults() -> bool {
+    use core::hint::black_box;
+    let one = black_box(1.0_f64);
+    let three_quarter_ulp = black_box(0.75 * f64::EPSILON);
+    // 1 + ¾ulp and −1 − ¾ulp round away from 1 to nearest; each directed mode (toward +∞,
+    // −∞ or zero) rounds at least one of them back to ±1.
+    let up = one + three_quarter_ulp;
+    let down = -one - three_quarter_ulp;
+    let to_nearest = up.to_bits() == (1.0 + f64::EPSILON).to_bits()
+        && down.to_bits() == (-(1.0 + f64::EPSILON)).to_bits();
+    // Flush-to-zero: the smallest normal halved is a subnormal, and two of them add back to
+    // the smallest normal (a flushed output gives 0, a flushed input 0 as well).
+    let half_min = black_box(f64::MIN_POSITIVE) * black_box(0.5);
+    let subnormals = half_min.to_bits() == 1 << 51
+        && (black_box(half_min) + black_box(half_min)).to_bits() == f64::MIN_POSITIVE.to_bits();
+    // Default-NaN: a quiet NaN operand's payload (1) survives an addition.
+    let nan = black_box(f64::from_bits(0x7FF8_0000_0000_0001)) + one;
+    let payload = nan.to_bits() & 0x0007_FFFF_FFFF_FFFF == 1;
+    to_nearest && subnormals && payload
 }
 
 /// Whether the modes that change results are the IEEE defaults: round to nearest, no
-/// flush-to-zero, no denormals-are-zero (exception masks and sticky flags are not modes).
-/// Hosts compiled with `-ffast-math` start with FTZ/DAZ set, which silently changes
-/// results; the library refuses to compute rather than return different bits.
+/// flush-to-zero, no denormals-are-zero, no default-NaN (exception masks and sticky flags
+/// are not modes) — or, where a mode bit is set, whether it cannot reach this build's `f64`
+/// arithmetic (32-bit Arm with `f64` in software). Hosts compiled with `-ffast-math` start
+/// with FTZ/DAZ set, which silently changes results; the library refuses to compute rather
+/// than return different bits.
 pub(crate) fn fp_env_is_default() -> bool {
-    fpcr::read() & fpcr::MODE_BITS == 0
+    !fpcr::modes_set(fpcr::read()) || !fpcr::modes_reach_f64()
 }
 
 /// Masks every floating-point exception trap for its lifetime and then restores the
@@ -289,6 +363,22 @@ pub(crate) fn flag(v: u32) -> Result<bool, Status> {
 
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
+    /// The probe that 32-bit Arm builds run when a mode bit is set: true in the default
+    /// environment, false under each mode that changes `f64` results (here set in MXCSR,
+    /// which the same arithmetic obeys).
+    #[test]
+    fn the_f64_probe_sees_every_mode() {
+        let saved = fpcr::read();
+        assert!(super::f64_follows_ieee_defaults());
+        // FTZ, DAZ, round down, round up, round toward zero.
+        for bits in [1 << 15, 1 << 6, 1 << 13, 2 << 13, 3 << 13] {
+            fpcr::write(saved | bits);
+            let seen = super::f64_follows_ieee_defaults();
+            fpcr::write(saved);
+            assert!(!seen, "MXCSR bits {bits:#x} not seen");
+        }
+    }
+
     use super::fpcr;
     use nlsubdiv::Status;
 

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Builds the cross-architecture harness (firmware/harness/) for one target, with the Rust
+# staticlib for that target, into target/firmware/<target>/harness[.elf].
+#
+#   firmware/build.sh x86_64|aarch64|m4f|m7|riscv32 [opt-level]
+#
+# opt-level (default 3) is the Rust release profile's; each (target, opt-level) has its own
+# cargo target directory under target/firmware/, so repeated runs rebuild nothing.
+# Prints the path of the built program. Needs the target's Rust standard library (rustup
+# target add) and C toolchain; scripts/test-firmware.sh checks for them first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+target=${1:?usage: firmware/build.sh x86_64|aarch64|m4f|m7|riscv32 [opt-level]}
+opt=${2:-3}
+out=$ROOT/target/firmware/$target
+mkdir -p "$out"
+
+# Harness C flags shared by every target: no contraction of a*b+c into an FMA (GCC contracts
+# by default, and the inputs and checks must be the same IEEE operations everywhere).
+CFLAGS_COMMON="-std=c99 -O2 -ffp-contract=off -Wall -Wextra -Wpedantic -Werror -I$ROOT/include -I$ROOT/firmware/harness"
+SOURCES=("$ROOT"/firmware/harness/*.c)
+
+# staticlib TRIPLE CARGO_DIR [RUSTFLAGS]: builds libnlsubdiv.a for TRIPLE, prints its path.
+staticlib() {
+    local triple=$1 dir=$2 flags=${3:-}
+    RUSTFLAGS="$flags" CARGO_PROFILE_RELEASE_OPT_LEVEL="$opt" \
+        cargo rustc -q --release --locked -p nlsubdiv-ffi --target "$triple" \
+        --target-dir "$dir" --crate-type staticlib >&2
+    echo "$dir/$triple/release/libnlsubdiv.a"
+}
+
+# The Cortex-M link: startup code and linker script of c_examples/bare-metal (the example a
+# firmware engineer copies), newlib with semihosting (rdimon), a 256 KiB stack for the
+# painted stack measurement.
+BARE=$ROOT/c_examples/bare-metal
+cortex_m() {
+    local cpu_flags=$1 lib=$2
+    arm-none-eabi-gcc $cpu_flags $CFLAGS_COMMON -DFW_BARE_METAL -ffunction-sections -fdata-sections \
+        "${SOURCES[@]}" "$BARE/startup.c" -nostartfiles -T "$BARE/link.ld" \
+        -Wl,--defsym=STACK_SIZE=0x40000 --specs=rdimon.specs -Wl,--gc-sections \
+        "$lib" -lm -o "$out/harness.elf"
+    echo "$out/harness.elf"
+}
+
+case "$target" in
+    x86_64)
+        lib=$(staticlib x86_64-unknown-linux-gnu "$ROOT/target/firmware/cargo-o$opt")
+        gcc $CFLAGS_COMMON "${SOURCES[@]}" "$lib" -lm -o "$out/harness"
+        echo "$out/harness" ;;
+    aarch64)
+        lib=$(staticlib aarch64-unknown-linux-gnu "$ROOT/target/firmware/cargo-o$opt")
+        aarch64-linux-gnu-gcc -static $CFLAGS_COMMON "${SOURCES[@]}" "$lib" -lm -o "$out/harness"
+        echo "$out/harness" ;;
+    m4f)
+        # Cortex-M4F: single-precision FPU, so f64 is computed in software (compiler-builtins in
+        # the Rust library, libgcc in C). The target's default CPU is what a firmware build gets.
+        lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-o$opt")
+        cortex_m "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard" "$lib" ;;
+    m7)
+        # Cortex-M7 with the double-precision FPU (FPv5-D16): -C target-cpu=cortex-m7 lets LLVM
+        # use it for f64; its own target directory, since RUSTFLAGS differ from m4f's.
+        lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-m7-o$opt" "-C target-cpu=cortex-m7")
+        cortex_m "-mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard" "$lib" ;;
+    riscv32)
+        # RV32IMAC: no FPU, f64 in software. picolibc with semihosting (its own start-up code
+        # and linker script), on QEMU's virt board: RAM from 0x80000000.
+        lib=$(staticlib riscv32imac-unknown-none-elf "$ROOT/target/firmware/cargo-o$opt")
+        riscv64-unknown-elf-gcc -march=rv32imac -mabi=ilp32 $CFLAGS_COMMON -DFW_BARE_METAL \
+            -ffunction-sections -fdata-sections "${SOURCES[@]}" \
+            --specs=picolibc.specs --oslib=semihost --crt0=semihost \
+            -Wl,--defsym=__flash=0x80000000 -Wl,--defsym=__flash_size=0x00400000 \
+            -Wl,--defsym=__ram=0x80400000 -Wl,--defsym=__ram_size=0x00400000 \
+            -Wl,--defsym=__stack_size=0x40000 -Wl,--gc-sections "$lib" -lm -o "$out/harness.elf"
+        echo "$out/harness.elf" ;;
+    *)
+        echo "unknown target $target" >&2; exit 2 ;;
+esac

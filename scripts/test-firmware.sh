@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# Cross-architecture bit-identity of nlsubdiv (docs/firmware.md). The harness of firmware/
+# (304 cases over the public C ABI: primitives, every curve scheme, every mesh scheme linear
+# and Möbius, spherelike, differential, star rules; plus the FP-environment tests) is built
+# for x86_64 (the reference) and run there, then built and run for:
+#
+#   aarch64  Linux, under qemu-aarch64
+#   m4f      Cortex-M4F (f64 in software), bare metal under qemu-system-arm -M mps2-an386
+#   m7       Cortex-M7 (double-precision FPU), bare metal under qemu-system-arm -M mps2-an500
+#   riscv32  RV32IMAC (no FPU), bare metal under qemu-system-riscv32 -M virt
+#   example  c_examples/bare-metal built with its Makefile and run on the Cortex-M4F
+#
+# Each run must end with "harness: N cases, P passed, 0 failed", and its case lines (one
+# output hash per case) must equal the x86_64 ones. The M4F run also measures each case's
+# stack high-water mark; the table per entry point goes to target/firmware/stack-m4f.md.
+#
+# A target whose tools are missing is SKIPPED (scripts/setup.sh installs them); nothing is
+# installed here. The last line is "test-firmware: N passed, M failed, K skipped" (one per
+# target); the exit status is non-zero only when something ran and failed.
+#
+#   scripts/test-firmware.sh [target...]      # default: every target
+set -uo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+OUT=$ROOT/target/firmware
+mkdir -p "$OUT"
+export PATH="$HOME/.cargo/bin:$PATH"
+t_start=$SECONDS
+passed=0; failed=0; skipped=0
+
+# have_std TRIPLE: the Rust standard library for TRIPLE is installed (rustup target add).
+have_std() {
+    local dir
+    dir=$(rustc --print target-libdir --target "$1" 2>/dev/null) || return 1
+    compgen -G "$dir/libcore-*.rlib" >/dev/null
+}
+
+# missing TARGET: prints what TARGET lacks (empty when everything is there).
+missing() {
+    local m=()
+    case "$1" in
+        x86_64) command -v gcc >/dev/null || m+=(gcc) ;;
+        aarch64)
+            have_std aarch64-unknown-linux-gnu || m+=("rustup target aarch64-unknown-linux-gnu")
+            command -v aarch64-linux-gnu-gcc >/dev/null || m+=(gcc-aarch64-linux-gnu)
+            command -v qemu-aarch64 >/dev/null || m+=("qemu-user (qemu-aarch64)") ;;
+        m4f|m7|example)
+            have_std thumbv7em-none-eabihf || m+=("rustup target thumbv7em-none-eabihf")
+            command -v arm-none-eabi-gcc >/dev/null || m+=(gcc-arm-none-eabi)
+            if command -v arm-none-eabi-gcc >/dev/null; then
+                [ -f "$(arm-none-eabi-gcc -print-file-name=rdimon.specs)" ] || m+=(libnewlib-arm-none-eabi)
+            fi
+            command -v qemu-system-arm >/dev/null || m+=(qemu-system-arm) ;;
+        riscv32)
+            have_std riscv32imac-unknown-none-elf || m+=("rustup target riscv32imac-unknown-none-elf")
+            command -v riscv64-unknown-elf-gcc >/dev/null || m+=(gcc-riscv64-unknown-elf)
+            if command -v riscv64-unknown-elf-gcc >/dev/null; then
+                [ -f "$(riscv64-unknown-elf-gcc -print-file-name=picolibc.specs)" ] || m+=(picolibc-riscv64-unknown-elf)
+            fi
+            command -v qemu-system-riscv32 >/dev/null || m+=("qemu-system-misc (qemu-system-riscv32)") ;;
+    esac
+    echo "${m[*]}"
+}
+
+# run TARGET PROGRAM: runs the harness, output (stdout and stderr: picolibc's semihosting
+# writes to QEMU's stderr) to $OUT/TARGET/run.txt; returns the program's exit status.
+run() {
+    local log=$OUT/$1/run.txt
+    case "$1" in
+        x86_64) timeout 300 "$2" ;;
+        aarch64) timeout 300 qemu-aarch64 "$2" ;;
+        m4f) timeout 300 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none -semihosting -kernel "$2" ;;
+        m7) timeout 300 qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none -semihosting -kernel "$2" ;;
+        riscv32) timeout 300 qemu-system-riscv32 -M virt -bios none -nographic -monitor none -serial none \
+            -semihosting-config enable=on,target=native -kernel "$2" ;;
+    esac >"$log" 2>&1
+}
+
+cases_of() { grep '^case ' "$OUT/$1/run.txt"; }
+
+# The bare-metal example: its own Makefile, the harness's M4F cargo directory (no rebuild),
+# exit status 0 when its results are on their circle and sphere.
+example() {
+    local t0=$SECONDS lacking log=$OUT/example/run.txt
+    lacking=$(missing example)
+    if [ -n "$lacking" ]; then
+        echo "SKIP  example — missing: $lacking (scripts/setup.sh installs it)"
+        skipped=$((skipped+1)); return
+    fi
+    mkdir -p "$OUT/example"
+    if make -s -C c_examples/bare-metal run CARGO_TARGET_DIR="$OUT/cargo-o3" OUT="$OUT/example" >"$log" 2>&1 &&
+        grep -q "largest distance from the sphere" "$log"; then
+        echo "PASS  example ($((SECONDS-t0)) s): $(grep -c . "$log") lines, exit status 0 (results on their circle and sphere)"
+        passed=$((passed+1))
+    else
+        echo "FAIL  example ($((SECONDS-t0)) s); last lines of $log:"
+        tail -n 15 "$log" | sed 's/^/      /'
+        failed=$((failed+1))
+    fi
+}
+
+# check TARGET: builds and runs TARGET; compares with the reference unless TARGET is it.
+check() {
+    local t=$1 t0=$SECONDS prog rc closing lacking
+    lacking=$(missing "$t")
+    if [ -n "$lacking" ]; then
+        echo "SKIP  $t — missing: $lacking (scripts/setup.sh installs it)"
+        skipped=$((skipped+1)); return 2
+    fi
+    mkdir -p "$OUT/$t"
+    if ! prog=$(firmware/build.sh "$t" 2>"$OUT/$t/build.log"); then
+        echo "FAIL  $t — build failed; last lines of $OUT/$t/build.log:"
+        tail -n 15 "$OUT/$t/build.log" | sed 's/^/      /'
+        failed=$((failed+1)); return 1
+    fi
+    run "$t" "$prog"; rc=$?
+    closing=$(grep '^harness: [0-9]* cases' "$OUT/$t/run.txt" || true)
+    local problems=()
+    [ "$rc" -eq 0 ] || problems+=("exit status $rc")
+    [ -n "$closing" ] || problems+=("no closing line (crash or time-out)")
+    grep -q '^FAIL' "$OUT/$t/run.txt" && problems+=("$(grep -c '^FAIL' "$OUT/$t/run.txt") FAIL lines")
+    if [ "$t" != x86_64 ] && [ -f "$OUT/x86_64/run.txt" ]; then
+        local ndiff
+        ndiff=$(diff <(cases_of x86_64) <(cases_of "$t") | grep -c '^[<>]')
+        [ "$ndiff" -eq 0 ] || problems+=("$ndiff case lines differ from x86_64")
+        [ "$(cases_of "$t" | wc -l)" -gt 0 ] || problems+=("no case lines")
+    fi
+    if [ ${#problems[@]} -eq 0 ]; then
+        echo "PASS  $t ($((SECONDS-t0)) s): ${closing#harness: }; $( [ "$t" = x86_64 ] && echo "reference" || echo "case hashes identical to x86_64")"
+        passed=$((passed+1)); return 0
+    fi
+    echo "FAIL  $t ($((SECONDS-t0)) s): ${problems[*]}; log $OUT/$t/run.txt"
+    grep '^FAIL' "$OUT/$t/run.txt" | head -n 10 | sed 's/^/      /'
+    if [ "$t" != x86_64 ] && [ -f "$OUT/x86_64/run.txt" ]; then
+        diff <(cases_of x86_64) <(cases_of "$t") | head -n 10 | sed 's/^/      /'
+    fi
+    failed=$((failed+1)); return 1
+}
+
+# The stack table of the M4F run: per entry point, the largest high-water mark of its cases.
+stack_table() {
+    local log=$OUT/m4f/run.txt table=$OUT/stack-m4f.md
+    [ -f "$log" ] || return 0
+    {
+        echo "| entry point | cases | high-water mark (bytes) | deepest case |"
+        echo "|---|---:|---:|---|"
+        grep '^stack ' "$log" | sed 's/^stack //' | awk -F'\t' '
+            { n[$1]++; if (!($1 in max) || $3 > max[$1]) { max[$1] = $3; at[$1] = $2 } order[$1] = order[$1] ? order[$1] : ++k }
+            END { for (e in n) printf "| %s | %d | %d | %s |\n", e, n[e], max[e], at[e] }' | sort -t'|' -k4 -n -r
+    } > "$table"
+    echo "stack high-water marks on Cortex-M4F (bytes below the case's stack pointer; $table):"
+    sed 's/^/      /' "$table"
+}
+
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
+# The reference first: every other target is compared with it.
+if [[ " ${targets[*]} " != *" x86_64 "* ]]; then targets=(x86_64 "${targets[@]}"); fi
+for t in "${targets[@]}"; do
+    if [ "$t" = example ]; then example; continue; fi
+    check "$t"
+    if [ "$t" = x86_64 ] && [ ! -f "$OUT/x86_64/run.txt" ]; then
+        echo "SKIP  every other target — no x86_64 reference"
+        skipped=$((skipped+${#targets[@]}-1)); break
+    fi
+done
+stack_table
+echo "test-firmware: $((SECONDS-t_start)) s"
+echo "test-firmware: $passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]
