@@ -324,6 +324,11 @@ enum nls_status
      * The `strict` option was set and an element needed the documented linear fallback.
      */
     NLS_STATUS_FALLBACK_IN_STRICT_MODE = 29,
+    /**
+     * The `strict` option was set and an edit folded the surface (differential-space
+     * editing: a face turned by more than 90° from the unedited result, or a folded edge).
+     */
+    NLS_STATUS_FOLDED_SURFACE = 30,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
