@@ -169,6 +169,8 @@ unsafe fn parse<'a>(
             solve,
             curvature_scale: (!o.curvature_scale.is_null()).then_some(scale),
             normals: (!o.normals.is_null()).then_some(normals),
+            // The 0.1 options struct has no strict flag: edits are never refused here.
+            strict: false,
         },
         edits: [
             Span::of(o.curvature_scale, scale_n),
