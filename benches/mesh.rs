@@ -1,12 +1,12 @@
 //! Side-by-side timings of our linear and Möbius mesh schemes in one run (single thread):
-//! the rows of DESIGN.md "Performance" and seed 000 Table 1 (Möbius / linear ratio).
+//! the rows of docs/RESULTS.md and seed 000 Table 1 (Möbius / linear ratio).
 //!
 //! `cargo bench --bench mesh` (reads `../shared/data/meshes`; prints SKIP rows otherwise):
 //! linear and Möbius interleaved, best of 5 each.
 //! The peers' side (OpenMesh, CGAL, OpenSubdiv) is timed by `scripts/bench_peers.py`.
 //!
-//! Each row is one multi-level call (`common::levels_call`: `plan` + `subdivide_levels` /
-//! `subdivide_levels_mobius`), as a host would make it: validation, topology of every
+//! Each row is one multi-level call (`common::levels_call`: `plan` + `subdivide`, linear or
+//! Möbius), as a host would make it: validation, topology of every
 //! level, every level, with the caller's buffers allocated inside the timed region.
 //!
 //! `cargo bench --bench mesh -- SCHEME LEVELS MESH.off [--mobius]` runs one such call once

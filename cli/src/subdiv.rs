@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use nlsubdiv::mesh::refine::Pattern;
 use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut, MeshSizes, Topology as CoreTopology};
-use nlsubdiv::scheme::{self, Options, Scheme, Scratch, MAX_LEVELS};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch, ScratchSizes, MAX_LEVELS};
 use nlsubdiv::{Error, Status, MAX_FACE_SIZE, MAX_VALENCE, NO_ELEMENT};
 
 use crate::cmd::Ctx;
@@ -401,19 +401,21 @@ fn plan_sizes(
     mesh: CoreMesh<'_>,
     levels: usize,
     n: &Namer<'_>,
-) -> CliResult<Vec<MeshSizes>> {
+) -> CliResult<(Vec<MeshSizes>, ScratchSizes)> {
     let mut scratch = memory::filled(
         scheme::plan_scratch_size(&mesh).unwrap_or(0),
         0u32,
         "the topology",
     )?;
-    let opts = |levels: usize| Options::new(ms.scheme).levels(levels);
+    let opts = |levels: usize| Options::new(ms.scheme).mobius(ms.mobius).levels(levels);
     match scheme::plan(mesh, &opts(levels), &mut scratch) {
-        Ok(p) => Ok(p
-            .sizes
-            .get(..=levels)
-            .map(<[MeshSizes]>::to_vec)
-            .unwrap_or_default()),
+        Ok(p) => Ok((
+            p.sizes
+                .get(..=levels)
+                .map(<[MeshSizes]>::to_vec)
+                .unwrap_or_default(),
+            p.scratch,
+        )),
         Err(e)
             if e.element == NO_ELEMENT
                 && matches!(e.status, Status::ValenceTooHigh | Status::SizeOverflow) =>
@@ -473,21 +475,16 @@ pub fn run(
         let first = Options::new(ms.scheme).levels(levels.min(1));
         scheme::plan(mesh0, &first, &mut scratch).map_err(|e| call_error(e, ms, mesh0, &n0))?;
     }
-    let sizes = plan_sizes(ms, mesh0, levels, &n0)?;
-    // Peak memory of the largest step: input and output meshes, topology, Möbius scratch.
-    let peak = sizes
-        .windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let mesh_bytes =
-                |s: MeshSizes| 24 * s.vertices as u128 + 4 * (s.faces + 1 + s.indices) as u128;
-            mesh_bytes(a)
-                + mesh_bytes(b)
-                + 4 * (4 * a.indices as u128 + 3 * a.vertices as u128)
-                + if ms.mobius { 48 * a.indices as u128 } else { 0 }
-        })
-        .max()
-        .unwrap_or(0);
+    let (sizes, scratch_sizes) = plan_sizes(ms, mesh0, levels, &n0)?;
+    // Peak memory, from the library's own plan: the input, the output and the scratch of the
+    // multi-level call (its topologies, intermediate levels and Möbius candidates). The
+    // level-by-level run below holds two levels and one level's scratch at a time, which
+    // that scratch covers.
+    let mesh_bytes = |s: MeshSizes| 24 * s.vertices as u128 + 4 * (s.faces + 1 + s.indices) as u128;
+    let peak = mesh_bytes(sizes.first().copied().unwrap_or_default())
+        + mesh_bytes(sizes.last().copied().unwrap_or_default())
+        + 4 * scratch_sizes.u32s as u128
+        + 24 * scratch_sizes.points as u128;
     memory::check(
         peak,
         &format!("{levels} levels of {}", ms.name()),
