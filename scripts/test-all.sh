@@ -181,6 +181,12 @@ else
     skip "packages (Debian)" "not root, or debhelper/lintian not installed (scripts/setup.sh installs them)"
 fi
 
+# --- Cross-architecture bit identity (scripts/test-firmware.sh, docs/firmware.md) ----------------
+# The firmware harness over the C ABI on x86_64 (the reference), aarch64 Linux, Cortex-M4F,
+# Cortex-M7 and riscv32imac under QEMU, case hashes compared; the M4F stack table; the
+# bare-metal example. A target whose tools are missing is reported SKIP by the script.
+step "firmware: same bits on x86_64, aarch64, Cortex-M4F, Cortex-M7, riscv32imac; M4F stack table" scripts/test-firmware.sh
+
 # --- C examples -------------------------------------------------------------------------------
 c_examples() {
     local ex
