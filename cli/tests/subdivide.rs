@@ -348,7 +348,16 @@ fn bad_input_gives_its_status_names_the_element_and_leaves_nothing() {
     let a = sub("mobius-butterfly", "2", "quads.off", &out);
     must_fail(&dir, &refs(&a), 2, &["face 0", "triangles"], &inputs);
     let a = sub("kobbelt", "1", "fin.off", &out);
-    must_fail(&dir, &refs(&a), 2, &["fin.off", "non-manifold"], &inputs);
+    must_fail(
+        &dir,
+        &refs(&a),
+        2,
+        &["fin.off", "non-manifold", "repair"],
+        &inputs,
+    );
+    // `subdivide` has no --lenient: its refusal must not offer one.
+    let o = run(&refs(&a));
+    assert!(!stderr(&o).contains("--lenient"), "{}", stderr(&o));
     let a = sub("catmull-clark", "1", "junk.off", &out);
     must_fail(&dir, &refs(&a), 2, &["junk.off"], &inputs);
     let a = sub("catmull-clark", "1", "nan.off", &out);

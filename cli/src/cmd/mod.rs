@@ -109,11 +109,25 @@ pub struct Loaded {
     pub source: Source,
 }
 
-/// Reads `path`, builds its topology and applies `policy` to its defects.
+/// Reads `path`, builds its topology and applies `policy` to its defects. For commands that
+/// take `--lenient` (a refusal message offers it).
 ///
 /// # Errors
 /// Those of [`read_mesh`]; exit 2 when the policy refuses the mesh.
 pub fn load(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
+    load_with(path, policy, true, ctx)
+}
+
+/// [`load`] for commands that hand the mesh to the kernel, which needs a manifold,
+/// consistently oriented mesh and has no `--lenient`: a refusal says to repair the mesh.
+///
+/// # Errors
+/// Those of [`load`].
+pub fn load_for_kernel(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
+    load_with(path, policy, false, ctx)
+}
+
+fn load_with(path: &Path, policy: Policy, lenient_flag: bool, ctx: &Ctx) -> CliResult<Loaded> {
     let spinner = ctx.spinner("reading");
     let (mesh, source) = read_mesh(path)?;
     let topo = Topology::build(&mesh);
@@ -128,7 +142,11 @@ pub fn load(path: &Path, policy: Policy, ctx: &Ctx) -> CliResult<Loaded> {
     if !bad.is_empty() {
         let mut msg = describe(&bad);
         let hint = if bad.iter().any(|f| f.severity == Severity::Error) {
-            "--lenient goes on anyway"
+            if lenient_flag {
+                "--lenient goes on anyway"
+            } else {
+                "subdivision needs a manifold, consistently oriented mesh: repair these first"
+            }
         } else {
             "these are warnings: drop --strict to go on"
         };

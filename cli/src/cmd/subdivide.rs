@@ -9,7 +9,7 @@
 
 use std::path::PathBuf;
 
-use super::{load, Ctx, Policy};
+use super::{load_for_kernel, Ctx, Policy};
 use crate::differential::{self, DifferentialScheme};
 use crate::error::{CliResult, Exit};
 use crate::io::{write_mesh, Format, WriteOptions};
@@ -38,7 +38,8 @@ fn parse_scheme(name: &str) -> Result<SchemeArg, String> {
 pub struct Args {
     /// The scheme: loop, catmull-clark, butterfly, kobbelt, doo-sabin, simplest, dual,
     /// vertex-insertion, dual-truncation, or any of them as mobius-<name> (canonical Möbius
-    /// subdivision, seed 000); differential-loop, differential-butterfly, differential-dirmag
+    /// subdivision, seed 000); spherelike (circle-blend interpolating subdivision, seed 003;
+    /// no Möbius form); differential-loop, differential-butterfly, differential-dirmag
     /// (differential-space subdivision of triangle meshes, seed 001).
     #[arg(long, value_name = "NAME", value_parser = parse_scheme)]
     pub scheme: SchemeArg,
@@ -77,7 +78,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     } else {
         Policy::Default
     };
-    let l = load(&args.input, policy, ctx)?;
+    let l = load_for_kernel(&args.input, policy, ctx)?;
     let levels = args.levels as usize;
     let scheme = match args.scheme {
         SchemeArg::Mesh(m) => m,
