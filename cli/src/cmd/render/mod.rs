@@ -8,7 +8,7 @@
 //! by a field with a colour bar. Deterministic: the same mesh and options give the same
 //! PNG bytes.
 
-mod font;
+pub mod font;
 
 use std::path::PathBuf;
 
@@ -344,7 +344,20 @@ fn background(y: usize, h: usize) -> [f32; 3] {
     [0, 1, 2].map(|k| top[k] + (bottom[k] - top[k]) * t)
 }
 
-/// Renders the mesh into an image of `args.size`.
+/// Per-vertex values to colour a surface by, and the range the colour map spans (values
+/// outside it take the end colours; `None` values the undefined colour).
+#[derive(Clone, Copy, Debug)]
+pub struct Coloring<'a> {
+    /// One value per vertex.
+    pub values: &'a [Option<f64>],
+    /// The values at the two ends of the colour map.
+    pub range: (f64, f64),
+    /// A diverging map centred on zero (signed values) rather than viridis.
+    pub signed: bool,
+}
+
+/// Renders the mesh into an image of `args.size`, coloured by `field` with a colour bar
+/// (its range the 2nd to 98th percentile of the values, said on the bar).
 pub fn render(
     mesh: &Mesh,
     topo: &Topology,
@@ -352,6 +365,33 @@ pub fn render(
     args: &Args,
     ctx: &Ctx,
 ) -> CliResult<Image> {
+    let Some(fl) = field else {
+        return render_colored(mesh, topo, None, args, ctx);
+    };
+    let mut p = ctx.progress(mesh.num_vertices(), "measuring");
+    let values = fields::compute(fl, mesh, topo, &mut p);
+    p.finish();
+    let range = fields::color_range(&values, fl.signed());
+    let coloring = Coloring {
+        values: &values,
+        range,
+        signed: fl.signed(),
+    };
+    let mut img = render_colored(mesh, topo, Some(coloring), args, ctx)?;
+    draw_legend(&mut img, fl, range);
+    Ok(img)
+}
+
+/// Renders the mesh into an image of `args.size`, coloured by `coloring` (leaving room on
+/// the right for a colour bar, which the caller draws) or plain.
+pub fn render_colored(
+    mesh: &Mesh,
+    topo: &Topology,
+    coloring: Option<Coloring<'_>>,
+    args: &Args,
+    ctx: &Ctx,
+) -> CliResult<Image> {
+    let field = coloring;
     let (w, h) = args.size;
     let (sw, sh) = (w * SS, h * SS);
     // Everything this function holds at once: the supersampled frame (colour and depth),
@@ -394,23 +434,14 @@ pub fn render(
     let normals = corner_normals(&view_mesh, topo, &face_n)?;
 
     // Per-vertex colours.
-    let mut legend = None;
     let base = [0.72f64, 0.77, 0.85];
     let vcolor: Vec<[f64; 3]> = match field {
-        Some(fl) => {
-            let mut p = ctx.progress(mesh.num_vertices(), "measuring");
-            let values = fields::compute(fl, mesh, topo, &mut p);
-            p.finish();
-            let range = fields::color_range(&values, fl.signed());
-            legend = Some((fl, range));
-            values
-                .iter()
-                .map(|x| match x {
-                    Some(x) => fields::colormap((x - range.0) / (range.1 - range.0), fl.signed()),
-                    None => fields::UNDEFINED_COLOR,
-                })
-                .collect()
-        }
+        Some(c) => (0..mesh.num_vertices())
+            .map(|v| match c.values.get(v).copied().flatten() {
+                Some(x) => fields::colormap((x - c.range.0) / (c.range.1 - c.range.0), c.signed),
+                None => fields::UNDEFINED_COLOR,
+            })
+            .collect(),
         None => vec![base; mesh.num_vertices()],
     };
 
@@ -467,11 +498,7 @@ pub fn render(
     }
 
     drop(normals);
-    let mut img = downsample(&fb, w, h)?;
-    if let Some((fl, range)) = legend {
-        draw_legend(&mut img, fl, range);
-    }
-    Ok(img)
+    downsample(&fb, w, h)
 }
 
 fn used_depth_range(proj: &[(f64, f64, f64)]) -> f64 {
@@ -707,7 +734,8 @@ fn downsample(fb: &Frame, w: usize, h: usize) -> CliResult<Image> {
     })
 }
 
-fn set_px(img: &mut Image, x: usize, y: usize, c: [u8; 3]) {
+/// Sets pixel `(x, y)` (nothing outside the picture).
+pub fn set_px(img: &mut Image, x: usize, y: usize, c: [u8; 3]) {
     if x < img.width && y < img.height {
         let i = (y * img.width + x) * 3;
         img.rgb[i..i + 3].copy_from_slice(&c);
@@ -715,7 +743,7 @@ fn set_px(img: &mut Image, x: usize, y: usize, c: [u8; 3]) {
 }
 
 /// Formats a legend value compactly.
-fn label(x: f64) -> String {
+pub fn label(x: f64) -> String {
     if x == 0.0 {
         "0".to_string()
     } else if (1e-2..1e4).contains(&x.abs()) {
@@ -765,6 +793,16 @@ fn draw_legend(img: &mut Image, field: Field, range: (f64, f64)) {
         let ty = cy.saturating_sub(th / 2);
         font::draw_text(l, lx, ty, scale, |x, y| set_px(img, x, y, dark));
     }
+    // The range is the 2nd to 98th percentile of the values (a few extreme vertices would
+    // otherwise flatten the map): say so under the bar.
+    let note = "percentiles 2 to 98";
+    let nw = font::text_width(note, 1);
+    let nx = (x0 + bar_w / 2)
+        .saturating_sub(nw / 2)
+        .min(img.width.saturating_sub(nw + 2));
+    font::draw_text(note, nx, y0 + bar_h + 6 * scale, 1, |x, y| {
+        set_px(img, x, y, dark)
+    });
     let title = field.name().replace('-', " ");
     let tw = font::text_width(&title, scale);
     let tx = (x0 + bar_w / 2)
