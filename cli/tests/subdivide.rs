@@ -492,7 +492,11 @@ fn demo_runs_on_nothing_and_draws_the_dome() {
     // The point of the picture: in the bottom row (the cage on the unit sphere, coloured by
     // the distance from it on one scale), the linear result reaches the yellow end of the
     // scale and the Möbius one has no pixel near it (it stays on the sphere).
-    assert_eq!((w, h), (1440, 948), "panel layout changed: update the regions below");
+    assert_eq!(
+        (w, h),
+        (1440, 948),
+        "panel layout changed: update the regions below"
+    );
     let yellow_in = |x0: u32, x1: u32| {
         (492..872)
             .flat_map(|y| (x0..x1).map(move |x| (x, y)))
@@ -504,7 +508,10 @@ fn demo_runs_on_nothing_and_draws_the_dome() {
             .count()
     };
     let (lin, mob) = (yellow_in(480, 960), yellow_in(960, 1440));
-    assert!(lin > 1000 && mob == 0, "yellow pixels: linear {lin}, Möbius {mob}");
+    assert!(
+        lin > 1000 && mob == 0,
+        "yellow pixels: linear {lin}, Möbius {mob}"
+    );
     // The result is `subdivide` of the cage it wrote, bit for bit.
     let (o, got) = run_subdivide(
         &dir,
