@@ -123,7 +123,9 @@ pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
 /// levels or a bad tolerance, and for an edit slice whose length is not the vertex count
 /// (naming the first index without a partner);
 /// [`Status::NonFiniteInput`] for a non-finite edit value (naming the vertex);
-/// [`Status::SizeOverflow`]; [`Status::ValenceTooHigh`].
+/// [`Status::SizeOverflow`]; [`Status::ValenceTooHigh`]; [`Status::NumericalFailure`] for a
+/// mesh outside the sizes the normal equations can represent
+/// ([`crate::mesh::check_extent`]).
 pub fn plan(
     mesh: Mesh<'_>,
     opts: &DifferentialOptions<'_>,
@@ -154,6 +156,9 @@ pub fn plan(
             }
         }
     }
+    // The normal equations hold squared lengths: outside this range they underflow or
+    // overflow and the shape is lost (mesh/extent.rs).
+    crate::mesh::check_extent(&mesh)?;
     let lp = crate::scheme::plan_levels(opts.stencil.scheme(), mesh, opts.levels, scratch)?;
     let mut p = DifferentialPlan {
         levels: opts.levels,

@@ -30,11 +30,13 @@
 //!
 //! See [`topology`] for the order of the checks and the element each status names.
 
+mod extent;
 pub(crate) mod gather;
 pub mod refine;
 mod sort;
 pub mod topology;
 
+pub use extent::{check_extent, MAX_EXTENT, MIN_EXTENT};
 pub use topology::{topology_scratch_size, Spoke, Star, Topology};
 // The name differential-space subdivision imports.
 pub(crate) use topology::topology_scratch_size as topology_scratch_len;

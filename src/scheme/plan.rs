@@ -93,7 +93,9 @@ pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
 /// [`crate::mesh::refine::pattern_size`]); [`Status::SizeOverflow`] when a level has more
 /// than [`MAX_COUNT`] vertices, faces or corners; [`Status::ValenceTooHigh`] (no element:
 /// the vertex does not exist yet) when a later level would exceed [`crate::MAX_VALENCE`] or
-/// [`crate::MAX_FACE_SIZE`].
+/// [`crate::MAX_FACE_SIZE`]; for [`Scheme::Spherelike`], [`Status::NumericalFailure`] for a
+/// mesh outside the sizes its squared distances can represent
+/// ([`crate::mesh::check_extent`]).
 pub fn plan(mesh: Mesh<'_>, opts: &Options, scratch_u32: &mut [u32]) -> Result<Plan> {
     plan_with_topology(mesh, opts, scratch_u32).map(|(p, _)| p)
 }
@@ -110,7 +112,13 @@ pub(super) fn plan_with_topology(
     if scratch_u32.len() < need {
         return Err(Error::too_small(need));
     }
-    levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)
+    let planned = levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)?;
+    // The circle blend measures squared distances: outside this range they underflow or
+    // overflow and the shape is lost (mesh/extent.rs).
+    if opts.scheme == Scheme::Spherelike && opts.levels > 0 {
+        crate::mesh::check_extent(&mesh)?;
+    }
+    Ok(planned)
 }
 
 /// The plan of `levels` linear levels of `scheme`, validating `mesh` into `scratch`: the
