@@ -335,6 +335,28 @@ fn render_draws_the_mesh() {
         let (var, _) = picture_stats(w, h, &rgb);
         assert!(var > 100.0, "{color}: {var}");
     }
+    // Highlight lines: dark bands on the surface that the plain rendering does not have.
+    let dark = |p: &std::path::Path| {
+        let (_, _, rgb) = decode_png(p);
+        rgb.chunks(3).filter(|c| c.iter().all(|&x| x < 40)).count()
+    };
+    let hl = dir.path("highlight.png");
+    let o = run(&[
+        "render",
+        "-q",
+        pt.to_str().unwrap(),
+        hl.to_str().unwrap(),
+        "--color",
+        "highlight",
+        "--size",
+        "320x240",
+    ]);
+    assert_eq!(code(&o), 0, "highlight: {}", stderr(&o));
+    let (lines, plain) = (dark(&hl), dark(&png));
+    assert!(
+        lines > plain + 320 * 240 / 200,
+        "dark pixels: highlight {lines}, plain {plain}"
+    );
 }
 
 #[test]

@@ -33,6 +33,10 @@ pub enum ColorBy {
     MeanCurvature,
     /// Möbius-regularity defect per vertex.
     MobiusRegularity,
+    /// Highlight lines (seed 001 Fig. 13): dark bands where the surface normal points at one
+    /// of a row of parallel linear lights above the model. Kinks and wobbles of the lines
+    /// show curvature discontinuities that shading hides.
+    Highlight,
 }
 
 /// Whether to draw polygon edges.
@@ -130,6 +134,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         ColorBy::Willmore => Some(Field::Willmore),
         ColorBy::MeanCurvature => Some(Field::MeanCurvature),
         ColorBy::MobiusRegularity => Some(Field::MobiusRegularity),
+        ColorBy::Highlight => None,
     };
     let img = render(&l.mesh, &l.topo, field, args, ctx)?;
     save_png(&args.output, &img)?;
@@ -422,6 +427,7 @@ pub fn render_colored(
     // With a colour bar, the model fills the part of the picture left of it.
     let fit_w = if field.is_some() { 0.78 } else { 1.0 } * sw as f64;
     let cam = camera(&used, args, fit_w, sh as f64);
+    let highlight = (args.color == ColorBy::Highlight).then(|| Highlight::above(&used));
     let view_mesh = Mesh {
         positions: pts,
         offsets: mesh.offsets.clone(),
@@ -472,7 +478,7 @@ pub fn render_colored(
                 p: view_mesh.positions[face[k] as usize],
                 c: vcolor[face[k] as usize],
             });
-            raster_triangle(&mut fb, &tri, &lights, &cam);
+            raster_triangle(&mut fb, &tri, &lights, &cam, highlight.as_ref());
         }
     }
     progress.finish();
@@ -561,7 +567,13 @@ impl Lights {
     }
 }
 
-fn raster_triangle(fb: &mut Frame, t: &[Vertex; 3], lights: &Lights, cam: &Camera) {
+fn raster_triangle(
+    fb: &mut Frame,
+    t: &[Vertex; 3],
+    lights: &Lights,
+    cam: &Camera,
+    highlight: Option<&Highlight>,
+) {
     let [a, b, c] = [t[0].s, t[1].s, t[2].s];
     if a.2 <= 0.0 || b.2 <= 0.0 || c.2 <= 0.0 {
         return; // behind the eye (cannot happen with the fitted camera)
@@ -638,7 +650,10 @@ fn raster_triangle(fb: &mut Frame, t: &[Vertex; 3], lights: &Lights, cam: &Camer
             };
             let n = normalize(mix(&|v| v.n));
             let p = mix(&|v| v.p);
-            let col = mix(&|v| v.c);
+            let mut col = mix(&|v| v.c);
+            if highlight.is_some_and(|h| h.on_line(p, n)) {
+                col = Highlight::INK;
+            }
             let view = normalize(sub(cam.eye, p));
             let front = dot(n, view) >= 0.0;
             let n = if front { n } else { scale(n, -1.0) };
@@ -646,6 +661,44 @@ fn raster_triangle(fb: &mut Frame, t: &[Vertex; 3], lights: &Lights, cam: &Camer
             fb.depth[idx] = depth as f32;
             fb.color[idx] = rgb.map(|x| x as f32);
         }
+    }
+}
+
+/// Highlight lines (Beier and Chen's model, as seed 001 Fig. 13 uses them): parallel
+/// linear lights along the picture's x axis, in the plane `y = height` above the model,
+/// `spacing` apart in z. A surface point is on a highlight line when the line through it
+/// along its normal meets the light plane within a band around one of the lights: the
+/// lines follow the surface's normal field, so a curvature discontinuity shows as a kink.
+/// Evaluated per pixel from the interpolated normal.
+struct Highlight {
+    height: f64,
+    spacing: f64,
+}
+
+impl Highlight {
+    const INK: [f64; 3] = [0.07, 0.07, 0.09];
+    /// Band half-width, as a fraction of the spacing.
+    const BAND: f64 = 0.12;
+
+    /// Lights a quarter of the model's size above the bounding box of `points` (picture
+    /// frame), six across it.
+    fn above(points: &[P3]) -> Highlight {
+        let (lo, hi) = crate::mesh::bbox(points).unwrap_or(([0.0; 3], [0.0; 3]));
+        let size = norm(sub(hi, lo)).max(1e-300);
+        Highlight {
+            height: hi[1] + 0.25 * size,
+            spacing: size / 6.0,
+        }
+    }
+
+    fn on_line(&self, p: P3, n: P3) -> bool {
+        if n[1] <= 0.2 {
+            return false; // the normal meets the light plane far away, or never: no band
+        }
+        let t = (self.height - p[1]) / n[1];
+        let z = (p[2] + t * n[2]) / self.spacing;
+        let d = z - z.round();
+        d.is_finite() && d.abs() < Self::BAND
     }
 }
 
