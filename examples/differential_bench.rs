@@ -1,7 +1,8 @@
 //! Seed 001 Table 1 layout: per-stage times of differential-space subdivision at 3 levels
 //! (compute Δ, subdivide, reconstruct), and an export of the reconstruction's normal-equation
-//! system `(LᵀL + anchors) V = Lᵀδ + anchors` for `benches/eigen_ldlt.cpp` (Eigen
-//! SimplicialLDLT on the same system). Driven by `scripts/bench_differential.py`.
+//! system `(LᵀL + anchors) V = Lᵀδ + anchors` for `benches/direct_solvers.cpp` (CHOLMOD's
+//! supernodal Cholesky of the same system, sparse QR of the least-squares problem). Driven
+//! by `scripts/bench_differential.py`.
 //!
 //! `cargo run --release --example differential_bench -- OUT_DIR [MESH_DIR]`
 #![allow(
@@ -99,7 +100,7 @@ fn main() {
             rep.solve.iterations,
             rep.solve.relative_residual
         );
-        // The system, for Eigen: L_k (weights of Eq. (2)/(8)), δ = 4⁻ᵏ Δ_k, anchor 0 at the
+        // The system, for the direct solvers: L_k (weights of Eq. (2)/(8)), δ = 4⁻ᵏ Δ_k, anchor 0 at the
         // spatial subdivision's vertex 0 (closed connected meshes: one anchor), and our result
         // translated so its vertex 0 sits at the anchor (the same solution of that system).
         let spatial = subdivide_n(Scheme::Loop, &m, k).unwrap();
