@@ -36,6 +36,7 @@
 mod carry;
 mod levels;
 mod linear;
+mod linear_tagged;
 pub mod mobius;
 mod options;
 mod plan;
@@ -43,11 +44,14 @@ mod size;
 pub mod spherelike;
 mod step;
 mod subdivide;
+mod tags;
 
 pub use levels::MAX_LEVELS;
 pub use options::Options;
-pub use plan::{plan, plan_scratch_size, Plan, ScratchSizes};
-pub use subdivide::{subdivide, Report, Scratch};
+pub use crate::stencil::crease::CreaseMethod;
+pub use plan::{plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes};
+pub use subdivide::{subdivide, subdivide_tagged, Report, Scratch};
+pub use tags::Tags;
 
 pub(crate) use plan::plan_levels;
 pub(crate) use step::linear as step_linear;
