@@ -180,7 +180,9 @@ impl Status {
                 c"an element needed the linear fallback and the strict option is set"
             }
             Status::FoldedSurface => c"an edit folded the surface and the strict option is set",
-            Status::TagNotAnEdge => c"a crease tag names two vertices that are not joined by an edge",
+            Status::TagNotAnEdge => {
+                c"a crease tag names two vertices that are not joined by an edge"
+            }
             Status::RepeatedTag => c"the same edge or vertex is tagged twice",
             Status::InvalidSharpness => c"a tag's sharpness is NaN, negative or infinite",
             Status::TagsNotSupported => c"the scheme does not take sharp-feature tags",

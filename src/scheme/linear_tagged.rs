@@ -82,10 +82,7 @@ fn child_at(topo: &Topology<'_, '_>, sharp: &Sharpness<'_>, v: u32, e: u32) -> R
     let mut parent = ArrayVec::new();
     let mut child = ArrayVec::new();
     sharp.around(topo, v, &mut parent, &mut child)?;
-    let i = topo
-        .star(v)
-        .position(|s| s.edge == e)
-        .ok_or(internal())?;
+    let i = topo.star(v).position(|s| s.edge == e).ok_or(internal())?;
     get(&child, i)
 }
 
@@ -104,14 +101,15 @@ fn edge_point(
         return Ok(mid);
     }
     let s = sharp.edge(topo, e)?;
-    let ends = if sharp.method == crease::CreaseMethod::Chaikin && crease::is_sharp(s) && s < 1.0
-    {
-        [child_at(topo, sharp, i0, e)?, child_at(topo, sharp, i1, e)?]
-    } else {
-        [0.0; 2]
+    let ends = match sharp.method {
+        _ if !crease::is_sharp(s) => [0.0; 2],
+        crease::CreaseMethod::Uniform => [crease::decrement(s); 2],
+        crease::CreaseMethod::Chaikin => {
+            [child_at(topo, sharp, i0, e)?, child_at(topo, sharp, i1, e)?]
+        }
     };
-    let w = crease::edge_weight(sharp.method, s, ends);
-    if w >= 1.0 {
+    let w = crease::edge_weight(s, ends);
+    if w == 1.0 {
         return Ok(mid);
     }
     let smooth = smooth_edge(scheme, topo, h, t, pos)?;

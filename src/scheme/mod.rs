@@ -46,10 +46,12 @@ mod step;
 mod subdivide;
 mod tags;
 
+pub use crate::stencil::crease::CreaseMethod;
 pub use levels::MAX_LEVELS;
 pub use options::Options;
-pub use crate::stencil::crease::CreaseMethod;
-pub use plan::{plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes};
+pub use plan::{
+    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes,
+};
 pub use subdivide::{subdivide, subdivide_tagged, Report, Scratch};
 pub use tags::Tags;
 

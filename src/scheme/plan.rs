@@ -16,7 +16,9 @@ use super::{Options, Scheme, MAX_LEVELS};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::LevelCounts;
 use crate::mesh::topology::Counts;
-use crate::mesh::{cadd, cmul, internal, topology_scratch_size, Mesh, MeshSizes, Topology, MAX_COUNT};
+use crate::mesh::{
+    cadd, cmul, internal, topology_scratch_size, Mesh, MeshSizes, Topology, MAX_COUNT,
+};
 
 /// Scratch sizes, each counted in elements of the buffer it sizes: `u32` entries and points
 /// (`[f64; 3]`, 24 bytes each).

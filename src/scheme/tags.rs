@@ -263,7 +263,11 @@ pub(crate) fn carry(
     let mut pe = ArrayVec::new();
     let mut cs = ArrayVec::new();
     for v in 0..pv {
-        set(cv, v as usize, crease::decrement(parent.vertex(v)?).to_bits())?;
+        set(
+            cv,
+            v as usize,
+            crease::decrement(parent.vertex(v)?).to_bits(),
+        )?;
         parent.around(topo, v, &mut pe, &mut cs)?;
         for (s, &c) in topo.star(v).zip(cs.iter()) {
             if c == 0.0 {

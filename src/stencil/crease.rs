@@ -20,8 +20,8 @@
 //!   from the parent's, the vertex point is `w P + (1 − w) C`: the parent rule `P` and the
 //!   child rule `C` blended by the average of the sharpness values that decay to zero in
 //!   this step, clamped to 1 ([`fractional_weight`]).
-//! * An edge with sharpness `s ≥ 1` (or whose both child edges stay sharp) takes the crease
-//!   rule (its midpoint), `0 < s < 1` the blend `s · midpoint + (1 − s) · smooth`.
+//! * An edge whose two child edges stay sharp takes the crease rule (its midpoint), another
+//!   sharp edge the blend `s · midpoint + (1 − s) · smooth` ([`edge_weight`]).
 
 use crate::point::{lin2, Point};
 
@@ -165,15 +165,15 @@ pub fn fractional_weight(
 }
 
 /// The weight of the crease rule (the midpoint) in the edge point of an edge of sharpness
-/// `s`: 0 smooth, 1 crease, `s` for a semi-sharp edge that turns smooth in this step. `ends`
-/// are the values of its two child edges (they matter only for [`CreaseMethod::Chaikin`]
-/// below 1: an edge whose two children stay sharp is a crease).
-pub fn edge_weight(method: CreaseMethod, s: f32, ends: [f32; 2]) -> f64 {
+/// `s` whose two child edges have the values `ends`: 0 for a smooth edge, 1 when both
+/// children stay sharp (the new vertex is a crease vertex), `s` itself otherwise. With the
+/// uniform method that is `min(s, 1)`; with Chaikin's, an edge above 1 with a child that
+/// decays to zero gets `s > 1`, an extrapolation past the midpoint that OpenSubdiv makes
+/// too (its edge mask takes the parent sharpness unclamped), kept for equality with it.
+pub fn edge_weight(s: f32, ends: [f32; 2]) -> f64 {
     if !is_sharp(s) {
         0.0
-    } else if s >= 1.0
-        || (method == CreaseMethod::Chaikin && is_sharp(ends[0]) && is_sharp(ends[1]))
-    {
+    } else if is_sharp(ends[0]) && is_sharp(ends[1]) {
         1.0
     } else {
         f64::from(s)
@@ -186,7 +186,7 @@ pub fn edge_weight(method: CreaseMethod, s: f32, ends: [f32; 2]) -> f64 {
 pub fn blend(w: f64, sharp: Point, smooth: Point) -> Point {
     if w <= 0.0 {
         smooth
-    } else if w >= 1.0 {
+    } else if w == 1.0 {
         sharp
     } else {
         lin2(w, sharp, 1.0 - w, smooth)
@@ -232,8 +232,10 @@ mod tests {
             fractional_weight(CreaseMethod::Uniform, 3.0, 2.0, &[2.0], &[1.0]),
             0.0
         );
-        assert_eq!(edge_weight(CreaseMethod::Uniform, 0.25, [0.0; 2]), 0.25);
-        assert_eq!(edge_weight(CreaseMethod::Uniform, 1.5, [0.5; 2]), 1.0);
-        assert_eq!(edge_weight(CreaseMethod::Chaikin, 0.5, [0.1; 2]), 1.0);
+        assert_eq!(edge_weight(0.25, [0.0; 2]), 0.25);
+        assert_eq!(edge_weight(1.5, [0.5; 2]), 1.0);
+        assert_eq!(edge_weight(1.0, [0.0; 2]), 1.0);
+        assert_eq!(edge_weight(0.5, [0.125; 2]), 1.0);
+        assert_eq!(edge_weight(1.25, [0.5, 0.0]), 1.25);
     }
 }
