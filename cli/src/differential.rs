@@ -144,6 +144,7 @@ pub fn run(
         },
         curvature_scale: None,
         normals: None,
+        strict: false,
     };
     let mut rep = DifferentialReport::default();
     let err = |e, rep: &DifferentialReport| core_error(e, src, scheme.name(), rep);
