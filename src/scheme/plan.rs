@@ -197,9 +197,9 @@ fn levels_plan(
     if levels > MAX_LEVELS {
         return Err(Error::new(Status::InvalidArgument));
     }
-    let (scratch, marker) = scratch
-        .split_at_mut_checked(plan_scratch_size(&mesh)?)
-        .ok_or(internal())?;
+    // A short scratch is the topology's to report (with the size it needs).
+    let cut = plan_scratch_size(&mesh)?.min(scratch.len());
+    let (scratch, marker) = scratch.split_at_mut_checked(cut).ok_or(internal())?;
     let topo = Topology::build(mesh, scratch)?;
     if let Some(t) = tags {
         tags::apply(t, &topo, marker, |_, _| Ok(()), |_, _| Ok(()))?;

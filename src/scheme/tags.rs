@@ -140,7 +140,7 @@ pub(crate) fn apply(
     let (nv, ne) = (topo.num_vertices(), topo.num_edges());
     let marker = marker.get_mut(..ne + nv).ok_or(internal())?;
     marker.fill(0);
-    let (em, vm) = marker.split_at_mut(ne);
+    let (em, vm) = marker.split_at_mut_checked(ne).ok_or(internal())?;
     for (i, (&[a, b], &s)) in tags.creases.iter().zip(tags.crease_sharpness).enumerate() {
         let at = |st: Status| Error::at(st, i as u32);
         if a as usize >= nv || b as usize >= nv {
@@ -234,7 +234,7 @@ pub(crate) fn initial(tags: &Tags<'_>, topo: &Topology<'_, '_>, buf: &mut [u32])
     let nv = topo.num_vertices();
     let buf = buf.get_mut(..ne + nv).ok_or(internal())?;
     buf.fill(0);
-    let (eb, vb) = buf.split_at_mut(ne);
+    let (eb, vb) = buf.split_at_mut_checked(ne).ok_or(internal())?;
     for (&[a, b], &s) in tags.creases.iter().zip(tags.crease_sharpness) {
         let e = edge_between(topo, a, b);
         set(eb, e as usize, stored(s, 0)?.to_bits())?;
@@ -258,7 +258,7 @@ pub(crate) fn carry(
     let (ne, nv) = (child.num_edges(), child.num_vertices());
     let out = out.get_mut(..ne + nv).ok_or(internal())?;
     out.fill(0);
-    let (ce, cv) = out.split_at_mut(ne);
+    let (ce, cv) = out.split_at_mut_checked(ne).ok_or(internal())?;
     let pv = topo.num_vertices() as u32;
     let mut pe = ArrayVec::new();
     let mut cs = ArrayVec::new();
