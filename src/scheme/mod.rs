@@ -13,7 +13,9 @@
 //! the last level into the caller's [`MeshOut`](crate::mesh::MeshOut), the intermediate
 //! levels in the caller's [`Scratch`], and returns a [`Report`]. Parameters come in the order
 //! input, options, scratch, output. [`Scheme::Spherelike`] (seed 003 §3, [`spherelike`]) runs
-//! through the same path.
+//! through the same path. A mesh with sharp-feature tags ([`Tags`]: creases and corners with
+//! OpenSubdiv's conventions, for Loop and Catmull–Clark) takes [`plan_tagged`] and
+//! [`subdivide_tagged`], the same path with the tags next to the mesh.
 //!
 //! Sizes are counted in elements of the buffer they size (points, `u32` entries, faces); a
 //! function named `…_size` returns an exact size, one named `…_bound` a worst case.
@@ -31,7 +33,9 @@
 //! `levels.rs` (the level loop and where it keeps the levels in the scratch), `step.rs` (one
 //! step on a built topology, the one function every level goes through), `size.rs` (the
 //! exact sizes of one step), `linear.rs` (the linear position rules), `spherelike.rs`,
-//! `mobius/`, `carry.rs` (old vertices carried through).
+//! `mobius/`, `carry.rs` (old vertices carried through), `tags.rs` (sharp-feature tags:
+//! validation, the sharpness of each level), `linear_tagged.rs` (Loop and Catmull–Clark
+//! with sharp features).
 
 mod carry;
 mod levels;

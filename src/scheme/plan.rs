@@ -49,6 +49,10 @@ pub struct Plan {
     ///   Modified Butterfly) two alternate (a derivation reads one while writing the other).
     ///   Never less than [`plan_scratch_size`]: with zero levels it is the input's topology,
     ///   since the call still validates the input.
+    ///   With sharp-feature tags ([`plan_tagged`]) two more alternating buffers of one
+    ///   value per edge and per vertex of the largest level stepped from (the sharpness of
+    ///   the level stepped from and of its child), and at least
+    ///   [`plan_scratch_size_tagged`].
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1).
