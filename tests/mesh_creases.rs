@@ -528,6 +528,11 @@ fn zero_levels_validate_tags_and_copy() {
     let tags = Tags::new().creases(&creases, &[2.0]);
     let out = run_tagged(&m, &Options::new(Scheme::CatmullClark).levels(0), &tags).unwrap();
     assert_eq!(out, m);
+    // No sharpness buffers for zero levels: the scratch is the plan's own.
+    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), &tags).unwrap()];
+    let opts = Options::new(Scheme::CatmullClark).levels(0);
+    let p = scheme::plan_tagged(m.view(), &opts, &tags, &mut su).unwrap();
+    assert_eq!(p.scratch.u32s, su.len());
     let bad = Tags::new().creases(&[[0, 7]], &[2.0]);
     assert!(run_tagged(&m, &Options::new(Scheme::CatmullClark).levels(0), &bad).is_err());
 }

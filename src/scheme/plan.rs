@@ -237,7 +237,11 @@ fn levels_plan(
     }
     let lay = Layout::of(&p, pattern)?;
     let candidates = if mobius { p.mobius_step_points()? } else { 0 };
-    p.sharpness = if tags.is_some() { sharpness } else { 0 };
+    p.sharpness = if tags.is_some() && levels > 0 {
+        sharpness
+    } else {
+        0
+    };
     p.scratch = ScratchSizes {
         u32s: cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?,
         points: cadd(cadd(lay.points[0], lay.points[1])?, candidates)?,
