@@ -76,11 +76,19 @@ pub enum Status {
     /// The `strict` option was set and an edit folded the surface (differential-space
     /// editing: a face turned by more than 90° from the unedited result, or a folded edge).
     FoldedSurface = 30,
+    /// A crease tag names two vertices that are not joined by an edge of the mesh.
+    TagNotAnEdge = 31,
+    /// The same edge or vertex is tagged twice.
+    RepeatedTag = 32,
+    /// A tag's sharpness is NaN, negative or infinite.
+    InvalidSharpness = 33,
+    /// The scheme or version does not take sharp-feature tags.
+    TagsNotSupported = 34,
 }
 
 impl Status {
     /// Every status, in code order (private so that cbindgen does not export it).
-    const LIST: [Status; 25] = [
+    const LIST: [Status; 29] = [
         Status::Ok,
         Status::NullParameter,
         Status::MisalignedPointer,
@@ -106,6 +114,10 @@ impl Status {
         Status::TooFewPoints,
         Status::FallbackInStrictMode,
         Status::FoldedSurface,
+        Status::TagNotAnEdge,
+        Status::RepeatedTag,
+        Status::InvalidSharpness,
+        Status::TagsNotSupported,
     ];
 
     /// Every status, in code order.
@@ -168,6 +180,12 @@ impl Status {
                 c"an element needed the linear fallback and the strict option is set"
             }
             Status::FoldedSurface => c"an edit folded the surface and the strict option is set",
+            Status::TagNotAnEdge => {
+                c"a crease tag names two vertices that are not joined by an edge"
+            }
+            Status::RepeatedTag => c"the same edge or vertex is tagged twice",
+            Status::InvalidSharpness => c"a tag's sharpness is NaN, negative or infinite",
+            Status::TagsNotSupported => c"the scheme does not take sharp-feature tags",
         }
     }
 }

@@ -86,8 +86,8 @@ pub use mesh::{Mesh, MeshOut, MeshSizes};
 pub use point::Point;
 pub use quat::Quat;
 pub use scheme::{
-    plan, plan_scratch_size, subdivide, Options, Plan, Report, Scheme, Scratch, ScratchSizes,
-    MAX_LEVELS,
+    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, subdivide, subdivide_tagged,
+    CreaseMethod, Options, Plan, Report, Scheme, Scratch, ScratchSizes, Tags, MAX_LEVELS,
 };
 
 /// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held

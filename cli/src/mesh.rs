@@ -125,6 +125,39 @@ pub fn area_vector(m: &Mesh, face: &[u32]) -> P3 {
     scale(s, 0.5)
 }
 
+/// Sharp-feature tags read from a file (OBJ `t crease` and `t corner` statements), each
+/// with the line it came from, in the layout of the kernel's `Tags`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FileTags {
+    /// Tagged edges as vertex pairs (0-based).
+    pub creases: Vec<[u32; 2]>,
+    /// Their sharpness.
+    pub crease_sharpness: Vec<f64>,
+    /// The line of each tagged edge.
+    pub crease_lines: Vec<u32>,
+    /// Tagged vertices (0-based).
+    pub corners: Vec<u32>,
+    /// Their sharpness.
+    pub corner_sharpness: Vec<f64>,
+    /// The line of each tagged vertex.
+    pub corner_lines: Vec<u32>,
+}
+
+impl FileTags {
+    /// Whether there is no tag.
+    pub fn is_empty(&self) -> bool {
+        self.creases.is_empty() && self.corners.is_empty()
+    }
+
+    /// The line of tag `element` as the kernel numbers tags (creases, then corners).
+    pub fn line_of(&self, element: usize) -> Option<u32> {
+        match element.checked_sub(self.creases.len()) {
+            None => self.crease_lines.get(element).copied(),
+            Some(j) => self.corner_lines.get(j).copied(),
+        }
+    }
+}
+
 /// Where a mesh came from: the file, its format, and the line of each element where the
 /// format has lines. Used to name the line and element at fault in messages.
 #[derive(Clone, Debug)]
@@ -132,6 +165,8 @@ pub struct Source {
     /// The file read.
     pub path: PathBuf,
     lines: Lines,
+    /// Sharp-feature tags the file carries (OBJ only; empty otherwise).
+    pub tags: FileTags,
 }
 
 #[derive(Clone, Debug)]
@@ -148,6 +183,7 @@ impl Source {
         Source {
             path: path.to_path_buf(),
             lines: Lines::None,
+            tags: FileTags::default(),
         }
     }
 
@@ -156,6 +192,7 @@ impl Source {
         Source {
             path: path.to_path_buf(),
             lines: Lines::PerElement { vertex, face },
+            tags: FileTags::default(),
         }
     }
 

@@ -551,3 +551,134 @@ pub fn run(
         elapsed: started.elapsed(),
     })
 }
+
+/// [`run`] for a mesh with sharp-feature tags: every level in one core call
+/// (`scheme::subdivide_tagged`), which carries the tags to the child edges and vertices from
+/// level to level (one call per level would lose them). Loop and Catmull–Clark, linear; the
+/// kernel refuses the others with a status this names.
+///
+/// # Errors
+/// Those of [`run`]; exit 2 for a tag the kernel refuses, naming the file and the line of the
+/// tag (`src.tags` holds the lines; tags added by `--crease-angle` have none).
+pub fn run_tagged(
+    input: &Mesh,
+    src: &Source,
+    ms: MeshScheme,
+    levels: usize,
+    tags: &crate::mesh::FileTags,
+    method: scheme::CreaseMethod,
+    ctx: &Ctx,
+) -> CliResult<Outcome> {
+    let started = Instant::now();
+    if levels > MAX_LEVELS {
+        return Err(CliError::usage(format!(
+            "--levels {levels}: at most {MAX_LEVELS}"
+        )));
+    }
+    let mesh0 = CoreMesh::new(&input.positions, &input.offsets, &input.indices);
+    let n0 = Namer { src, level: 0 };
+    let core_tags = scheme::Tags::new()
+        .creases(&tags.creases, &tags.crease_sharpness)
+        .corners(&tags.corners, &tags.corner_sharpness)
+        .method(method);
+    let tag_error = |e: Error| -> Option<CliError> {
+        let why = match e.status {
+            Status::TagNotAnEdge => "the two vertices are not joined by an edge",
+            Status::RepeatedTag => "this edge or vertex is already tagged",
+            Status::InvalidSharpness => "the sharpness must be a finite number ≥ 0",
+            Status::IndexOutOfRange => "a vertex index is not below the vertex count",
+            Status::TagsNotSupported => {
+                return Some(CliError::bad_input(format!(
+                    "{}: sharp-feature tags: {} does not take them (loop and catmull-clark do)",
+                    n0.file(),
+                    ms.name()
+                )))
+            }
+            _ => return None,
+        };
+        let e_idx = e.element as usize;
+        let what = if e_idx < tags.creases.len() {
+            let [a, b] = tags.creases.get(e_idx).copied().unwrap_or_default();
+            format!("crease tag {a} {b}")
+        } else {
+            let v = tags
+                .corners
+                .get(e_idx - tags.creases.len())
+                .copied()
+                .unwrap_or_default();
+            format!("corner tag {v}")
+        };
+        let at = match tags.line_of(e_idx) {
+            Some(l) => format!("{}:{l}", n0.file()),
+            None => format!("{} (--crease-angle)", n0.file()),
+        };
+        Some(CliError::bad_input(format!("{at}: {what}: {why}")))
+    };
+    let opts = Options::new(ms.scheme).mobius(ms.mobius).levels(levels);
+    // Validation (naming the file's elements) and the sizes of every level, as `run`.
+    {
+        let len = scheme::plan_scratch_size(&mesh0)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
+        let mut scratch = memory::filled(len, 0u32, "the topology")?;
+        let first = Options::new(ms.scheme).levels(levels.min(1));
+        scheme::plan(mesh0, &first, &mut scratch).map_err(|e| call_error(e, ms, mesh0, &n0))?;
+    }
+    let (sizes, _) = plan_sizes(ms, mesh0, levels, &n0)?;
+    let len = scheme::plan_scratch_size_tagged(&mesh0, &core_tags)
+        .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
+    let mut scratch = memory::filled(len, 0u32, "the topology")?;
+    let plan = scheme::plan_tagged(mesh0, &opts, &core_tags, &mut scratch)
+        .map_err(|e| tag_error(e).unwrap_or_else(|| call_error(e, ms, mesh0, &n0)))?;
+    let out_sizes = plan.output();
+    if sizes.last().copied().unwrap_or_default() != out_sizes {
+        return Err(CliError::internal(
+            "tagged plan sizes differ from the untagged plan",
+        ));
+    }
+    let bytes = 4 * plan.scratch.u32s as u128
+        + 24 * plan.scratch.points as u128
+        + 24 * out_sizes.vertices as u128
+        + 4 * (out_sizes.faces as u128 + 1 + out_sizes.indices as u128);
+    memory::check(
+        bytes,
+        &format!("{levels} levels of {}", ms.name()),
+        "use fewer levels",
+    )?;
+    let mut scratch = memory::filled(plan.scratch.u32s, 0u32, "the topology")?;
+    let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the levels")?;
+    let mut next = Mesh {
+        positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
+        offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
+        indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
+    };
+    let _spinner = ctx.spinner("subdividing");
+    let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
+    let report = scheme::subdivide_tagged(
+        mesh0,
+        &opts,
+        &core_tags,
+        Scratch::new(&mut scratch, &mut points),
+        &mut out,
+    )
+    .map_err(|e| {
+        tag_error(e).unwrap_or_else(|| {
+            CliError::internal(format!(
+                "{}: {} levels of {}: {e}",
+                n0.file(),
+                levels,
+                ms.name()
+            ))
+        })
+    })?;
+    if report.sizes != out_sizes {
+        return Err(CliError::internal(
+            "tagged subdivision wrote other sizes than planned",
+        ));
+    }
+    Ok(Outcome {
+        mesh: next,
+        fallbacks: 0,
+        first_fallback: None,
+        elapsed: started.elapsed(),
+    })
+}

@@ -11,6 +11,7 @@
 use super::mobius::MobiusOptions;
 use super::plan::{plan_with_topology, Plan};
 use super::step::step;
+use super::tags::{self, Sharpness, Tags};
 use super::{Options, Report, Scratch};
 #[cfg(doc)]
 use crate::error::Status;
@@ -76,10 +77,13 @@ impl Layout {
 /// The work of [`super::subdivide`]: the plan (validation, sizes), the buffer checks, then
 /// every level as one [`step`] into the scratch or, for the last, into `out`. With
 /// [`Options::mobius`], the candidate scratch of the largest step (after the intermediate
-/// levels) is handed to every step and the steps' fallbacks are gathered.
+/// levels) is handed to every step and the steps' fallbacks are gathered. With `tags`, the
+/// sharpness values of the level stepped from and of the next alternate in two buffers after
+/// the levels' `u32` scratch ([`tags`]).
 pub(super) fn run(
     mesh: Mesh<'_>,
     opts: &Options,
+    tags: &Tags<'_>,
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
@@ -87,7 +91,7 @@ pub(super) fn run(
         u32s: scratch_u32,
         points: scratch_points,
     } = scratch;
-    let (p, input_counts) = plan_with_topology(mesh, opts, scratch_u32)?;
+    let (p, input_counts) = plan_with_topology(mesh, opts, tags, scratch_u32)?;
     let final_sizes = p.output();
     let mut report = Report::empty(final_sizes);
     out.check(&final_sizes)?;
@@ -119,9 +123,13 @@ pub(super) fn run(
     let (u_a, rest) = rest
         .split_at_mut_checked(lay.levels_u32[0])
         .ok_or(internal())?;
-    let (u_b, _) = rest
+    let (u_b, rest) = rest
         .split_at_mut_checked(lay.levels_u32[1])
         .ok_or(internal())?;
+    let (s_a, rest) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
+    let (s_b, _) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
+    let mut bufs_s: [&mut [u32]; 2] = [s_a, s_b];
+    let tagged = p.sharpness > 0;
     let (p_a, rest) = scratch_points
         .split_at_mut_checked(lay.points[0])
         .ok_or(internal())?;
@@ -165,13 +173,31 @@ pub(super) fn run(
             Some(c) => Topology::from_parts(input, in_t, c)?,
             None => Topology::build(input, in_t)?,
         };
+        // Sharpness of level k in buffer k % 2, of level k + 1 in the other.
+        let [sa, sb] = &mut bufs_s;
+        let (in_s, out_s): (&mut [u32], &mut [u32]) = if k % 2 == 0 {
+            (&mut **sa, &mut **sb)
+        } else {
+            (&mut **sb, &mut **sa)
+        };
+        if tagged && k == 0 {
+            tags::initial(tags, &topo, in_s)?;
+        }
+        let (ne, nv) = (topo.num_edges(), topo.num_vertices());
+        let in_s: &[u32] = in_s;
+        let sharp = Sharpness {
+            edges: in_s.get(..ne).unwrap_or(&[]),
+            vertices: in_s.get(ne..ne + nv).unwrap_or(&[]),
+            method: tags.method,
+        };
+        let sharp = tagged.then_some(&sharp);
         let (written, r) = if k + 1 == levels {
-            step(scheme, mobius, &topo, out, step_scratch)?
+            step(scheme, mobius, sharp, &topo, out, step_scratch)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(&mut *out_p, o, rest);
-            step(scheme, mobius, &topo, &mut step_out, step_scratch)?
+            step(scheme, mobius, sharp, &topo, &mut step_out, step_scratch)?
         };
         report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
         if report.first_fallback_level == 0 && r.fallbacks > 0 {
@@ -189,7 +215,11 @@ pub(super) fn run(
             let idx = out_u.get(no..no + out_sizes.indices).ok_or(internal())?;
             let pts: &[Point] = out_p;
             let child = Mesh::new(pts.get(..out_sizes.vertices).ok_or(internal())?, offs, idx);
-            ready = Some(child_topology(&topo, pattern, child, out_t)?.counts());
+            let child = child_topology(&topo, pattern, child, out_t)?;
+            if let Some(sh) = sharp {
+                tags::carry(&topo, sh, &child, out_s)?;
+            }
+            ready = Some(child.counts());
         }
     }
     Ok(report)

@@ -13,7 +13,9 @@
 //! the last level into the caller's [`MeshOut`](crate::mesh::MeshOut), the intermediate
 //! levels in the caller's [`Scratch`], and returns a [`Report`]. Parameters come in the order
 //! input, options, scratch, output. [`Scheme::Spherelike`] (seed 003 §3, [`spherelike`]) runs
-//! through the same path.
+//! through the same path. A mesh with sharp-feature tags ([`Tags`]: creases and corners with
+//! OpenSubdiv's conventions, for Loop and Catmull–Clark) takes [`plan_tagged`] and
+//! [`subdivide_tagged`], the same path with the tags next to the mesh.
 //!
 //! Sizes are counted in elements of the buffer they size (points, `u32` entries, faces); a
 //! function named `…_size` returns an exact size, one named `…_bound` a worst case.
@@ -31,11 +33,14 @@
 //! `levels.rs` (the level loop and where it keeps the levels in the scratch), `step.rs` (one
 //! step on a built topology, the one function every level goes through), `size.rs` (the
 //! exact sizes of one step), `linear.rs` (the linear position rules), `spherelike.rs`,
-//! `mobius/`, `carry.rs` (old vertices carried through).
+//! `mobius/`, `carry.rs` (old vertices carried through), `tags.rs` (sharp-feature tags:
+//! validation, the sharpness of each level), `linear_tagged.rs` (Loop and Catmull–Clark
+//! with sharp features).
 
 mod carry;
 mod levels;
 mod linear;
+mod linear_tagged;
 pub mod mobius;
 mod options;
 mod plan;
@@ -43,11 +48,16 @@ mod size;
 pub mod spherelike;
 mod step;
 mod subdivide;
+mod tags;
 
+pub use crate::stencil::crease::CreaseMethod;
 pub use levels::MAX_LEVELS;
 pub use options::Options;
-pub use plan::{plan, plan_scratch_size, Plan, ScratchSizes};
-pub use subdivide::{subdivide, Report, Scratch};
+pub use plan::{
+    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes,
+};
+pub use subdivide::{subdivide, subdivide_tagged, Report, Scratch};
+pub use tags::Tags;
 
 pub(crate) use plan::plan_levels;
 pub(crate) use step::linear as step_linear;

@@ -11,11 +11,14 @@
 
 use super::levels::Layout;
 use super::size::step_size;
+use super::tags::{self, Tags};
 use super::{Options, Scheme, MAX_LEVELS};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::LevelCounts;
 use crate::mesh::topology::Counts;
-use crate::mesh::{cadd, internal, topology_scratch_size, Mesh, MeshSizes, Topology, MAX_COUNT};
+use crate::mesh::{
+    cadd, cmul, internal, topology_scratch_size, Mesh, MeshSizes, Topology, MAX_COUNT,
+};
 
 /// Scratch sizes, each counted in elements of the buffer it sizes: `u32` entries and points
 /// (`[f64; 3]`, 24 bytes each).
@@ -46,10 +49,17 @@ pub struct Plan {
     ///   Modified Butterfly) two alternate (a derivation reads one while writing the other).
     ///   Never less than [`plan_scratch_size`]: with zero levels it is the input's topology,
     ///   since the call still validates the input.
+    ///   With sharp-feature tags ([`plan_tagged`]) two more alternating buffers of one
+    ///   value per edge and per vertex of the largest level stepped from (the sharpness of
+    ///   the level stepped from and of its child), and at least
+    ///   [`plan_scratch_size_tagged`].
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1).
     pub scratch: ScratchSizes,
+    /// `u32` entries of one of the two sharpness buffers of a tagged mesh (one value per
+    /// edge and per vertex of the largest level stepped from); 0 without tags.
+    pub(super) sharpness: usize,
 }
 
 impl Plan {
@@ -79,6 +89,43 @@ pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
     topology_scratch_size(mesh.num_vertices(), mesh.num_corners())
 }
 
+/// The `u32` scratch entries [`plan_tagged`] needs for `mesh` with `tags`: those of
+/// [`plan_scratch_size`], plus one per vertex and per corner to find repeated tags when
+/// there is a tag.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub fn plan_scratch_size_tagged(mesh: &Mesh<'_>, tags: &Tags<'_>) -> Result<usize> {
+    let topo = plan_scratch_size(mesh)?;
+    if tags.is_empty() {
+        return Ok(topo);
+    }
+    cadd(
+        topo,
+        tags::marker_size(mesh.num_vertices(), mesh.num_corners())?,
+    )
+}
+
+/// [`plan`] for a mesh with sharp-feature tags ([`Tags`]; the rules in
+/// [`crate::stencil::crease`]): `scratch_u32` holds at least [`plan_scratch_size_tagged`]
+/// entries. Empty tags are [`plan`] exactly.
+///
+/// # Errors
+/// Those of [`plan`], and after [`Options`] are checked: [`Status::TagsNotSupported`] for
+/// tags with a scheme other than [`Scheme::Loop`] and [`Scheme::CatmullClark`] or with
+/// [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
+/// mismatch is [`Status::InvalidArgument`]; [`Status::IndexOutOfRange`],
+/// [`Status::InvalidSharpness`], [`Status::TagNotAnEdge`], [`Status::RepeatedTag`] naming
+/// the tag).
+pub fn plan_tagged(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    tags: &Tags<'_>,
+    scratch_u32: &mut [u32],
+) -> Result<Plan> {
+    plan_with_topology(mesh, opts, tags, scratch_u32).map(|(p, _)| p)
+}
+
 /// Validates `mesh` and `opts` and returns the exact sizes of every level and the exact
 /// scratch of [`subdivide`](super::subdivide) with the same arguments. `scratch_u32` holds
 /// at least [`plan_scratch_size`] entries; its contents are unspecified afterwards.
@@ -97,7 +144,7 @@ pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
 /// mesh outside the sizes its squared distances can represent
 /// ([`crate::mesh::check_extent`]).
 pub fn plan(mesh: Mesh<'_>, opts: &Options, scratch_u32: &mut [u32]) -> Result<Plan> {
-    plan_with_topology(mesh, opts, scratch_u32).map(|(p, _)| p)
+    plan_with_topology(mesh, opts, &Tags::new(), scratch_u32).map(|(p, _)| p)
 }
 
 /// [`plan`], also returning the counts of the input's topology, which stays in
@@ -105,20 +152,34 @@ pub fn plan(mesh: Mesh<'_>, opts: &Options, scratch_u32: &mut [u32]) -> Result<P
 pub(super) fn plan_with_topology(
     mesh: Mesh<'_>,
     opts: &Options,
+    tags: &Tags<'_>,
     scratch_u32: &mut [u32],
 ) -> Result<(Plan, Counts)> {
     opts.check()?;
-    let need = plan_scratch_size(&mesh)?;
+    let tagged = !tags.is_empty();
+    if tagged && (opts.mobius || !matches!(opts.scheme, Scheme::Loop | Scheme::CatmullClark)) {
+        return Err(Error::new(Status::TagsNotSupported));
+    }
+    let need = plan_scratch_size_tagged(&mesh, tags)?;
     if scratch_u32.len() < need {
         return Err(Error::too_small(need));
     }
-    let planned = levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)?;
+    let mut p = levels_plan(
+        opts.scheme,
+        opts.mobius,
+        mesh,
+        opts.levels,
+        scratch_u32,
+        tagged.then_some(tags),
+    )?;
+    // The plan's own scratch (topology and tag markers) is also the start of the call's.
+    p.0.scratch.u32s = p.0.scratch.u32s.max(need);
     // The circle blend measures squared distances: outside this range they underflow or
     // overflow and the shape is lost (mesh/extent.rs).
     if opts.scheme == Scheme::Spherelike && opts.levels > 0 {
         crate::mesh::check_extent(&mesh)?;
     }
-    Ok(planned)
+    Ok(p)
 }
 
 /// The plan of `levels` linear levels of `scheme`, validating `mesh` into `scratch`: the
@@ -130,29 +191,40 @@ pub(crate) fn plan_levels(
     levels: usize,
     scratch: &mut [u32],
 ) -> Result<Plan> {
-    levels_plan(scheme, false, mesh, levels, scratch).map(|(p, _)| p)
+    levels_plan(scheme, false, mesh, levels, scratch, None).map(|(p, _)| p)
 }
 
 /// The plan of `levels` levels of `scheme` (linear, or Möbius with `mobius`), validating
-/// `mesh` into `scratch` (the options are checked by the callers).
+/// `mesh` into `scratch` (the options are checked by the callers), and `tags` if any (their
+/// repeats found with the scratch after the topology).
 fn levels_plan(
     scheme: Scheme,
     mobius: bool,
     mesh: Mesh<'_>,
     levels: usize,
     scratch: &mut [u32],
+    tags: Option<&Tags<'_>>,
 ) -> Result<(Plan, Counts)> {
     if levels > MAX_LEVELS {
         return Err(Error::new(Status::InvalidArgument));
     }
+    // A short scratch is the topology's to report (with the size it needs).
+    let cut = plan_scratch_size(&mesh)?.min(scratch.len());
+    let (scratch, marker) = scratch.split_at_mut_checked(cut).ok_or(internal())?;
     let topo = Topology::build(mesh, scratch)?;
+    if let Some(t) = tags {
+        tags::apply(t, &topo, marker, |_, _| Ok(()), |_, _| Ok(()))?;
+    }
     let counts = topo.counts();
     let mut stats = LevelCounts::of(&topo)?;
     let mut p = Plan {
         levels,
         sizes: [MeshSizes::default(); MAX_LEVELS + 1],
         scratch: ScratchSizes::default(),
+        sharpness: 0,
     };
+    // One sharpness value per edge and vertex of the largest level stepped from.
+    let mut sharpness = cadd(stats.edges(), stats.sizes().vertices)?;
     *p.sizes.get_mut(0).ok_or(internal())? = stats.sizes();
     let pattern = scheme.pattern();
     if levels > 0 {
@@ -161,6 +233,9 @@ fn levels_plan(
         for k in 1..=levels {
             stats = stats.next(pattern)?;
             let sz = stats.sizes();
+            if k < levels {
+                sharpness = sharpness.max(cadd(stats.edges(), sz.vertices)?);
+            }
             if k == 1 && sz != first {
                 return Err(internal());
             }
@@ -169,8 +244,13 @@ fn levels_plan(
     }
     let lay = Layout::of(&p, pattern)?;
     let candidates = if mobius { p.mobius_step_points()? } else { 0 };
+    p.sharpness = if tags.is_some() && levels > 0 {
+        sharpness
+    } else {
+        0
+    };
     p.scratch = ScratchSizes {
-        u32s: lay.total_u32()?,
+        u32s: cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?,
         points: cadd(cadd(lay.points[0], lay.points[1])?, candidates)?,
     };
     if p.scratch.u32s > MAX_COUNT.saturating_mul(8) {

@@ -5,7 +5,8 @@
 
 use super::mobius::{self, MobiusOptions, MobiusReport};
 use super::size::step_size;
-use super::{linear, spherelike, Scheme};
+use super::tags::Sharpness;
+use super::{linear, linear_tagged, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
@@ -14,21 +15,43 @@ use crate::point::{self, Point};
 /// One step of `scheme` on `topo` into `out`: the linear (or spherelike) rules with `mobius`
 /// `None`, the canonical Möbius version with its options otherwise, `candidates` its scratch
 /// ([`mobius::candidate_points`]; unused by the other rules). Returns the sizes written and
-/// the Möbius report (empty for the other rules).
+/// the Möbius report (empty for the other rules). With `sharp` (the level's sharpness
+/// values of a tagged mesh) the linear rules with sharp features ([`linear_tagged`]).
 ///
 /// # Errors
 /// Those of [`linear`] and [`mobius::step`].
 pub(crate) fn step(
     scheme: Scheme,
     mobius: Option<MobiusOptions>,
+    sharp: Option<&Sharpness<'_>>,
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     candidates: &mut [Point],
 ) -> Result<(MeshSizes, MobiusReport)> {
-    match mobius {
-        None => linear(scheme, topo, out).map(|s| (s, MobiusReport::default())),
-        Some(opts) => mobius::step(scheme, topo, out, candidates, opts),
+    match (mobius, sharp) {
+        (None, None) => linear(scheme, topo, out).map(|s| (s, MobiusReport::default())),
+        (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
+        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts),
+        (Some(_), Some(_)) => Err(Error::new(Status::TagsNotSupported)),
     }
+}
+
+/// [`linear`] with sharp features (Loop, Catmull–Clark).
+fn tagged(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    out: &mut MeshOut<'_>,
+) -> Result<MeshSizes> {
+    let sizes = step_size(scheme, topo)?;
+    out.check(&sizes)?;
+    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
+    linear_tagged::positions(scheme, topo, sharp, pos)?;
+    if let Some(i) = first_non_finite(pos) {
+        return Err(Error::at(Status::NumericalFailure, i as u32));
+    }
+    Ok(sizes)
 }
 
 /// Writes one step of `scheme` on `topo` into `out` and returns the sizes written: the

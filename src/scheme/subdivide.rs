@@ -2,6 +2,7 @@
 //! into caller buffers sized by [`super::plan`].
 
 use super::levels::run;
+use super::tags::Tags;
 use super::Options;
 #[cfg(doc)]
 use crate::error::Status;
@@ -83,5 +84,25 @@ pub fn subdivide(
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
-    run(mesh, opts, scratch, out)
+    run(mesh, opts, &Tags::new(), scratch, out)
+}
+
+/// [`subdivide`] for a mesh with sharp-feature tags ([`Tags`]): Loop and Catmull–Clark,
+/// linear, with OpenSubdiv's rules for creases, corners and darts ([`crate::stencil::crease`]),
+/// the tags carried to the child edges and vertices level by level. Buffer sizes come from
+/// [`plan_tagged`](super::plan_tagged) with the same arguments. Empty tags are [`subdivide`]
+/// exactly, bit for bit. The child levels' sharpness lives only inside the call: `k` levels
+/// of a tagged mesh are one call of `k` levels (`k` calls of one level would have to tag
+/// every intermediate level themselves).
+///
+/// # Errors
+/// Those of [`plan_tagged`](super::plan_tagged) and [`subdivide`].
+pub fn subdivide_tagged(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    tags: &Tags<'_>,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+) -> Result<Report> {
+    run(mesh, opts, tags, scratch, out)
 }

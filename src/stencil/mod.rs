@@ -14,6 +14,7 @@
 pub mod akleman;
 pub mod butterfly;
 pub mod catmull_clark;
+pub mod crease;
 pub mod doo_sabin;
 pub mod kobbelt;
 pub mod loop_scheme;

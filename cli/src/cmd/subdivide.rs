@@ -13,7 +13,9 @@ use super::{load_for_kernel, Ctx, Policy};
 use crate::differential::{self, DifferentialScheme};
 use crate::error::{CliResult, Exit};
 use crate::io::{write_mesh, Format, WriteOptions};
+use crate::mesh::FileTags;
 use crate::subdiv::{self, MeshScheme};
+use nlsubdiv::scheme::CreaseMethod;
 
 /// A `--scheme` value: a mesh scheme of [`crate::subdiv`] or a differential-space one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,6 +24,16 @@ pub enum SchemeArg {
     Mesh(MeshScheme),
     /// `differential-*`.
     Differential(DifferentialScheme),
+}
+
+fn parse_method(name: &str) -> Result<CreaseMethod, String> {
+    match name {
+        "uniform" => Ok(CreaseMethod::Uniform),
+        "chaikin" => Ok(CreaseMethod::Chaikin),
+        _ => Err(format!(
+            "unknown crease method {name:?}: uniform or chaikin"
+        )),
+    }
 }
 
 fn parse_scheme(name: &str) -> Result<SchemeArg, String> {
@@ -61,6 +73,15 @@ pub struct Args {
     /// differential-*: iteration cap of the reconstruction.
     #[arg(long, value_name = "N", default_value_t = 100)]
     pub max_iterations: u32,
+    /// How semi-sharp creases decay from level to level: uniform (sharpness − 1 per level)
+    /// or chaikin (Chaikin's rule along the crease), as OpenSubdiv.
+    #[arg(long, value_name = "METHOD", default_value = "uniform", value_parser = parse_method)]
+    pub crease_method: CreaseMethod,
+    /// Tag every edge whose dihedral angle (between the normals of its two faces) exceeds DEG
+    /// degrees as an infinitely sharp crease (loop, catmull-clark), besides the OBJ file's
+    /// own `t crease` / `t corner` tags.
+    #[arg(long, value_name = "DEG")]
+    pub crease_angle: Option<f64>,
     /// Write PLY as ASCII instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -80,11 +101,38 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     };
     let l = load_for_kernel(&args.input, policy, ctx)?;
     let levels = args.levels as usize;
+    let mut tags = l.source.tags.clone();
+    if let Some(deg) = args.crease_angle {
+        if !(deg.is_finite() && (0.0..=180.0).contains(&deg)) {
+            return Err(crate::error::CliError::usage(format!(
+                "--crease-angle {deg}: must be a number of degrees from 0 to 180"
+            )));
+        }
+        add_angle_creases(&l.mesh, deg, &mut tags);
+    }
     let scheme = match args.scheme {
         SchemeArg::Mesh(m) => m,
+        SchemeArg::Differential(_) if !tags.is_empty() => {
+            return Err(crate::error::CliError::bad_input(format!(
+                "{}: sharp-feature tags (t crease / t corner, --crease-angle) apply to loop and                  catmull-clark, not to differential-space subdivision",
+                args.input.display()
+            )))
+        }
         SchemeArg::Differential(d) => return run_differential(args, d, &l, ctx),
     };
-    let r = subdiv::run(&l.mesh, &l.source, scheme, levels, args.strict, ctx)?;
+    let r = if tags.is_empty() {
+        subdiv::run(&l.mesh, &l.source, scheme, levels, args.strict, ctx)?
+    } else {
+        subdiv::run_tagged(
+            &l.mesh,
+            &l.source,
+            scheme,
+            levels,
+            &tags,
+            args.crease_method,
+            ctx,
+        )?
+    };
     {
         let _spinner = ctx.spinner("writing");
         let opts = WriteOptions {
@@ -117,6 +165,54 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         r.elapsed.as_secs_f64(),
     ));
     Ok(Exit::Ok)
+}
+
+/// Adds an infinitely sharp crease tag (sharpness 10, OpenSubdiv's convention) for every
+/// interior edge whose two faces' normals (Newell's) make an angle above `deg` degrees and
+/// that the file does not tag already. Edges are visited in `(min, max)` vertex order.
+fn add_angle_creases(mesh: &crate::mesh::Mesh, deg: f64, tags: &mut FileTags) {
+    use std::collections::{BTreeMap, BTreeSet};
+    let normal = |f: &[u32]| {
+        let mut n = [0.0f64; 3];
+        for (k, &a) in f.iter().enumerate() {
+            let p = mesh.pos(a);
+            let q = mesh.pos(f[(k + 1) % f.len()]);
+            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        }
+        n
+    };
+    let mut faces_of: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
+    for (fi, f) in mesh.faces().enumerate() {
+        for (k, &a) in f.iter().enumerate() {
+            let b = f[(k + 1) % f.len()];
+            faces_of.entry((a.min(b), a.max(b))).or_default().push(fi);
+        }
+    }
+    let tagged: BTreeSet<(u32, u32)> = tags
+        .creases
+        .iter()
+        .map(|&[a, b]| (a.min(b), a.max(b)))
+        .collect();
+    let cos_limit = deg.to_radians().cos();
+    for ((a, b), fs) in faces_of {
+        let [f0, f1] = fs.as_slice() else { continue };
+        if tagged.contains(&(a, b)) {
+            continue;
+        }
+        let (n0, n1) = (normal(mesh.face(*f0)), normal(mesh.face(*f1)));
+        let len = |n: [f64; 3]| (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let (l0, l1) = (len(n0), len(n1));
+        if l0 == 0.0 || l1 == 0.0 {
+            continue;
+        }
+        let c = (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]) / (l0 * l1);
+        if c < cos_limit {
+            tags.creases.push([a, b]);
+            tags.crease_sharpness.push(10.0);
+        }
+    }
 }
 
 /// `subdivide` with a differential-space scheme.

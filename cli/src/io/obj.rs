@@ -14,6 +14,13 @@
 //!   material statements `g`, `o`, `s`, `mg`, `usemtl`, `mtllib`, `usemap`, `maplib`, `lod`,
 //!   `bevel`, `c_interp`, `d_interp`, `shadow_obj`, `trace_obj` are read and ignored; so are
 //!   point and line elements `p` and `l` (not polygons: a polygon mesh has none);
+//! * OpenSubdiv's shape tags `t NAME ni/nf/ns INTS FLOATS STRINGS` for sharp features, with
+//!   0-based vertex indices: `t crease n/m/0 v0 … v(n−1) s…` tags the edges of the chain
+//!   `v0 – v1 – …` (`n ≥ 2`) with one sharpness for all (`m = 1`) or one per edge
+//!   (`m = n − 1`); `t corner n/m/0 v… s…` tags vertices, one sharpness for all or one each.
+//!   Other tag names (`interpolateboundary`, `hole`, …) are refused naming the line (they
+//!   would change the surface); whether a pair is an edge, a tag is repeated or a sharpness
+//!   valid, the kernel checks, and the command names this line;
 //! * free-form geometry (`cstype`, `curv`, `surf`, … ), `call` and `csh`, and every statement
 //!   the format does not define are refused, naming the line and the statement: a mangled
 //!   keyword (a stray byte-order mark, a control byte, `V` for `v`) must never drop a vertex
@@ -30,7 +37,7 @@ use std::path::Path;
 use super::text::{self, parse_f64, parse_i64};
 use super::{check_indices, fmt_f64, WriteOptions};
 use crate::error::{quote, CliError, CliResult};
-use crate::mesh::{Mesh, Source};
+use crate::mesh::{FileTags, Mesh, Source};
 
 /// Statements that are read and ignored: they carry no polygon geometry.
 const IGNORED: &[&[u8]] = &[
@@ -82,6 +89,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
     let mut vertex_lines = Vec::new();
     let mut face_lines = Vec::new();
     let mut refs = Refs::default();
+    let mut tags = FileTags::default();
     let mut lines = text::Lines::new(bytes, 1);
     let mut stmt: Vec<u8> = Vec::new();
     while let Some((line, raw)) = lines.next() {
@@ -195,6 +203,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
                 mesh.offsets.push(end);
                 face_lines.push(line);
             }
+            b"t" => tag(&mut toks, line, &mut tags).map_err(|why| err(line, why))?,
             kw if IGNORED.contains(&kw) => {}
             kw if FREE_FORM.contains(&kw) => {
                 return Err(err(
@@ -230,9 +239,89 @@ pub fn read(path: &Path, bytes: &[u8]) -> CliResult<(Mesh, Source)> {
             }
         }
     }
-    let source = Source::with_lines(path, vertex_lines, face_lines);
+    let mut source = Source::with_lines(path, vertex_lines, face_lines);
+    source.tags = tags;
     check_indices(&mesh, &source, false)?;
     Ok((mesh, source))
+}
+
+/// One `t` statement (module docs) into `tags`.
+fn tag<'a>(
+    toks: &mut impl Iterator<Item = &'a [u8]>,
+    line: u32,
+    tags: &mut FileTags,
+) -> Result<(), String> {
+    let name = toks.next().ok_or("'t' without a tag name")?;
+    let counts = toks
+        .next()
+        .ok_or("'t': no counts ni/nf/ns after the name")?;
+    let n: Vec<usize> = std::str::from_utf8(counts)
+        .ok()
+        .map(|s| {
+            s.split('/')
+                .map(str::parse)
+                .collect::<Result<Vec<usize>, _>>()
+        })
+        .and_then(Result::ok)
+        .filter(|n| n.len() == 3)
+        .ok_or_else(|| format!("'t': counts {} are not ni/nf/ns", quote(counts)))?;
+    let (ni, nf, ns) = (n[0], n[1], n[2]);
+    let rest: Vec<&[u8]> = toks.collect();
+    if rest.len() != ni + nf + ns {
+        return Err(format!(
+            "'t {}': {} values after the counts, {ni}/{nf}/{ns} announce {}",
+            String::from_utf8_lossy(name),
+            rest.len(),
+            ni + nf + ns
+        ));
+    }
+    let mut ints = Vec::with_capacity(ni);
+    for t in &rest[..ni] {
+        let v = parse_i64(t)
+            .and_then(|v| u32::try_from(v).ok())
+            .ok_or_else(|| format!("tag vertex {} is not a 0-based index", quote(t)))?;
+        ints.push(v);
+    }
+    let mut floats = Vec::with_capacity(nf);
+    for t in &rest[ni..ni + nf] {
+        floats.push(parse_f64(t).ok_or_else(|| format!("sharpness {} is not a number", quote(t)))?);
+    }
+    let shared = nf == 1;
+    match name {
+        b"crease" => {
+            if ni < 2 || ns != 0 || !(shared || nf == ni - 1) {
+                return Err(format!(
+                    "'t crease {ni}/{nf}/{ns}': a crease is n/1/0 or n/(n-1)/0 with n ≥ 2 vertices"
+                ));
+            }
+            for (k, w) in ints.windows(2).enumerate() {
+                tags.creases.push([w[0], w[1]]);
+                tags.crease_sharpness
+                    .push(floats[if shared { 0 } else { k }]);
+                tags.crease_lines.push(line);
+            }
+        }
+        b"corner" => {
+            if ni < 1 || ns != 0 || !(shared || nf == ni) {
+                return Err(format!(
+                    "'t corner {ni}/{nf}/{ns}': a corner tag is n/1/0 or n/n/0 with n ≥ 1 vertices"
+                ));
+            }
+            for (k, &v) in ints.iter().enumerate() {
+                tags.corners.push(v);
+                tags.corner_sharpness
+                    .push(floats[if shared { 0 } else { k }]);
+                tags.corner_lines.push(line);
+            }
+        }
+        other => {
+            return Err(format!(
+                "tag {} is not supported (only crease and corner)",
+                quote(other)
+            ))
+        }
+    }
+    Ok(())
 }
 
 /// Resolves one OBJ reference (`i` one-based or negative relative to `count` so far) to a

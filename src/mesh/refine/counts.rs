@@ -28,6 +28,11 @@ pub(crate) struct LevelCounts {
 }
 
 impl LevelCounts {
+    /// The number of edges.
+    pub(crate) fn edges(&self) -> usize {
+        self.e
+    }
+
     /// The counts of a built topology.
     pub(crate) fn of(topo: &Topology<'_, '_>) -> Result<LevelCounts> {
         let mut s = LevelCounts {

@@ -1,0 +1,191 @@
+//! `subdivide` with sharp-feature tags: OBJ `t crease` / `t corner` statements and
+//! `--crease-angle` give the library's tagged result bit for bit (one
+//! `scheme::subdivide_tagged` call); bad tags exit 2 naming the OBJ line.
+
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+
+mod common;
+
+use common::*;
+use nlsubdiv::mesh::{Mesh as CoreMesh, MeshOut};
+use nlsubdiv::scheme::{self, CreaseMethod, Options, Scheme, Scratch, Tags};
+
+const CUBE: &str = "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\n\
+v 1 1 1\nf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+fn cube() -> TMesh {
+    let mut positions = Vec::new();
+    for i in 0..8 {
+        positions.push([
+            (i & 1) as f64 * 2.0 - 1.0,
+            ((i >> 1) & 1) as f64 * 2.0 - 1.0,
+            ((i >> 2) & 1) as f64 * 2.0 - 1.0,
+        ]);
+    }
+    let faces = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    TMesh {
+        positions,
+        faces: faces.iter().map(|f| f.to_vec()).collect(),
+    }
+}
+
+/// The library's tagged result.
+fn library(m: &TMesh, s: Scheme, levels: usize, tags: &Tags<'_>) -> TMesh {
+    let (offsets, indices) = m.csr();
+    let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
+    let opts = Options::new(s).levels(levels);
+    let mut s0 = vec![0u32; scheme::plan_scratch_size_tagged(&mesh, tags).unwrap()];
+    let plan = scheme::plan_tagged(mesh, &opts, tags, &mut s0).unwrap();
+    let mut su = vec![0u32; plan.scratch.u32s];
+    let mut sp = vec![[0.0; 3]; plan.scratch.points];
+    let o = plan.output();
+    let (mut pos, mut offs, mut idx) = (
+        vec![[0.0; 3]; o.vertices],
+        vec![0u32; o.faces + 1],
+        vec![0u32; o.indices],
+    );
+    let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
+    scheme::subdivide_tagged(mesh, &opts, tags, Scratch::new(&mut su, &mut sp), &mut out).unwrap();
+    TMesh::from_csr(pos, &offs, &idx)
+}
+
+#[test]
+fn obj_tags_give_the_library_result() {
+    let dir = TempDir::new("creases");
+    let input = dir.path("cube.obj");
+    let text = format!("{CUBE}t crease 5/4/0 4 5 7 6 4 10 1.5 2.25 0.5\nt corner 1/1/0 0 2.5\n");
+    std::fs::write(&input, text).unwrap();
+    let creases = [[4, 5], [5, 7], [7, 6], [6, 4]];
+    let s = [10.0, 1.5, 2.25, 0.5];
+    for (method, name) in [
+        (CreaseMethod::Uniform, "uniform"),
+        (CreaseMethod::Chaikin, "chaikin"),
+    ] {
+        let out = dir.path(&format!("out-{name}.off"));
+        let o = run(&[
+            "subdivide",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "3",
+            "--crease-method",
+            name,
+            input.to_str().unwrap(),
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code(&o), 0, "{}", stderr(&o));
+        let tags = Tags::new()
+            .creases(&creases, &s)
+            .corners(&[0], &[2.5])
+            .method(method);
+        let want = library(&cube(), Scheme::CatmullClark, 3, &tags);
+        let got = read_off(&out);
+        assert_eq!(got.bits(), want.bits(), "{name}");
+        assert_eq!(got.faces, want.faces, "{name}");
+    }
+}
+
+#[test]
+fn crease_angle_tags_the_cube_edges() {
+    // Every cube edge has a 90° dihedral angle: --crease-angle 60 tags all twelve, so every
+    // old vertex is a corner (three sharp edges) and stays put.
+    let dir = TempDir::new("crease-angle");
+    let input = dir.path("cube.obj");
+    std::fs::write(&input, CUBE).unwrap();
+    let out = dir.path("out.off");
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "2",
+        "--crease-angle",
+        "60",
+        input.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let got = read_off(&out);
+    let c = cube();
+    for v in 0..8 {
+        assert_eq!(got.positions[v], c.positions[v]);
+    }
+    // Above 90° nothing is tagged: the untagged result.
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "2",
+        "--crease-angle",
+        "120",
+        input.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let plain = library(&c, Scheme::CatmullClark, 2, &Tags::new());
+    assert_eq!(read_off(&out).bits(), plain.bits());
+}
+
+#[test]
+fn bad_tags_exit_2_naming_the_line() {
+    let dir = TempDir::new("creases-bad");
+    let out = dir.path("out.off");
+    for (tag, args, needle) in [
+        (
+            "t crease 2/1/0 0 7 1",
+            "catmull-clark",
+            "cube.obj:15: crease tag 0 7",
+        ),
+        (
+            "t crease 2/1/0 0 1 nan",
+            "catmull-clark",
+            "cube.obj:15: crease tag 0 1: the sharpness",
+        ),
+        (
+            "t corner 1/1/0 9 1",
+            "catmull-clark",
+            "cube.obj:15: corner tag 9",
+        ),
+        (
+            "t crease 2/1/0 0 1 1\nt crease 2/1/0 1 0 2",
+            "catmull-clark",
+            "cube.obj:16: crease tag 1 0: this edge",
+        ),
+        ("t crease 3/1/0 0 1 1", "catmull-clark", "cube.obj:15:"),
+        ("t hole 1/0/0 1", "catmull-clark", "cube.obj:15: tag 'hole'"),
+        (
+            "t crease 2/1/0 0 1 1",
+            "mobius-catmull-clark",
+            "does not take them",
+        ),
+        ("t crease 2/1/0 0 1 1", "doo-sabin", "does not take them"),
+    ] {
+        let input = dir.path("cube.obj");
+        std::fs::write(&input, format!("{CUBE}{tag}\n")).unwrap();
+        let o = run(&[
+            "subdivide",
+            "--scheme",
+            args,
+            "--levels",
+            "1",
+            input.to_str().unwrap(),
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code(&o), 2, "{tag}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "{tag}: {}", stderr(&o));
+        assert!(!out.exists(), "{tag}: output written");
+    }
+}

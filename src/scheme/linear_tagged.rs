@@ -1,0 +1,205 @@
+//! Loop and Catmull–Clark with sharp-feature tags: the position rules of [`super::linear`]
+//! combined with the crease rules of [`crate::stencil::crease`] (OpenSubdiv's). Untagged
+//! meshes never come here, so their bits and speed are those of [`super::linear`].
+//!
+//! Face points are unchanged. An edge point is the smooth rule, the midpoint (crease), or
+//! their blend by the edge's sharpness when it turns smooth in this step. A vertex point is
+//! the rule of its parent sharpness values (smooth or dart: the smooth rule; crease: the
+//! cubic B-spline `3/4 v + 1/8 (q_a + q_b)` along its two sharp edges; corner: `v`), blended
+//! with the rule of its child values by the fractional weight when the two differ.
+//! Boundary edges are infinitely sharp, so an untagged boundary keeps today's rules and a
+//! tagged edge meeting the boundary makes a corner there.
+
+use super::tags::Sharpness;
+use super::Scheme;
+use crate::error::{Error, Result, Status};
+use crate::mesh::gather::{apex, face_points_into, FacePts, Ring};
+use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::point::{lin2, midpoint, Point};
+use crate::stencil::crease::{self, VertexRule};
+use crate::stencil::{catmull_clark, crease_vertex, loop_scheme};
+use crate::MAX_VALENCE;
+use arrayvec::ArrayVec;
+
+/// Writes the positions of one tagged step of `scheme` (Loop or Catmull–Clark) on `topo`
+/// into `pos`, with the sharpness values `sharp` of this level.
+pub(crate) fn positions(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    pos: &mut [Point],
+) -> Result<()> {
+    let nv = topo.num_vertices();
+    let ne = topo.num_edges();
+    match scheme {
+        Scheme::CatmullClark => {
+            let mut pts = FacePts::new();
+            for f in 0..topo.num_faces() as u32 {
+                face_points_into(topo, f, &mut pts)?;
+                set(pos, nv + ne + f as usize, catmull_clark::face_point(&pts)?)?;
+            }
+        }
+        Scheme::Loop => {}
+        _ => return Err(Error::new(Status::TagsNotSupported)),
+    }
+    for e in 0..ne as u32 {
+        let p = edge_point(scheme, topo, sharp, e, pos)?;
+        set(pos, nv + e as usize, p)?;
+    }
+    let mut parent = ArrayVec::new();
+    let mut child = ArrayVec::new();
+    for v in 0..nv as u32 {
+        let p = vertex_point(scheme, topo, sharp, v, pos, &mut parent, &mut child)?;
+        set(pos, v as usize, p)?;
+    }
+    Ok(())
+}
+
+/// The smooth edge rule of `scheme` for interior edge `e` (half-edge `h`, twin `t`); the
+/// Catmull–Clark face points are read back from `pos`.
+fn smooth_edge(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    h: u32,
+    t: u32,
+    pos: &[Point],
+) -> Result<Point> {
+    let a = topo.position(topo.origin(h)?)?;
+    let b = topo.position(topo.dest(h)?)?;
+    if scheme == Scheme::Loop {
+        let c = topo.position(apex(topo, h)?)?;
+        let d = topo.position(apex(topo, t)?)?;
+        return Ok(loop_scheme::edge_interior(a, b, c, d));
+    }
+    let base = topo.num_vertices() + topo.num_edges();
+    let f0 = get(pos, base + topo.face(h)? as usize)?;
+    let f1 = get(pos, base + topo.face(t)? as usize)?;
+    Ok(catmull_clark::edge_interior(a, b, f0, f1))
+}
+
+/// The value of the child of edge `e` at its end `v` (Chaikin needs the other edges at `v`).
+fn child_at(topo: &Topology<'_, '_>, sharp: &Sharpness<'_>, v: u32, e: u32) -> Result<f32> {
+    let mut parent = ArrayVec::new();
+    let mut child = ArrayVec::new();
+    sharp.around(topo, v, &mut parent, &mut child)?;
+    let i = topo.star(v).position(|s| s.edge == e).ok_or(internal())?;
+    get(&child, i)
+}
+
+fn edge_point(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    e: u32,
+    pos: &[Point],
+) -> Result<Point> {
+    let h = topo.edge_half_edge(e)?;
+    let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+    let mid = midpoint(topo.position(i0)?, topo.position(i1)?);
+    let t = topo.twin(h)?;
+    if t == NONE {
+        return Ok(mid);
+    }
+    let s = sharp.edge(topo, e)?;
+    let ends = match sharp.method {
+        _ if !crease::is_sharp(s) => [0.0; 2],
+        crease::CreaseMethod::Uniform => [crease::decrement(s); 2],
+        crease::CreaseMethod::Chaikin => {
+            [child_at(topo, sharp, i0, e)?, child_at(topo, sharp, i1, e)?]
+        }
+    };
+    let w = crease::edge_weight(s, ends);
+    if w == 1.0 {
+        return Ok(mid);
+    }
+    let smooth = smooth_edge(scheme, topo, h, t, pos)?;
+    Ok(crease::blend(w, mid, smooth))
+}
+
+/// The point of vertex `v` under `rule`, with `edges` the values that decide which two
+/// edges a crease follows.
+fn rule_point(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    v: u32,
+    rule: VertexRule,
+    edges: &[f32],
+    pos: &[Point],
+) -> Result<Point> {
+    let p = topo.position(v)?;
+    match rule {
+        VertexRule::Corner => Ok(p),
+        VertexRule::Crease => {
+            let mut q = topo
+                .star(v)
+                .zip(edges)
+                .filter(|(_, &s)| crease::is_sharp(s))
+                .map(|(s, _)| s.neighbour);
+            let (a, b) = (q.next().ok_or(internal())?, q.next().ok_or(internal())?);
+            Ok(crease_vertex(p, topo.position(a)?, topo.position(b)?))
+        }
+        VertexRule::Smooth | VertexRule::Dart => smooth_vertex(scheme, topo, v, pos),
+    }
+}
+
+/// The smooth rule at an interior vertex (a boundary vertex is never smooth: its boundary
+/// edges are sharp).
+fn smooth_vertex(scheme: Scheme, topo: &Topology<'_, '_>, v: u32, pos: &[Point]) -> Result<Point> {
+    let p = topo.position(v)?;
+    let mut ring = Ring::new();
+    let mut faces = Ring::new();
+    let base = topo.num_vertices() + topo.num_edges();
+    for s in topo.star(v) {
+        if s.face == NONE {
+            return Err(internal());
+        }
+        ring.try_push(topo.position(s.neighbour)?)
+            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        if scheme == Scheme::CatmullClark {
+            faces
+                .try_push(get(pos, base + s.face as usize)?)
+                .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        }
+    }
+    match scheme {
+        Scheme::Loop => loop_scheme::vertex_interior(p, &ring),
+        _ => catmull_clark::vertex_interior(p, &ring, &faces),
+    }
+}
+
+fn vertex_point(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    v: u32,
+    pos: &[Point],
+    parent: &mut ArrayVec<f32, MAX_VALENCE>,
+    child: &mut ArrayVec<f32, MAX_VALENCE>,
+) -> Result<Point> {
+    let p = topo.position(v)?;
+    if topo.is_isolated(v)? {
+        return Ok(p);
+    }
+    sharp.around(topo, v, parent, child)?;
+    let pv = sharp.vertex(v)?;
+    let p_rule = crease::vertex_rule(pv, parent);
+    if matches!(p_rule, VertexRule::Smooth | VertexRule::Dart) {
+        return smooth_vertex(scheme, topo, v, pos);
+    }
+    let sharp_point = rule_point(scheme, topo, v, p_rule, parent, pos)?;
+    let cv = crease::decrement(pv);
+    let c_rule = crease::vertex_rule(cv, child);
+    if c_rule == p_rule {
+        return Ok(sharp_point);
+    }
+    let smooth_point = rule_point(scheme, topo, v, c_rule, child, pos)?;
+    let w = f64::from(crease::fractional_weight(
+        sharp.method,
+        pv,
+        cv,
+        parent,
+        child,
+    ));
+    // OpenSubdiv combines the masks as `(1 − w) C + w P`.
+    Ok(lin2(1.0 - w, smooth_point, w, sharp_point))
+}
