@@ -465,9 +465,10 @@ typedef struct nls_mesh_sizes {
 } nls_mesh_sizes;
 
 /**
- * What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan`.
+ * What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
+ * is `nls_plan`: C has one name space for functions and types).
  */
-typedef struct nls_mesh_plan {
+typedef struct nls_plan {
     /**
      * The exact sizes of the output: what the output buffers must hold.
      */
@@ -480,7 +481,7 @@ typedef struct nls_mesh_plan {
      * The exact point scratch of the subdivision call (points, 3 doubles each).
      */
     size_t scratch_points;
-} nls_mesh_plan;
+} nls_plan;
 
 /**
  * Caller scratch: `uint32_t` entries and points. The contents are unspecified after a call.
@@ -894,7 +895,7 @@ nls_status nls_mesh_plan(const struct nls_mesh_view *mesh,
                          const struct nls_subdivide_options *options,
                          uint32_t *scratch_u32,
                          size_t scratch_u32_capacity,
-                         struct nls_mesh_plan *out_plan,
+                         struct nls_plan *out_plan,
                          uint32_t *out_element);
 
 /**
@@ -985,7 +986,7 @@ nls_status nls_differential_plan(const struct nls_mesh_view *mesh,
                                  const struct nls_differential_options *options,
                                  uint32_t *scratch_u32,
                                  size_t scratch_u32_capacity,
-                                 struct nls_mesh_plan *out_plan,
+                                 struct nls_plan *out_plan,
                                  uint32_t *out_element);
 
 /**

@@ -12,9 +12,9 @@ use nlsubdiv::mesh::MeshSizes;
 use nlsubdiv::{Point, Status};
 
 use super::{
-    check_optional, check_out_pointers, nls_mesh_buffers, nls_mesh_plan, nls_mesh_sizes,
-    nls_mesh_view, nls_scratch, run_with_element, sizes_of, slice, store, too_small, Fail, RawMesh,
-    RawOut, Span, NLS_MESH_BUFFER_SCRATCH_POINTS, NLS_MESH_BUFFER_SCRATCH_U32,
+    check_optional, check_out_pointers, nls_mesh_buffers, nls_mesh_sizes, nls_mesh_view, nls_plan,
+    nls_scratch, run_with_element, sizes_of, slice, store, too_small, Fail, RawMesh, RawOut, Span,
+    NLS_MESH_BUFFER_SCRATCH_POINTS, NLS_MESH_BUFFER_SCRATCH_U32,
 };
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
@@ -230,7 +230,7 @@ pub unsafe extern "C" fn nls_differential_plan(
     options: *const nls_differential_options,
     scratch_u32: *mut u32,
     scratch_u32_capacity: usize,
-    out_plan: *mut nls_mesh_plan,
+    out_plan: *mut nls_plan,
     out_element: *mut u32,
 ) -> Status {
     run_with_element(out_element, |element| {
@@ -242,7 +242,7 @@ pub unsafe extern "C" fn nls_differential_plan(
         let parsed = unsafe { parse(options, mesh.vertex_count()) }?;
         let [a, b, c] = mesh.spans();
         let [e0, e1] = parsed.edits;
-        let su = Span::of(scratch_u32.cast_const(), scratch_u32_capacity);
+        let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
         check_out_pointers(
             &[Span::of(out_plan.cast_const(), 1)],
             element,
@@ -265,7 +265,7 @@ pub unsafe extern "C" fn nls_differential_plan(
             )
         };
         let plan = diff::plan(view, &parsed.opts, scratch)?;
-        let plan = nls_mesh_plan {
+        let plan = nls_plan {
             output: sizes_of(&plan.output()),
             scratch_u32: plan.scratch_u32,
             scratch_points: plan.scratch_points,

@@ -154,10 +154,11 @@ pub struct nls_subdivide_options {
     pub levels: u32,
 }
 
-/// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan`.
+/// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
+/// is `nls_plan`: C has one name space for functions and types).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct nls_mesh_plan {
+pub struct nls_plan {
     /// The exact sizes of the output: what the output buffers must hold.
     pub output: nls_mesh_sizes,
     /// The exact `uint32_t` scratch of the subdivision call (entries).
@@ -301,6 +302,15 @@ impl Span {
         }
     }
 
+    /// `count` elements of `T` at `p` when that is a valid buffer (`check_ptr`), else nothing:
+    /// a buffer that fails its own check is reported as such, never as an overlap.
+    pub(crate) fn checked<T>(p: *const T, count: usize) -> Span {
+        match check_ptr(p, count) {
+            Ok(()) => Span::of(p, count),
+            Err(_) => Span { start: 0, bytes: 0 },
+        }
+    }
+
     /// One `T` at `p` when `p` is not NULL, else nothing.
     fn of_one<T>(p: *mut T) -> Span {
         Span::of(p.cast_const(), usize::from(!p.is_null()))
@@ -375,13 +385,13 @@ impl RawMesh {
         })
     }
 
-    /// The byte ranges of the three input arrays (arithmetic only).
+    /// The byte ranges of the three input arrays (empty for an array that fails its check).
     pub(crate) fn spans(&self) -> [Span; 3] {
         let v = &self.view;
         [
-            Span::of(v.positions, self.coords),
-            Span::of(v.offsets, v.face_count.saturating_add(1)),
-            Span::of(v.indices, v.index_count),
+            Span::checked(v.positions, self.coords),
+            Span::checked(v.offsets, v.face_count.saturating_add(1)),
+            Span::checked(v.indices, v.index_count),
         ]
     }
 
@@ -474,15 +484,15 @@ impl RawOut {
         }
     }
 
-    /// The byte ranges of the five buffers (arithmetic only).
+    /// The byte ranges of the five buffers (empty for a buffer that fails its check).
     pub(crate) fn spans(&self) -> [Span; 5] {
         let (s, o) = (&self.scratch, &self.out);
         [
-            Span::of(s.u32s.cast_const(), s.u32_capacity),
-            Span::of(s.points.cast_const().cast::<Point>(), s.point_capacity),
-            Span::of(o.positions.cast_const().cast::<Point>(), o.vertex_capacity),
-            Span::of(o.offsets.cast_const(), o.face_capacity.saturating_add(1)),
-            Span::of(o.indices.cast_const(), o.index_capacity),
+            Span::checked(s.u32s.cast_const(), s.u32_capacity),
+            Span::checked(s.points.cast_const().cast::<Point>(), s.point_capacity),
+            Span::checked(o.positions.cast_const().cast::<Point>(), o.vertex_capacity),
+            Span::checked(o.offsets.cast_const(), o.face_capacity.saturating_add(1)),
+            Span::checked(o.indices.cast_const(), o.index_capacity),
         ]
     }
 
@@ -689,7 +699,7 @@ pub unsafe extern "C" fn nls_mesh_plan(
     options: *const nls_subdivide_options,
     scratch_u32: *mut u32,
     scratch_u32_capacity: usize,
-    out_plan: *mut nls_mesh_plan,
+    out_plan: *mut nls_plan,
     out_element: *mut u32,
 ) -> Status {
     run_with_element(out_element, |element| {
@@ -698,7 +708,7 @@ pub unsafe extern "C" fn nls_mesh_plan(
         check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
         let [a, b, c] = mesh.spans();
-        let su = Span::of(scratch_u32.cast_const(), scratch_u32_capacity);
+        let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
         check_out_pointers(&[Span::of_one(out_plan)], element, &[a, b, c, su])?;
         let opts = parse_options(&opts)?;
         mesh.check()?;
@@ -714,7 +724,7 @@ pub unsafe extern "C" fn nls_mesh_plan(
         let (view, scratch) =
             unsafe { (mesh.mesh()?, slice_mut(scratch_u32, scratch_u32_capacity)) };
         let plan = scheme::plan(view, &opts, scratch)?;
-        let plan = nls_mesh_plan {
+        let plan = nls_plan {
             output: sizes_of(&plan.output()),
             scratch_u32: plan.scratch.u32s,
             scratch_points: plan.scratch.points,
@@ -889,7 +899,7 @@ mod tests {
         );
         assert_eq!(su0, 28);
         let mut scratch = vec![0u32; su0];
-        let mut plan = nls_mesh_plan::default();
+        let mut plan = nls_plan::default();
         let s = unsafe {
             nls_mesh_plan(
                 &m,

@@ -1,0 +1,77 @@
+/* Test helpers: the structs of the mesh exports built from flat arguments, so that a test can
+ * name one buffer or count per argument (NULL, misaligned, short, overlapping) in one line.
+ * Each helper only fills a struct and calls the export; nothing is checked here. */
+#ifndef NLS_MESH_ARGS_H
+#define NLS_MESH_ARGS_H
+#include "nlsubdiv.h"
+
+static inline nls_mesh_view flat_view(const double *p, size_t nv, const uint32_t *off, size_t nf, const uint32_t *idx,
+                               size_t ni) {
+    nls_mesh_view v;
+    v.positions = p;
+    v.vertex_count = nv;
+    v.positions_stride = 0;
+    v.offsets = off;
+    v.face_count = nf;
+    v.indices = idx;
+    v.index_count = ni;
+    return v;
+}
+
+static inline nls_subdivide_options flat_options(uint32_t scheme, uint32_t flags, uint32_t levels) {
+    nls_subdivide_options o;
+    nls_subdivide_default_options(&o);
+    o.scheme = scheme;
+    o.flags = flags;
+    o.levels = levels;
+    return o;
+}
+
+static inline nls_scratch flat_scratch(uint32_t *su, size_t nsu, double *sp, size_t nsp) {
+    nls_scratch s;
+    s.u32s = su;
+    s.u32_capacity = nsu;
+    s.points = sp;
+    s.point_capacity = nsp;
+    return s;
+}
+
+static inline nls_mesh_buffers flat_buffers(double *p, size_t nv, uint32_t *off, size_t nf, uint32_t *idx, size_t ni) {
+    nls_mesh_buffers b;
+    b.positions = p;
+    b.vertex_capacity = nv;
+    b.offsets = off;
+    b.face_capacity = nf;
+    b.indices = idx;
+    b.index_capacity = ni;
+    return b;
+}
+
+/* nls_mesh_plan_scratch_size of a packed mesh of nv vertices and ni corners (counts only). */
+static inline nls_status flat_plan_scratch_size(size_t nv, size_t ni, size_t *out) {
+    nls_mesh_view v = flat_view(NULL, nv, NULL, 0, NULL, ni);
+    return nls_mesh_plan_scratch_size(&v, out);
+}
+
+/* nls_plan with flat arguments. */
+static inline nls_status flat_plan(uint32_t scheme, uint32_t flags, uint32_t levels, const double *p, size_t nv,
+                            const uint32_t *off, size_t nf, const uint32_t *idx, size_t ni, uint32_t *su, size_t nsu,
+                            nls_plan *plan, uint32_t *element) {
+    nls_mesh_view v = flat_view(p, nv, off, nf, idx, ni);
+    nls_subdivide_options o = flat_options(scheme, flags, levels);
+    return nls_mesh_plan(&v, &o, su, nsu, plan, element);
+}
+
+/* nls_mesh_subdivide with flat arguments. */
+static inline nls_status flat_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const double *p, size_t nv,
+                                 const uint32_t *off, size_t nf, const uint32_t *idx, size_t ni, uint32_t *su,
+                                 size_t nsu, double *sp, size_t nsp, double *op, size_t ovc, uint32_t *oo, size_t ofc,
+                                 uint32_t *oi, size_t oic, nls_mesh_sizes *sizes, nls_subdivide_report *rep,
+                                 uint32_t *element) {
+    nls_mesh_view v = flat_view(p, nv, off, nf, idx, ni);
+    nls_subdivide_options o = flat_options(scheme, flags, levels);
+    nls_scratch s = flat_scratch(su, nsu, sp, nsp);
+    nls_mesh_buffers b = flat_buffers(op, ovc, oo, ofc, oi, oic);
+    return nls_mesh_subdivide(&v, &o, &s, &b, sizes, rep, element);
+}
+#endif
