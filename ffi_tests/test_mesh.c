@@ -14,7 +14,7 @@
 
 #include "nlsubdiv.h"
 #include "check.h"
-#include "mesh_args.h"
+#include "flat_args.h"
 
 #define NSCHEMES 9
 static const uint32_t SCHEMES[NSCHEMES] = {

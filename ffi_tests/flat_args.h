@@ -1,8 +1,9 @@
-/* Test helpers: the structs of the mesh exports built from flat arguments, so that a test can
- * name one buffer or count per argument (NULL, misaligned, short, overlapping) in one line.
- * Each helper only fills a struct and calls the export; nothing is checked here. */
-#ifndef NLS_MESH_ARGS_H
-#define NLS_MESH_ARGS_H
+/* Test helpers: the argument structs of the C ABI (nls_mesh_view, nls_scratch,
+ * nls_mesh_buffers, nls_subdivide_options, nls_curve_view) built from flat arguments, so that a
+ * test can name one buffer or count per argument (NULL, misaligned, short, overlapping) in one
+ * line. Each helper only fills structs and calls the export; nothing is checked here. */
+#ifndef NLS_FLAT_ARGS_H
+#define NLS_FLAT_ARGS_H
 #include "nlsubdiv.h"
 
 static inline nls_mesh_view flat_view(const double *p, size_t nv, const uint32_t *off, size_t nf, const uint32_t *idx,
@@ -73,5 +74,37 @@ static inline nls_status flat_subdivide(uint32_t scheme, uint32_t flags, uint32_
     nls_scratch s = flat_scratch(su, nsu, sp, nsp);
     nls_mesh_buffers b = flat_buffers(op, ovc, oo, ofc, oi, oic);
     return nls_mesh_subdivide(&v, &o, &s, &b, sizes, rep, element);
+}
+
+/* nls_differential_plan with flat arguments. */
+static inline nls_status flat_diff_plan(const double *p, size_t nv, const uint32_t *off, size_t nf, const uint32_t *idx,
+                                        size_t ni, const nls_differential_options *o, uint32_t *su, size_t nsu,
+                                        nls_plan *plan, uint32_t *element) {
+    nls_mesh_view v = flat_view(p, nv, off, nf, idx, ni);
+    return nls_differential_plan(&v, o, su, nsu, plan, element);
+}
+
+/* nls_differential_subdivide with flat arguments. */
+static inline nls_status flat_diff_subdivide(const double *p, size_t nv, const uint32_t *off, size_t nf,
+                                             const uint32_t *idx, size_t ni, const nls_differential_options *o,
+                                             uint32_t *su, size_t nsu, double *sp, size_t nsp, double *op, size_t ovc,
+                                             uint32_t *oo, size_t ofc, uint32_t *oi, size_t oic, nls_mesh_sizes *sizes,
+                                             nls_differential_report *rep, uint32_t *element) {
+    nls_mesh_view v = flat_view(p, nv, off, nf, idx, ni);
+    nls_scratch s = flat_scratch(su, nsu, sp, nsp);
+    nls_mesh_buffers b = flat_buffers(op, ovc, oo, ofc, oi, oic);
+    return nls_differential_subdivide(&v, o, &s, &b, sizes, rep, element);
+}
+
+/* nls_curve_subdivide with the curve's fields as flat arguments. */
+static inline nls_status flat_curve_subdivide(uint32_t scheme, const double *points, size_t count, uint32_t closed,
+                                              uint32_t levels, double *out, size_t out_capacity, double *scratch,
+                                              size_t scratch_capacity, size_t *out_count, uint32_t *out_element) {
+    nls_curve_view c;
+    c.points = points;
+    c.count = count;
+    c.closed = closed;
+    return nls_curve_subdivide(scheme, &c, levels, out, out_capacity, scratch, scratch_capacity, out_count,
+                               out_element);
 }
 #endif
