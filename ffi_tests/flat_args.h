@@ -96,6 +96,21 @@ static inline nls_status flat_diff_subdivide(const double *p, size_t nv, const u
     return nls_differential_subdivide(&v, o, &s, &b, sizes, rep, element);
 }
 
+/* nls_mobius_butterfly_star with the star's fields as flat arguments (no faces). */
+static inline nls_status flat_butterfly_star(const double *v, const double *ring, size_t n, uint32_t closed,
+                                             const uint32_t *irregular, double *out) {
+    nls_star_view star;
+    star.v = v;
+    star.ring = ring;
+    star.ring_count = n;
+    star.closed = closed;
+    star.face_offsets = NULL;
+    star.face_count = 0;
+    star.face_corners = NULL;
+    star.corner_count = 0;
+    return nls_mobius_butterfly_star(&star, irregular, out);
+}
+
 /* nls_curve_subdivide with the curve's fields as flat arguments. */
 static inline nls_status flat_curve_subdivide(uint32_t scheme, const double *points, size_t count, uint32_t closed,
                                               uint32_t levels, double *out, size_t out_capacity, double *scratch,
