@@ -784,6 +784,80 @@ static void test_strict(void) {
     mesh_free(&c);
 }
 
+/* Positions with a byte stride (x, y, z then other attributes) give the bits of packed ones;
+ * a stride that is not 0, or is not a multiple of 8, or is below 24 is refused. */
+static void test_stride(void) {
+    mesh c = cube(), o;
+    nls_plan plan;
+    size_t su = 0, v;
+    const size_t stride = 7; /* doubles per vertex: x y z and four other attributes */
+    double *wide = (double *)malloc(stride * c.nv * sizeof(double));
+    uint32_t *scratch, *oo, *oi, *soo, *soi;
+    double *sp, *op, *sop;
+    nls_mesh_view view = flat_view(wide, c.nv, c.off, c.nf, c.idx, c.ni);
+    nls_subdivide_options opts = flat_options(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2);
+    nls_scratch sc;
+    nls_mesh_buffers b, sb;
+    nls_mesh_sizes sz = {0, 0, 0};
+    onto_unit_sphere(&c);
+    c.p[3 * 2] += 0.01;
+    for (v = 0; v < c.nv; v++) {
+        size_t k;
+        memcpy(wide + stride * v, c.p + 3 * v, 3 * sizeof(double));
+        for (k = 3; k < stride; k++) wide[stride * v + k] = k == 3 ? NAN : -1.0 * (double)k;
+    }
+    view.positions_stride = stride * sizeof(double);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &c, 2, &o, NULL), NLS_STATUS_OK);
+    CHECK_STATUS(nls_mesh_plan_scratch_size(&view, &su), NLS_STATUS_OK);
+    scratch = (uint32_t *)malloc(su * sizeof(uint32_t));
+    CHECK_STATUS(nls_mesh_plan(&view, &opts, scratch, su, &plan, NULL), NLS_STATUS_OK);
+    CHECK(plan.output.vertex_count == o.nv && plan.output.face_count == o.nf && plan.output.index_count == o.ni);
+    free(scratch);
+    scratch = (uint32_t *)malloc(plan.scratch_u32 * sizeof(uint32_t));
+    sp = (double *)malloc(3 * plan.scratch_points * sizeof(double));
+    op = (double *)malloc(3 * o.nv * sizeof(double));
+    oo = (uint32_t *)malloc((o.nf + 1) * sizeof(uint32_t));
+    oi = (uint32_t *)malloc(o.ni * sizeof(uint32_t));
+    sc = flat_scratch(scratch, plan.scratch_u32, sp, plan.scratch_points);
+    b = flat_buffers(op, o.nv, oo, o.nf, oi, o.ni);
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_OK);
+    CHECK(sz.vertex_count == o.nv && memcmp(op, o.p, 3 * o.nv * sizeof(double)) == 0);
+    CHECK(memcmp(oi, o.idx, o.ni * sizeof(uint32_t)) == 0);
+    /* 24 is packed too */
+    view.positions = c.p;
+    view.positions_stride = 24;
+    memset(op, 0, 3 * o.nv * sizeof(double));
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_OK);
+    CHECK(memcmp(op, o.p, 3 * o.nv * sizeof(double)) == 0);
+    /* bad strides */
+    {
+        const size_t bad[4] = {8, 16, 25, 60};
+        size_t k;
+        for (k = 0; k < 4; k++) {
+            view.positions_stride = bad[k];
+            CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_INVALID_ARGUMENT);
+            CHECK_STATUS(nls_mesh_plan(&view, &opts, sc.u32s, su, &plan, NULL), NLS_STATUS_INVALID_ARGUMENT);
+        }
+    }
+    /* the strided input's extent counts for the overlap rule: an output inside the attributes
+     * of the last vertex but one is refused */
+    view.positions = wide;
+    view.positions_stride = stride * sizeof(double);
+    sop = wide + stride * (c.nv - 2) + 3;
+    soo = oo;
+    soi = oi;
+    sb = flat_buffers(sop, 1, soo, o.nf, soi, o.ni);
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &sb, &sz, NULL, NULL), NLS_STATUS_ALIASING_BUFFERS);
+    free(wide);
+    free(scratch);
+    free(sp);
+    free(op);
+    free(oo);
+    free(oi);
+    mesh_free(&o);
+    mesh_free(&c);
+}
+
 /* ------------------------------------------------------------------------------ MemorySafe */
 
 /* A block of exactly `n` elements of `size` bytes (NULL for 0), filled with 0xAB. */
@@ -1210,6 +1284,7 @@ int main(void) {
     test_bad_meshes();
     test_bad_arguments();
     test_strict();
+    test_stride();
     test_memory_safe_sweep();
     test_star_rules_match_the_driver(0);
     test_star_rules_match_the_driver(1);
