@@ -1,5 +1,5 @@
 /* Spherelike interpolating subdivision (seed 003 §3) of a cube cage: four levels in one
- * call of nls_mesh_subdivide_levels with NLS_SCHEME_SPHERELIKE. The cube's corners are kept
+ * call of nls_mesh_subdivide with NLS_SCHEME_SPHERELIKE. The cube's corners are kept
  * bit for bit and the surface comes out close to the cube's circumsphere; the same four
  * levels of linear Kobbelt (interpolating too) and Catmull–Clark are printed for comparison.
  * Writes spherelike_cube.off in the current directory and nothing else.
