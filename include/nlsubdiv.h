@@ -35,7 +35,7 @@
  * | NLS_STATUS_NON_FINITE_INPUT          | the vertex or point (also of an edit array)       |
  * | NLS_STATUS_BUFFER_TOO_SMALL          | mesh calls: the buffer, NLS_MESH_BUFFER_*; curves: NLS_NO_ELEMENT |
  * | NLS_STATUS_FALLBACK_IN_STRICT_MODE   | the output vertex of the level being computed     |
- * | NLS_STATUS_DEGENERATE_GEOMETRY       | meshes: the output vertex; curves: the input point starting the segment |
+ * | NLS_STATUS_DEGENERATE_GEOMETRY       | meshes: the output vertex; a differential normal edit: the control vertex; curves: the input point starting the segment |
  * | NLS_STATUS_NUMERICAL_FAILURE         | the output vertex (meshes), the segment's first point (curves), or NLS_NO_ELEMENT |
  * | NLS_STATUS_FOLDED_SURFACE            | the first folded output face                      |
  * | any other status                     | NLS_NO_ELEMENT                                    |
@@ -1019,7 +1019,8 @@ nls_status nls_differential_plan(const struct nls_mesh_view *mesh,
  * @return `NLS_STATUS_OK`; the errors of `nls_differential_plan`;
  * `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NOT_CONVERGED`; `NLS_STATUS_FOLDED_SURFACE`;
  * `NLS_STATUS_NUMERICAL_FAILURE` (a non-finite iterate or result, naming the vertex when
- * known); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
+ * known); `NLS_STATUS_DEGENERATE_GEOMETRY` (a normal edit at a control vertex whose surface
+ * normal is zero, naming the vertex); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
  * call or into another out-pointer.
  */
 nls_status nls_differential_subdivide(const struct nls_mesh_view *mesh,

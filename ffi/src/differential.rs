@@ -305,7 +305,8 @@ pub unsafe extern "C" fn nls_differential_plan(
 /// @return `NLS_STATUS_OK`; the errors of `nls_differential_plan`;
 /// `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NOT_CONVERGED`; `NLS_STATUS_FOLDED_SURFACE`;
 /// `NLS_STATUS_NUMERICAL_FAILURE` (a non-finite iterate or result, naming the vertex when
-/// known); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
+/// known); `NLS_STATUS_DEGENERATE_GEOMETRY` (a normal edit at a control vertex whose surface
+/// normal is zero, naming the vertex); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
 /// call or into another out-pointer.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_differential_subdivide(

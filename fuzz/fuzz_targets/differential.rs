@@ -359,9 +359,17 @@ fn plan_status_documented(s: Status) -> bool {
     )
 }
 
-/// Statuses only the computation of `nls_differential_subdivide` (after the plan) may give.
+/// Statuses only the computation of `nls_differential_subdivide` (after the plan) may give:
+/// the solver's, a normal edit at a vertex whose surface normal is zero
+/// (`DEGENERATE_GEOMETRY`), a fold with `strict` (`FOLDED_SURFACE`).
 fn compute_failure(s: Status) -> bool {
-    matches!(s, Status::NotConverged | Status::NumericalFailure)
+    matches!(
+        s,
+        Status::NotConverged
+            | Status::NumericalFailure
+            | Status::DegenerateGeometry
+            | Status::FoldedSurface
+    )
 }
 
 /// The spatial subdivision's topology after `levels` levels, when it is computable.
@@ -697,6 +705,8 @@ fuzz_target!(|data: &[u8]| {
                 if s == Status::NotConverged {
                     assert_ne!(c.report, REPORT_SENTINEL, "no report on NOT_CONVERGED");
                     assert_eq!(c.report.converged, 0);
+                } else if s == Status::FoldedSurface {
+                    assert!(c.report.folded_faces + c.report.folded_edges > 0, "{:?}", c.report);
                 } else {
                     assert_eq!(c.report, REPORT_SENTINEL, "report written on {s:?}");
                 }
