@@ -865,10 +865,9 @@ mod tests {
     }
 
     fn view(p: &[f64], off: &[u32], idx: &[u32], stride: usize) -> nls_mesh_view {
-        let vertex_count = if stride == 0 {
-            p.len() / 3
-        } else {
-            (p.len() * 8 + stride - 24) / stride
+        let vertex_count = match (p.len() * 8 + stride).checked_sub(24) {
+            Some(extent) if stride > 0 => extent / stride,
+            _ => p.len() / 3,
         };
         nls_mesh_view {
             positions: p.as_ptr(),
