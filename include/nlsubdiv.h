@@ -721,9 +721,9 @@ typedef struct nls_star_view {
      */
     uint32_t closed;
     /**
-     * `nls_mobius_catmull_clark_star` only (ignored by the triangle rules): face `j` is
-     * `face_corners[3*face_offsets[j] .. 3*face_offsets[j+1]]`; `face_count + 1` entries
-     * from 0 to `corner_count`.
+     * `nls_mobius_catmull_clark_star` only (ignored by the triangle rules): face `j` has
+     * the corners `face_offsets[j]` up to `face_offsets[j + 1] - 1` of `face_corners`;
+     * `face_count + 1` entries from 0 to `corner_count`.
      */
     const uint32_t *face_offsets;
     /**

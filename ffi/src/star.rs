@@ -31,9 +31,9 @@ pub struct nls_star_view {
     pub ring_count: usize,
     /// 1 for an interior vertex, 0 for a boundary vertex.
     pub closed: u32,
-    /// `nls_mobius_catmull_clark_star` only (ignored by the triangle rules): face `j` is
-    /// `face_corners[3*face_offsets[j] .. 3*face_offsets[j+1]]`; `face_count + 1` entries
-    /// from 0 to `corner_count`.
+    /// `nls_mobius_catmull_clark_star` only (ignored by the triangle rules): face `j` has
+    /// the corners `face_offsets[j]` up to `face_offsets[j + 1] - 1` of `face_corners`;
+    /// `face_count + 1` entries from 0 to `corner_count`.
     pub face_offsets: *const u32,
     /// Number of faces: `ring_count` for a closed star, `ring_count − 1` for an open one.
     pub face_count: usize,
