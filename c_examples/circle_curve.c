@@ -42,8 +42,12 @@ static double *subdivide(uint32_t scheme, const double *control, size_t n, uint3
     size_t need = 0, need_scratch = 0;
     double *out, *scratch;
     nls_status s;
-    if (nls_curve_refined_len(n, 1, levels, &need) != NLS_STATUS_OK ||
-        nls_curve_scratch_len(scheme, n, 1, levels, &need_scratch) != NLS_STATUS_OK)
+    nls_curve_view curve;
+    curve.points = control;
+    curve.count = n;
+    curve.closed = 1;
+    if (nls_curve_refined_size(n, 1, levels, &need) != NLS_STATUS_OK ||
+        nls_curve_scratch_size(scheme, n, 1, levels, &need_scratch) != NLS_STATUS_OK)
         return NULL;
     out = (double *)malloc(3 * need * sizeof(double));
     scratch = need_scratch ? (double *)malloc(3 * need_scratch * sizeof(double)) : NULL;
@@ -52,7 +56,7 @@ static double *subdivide(uint32_t scheme, const double *control, size_t n, uint3
         free(scratch);
         return NULL;
     }
-    s = nls_curve_subdivide(scheme, control, n, 1, levels, out, need, scratch, need_scratch, count, NULL);
+    s = nls_curve_subdivide(scheme, &curve, levels, out, need, scratch, need_scratch, count, NULL);
     free(scratch);
     if (s != NLS_STATUS_OK) {
         fprintf(stderr, "nls_curve_subdivide: %s\n", nls_status_str(s));

@@ -135,21 +135,42 @@ static void builtin_cube(mesh *m) {
 }
 
 /* `levels` levels of `scheme` with `flags` into *out; prints the error and returns 0 on
- * failure. The sizes of the output and of the scratch come from the size queries. */
+ * failure. The sizes of the output and of the scratch come from the plan: plan scratch size,
+ * plan, subdivide. */
 static int subdivide(const mesh *in, uint32_t scheme, uint32_t flags, uint32_t levels, mesh *out,
                      nls_subdivide_report *report) {
     size_t su = 0, sp = 0;
     uint32_t *scratch_u32 = NULL, element = NLS_NO_ELEMENT;
     double *scratch_points = NULL;
-    nls_status s = nls_mesh_scratch_size(scheme, flags, in->vertex_count, in->index_count, &su, &sp);
+    nls_mesh_view view;
+    nls_subdivide_options options;
+    nls_plan plan;
+    nls_status s;
     memset(out, 0, sizeof *out);
+    view.positions = in->positions;
+    view.vertex_count = in->vertex_count;
+    view.positions_stride = 0; /* packed x, y, z */
+    view.offsets = in->offsets;
+    view.face_count = in->face_count;
+    view.indices = in->indices;
+    view.index_count = in->index_count;
+    nls_subdivide_default_options(&options);
+    options.scheme = scheme;
+    options.flags = flags;
+    options.levels = levels;
+    s = nls_mesh_plan_scratch_size(&view, &su);
     if (s == NLS_STATUS_OK) {
         /* the plan needs the input's topology scratch; it gives the scratch of the whole call */
         scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
-        s = nls_mesh_subdivide_levels_size(scheme, flags, in->positions, in->vertex_count, in->offsets, in->face_count,
-                                           in->indices, in->index_count, levels, scratch_u32, su, &out->vertex_count,
-                                           &out->face_count, &out->index_count, &su, &sp, &element);
+        s = nls_mesh_plan(&view, &options, scratch_u32, su, &plan, &element);
         free(scratch_u32);
+    }
+    if (s == NLS_STATUS_OK) {
+        su = plan.scratch_u32;
+        sp = plan.scratch_points;
+        out->vertex_count = plan.output.vertex_count;
+        out->face_count = plan.output.face_count;
+        out->index_count = plan.output.index_count;
     }
     if (s == NLS_STATUS_OK) {
         scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
@@ -161,11 +182,23 @@ static int subdivide(const mesh *in, uint32_t scheme, uint32_t flags, uint32_t l
             fprintf(stderr, "out of memory\n");
             s = NLS_STATUS_BUFFER_TOO_SMALL;
         } else {
-            s = nls_mesh_subdivide_levels(scheme, flags, in->positions, in->vertex_count, in->offsets, in->face_count,
-                                          in->indices, in->index_count, levels, scratch_u32, su, scratch_points, sp,
-                                          out->positions, out->vertex_count, out->offsets, out->face_count,
-                                          out->indices, out->index_count, &out->vertex_count, &out->face_count,
-                                          &out->index_count, report, &element);
+            nls_scratch scratch;
+            nls_mesh_buffers buffers;
+            nls_mesh_sizes written;
+            scratch.u32s = scratch_u32;
+            scratch.u32_capacity = su;
+            scratch.points = scratch_points;
+            scratch.point_capacity = sp;
+            buffers.positions = out->positions;
+            buffers.vertex_capacity = out->vertex_count;
+            buffers.offsets = out->offsets;
+            buffers.face_capacity = out->face_count;
+            buffers.indices = out->indices;
+            buffers.index_capacity = out->index_count;
+            s = nls_mesh_subdivide(&view, &options, &scratch, &buffers, &written, report, &element);
+            out->vertex_count = written.vertex_count;
+            out->face_count = written.face_count;
+            out->index_count = written.index_count;
         }
         free(scratch_u32);
         free(scratch_points);

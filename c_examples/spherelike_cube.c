@@ -1,5 +1,5 @@
 /* Spherelike interpolating subdivision (seed 003 §3) of a cube cage: four levels in one
- * call of nls_mesh_subdivide_levels with NLS_SCHEME_SPHERELIKE. The cube's corners are kept
+ * call of nls_mesh_subdivide with NLS_SCHEME_SPHERELIKE. The cube's corners are kept
  * bit for bit and the surface comes out close to the cube's circumsphere; the same four
  * levels of linear Kobbelt (interpolating too) and Catmull–Clark are printed for comparison.
  * Writes spherelike_cube.off in the current directory and nothing else.
@@ -37,21 +37,31 @@ static void mesh_free(mesh *m) {
     memset(m, 0, sizeof *m);
 }
 
-/* LEVELS levels of `scheme` on the cube, sized by the size queries. */
+/* LEVELS levels of `scheme` on the cube, sized by the plan. */
 static nls_status run(uint32_t scheme, mesh *out) {
-    size_t su0 = 0, sp0 = 0, su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
+    size_t su0 = 0, su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
     uint32_t *scratch_u32 = NULL, element = NLS_NO_ELEMENT;
     double *scratch_points = NULL;
+    nls_mesh_view cube = {CUBE_P, 8, 0, CUBE_OFF, 6, CUBE_IDX, 24};
+    nls_subdivide_options options;
+    nls_plan plan;
     nls_status s;
     memset(out, 0, sizeof *out);
-    s = nls_mesh_scratch_size(scheme, 0, 8, 24, &su0, &sp0);
+    nls_subdivide_default_options(&options);
+    options.scheme = scheme;
+    options.levels = LEVELS;
+    s = nls_mesh_plan_scratch_size(&cube, &su0);
     if (s != NLS_STATUS_OK) return s;
     scratch_u32 = (uint32_t *)malloc(su0 * sizeof(uint32_t));
     if (scratch_u32 == NULL) return NLS_STATUS_SIZE_OVERFLOW;
-    s = nls_mesh_subdivide_levels_size(scheme, 0, CUBE_P, 8, CUBE_OFF, 6, CUBE_IDX, 24, LEVELS, scratch_u32, su0, &nv,
-                                       &nf, &ni, &su, &sp, &element);
+    s = nls_mesh_plan(&cube, &options, scratch_u32, su0, &plan, &element);
     free(scratch_u32);
     if (s != NLS_STATUS_OK) return s;
+    nv = plan.output.vertex_count;
+    nf = plan.output.face_count;
+    ni = plan.output.index_count;
+    su = plan.scratch_u32;
+    sp = plan.scratch_points;
     scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t));
     scratch_points = (double *)malloc((3 * sp + 1) * sizeof(double));
     out->positions = (double *)malloc(3 * nv * sizeof(double));
@@ -60,9 +70,13 @@ static nls_status run(uint32_t scheme, mesh *out) {
     if (!scratch_u32 || !scratch_points || !out->positions || !out->offsets || !out->indices) {
         s = NLS_STATUS_SIZE_OVERFLOW;
     } else {
-        s = nls_mesh_subdivide_levels(scheme, 0, CUBE_P, 8, CUBE_OFF, 6, CUBE_IDX, 24, LEVELS, scratch_u32, su,
-                                      scratch_points, sp, out->positions, nv, out->offsets, nf, out->indices, ni,
-                                      &out->vertex_count, &out->face_count, &out->index_count, NULL, &element);
+        nls_scratch scratch = {scratch_u32, su, scratch_points, sp};
+        nls_mesh_buffers buffers = {out->positions, nv, out->offsets, nf, out->indices, ni};
+        nls_mesh_sizes written = {0, 0, 0};
+        s = nls_mesh_subdivide(&cube, &options, &scratch, &buffers, &written, NULL, &element);
+        out->vertex_count = written.vertex_count;
+        out->face_count = written.face_count;
+        out->index_count = written.index_count;
     }
     free(scratch_u32);
     free(scratch_points);

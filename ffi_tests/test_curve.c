@@ -11,6 +11,7 @@
 
 #include "nlsubdiv.h"
 #include "check.h"
+#include "flat_args.h"
 
 #define NSCHEMES 7
 static const uint32_t SCHEMES[NSCHEMES] = {
@@ -63,15 +64,15 @@ static void sample(double *pts, size_t n, double r, int closed) {
 static nls_status run(uint32_t scheme, const double *pts, size_t n, uint32_t closed, uint32_t levels, double **res,
                       size_t *count) {
     size_t need = 0, need_s = 0;
-    nls_status s = nls_curve_refined_len(n, closed, levels, &need);
+    nls_status s = nls_curve_refined_size(n, closed, levels, &need);
     if (s != NLS_STATUS_OK) return s;
-    s = nls_curve_scratch_len(scheme, n, closed, levels, &need_s);
+    s = nls_curve_scratch_size(scheme, n, closed, levels, &need_s);
     if (s != NLS_STATUS_OK) return s;
     *res = (double *)malloc(3 * need * sizeof(double));
     {
         double *scratch = need_s ? (double *)malloc(3 * need_s * sizeof(double)) : NULL;
         uint32_t element = 0;
-        s = nls_curve_subdivide(scheme, pts, n, closed, levels, *res, need, scratch, need_s, count, &element);
+        s = flat_curve_subdivide(scheme, pts, n, closed, levels, *res, need, scratch, need_s, count, &element);
         free(scratch);
     }
     return s;
@@ -79,30 +80,30 @@ static nls_status run(uint32_t scheme, const double *pts, size_t n, uint32_t clo
 
 static void test_sizes(void) {
     size_t len = 777;
-    CHECK_STATUS(nls_curve_refined_len(4, 1, 3, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_refined_size(4, 1, 3, &len), NLS_STATUS_OK);
     CHECK(len == 32);
-    CHECK_STATUS(nls_curve_refined_len(4, 0, 3, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_refined_size(4, 0, 3, &len), NLS_STATUS_OK);
     CHECK(len == 25);
-    CHECK_STATUS(nls_curve_refined_len(7, 1, 0, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_refined_size(7, 1, 0, &len), NLS_STATUS_OK);
     CHECK(len == 7);
     len = 777;
-    CHECK_STATUS(nls_curve_refined_len(2, 1, 3, &len), NLS_STATUS_TOO_FEW_POINTS);
-    CHECK_STATUS(nls_curve_refined_len(1, 0, 3, &len), NLS_STATUS_TOO_FEW_POINTS);
-    CHECK_STATUS(nls_curve_refined_len(3, 1, 64, &len), NLS_STATUS_SIZE_OVERFLOW);
-    CHECK_STATUS(nls_curve_refined_len(SIZE_MAX / 2 + 1, 1, 1, &len), NLS_STATUS_SIZE_OVERFLOW);
-    CHECK_STATUS(nls_curve_refined_len(4, 2, 3, &len), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(nls_curve_refined_size(2, 1, 3, &len), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(nls_curve_refined_size(1, 0, 3, &len), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(nls_curve_refined_size(3, 1, 64, &len), NLS_STATUS_SIZE_OVERFLOW);
+    CHECK_STATUS(nls_curve_refined_size(SIZE_MAX / 2 + 1, 1, 1, &len), NLS_STATUS_SIZE_OVERFLOW);
+    CHECK_STATUS(nls_curve_refined_size(4, 2, 3, &len), NLS_STATUS_INVALID_ARGUMENT);
     CHECK(len == 777); /* not written on failure */
-    CHECK_STATUS(nls_curve_refined_len(4, 1, 3, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(nls_curve_refined_size(4, 1, 3, NULL), NLS_STATUS_NULL_PARAMETER);
 
-    CHECK_STATUS(nls_curve_scratch_len(NLS_CURVE_FOUR_POINT, 5, 1, 1, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_scratch_size(NLS_CURVE_FOUR_POINT, 5, 1, 1, &len), NLS_STATUS_OK);
     CHECK(len == 0);
-    CHECK_STATUS(nls_curve_scratch_len(NLS_CURVE_DIFFERENTIAL_BSPLINE, 5, 1, 1, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_scratch_size(NLS_CURVE_DIFFERENTIAL_BSPLINE, 5, 1, 1, &len), NLS_STATUS_OK);
     CHECK(len == 5);
-    CHECK_STATUS(nls_curve_scratch_len(NLS_CURVE_CIRCLE_BLEND, 5, 0, 3, &len), NLS_STATUS_OK);
+    CHECK_STATUS(nls_curve_scratch_size(NLS_CURVE_CIRCLE_BLEND, 5, 0, 3, &len), NLS_STATUS_OK);
     CHECK(len == 17);
     len = 777;
-    CHECK_STATUS(nls_curve_scratch_len(7u, 5, 1, 1, &len), NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_curve_scratch_len(0xFFFFFFFFu, 5, 1, 1, &len), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(nls_curve_scratch_size(7u, 5, 1, 1, &len), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(nls_curve_scratch_size(0xFFFFFFFFu, 5, 1, 1, &len), NLS_STATUS_INVALID_ARGUMENT);
     CHECK(len == 777);
     {
         union {
@@ -110,7 +111,7 @@ static void test_sizes(void) {
             unsigned char c[2 * sizeof(size_t)];
         } raw; /* aligned for size_t, so c + 1 is not */
         size_t *mis = (size_t *)(void *)(raw.c + 1);
-        CHECK_STATUS(nls_curve_refined_len(4, 1, 3, mis), NLS_STATUS_MISALIGNED_POINTER);
+        CHECK_STATUS(nls_curve_refined_size(4, 1, 3, mis), NLS_STATUS_MISALIGNED_POINTER);
     }
 }
 
@@ -126,7 +127,7 @@ static void test_circles_and_interpolation(void) {
             const uint32_t levels = 4;
             sample(pts, 7, r, closed);
             CHECK_STATUS(run(SCHEMES[si], pts, 7, (uint32_t)closed, levels, &res, &count), NLS_STATUS_OK);
-            CHECK_STATUS(nls_curve_refined_len(7, (uint32_t)closed, levels, &need), NLS_STATUS_OK);
+            CHECK_STATUS(nls_curve_refined_size(7, (uint32_t)closed, levels, &need), NLS_STATUS_OK);
             CHECK(count == need);
             for (i = 0; i < count; i++) CHECK(isfinite(res[3 * i]) && isfinite(res[3 * i + 1]) && isfinite(res[3 * i + 2]));
             if (is_circle_preserving(SCHEMES[si])) {
@@ -176,14 +177,14 @@ static void test_buffer_sizes(void) {
         for (closed = 0; closed <= 1; closed++) {
             const uint32_t levels = 3;
             size_t need = 0, need_s = 0, cap;
-            CHECK_STATUS(nls_curve_refined_len(5, (uint32_t)closed, levels, &need), NLS_STATUS_OK);
-            CHECK_STATUS(nls_curve_scratch_len(SCHEMES[si], 5, (uint32_t)closed, levels, &need_s), NLS_STATUS_OK);
+            CHECK_STATUS(nls_curve_refined_size(5, (uint32_t)closed, levels, &need), NLS_STATUS_OK);
+            CHECK_STATUS(nls_curve_scratch_size(SCHEMES[si], 5, (uint32_t)closed, levels, &need_s), NLS_STATUS_OK);
             /* every short output, with a fresh exact-size heap buffer */
             for (cap = 0; cap < need; cap++) {
                 double *out = cap ? (double *)malloc(3 * cap * sizeof(double)) : NULL;
                 double *scratch = (double *)malloc(3 * need_s * sizeof(double) + 1);
                 size_t count = 0;
-                CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, cap, scratch,
+                CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, cap, scratch,
                                                  need_s, &count, NULL),
                              NLS_STATUS_BUFFER_TOO_SMALL);
                 CHECK(count == need);
@@ -195,7 +196,7 @@ static void test_buffer_sizes(void) {
                 double *out = (double *)malloc(3 * need * sizeof(double));
                 double *scratch = cap ? (double *)malloc(3 * cap * sizeof(double)) : NULL;
                 size_t count = 0;
-                CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, need, scratch,
+                CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, need, scratch,
                                                  cap, &count, NULL),
                              NLS_STATUS_BUFFER_TOO_SMALL);
                 CHECK(count == need_s);
@@ -207,7 +208,7 @@ static void test_buffer_sizes(void) {
                 double *out = (double *)malloc(3 * need * sizeof(double));
                 double *scratch = need_s ? (double *)malloc(3 * need_s * sizeof(double)) : NULL;
                 size_t count = 0;
-                CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, need, scratch,
+                CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], pts, 5, (uint32_t)closed, levels, out, need, scratch,
                                                  need_s, &count, NULL),
                              NLS_STATUS_OK);
                 CHECK(count == need);
@@ -226,27 +227,27 @@ static void test_bad_input(void) {
     sample(pts, 6, 1.0, 1);
 
     /* unknown scheme, bad flag */
-    CHECK_STATUS(nls_curve_subdivide(7u, pts, 6, 1, 2, out, 96, scratch, 48, &count, &element),
+    CHECK_STATUS(flat_curve_subdivide(7u, pts, 6, 1, 2, out, 96, scratch, 48, &count, &element),
                  NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 3, 2, out, 96, scratch, 48, &count, &element),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 3, 2, out, 96, scratch, 48, &count, &element),
                  NLS_STATUS_INVALID_ARGUMENT);
     CHECK(element == NLS_NO_ELEMENT);
     /* NULL pointers */
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, NULL, 6, 1, 2, out, 96, scratch, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, NULL, 6, 1, 2, out, 96, scratch, 48, &count, NULL),
                  NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, NULL, 96, scratch, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, NULL, 96, scratch, 48, &count, NULL),
                  NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, NULL, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, NULL, 48, &count, NULL),
                  NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, scratch, 48, NULL, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, scratch, 48, NULL, NULL),
                  NLS_STATUS_NULL_PARAMETER);
     /* NULL with capacity 0 is an empty buffer: too small here */
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, NULL, 0, scratch, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, NULL, 0, scratch, 48, &count, NULL),
                  NLS_STATUS_BUFFER_TOO_SMALL);
     CHECK(count == 24);
     count = 777;
     /* ... and fine for one level, which needs no scratch */
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 1, out, 96, NULL, 0, &count, NULL), NLS_STATUS_OK);
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 1, out, 96, NULL, 0, &count, NULL), NLS_STATUS_OK);
     CHECK(count == 12);
     count = 777;
     /* misaligned buffers */
@@ -256,44 +257,71 @@ static void test_bad_input(void) {
             unsigned char c[sizeof(double) * (3 * 24 + 1)];
         } raw; /* aligned for double, so c + 1 is aligned for neither double nor uint32_t */
         double *mis = (double *)(void *)(raw.c + 1);
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, mis, 24, scratch, 48, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, mis, 24, scratch, 48, &count, NULL),
                      NLS_STATUS_MISALIGNED_POINTER);
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, scratch, 48, &count,
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 2, out, 96, scratch, 48, &count,
                                          (uint32_t *)(void *)(raw.c + 1)),
                      NLS_STATUS_MISALIGNED_POINTER);
     }
     /* huge counts */
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, SIZE_MAX / 8, 1, 2, out, 96, scratch, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, SIZE_MAX / 8, 1, 2, out, 96, scratch, 48, &count, NULL),
                  NLS_STATUS_SIZE_OVERFLOW);
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 62, out, 96, scratch, 48, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_BSPLINE, pts, 6, 1, 62, out, 96, scratch, 48, &count, NULL),
                  NLS_STATUS_SIZE_OVERFLOW);
     CHECK(count == 777);
     /* aliasing: output over the input, scratch over the output, input inside scratch */
     {
         double *buf = (double *)malloc(3 * 200 * sizeof(double));
         memcpy(buf, pts, sizeof pts);
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3, 24, scratch, 48, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3, 24, scratch, 48, &count, NULL),
                      NLS_STATUS_ALIASING_BUFFERS);
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, pts, 6, 1, 2, buf, 24, buf + 3 * 23, 12, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, pts, 6, 1, 2, buf, 24, buf + 3 * 23, 12, &count, NULL),
                      NLS_STATUS_ALIASING_BUFFERS);
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, buf + 3 * 100, 6, 1, 2, out, 24, buf + 3 * 95, 12,
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf + 3 * 100, 6, 1, 2, out, 24, buf + 3 * 95, 12,
                                          &count, NULL),
                      NLS_STATUS_ALIASING_BUFFERS);
         /* adjacent but disjoint is fine */
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12, &count,
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12, &count,
                                          NULL),
                      NLS_STATUS_OK);
         CHECK(count == 24);
+        /* out_count or out_element inside the input, the output or the scratch: refused, nothing
+         * written there */
+        {
+            uint32_t element = 12345;
+            double keep = buf[3 * 6 + 4];
+            CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12,
+                                              (size_t *)(void *)(buf + 3 * 6 + 4), &element),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK(buf[3 * 6 + 4] == keep && element == NLS_NO_ELEMENT);
+            CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12,
+                                              (size_t *)(void *)(buf + 1), NULL),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12,
+                                              (size_t *)(void *)(buf + 3 * 31), NULL),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            keep = buf[3 * 10];
+            CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12,
+                                              &count, (uint32_t *)(void *)(buf + 3 * 10)),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK(buf[3 * 10] == keep);
+            CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_FOUR_POINT, buf, 6, 1, 2, buf + 3 * 6, 24, buf + 3 * 30, 12,
+                                              &count, (uint32_t *)(void *)&count),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, NULL, 2, buf + 3 * 6, 24, buf + 3 * 30, 12, &count,
+                                             &element),
+                         NLS_STATUS_NULL_PARAMETER);
+        }
         free(buf);
     }
     count = 777;
     /* too few points */
     for (si = 0; si < NSCHEMES; si++) {
-        CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], pts, 2, 1, 2, out, 96, scratch, 48, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], pts, 2, 1, 2, out, 96, scratch, 48, &count, NULL),
                      NLS_STATUS_TOO_FEW_POINTS);
-        CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], pts, 1, 0, 2, out, 96, scratch, 48, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], pts, 1, 0, 2, out, 96, scratch, 48, &count, NULL),
                      NLS_STATUS_TOO_FEW_POINTS);
-        CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], NULL, 0, 0, 2, out, 96, scratch, 48, &count, NULL),
+        CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], NULL, 0, 0, 2, out, 96, scratch, 48, &count, NULL),
                      NLS_STATUS_TOO_FEW_POINTS);
     }
     CHECK(count == 777);
@@ -303,12 +331,12 @@ static void test_bad_input(void) {
         memcpy(bad, pts, sizeof bad);
         bad[3 * 4 + 1] = NAN;
         element = 0;
-        CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], bad, 6, 1, 2, out, 96, scratch, 48, &count, &element),
+        CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], bad, 6, 1, 2, out, 96, scratch, 48, &count, &element),
                      NLS_STATUS_NON_FINITE_INPUT);
         CHECK(element == 4);
         bad[3 * 4 + 1] = 0.0;
         bad[0] = -INFINITY;
-        CHECK_STATUS(nls_curve_subdivide(SCHEMES[si], bad, 6, 0, 0, out, 96, scratch, 48, &count, &element),
+        CHECK_STATUS(flat_curve_subdivide(SCHEMES[si], bad, 6, 0, 0, out, 96, scratch, 48, &count, &element),
                      NLS_STATUS_NON_FINITE_INPUT);
         CHECK(element == 0);
     }
@@ -321,7 +349,7 @@ static void test_bad_input(void) {
         memcpy(rep, pts, sizeof rep);
         memcpy(rep + 3 * 3, rep + 3 * 2, 3 * sizeof(double));
         element = 0;
-        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_CIRCLE_BLEND, rep, 6, 1, 1, out, 96, scratch, 48, &count, &element),
+        CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_CIRCLE_BLEND, rep, 6, 1, 1, out, 96, scratch, 48, &count, &element),
                      NLS_STATUS_DEGENERATE_GEOMETRY);
         CHECK(element == 1); /* segment P1 P2 is the first whose second circle uses P2 = P3 */
         CHECK_STATUS(run(NLS_CURVE_MOBIUS_INTERPOLATING, rep, 6, 1, 1, &res, &n), NLS_STATUS_OK);
@@ -343,12 +371,12 @@ static void test_fp_environment(void) {
         unsigned int saved = _mm_getcsr();
         nls_status s;
         _mm_setcsr(saved | 0x8040u); /* FTZ + DAZ */
-        s = nls_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, pts, 4, 1, 1, out, 8, NULL, 0, &count, NULL);
+        s = flat_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, pts, 4, 1, 1, out, 8, NULL, 0, &count, NULL);
         _mm_setcsr(saved);
         CHECK_STATUS(s, NLS_STATUS_FP_ENVIRONMENT);
         CHECK(count == 777);
     }
-    CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, pts, 4, 1, 1, out, 8, NULL, 0, &count, NULL),
+    CHECK_STATUS(flat_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, pts, 4, 1, 1, out, 8, NULL, 0, &count, NULL),
                  NLS_STATUS_OK);
     CHECK(count == 8);
 #endif

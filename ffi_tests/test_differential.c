@@ -11,6 +11,7 @@
 
 #include "nlsubdiv.h"
 #include "check.h"
+#include "flat_args.h"
 
 typedef struct {
     size_t nv, nf, ni;
@@ -59,16 +60,23 @@ static nls_status run(const double *p, size_t nv, const uint32_t *off, size_t nf
     size_t su0 = 0, su = 0, sp = 0, onv = 0, onf = 0, oni = 0;
     uint32_t *scratch_u32;
     double *scratch_points;
+    nls_plan plan;
+    nls_mesh_sizes w = {999, 999, 999};
     nls_status s;
     r->p = NULL;
     r->off = NULL;
     r->idx = NULL;
     r->element = 12345;
-    CHECK_STATUS(nls_differential_scratch_size(nv, ni, &su0), NLS_STATUS_OK);
+    CHECK_STATUS(flat_plan_scratch_size(nv, ni, &su0), NLS_STATUS_OK);
     scratch_u32 = (uint32_t *)malloc(su0 * sizeof(uint32_t) + 1);
-    s = nls_differential_plan(p, nv, off, nf, idx, ni, o, scratch_u32, su0, &onv, &onf, &oni, &su, &sp, &r->element);
+    s = flat_diff_plan(p, nv, off, nf, idx, ni, o, scratch_u32, su0, &plan, &r->element);
     free(scratch_u32);
     if (s != NLS_STATUS_OK) return s;
+    onv = plan.output.vertex_count;
+    onf = plan.output.face_count;
+    oni = plan.output.index_count;
+    su = plan.scratch_u32;
+    sp = plan.scratch_points;
     CHECK(su >= su0);
     scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t));
     scratch_points = (double *)malloc(3 * (sp - short_points) * sizeof(double) + 1);
@@ -78,8 +86,11 @@ static nls_status run(const double *p, size_t nv, const uint32_t *off, size_t nf
     r->p[0] = 777.0;
     r->nv = r->nf = r->ni = 999;
     r->rep.iterations = 999;
-    s = nls_differential_subdivide(p, nv, off, nf, idx, ni, o, scratch_u32, su, scratch_points, sp - short_points, r->p,
-                                   onv, r->off, onf, r->idx, oni, &r->nv, &r->nf, &r->ni, &r->rep, &r->element);
+    s = flat_diff_subdivide(p, nv, off, nf, idx, ni, o, scratch_u32, su, scratch_points, sp - short_points, r->p, onv,
+                            r->off, onf, r->idx, oni, &w, &r->rep, &r->element);
+    r->nv = w.vertex_count;
+    r->nf = w.face_count;
+    r->ni = w.index_count;
     if (s == NLS_STATUS_OK) CHECK(r->nv == onv && r->nf == onf && r->ni == oni);
     free(scratch_u32);
     free(scratch_points);
@@ -103,7 +114,16 @@ static void test_bad_input(void) {
     size_t su = 777;
     /* NULL only with a count of 0 */
     CHECK_STATUS(nls_differential_default_options(NULL), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_differential_scratch_size(6, 24, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(flat_plan_scratch_size(6, 24, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK(o.strict == 0);
+    /* strict is 0 or 1; without edits it changes nothing */
+    o.strict = 2;
+    CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, 0, &r), NLS_STATUS_INVALID_ARGUMENT);
+    o.strict = 1;
+    CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, 0, &r), NLS_STATUS_OK);
+    CHECK(r.rep.folded_faces == 0 && r.rep.first_folded_face == NLS_NO_ELEMENT && r.rep.folded_edges == 0);
+    result_free(&r);
+    o.strict = 0;
     CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, NULL, 0, &r), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(run(NULL, m.nv, m.off, m.nf, m.idx, m.ni, &o, 0, &r), NLS_STATUS_NULL_PARAMETER);
     /* unknown scheme, DirMag levels not matching the scheme, too many levels, bad tolerance */
@@ -171,18 +191,25 @@ static void test_not_converged_and_small_buffers(void) {
     result_free(&r);
     /* a short output buffer */
     {
-        size_t su0 = 0, su = 0, sp = 0, nv = 0, nf = 0, ni = 0, wv = 0, wf = 0, wi = 0;
+        size_t su0 = 0, su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
+        nls_mesh_sizes w = {0, 0, 0};
+        nls_plan plan;
         uint32_t *s32, element = 0;
         double *spt, *outp;
         uint32_t *oo, *oi;
-        CHECK_STATUS(nls_differential_scratch_size(m.nv, m.ni, &su0), NLS_STATUS_OK);
+        CHECK_STATUS(flat_plan_scratch_size(m.nv, m.ni, &su0), NLS_STATUS_OK);
         s32 = (uint32_t *)malloc(su0 * sizeof(uint32_t));
-        CHECK_STATUS(nls_differential_plan(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su0, &nv, &nf, &ni, &su, &sp,
-                                           NULL),
-                     NLS_STATUS_OK);
-        CHECK_STATUS(nls_differential_plan(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su0 - 1, &nv, &nf, &ni, &su,
-                                           &sp, &element),
+        CHECK_STATUS(flat_diff_plan(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su0, &plan, NULL), NLS_STATUS_OK);
+        nv = plan.output.vertex_count;
+        nf = plan.output.face_count;
+        ni = plan.output.index_count;
+        su = plan.scratch_u32;
+        sp = plan.scratch_points;
+        CHECK_STATUS(flat_diff_plan(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su0 - 1, &plan, &element),
                      NLS_STATUS_BUFFER_TOO_SMALL);
+        /* the plan inside the mesh: refused */
+        CHECK_STATUS(flat_diff_plan(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su0, (nls_plan *)(void *)m.p, NULL),
+                     NLS_STATUS_ALIASING_BUFFERS);
         CHECK(element == NLS_MESH_BUFFER_SCRATCH_U32);
         free(s32);
         s32 = (uint32_t *)malloc(su * sizeof(uint32_t));
@@ -191,14 +218,32 @@ static void test_not_converged_and_small_buffers(void) {
         oo = (uint32_t *)malloc((nf + 1) * sizeof(uint32_t));
         oi = (uint32_t *)malloc(ni * sizeof(uint32_t));
         outp[0] = 777.0;
-        CHECK_STATUS(nls_differential_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, outp, nv - 1,
-                                                oo, nf, oi, ni, &wv, &wf, &wi, NULL, &element),
+        CHECK_STATUS(flat_diff_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, outp, nv - 1, oo, nf,
+                                         oi, ni, &w, NULL, &element),
                      NLS_STATUS_BUFFER_TOO_SMALL);
-        CHECK(element == NLS_MESH_BUFFER_POSITIONS && wv == nv && wf == nf && wi == ni && outp[0] == 777.0);
+        CHECK(element == NLS_MESH_BUFFER_POSITIONS && w.vertex_count == nv && w.face_count == nf &&
+              w.index_count == ni && outp[0] == 777.0);
         /* aliasing: the output positions over the scratch */
-        CHECK_STATUS(nls_differential_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, spt, nv, oo,
-                                                nf, oi, ni, &wv, &wf, &wi, NULL, &element),
+        CHECK_STATUS(flat_diff_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, spt, nv, oo, nf, oi,
+                                         ni, &w, NULL, &element),
                      NLS_STATUS_ALIASING_BUFFERS);
+        /* out-pointers into the output or an edit array: refused, nothing written there */
+        {
+            double scale[6] = {1, 1, 1, 1, 1, 1};
+            nls_differential_report rep;
+            CHECK_STATUS(flat_diff_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, outp, nv - 1, oo,
+                                             nf, oi, ni, (nls_mesh_sizes *)(void *)(outp + 3), NULL, &element),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(flat_diff_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, outp, nv - 1, oo,
+                                             nf, oi, ni, &w, (nls_differential_report *)(void *)oi, &element),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            o.curvature_scale = scale;
+            CHECK_STATUS(flat_diff_subdivide(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, s32, su, spt, sp, outp, nv - 1, oo,
+                                             nf, oi, ni, &w, &rep, (uint32_t *)(void *)(scale + 2)),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK(scale[2] == 1.0);
+            o.curvature_scale = NULL;
+        }
         free(s32);
         free(spt);
         free(outp);
@@ -265,17 +310,26 @@ static void test_mathematics(void) {
             uint32_t *s32 = (uint32_t *)malloc(1000 * sizeof(uint32_t));
             double *ps, ca[3] = {0, 0, 0}, cs[3] = {0, 0, 0};
             uint32_t *oo, *oi;
-            CHECK_STATUS(nls_mesh_subdivide_levels_size(spatial, 0, m.p, m.nv, m.off, m.nf, m.idx, m.ni, 2, s32, 1000,
-                                                        &nv, &nf, &ni, &su, &sp, NULL),
+            nls_plan plan;
+            nls_mesh_sizes w = {0, 0, 0};
+            CHECK_STATUS(flat_plan(spatial, 0, 2, m.p, m.nv, m.off, m.nf, m.idx, m.ni, s32, 1000, &plan, NULL),
                          NLS_STATUS_OK);
+            nv = plan.output.vertex_count;
+            nf = plan.output.face_count;
+            ni = plan.output.index_count;
+            su = plan.scratch_u32;
+            sp = plan.scratch_points;
             free(s32);
             s32 = (uint32_t *)malloc(su * sizeof(uint32_t));
             ps = (double *)malloc(3 * (sp + nv) * sizeof(double));
             oo = (uint32_t *)malloc((nf + 1) * sizeof(uint32_t));
             oi = (uint32_t *)malloc(ni * sizeof(uint32_t));
-            CHECK_STATUS(nls_mesh_subdivide_levels(spatial, 0, m.p, m.nv, m.off, m.nf, m.idx, m.ni, 2, s32, su, ps + 3 * nv,
-                                                   sp, ps, nv, oo, nf, oi, ni, &wv, &wf, &wi, NULL, NULL),
+            CHECK_STATUS(flat_subdivide(spatial, 0, 2, m.p, m.nv, m.off, m.nf, m.idx, m.ni, s32, su, ps + 3 * nv, sp, ps,
+                                        nv, oo, nf, oi, ni, &w, NULL, NULL),
                          NLS_STATUS_OK);
+            wv = w.vertex_count;
+            wf = w.face_count;
+            wi = w.index_count;
             CHECK(wv == a.nv && wf == a.nf && wi == a.ni);
             for (i = 0; i < wi && i < a.ni; i++) CHECK(oi[i] == a.idx[i]);
             for (i = 0; i < wv; i++)

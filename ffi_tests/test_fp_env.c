@@ -25,6 +25,7 @@
 #endif
 
 #include "check.h"
+#include "flat_args.h"
 #include "nlsubdiv.h"
 
 /* ---------------------------------------------------------------- inputs, per scale */
@@ -137,15 +138,15 @@ static nls_status c_status_str(capture *c) {
     put(c, s, strlen(s));
     return NLS_STATUS_OK;
 }
-static nls_status c_curve_refined_len(capture *c) {
+static nls_status c_curve_refined_size(capture *c) {
     size_t n = 0;
-    nls_status s = nls_curve_refined_len(6, 1, 3, &n);
+    nls_status s = nls_curve_refined_size(6, 1, 3, &n);
     put(c, &n, sizeof n);
     return s;
 }
-static nls_status c_curve_scratch_len(capture *c) {
+static nls_status c_curve_scratch_size(capture *c) {
     size_t n = 0;
-    nls_status s = nls_curve_scratch_len(NLS_CURVE_CIRCLE_BLEND, 6, 1, 3, &n);
+    nls_status s = nls_curve_scratch_size(NLS_CURVE_CIRCLE_BLEND, 6, 1, 3, &n);
     put(c, &n, sizeof n);
     return s;
 }
@@ -156,7 +157,7 @@ static nls_status curve_case(capture *c, uint32_t scheme) {
     nls_status s;
     memset(out, 0, sizeof out);
     memset(scratch, 0, sizeof scratch);
-    s = nls_curve_subdivide(scheme, &CURVE[0][0], 6, 1, 3, out, 64, scratch, 256, &n, &el);
+    s = flat_curve_subdivide(scheme, &CURVE[0][0], 6, 1, 3, out, 64, scratch, 256, &n, &el);
     put(c, out, sizeof out);
     put(c, &n, sizeof n);
     put(c, &el, sizeof el);
@@ -165,11 +166,18 @@ static nls_status curve_case(capture *c, uint32_t scheme) {
 static nls_status c_curve_subdivide(capture *c) { return curve_case(c, NLS_CURVE_CIRCLE_BLEND); }
 static nls_status c_curve_subdivide_mob(capture *c) { return curve_case(c, NLS_CURVE_MOBIUS_INTERPOLATING); }
 static nls_status c_curve_subdivide_diff(capture *c) { return curve_case(c, NLS_CURVE_DIFFERENTIAL_FOUR_POINT); }
-static nls_status c_mesh_scratch_size(capture *c) {
-    size_t a = 0, b = 0;
-    nls_status s = nls_mesh_scratch_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 6, 24, &a, &b);
+static nls_status c_subdivide_default_options(capture *c) {
+    nls_subdivide_options o;
+    nls_status s;
+    memset(&o, 0, sizeof o);
+    s = nls_subdivide_default_options(&o);
+    put(c, &o, sizeof o);
+    return s;
+}
+static nls_status c_mesh_plan_scratch_size(capture *c) {
+    size_t a = 0;
+    nls_status s = flat_plan_scratch_size(6, 24, &a);
     put(c, &a, sizeof a);
-    put(c, &b, sizeof b);
     return s;
 }
 
@@ -185,32 +193,33 @@ static void mesh_of(uint32_t scheme, const double **p, size_t *nv, const uint32_
 
 static nls_status mesh_size_case(capture *c, uint32_t scheme, uint32_t flags) {
     const double *p; const uint32_t *off, *idx; size_t nv, nf, ni;
-    size_t a = 0, b = 0, d = 0;
+    nls_plan plan;
     uint32_t el = 0;
     nls_status s;
+    memset(&plan, 0, sizeof plan);
     mesh_of(scheme, &p, &nv, &off, &nf, &idx, &ni);
     clear_big();
-    s = nls_mesh_subdivide_size(scheme, flags, p, nv, off, nf, idx, ni, SU, BIG_U32, &a, &b, &d, &el);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &el, sizeof el);
+    s = flat_plan(scheme, flags, 1, p, nv, off, nf, idx, ni, SU, BIG_U32, &plan, &el);
+    put(c, &plan, sizeof plan); put(c, &el, sizeof el);
     return s;
 }
-static nls_status c_mesh_subdivide_size(capture *c) { return mesh_size_case(c, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS); }
+static nls_status c_mesh_plan(capture *c) { return mesh_size_case(c, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS); }
 
 static nls_status mesh_case(capture *c, uint32_t scheme, uint32_t flags) {
     const double *p; const uint32_t *off, *idx; size_t nv, nf, ni;
-    size_t a = 0, b = 0, d = 0;
+    nls_mesh_sizes sz = {0, 0, 0};
     uint32_t el = 0;
     nls_subdivide_report rep;
     nls_status s;
     memset(&rep, 0, sizeof rep);
     mesh_of(scheme, &p, &nv, &off, &nf, &idx, &ni);
     clear_big();
-    s = nls_mesh_subdivide(scheme, flags, p, nv, off, nf, idx, ni, SU, BIG_U32, SP, BIG_PTS, OP, BIG_PTS, OO, BIG_PTS,
-                           OI, BIG_U32, &a, &b, &d, &rep, &el);
+    s = flat_subdivide(scheme, flags, 1, p, nv, off, nf, idx, ni, SU, BIG_U32, SP, BIG_PTS, OP, BIG_PTS, OO, BIG_PTS, OI,
+                       BIG_U32, &sz, &rep, &el);
     put(c, OP, sizeof(double) * 3 * 64);
     put(c, OO, sizeof(uint32_t) * 64);
     put(c, OI, sizeof(uint32_t) * 256);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &el, sizeof el);
+    put(c, &sz, sizeof sz); put(c, &el, sizeof el);
     put(c, &rep, sizeof rep);
     return s;
 }
@@ -220,29 +229,30 @@ static nls_status c_mesh_subdivide_mob_bf(capture *c) { return mesh_case(c, NLS_
 static nls_status c_mesh_subdivide_spherelike(capture *c) { return mesh_case(c, NLS_SCHEME_SPHERELIKE, 0); }
 static nls_status c_mesh_subdivide_linear(capture *c) { return mesh_case(c, NLS_SCHEME_DOO_SABIN, 0); }
 
-static nls_status c_mesh_subdivide_levels_size(capture *c) {
-    size_t a = 0, b = 0, d = 0, e = 0, f = 0;
+static nls_status c_mesh_plan_levels(capture *c) {
+    nls_plan plan;
     uint32_t el = 0;
     nls_status s;
+    memset(&plan, 0, sizeof plan);
     clear_big();
-    s = nls_mesh_subdivide_levels_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, &OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, 2, SU,
-                                       BIG_U32, &a, &b, &d, &e, &f, &el);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &e, sizeof e); put(c, &f, sizeof f);
+    s = flat_plan(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 2, &OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, SU, BIG_U32, &plan,
+                  &el);
+    put(c, &plan, sizeof plan);
     put(c, &el, sizeof el);
     return s;
 }
 static nls_status c_mesh_subdivide_levels(capture *c) {
-    size_t a = 0, b = 0, d = 0;
+    nls_mesh_sizes sz = {0, 0, 0};
     uint32_t el = 0;
     nls_subdivide_report rep;
     nls_status s;
     memset(&rep, 0, sizeof rep);
     clear_big();
-    s = nls_mesh_subdivide_levels(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, &OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, 2, SU,
-                                  BIG_U32, SP, BIG_PTS, OP, BIG_PTS, OO, BIG_PTS, OI, BIG_U32, &a, &b, &d, &rep, &el);
+    s = flat_subdivide(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 2, &OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, SU, BIG_U32, SP,
+                       BIG_PTS, OP, BIG_PTS, OO, BIG_PTS, OI, BIG_U32, &sz, &rep, &el);
     put(c, OP, sizeof(double) * 3 * 66);
     put(c, OI, sizeof(uint32_t) * 384);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &el, sizeof el);
+    put(c, &sz, sizeof sz); put(c, &el, sizeof el);
     put(c, &rep, sizeof rep);
     return s;
 }
@@ -254,12 +264,6 @@ static nls_status c_differential_default_options(capture *c) {
     put(c, &o, sizeof o);
     return s;
 }
-static nls_status c_differential_scratch_size(capture *c) {
-    size_t n = 0;
-    nls_status s = nls_differential_scratch_size(6, 24, &n);
-    put(c, &n, sizeof n);
-    return s;
-}
 static void diff_options(nls_differential_options *o) {
     memset(o, 0, sizeof *o);
     o->scheme = NLS_DIFFERENTIAL_LOOP;
@@ -267,33 +271,35 @@ static void diff_options(nls_differential_options *o) {
     o->dirmag_levels = 0;
     o->max_iterations = 100;
     o->tolerance = 1e-10;
+    o->strict = 0;
 }
 static nls_status c_differential_plan(capture *c) {
     nls_differential_options o;
-    size_t a = 0, b = 0, d = 0, e = 0, f = 0;
+    nls_plan plan;
     uint32_t el = 0;
     nls_status s;
     diff_options(&o);
+    memset(&plan, 0, sizeof plan);
     clear_big();
-    s = nls_differential_plan(&OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, &o, SU, BIG_U32, &a, &b, &d, &e, &f, &el);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &e, sizeof e); put(c, &f, sizeof f);
+    s = flat_diff_plan(&OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, &o, SU, BIG_U32, &plan, &el);
+    put(c, &plan, sizeof plan);
     put(c, &el, sizeof el);
     return s;
 }
 static nls_status c_differential_subdivide(capture *c) {
     nls_differential_options o;
     nls_differential_report rep;
-    size_t a = 0, b = 0, d = 0;
+    nls_mesh_sizes sz = {0, 0, 0};
     uint32_t el = 0;
     nls_status s;
     diff_options(&o);
     memset(&rep, 0, sizeof rep);
     clear_big();
-    s = nls_differential_subdivide(&OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, &o, SU, BIG_U32, SP, BIG_PTS, OP, BIG_PTS, OO,
-                                   BIG_PTS, OI, BIG_U32, &a, &b, &d, &rep, &el);
+    s = flat_diff_subdivide(&OCTA[0][0], 6, OCTA_OFF, 8, OCTA_IDX, 24, &o, SU, BIG_U32, SP, BIG_PTS, OP, BIG_PTS, OO,
+                            BIG_PTS, OI, BIG_U32, &sz, &rep, &el);
     put(c, OP, sizeof(double) * 3 * 18);
     put(c, OI, sizeof(uint32_t) * 96);
-    put(c, &a, sizeof a); put(c, &b, sizeof b); put(c, &d, sizeof d); put(c, &el, sizeof el);
+    put(c, &sz, sizeof sz); put(c, &el, sizeof el);
     put(c, &rep, sizeof rep);
     return s;
 }
@@ -479,7 +485,8 @@ static nls_status c_mobius_loop_star(capture *c) {
     double vp[3] = {0, 0, 0}, ec[18];
     nls_status s;
     memset(ec, 0, sizeof ec);
-    s = nls_mobius_loop_star(CENTRE, &RING[0][0], 6, 1, vp, ec);
+    nls_star_view star = {CENTRE, &RING[0][0], 6, 1, NULL, 0, NULL, 0};
+    s = nls_mobius_loop_star(&star, vp, ec);
     put(c, vp, sizeof vp);
     put(c, ec, sizeof ec);
     return s;
@@ -491,7 +498,8 @@ static nls_status c_mobius_catmull_clark_star(capture *c) {
     nls_status s;
     memset(ec, 0, sizeof ec);
     memset(fc, 0, sizeof fc);
-    s = nls_mobius_catmull_clark_star(CENTRE, &CC_RING[0][0], 4, 1, fo, 4, &CC_CORNERS[0][0], 4, vp, ec, fc);
+    nls_star_view star = {CENTRE, &CC_RING[0][0], 4, 1, fo, 4, &CC_CORNERS[0][0], 4};
+    s = nls_mobius_catmull_clark_star(&star, vp, ec, fc);
     put(c, vp, sizeof vp);
     put(c, ec, sizeof ec);
     put(c, fc, sizeof fc);
@@ -501,7 +509,8 @@ static nls_status c_mobius_butterfly_star(capture *c) {
     double ec[18];
     nls_status s;
     memset(ec, 0, sizeof ec);
-    s = nls_mobius_butterfly_star(CENTRE, &RING[0][0], 6, 1, NULL, ec);
+    nls_star_view star = {CENTRE, &RING[0][0], 6, 1, NULL, 0, NULL, 0};
+    s = nls_mobius_butterfly_star(&star, NULL, ec);
     put(c, ec, sizeof ec);
     return s;
 }
@@ -515,22 +524,22 @@ typedef struct {
 static const export_case CASES[] = {
     {"nls_version", c_version, 0},
     {"nls_status_str", c_status_str, 0},
-    {"nls_curve_refined_len", c_curve_refined_len, 0},
-    {"nls_curve_scratch_len", c_curve_scratch_len, 0},
+    {"nls_curve_refined_size", c_curve_refined_size, 0},
+    {"nls_curve_scratch_size", c_curve_scratch_size, 0},
     {"nls_curve_subdivide (circle blend)", c_curve_subdivide, 1},
     {"nls_curve_subdivide (Moebius)", c_curve_subdivide_mob, 1},
     {"nls_curve_subdivide (differential)", c_curve_subdivide_diff, 1},
-    {"nls_mesh_scratch_size", c_mesh_scratch_size, 0},
-    {"nls_mesh_subdivide_size", c_mesh_subdivide_size, 1},
+    {"nls_subdivide_default_options", c_subdivide_default_options, 0},
+    {"nls_mesh_plan_scratch_size", c_mesh_plan_scratch_size, 0},
+    {"nls_mesh_plan", c_mesh_plan, 1},
     {"nls_mesh_subdivide (Moebius Loop)", c_mesh_subdivide_mob_loop, 1},
     {"nls_mesh_subdivide (Moebius Catmull-Clark)", c_mesh_subdivide_mob_cc, 1},
     {"nls_mesh_subdivide (Moebius Butterfly)", c_mesh_subdivide_mob_bf, 1},
     {"nls_mesh_subdivide (spherelike)", c_mesh_subdivide_spherelike, 1},
     {"nls_mesh_subdivide (Doo-Sabin)", c_mesh_subdivide_linear, 1},
-    {"nls_mesh_subdivide_levels_size", c_mesh_subdivide_levels_size, 1},
-    {"nls_mesh_subdivide_levels", c_mesh_subdivide_levels, 1},
+    {"nls_mesh_plan (2 levels)", c_mesh_plan_levels, 1},
+    {"nls_mesh_subdivide (2 levels)", c_mesh_subdivide_levels, 1},
     {"nls_differential_default_options", c_differential_default_options, 0},
-    {"nls_differential_scratch_size", c_differential_scratch_size, 0},
     {"nls_differential_plan", c_differential_plan, 1},
     {"nls_differential_subdivide", c_differential_subdivide, 1},
     {"nls_mobius_identity", c_mobius_identity, 0},

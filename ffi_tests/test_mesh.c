@@ -14,6 +14,7 @@
 
 #include "nlsubdiv.h"
 #include "check.h"
+#include "flat_args.h"
 
 #define NSCHEMES 9
 static const uint32_t SCHEMES[NSCHEMES] = {
@@ -176,66 +177,56 @@ static int is_interpolating(uint32_t s) {
 
 /* ------------------------------------------------------------------------------ calls */
 
-/* One level with exactly sized heap buffers; the result in *out (freed by the caller). */
-static nls_status subdivide(uint32_t scheme, uint32_t flags, const mesh *m, mesh *out, nls_subdivide_report *rep,
-                            uint32_t *element) {
-    size_t su = 0, sp = 0, nv = 0, nf = 0, ni = 0, wv = 0, wf = 0, wi = 0;
+/* levels levels with exactly sized heap buffers (nls_mesh_plan_scratch_size, nls_plan,
+ * nls_mesh_subdivide); the result in *out (freed by the caller). */
+static nls_status subdivide_levels_el(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels, mesh *out,
+                                      nls_subdivide_report *rep, uint32_t *element) {
+    size_t su0 = 0, su, sp, nv, nf, ni;
     uint32_t *scratch_u32;
     double *scratch_points;
-    nls_status s = nls_mesh_scratch_size(scheme, flags, m->nv, m->ni, &su, &sp);
-    out->p = NULL;
-    out->off = NULL;
-    out->idx = NULL;
-    if (s != NLS_STATUS_OK) return s;
-    scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
-    scratch_points = sp ? (double *)malloc(3 * sp * sizeof(double)) : NULL;
-    s = nls_mesh_subdivide_size(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su, &nv, &nf,
-                                &ni, element);
-    if (s == NLS_STATUS_OK) {
-        out->p = (double *)malloc(3 * nv * sizeof(double) + 1);
-        out->off = (uint32_t *)malloc((nf + 1) * sizeof(uint32_t));
-        out->idx = (uint32_t *)malloc(ni * sizeof(uint32_t) + 1);
-        s = nls_mesh_subdivide(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su, scratch_points,
-                               sp, out->p, nv, out->off, nf, out->idx, ni, &wv, &wf, &wi, rep, element);
-        if (s == NLS_STATUS_OK) CHECK(wv == nv && wf == nf && wi == ni);
-        out->nv = wv;
-        out->nf = wf;
-        out->ni = wi;
-    }
-    free(scratch_u32);
-    free(scratch_points);
-    return s;
-}
-
-/* Several levels in one call, exactly sized. */
-static nls_status subdivide_levels(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels, mesh *out,
-                                   nls_subdivide_report *rep) {
-    size_t su0 = 0, sp0 = 0, su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
-    uint32_t *scratch_u32;
-    double *scratch_points;
-    nls_status s = nls_mesh_scratch_size(scheme, flags, m->nv, m->ni, &su0, &sp0);
+    nls_plan plan;
+    nls_mesh_sizes w = {777, 777, 777};
+    nls_status s = flat_plan_scratch_size(m->nv, m->ni, &su0);
     out->p = NULL;
     out->off = NULL;
     out->idx = NULL;
     if (s != NLS_STATUS_OK) return s;
     scratch_u32 = (uint32_t *)malloc(su0 * sizeof(uint32_t) + 1);
-    s = nls_mesh_subdivide_levels_size(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels, scratch_u32,
-                                       su0, &nv, &nf, &ni, &su, &sp, NULL);
+    s = flat_plan(scheme, flags, levels, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su0, &plan, element);
     free(scratch_u32);
     if (s != NLS_STATUS_OK) return s;
+    su = plan.scratch_u32;
+    sp = plan.scratch_points;
+    nv = plan.output.vertex_count;
+    nf = plan.output.face_count;
+    ni = plan.output.index_count;
     CHECK(su >= su0);
     scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
     scratch_points = sp ? (double *)malloc(3 * sp * sizeof(double)) : NULL;
     out->p = (double *)malloc(3 * nv * sizeof(double) + 1);
     out->off = (uint32_t *)malloc((nf + 1) * sizeof(uint32_t));
     out->idx = (uint32_t *)malloc(ni * sizeof(uint32_t) + 1);
-    s = nls_mesh_subdivide_levels(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels, scratch_u32, su,
-                                  scratch_points, sp, out->p, nv, out->off, nf, out->idx, ni, &out->nv, &out->nf,
-                                  &out->ni, rep, NULL);
-    if (s == NLS_STATUS_OK) CHECK(out->nv == nv && out->nf == nf && out->ni == ni);
+    s = flat_subdivide(scheme, flags, levels, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su,
+                       scratch_points, sp, out->p, nv, out->off, nf, out->idx, ni, &w, rep, element);
+    if (s == NLS_STATUS_OK) CHECK(w.vertex_count == nv && w.face_count == nf && w.index_count == ni);
+    out->nv = w.vertex_count;
+    out->nf = w.face_count;
+    out->ni = w.index_count;
     free(scratch_u32);
     free(scratch_points);
     return s;
+}
+
+/* One level with exactly sized heap buffers; the result in *out (freed by the caller). */
+static nls_status subdivide(uint32_t scheme, uint32_t flags, const mesh *m, mesh *out, nls_subdivide_report *rep,
+                            uint32_t *element) {
+    return subdivide_levels_el(scheme, flags, m, 1, out, rep, element);
+}
+
+/* Several levels in one call, exactly sized. */
+static nls_status subdivide_levels(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels, mesh *out,
+                                   nls_subdivide_report *rep) {
+    return subdivide_levels_el(scheme, flags, m, levels, out, rep, NULL);
 }
 
 /* Finite positions, monotonic offsets, indices in range; and the output passes the
@@ -247,12 +238,13 @@ static int valid_output(const mesh *o) {
     for (f = 0; f < o->nf; f++) ok = ok && o->off[f + 1] >= o->off[f] + 3;
     for (i = 0; i < o->ni; i++) ok = ok && o->idx[i] < o->nv;
     if (ok) {
-        size_t su = 0, sp = 0, nv, nf, ni;
+        size_t su = 0;
         uint32_t *scratch;
-        ok = nls_mesh_scratch_size(NLS_SCHEME_CATMULL_CLARK, 0, o->nv, o->ni, &su, &sp) == NLS_STATUS_OK;
+        nls_plan plan;
+        ok = flat_plan_scratch_size(o->nv, o->ni, &su) == NLS_STATUS_OK;
         scratch = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
-        ok = ok && nls_mesh_subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, o->p, o->nv, o->off, o->nf, o->idx, o->ni,
-                                           scratch, su, &nv, &nf, &ni, NULL) == NLS_STATUS_OK;
+        ok = ok && flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, o->p, o->nv, o->off, o->nf, o->idx, o->ni, scratch, su,
+                             &plan, NULL) == NLS_STATUS_OK;
         free(scratch);
     }
     return ok;
@@ -277,7 +269,11 @@ static void test_constants(void) {
     CHECK(NLS_NO_ELEMENT == UINT32_MAX);
     {
         nls_subdivide_report r;
+        nls_subdivide_options o = {777, 777, 777};
         CHECK(sizeof r == 3 * sizeof(uint32_t));
+        CHECK_STATUS(nls_subdivide_default_options(&o), NLS_STATUS_OK);
+        CHECK(o.scheme == NLS_SCHEME_LOOP && o.flags == 0 && o.levels == 1);
+        CHECK_STATUS(nls_subdivide_default_options(NULL), NLS_STATUS_NULL_PARAMETER);
     }
 }
 
@@ -393,35 +389,34 @@ static void test_levels_linear(void) {
     mesh_free(&o2);
     mesh_free(&o3);
     {
-        size_t nv = 777, nf = 777, ni = 777, su = 777, sp = 777;
+        nls_plan plan = {{777, 777, 777}, 777, 777};
         uint32_t scratch[256], element = 0;
-        CHECK_STATUS(nls_mesh_subdivide_levels_size(NLS_SCHEME_LOOP, 0, g.p, g.nv, g.off, g.nf, g.idx, g.ni,
-                                                    NLS_MAX_LEVELS + 1, scratch, 256, &nv, &nf, &ni, &su, &sp,
-                                                    &element),
+        CHECK_STATUS(flat_plan(NLS_SCHEME_LOOP, 0, NLS_MAX_LEVELS + 1, g.p, g.nv, g.off, g.nf, g.idx, g.ni, scratch, 256,
+                               &plan, &element),
                      NLS_STATUS_INVALID_ARGUMENT);
-        CHECK_STATUS(nls_mesh_subdivide_levels_size(NLS_SCHEME_LOOP, 0, g.p, g.nv, g.off, g.nf, g.idx, g.ni,
-                                                    NLS_MAX_LEVELS, scratch, 256, &nv, &nf, &ni, &su, &sp, &element),
+        CHECK_STATUS(flat_plan(NLS_SCHEME_LOOP, 0, NLS_MAX_LEVELS, g.p, g.nv, g.off, g.nf, g.idx, g.ni, scratch, 256,
+                               &plan, &element),
                      NLS_STATUS_SIZE_OVERFLOW);
-        CHECK(nv == 777 && su == 777);
-        CHECK_STATUS(nls_mesh_subdivide_levels_size(NLS_SCHEME_LOOP, 0, g.p, g.nv, g.off, g.nf, g.idx, g.ni, 3, scratch,
-                                                    256, &nv, &nf, &ni, &su, &sp, &element),
+        CHECK(plan.output.vertex_count == 777 && plan.scratch_u32 == 777);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_LOOP, 0, 3, g.p, g.nv, g.off, g.nf, g.idx, g.ni, scratch, 256, &plan, &element),
                      NLS_STATUS_OK);
-        CHECK(nf == g.nf * 64 && ni == 3 * nf && sp > 0 && su > 0);
+        CHECK(plan.output.face_count == g.nf * 64 && plan.output.index_count == 3 * plan.output.face_count &&
+              plan.scratch_points > 0 && plan.scratch_u32 > 0);
     }
     mesh_free(&g);
 }
 
 /* ------------------------------------------------------------------------------ bad input */
 
-/* Runs nls_mesh_subdivide_size on a mesh given by arrays; returns the status, *element. */
+/* Runs nls_plan (one level) on a mesh given by arrays; returns the status, *element. */
 static nls_status size_of(const double *p, size_t nv, const uint32_t *off, size_t nf, const uint32_t *idx, size_t ni,
                           uint32_t scheme, uint32_t *element) {
     uint32_t scratch[512];
-    size_t a = 777, b = 777, c = 777;
+    nls_plan plan = {{777, 777, 777}, 777, 777};
     nls_status s;
     *element = 12345;
-    s = nls_mesh_subdivide_size(scheme, 0, p, nv, off, nf, idx, ni, scratch, 512, &a, &b, &c, element);
-    if (s != NLS_STATUS_OK) CHECK(a == 777 && b == 777 && c == 777);
+    s = flat_plan(scheme, 0, 1, p, nv, off, nf, idx, ni, scratch, 512, &plan, element);
+    if (s != NLS_STATUS_OK) CHECK(plan.output.vertex_count == 777 && plan.output.face_count == 777 && plan.scratch_u32 == 777);
     return s;
 }
 
@@ -493,16 +488,14 @@ static void test_bad_meshes(void) {
     }
     {   /* the empty mesh is valid: vertices carried through, no faces */
         const uint32_t off[] = {0};
-        size_t a = 0, b = 7, c = 7;
+        nls_plan plan = {{0, 7, 7}, 7, 7};
         uint32_t scratch[32];
-        CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, p, 2, off, 0, NULL, 0, scratch, 32, &a, &b, &c,
-                                             NULL),
+        CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, p, 2, off, 0, NULL, 0, scratch, 32, &plan, NULL),
                      NLS_STATUS_OK);
-        CHECK(a == 2 && b == 0 && c == 0);
-        CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, NULL, 0, off, 0, NULL, 0, NULL, 0, &a, &b, &c,
-                                             NULL),
+        CHECK(plan.output.vertex_count == 2 && plan.output.face_count == 0 && plan.output.index_count == 0);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, NULL, 0, off, 0, NULL, 0, NULL, 0, &plan, NULL),
                      NLS_STATUS_OK);
-        CHECK(a == 0 && b == 0 && c == 0);
+        CHECK(plan.output.vertex_count == 0 && plan.output.face_count == 0 && plan.output.index_count == 0);
     }
 }
 
@@ -514,55 +507,89 @@ typedef struct {
     double op[3 * 128];
     uint32_t oo[128];
     uint32_t oi[512];
-    size_t nv, nf, ni;
+    nls_mesh_sizes sz;
     nls_subdivide_report rep;
     uint32_t element;
 } fixture;
 
 static nls_status call(fixture *x, uint32_t scheme, uint32_t flags) {
     x->element = 12345;
-    return nls_mesh_subdivide(scheme, flags, x->m.p, x->m.nv, x->m.off, x->m.nf, x->m.idx, x->m.ni, x->su, 512, x->sp,
-                              128, x->op, 128, x->oo, 127, x->oi, 512, &x->nv, &x->nf, &x->ni, &x->rep, &x->element);
+    return flat_subdivide(scheme, flags, 1, x->m.p, x->m.nv, x->m.off, x->m.nf, x->m.idx, x->m.ni, x->su, 512, x->sp, 128,
+                          x->op, 128, x->oo, 127, x->oi, 512, &x->sz, &x->rep, &x->element);
 }
 
 static void test_bad_arguments(void) {
     static fixture x;
     x.m = pyramid();
-    x.nv = x.nf = x.ni = 777;
+    x.sz.vertex_count = x.sz.face_count = x.sz.index_count = 777;
     x.rep.fallbacks = 777;
-    /* unknown scheme codes and flag bits */
+#define CALL(...) flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, __VA_ARGS__, &x.rep, &x.element)
+#define MESH x.m.p, x.m.nv, x.m.off, x.m.nf, x.m.idx, x.m.ni
+#define SCR x.su, 512, x.sp, 128
+#define OUT x.op, 128, x.oo, 127, x.oi, 512
+#define CNT &x.sz
+    /* unknown scheme codes and flag bits, too many levels */
     CHECK_STATUS(call(&x, NLS_SCHEME_SPHERELIKE + 1u, 0), NLS_STATUS_INVALID_ARGUMENT);
     CHECK(x.element == NLS_NO_ELEMENT);
     CHECK_STATUS(call(&x, UINT32_MAX, 0), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(call(&x, NLS_SCHEME_CATMULL_CLARK, 1u << 2), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(call(&x, NLS_SCHEME_CATMULL_CLARK, 0x80000000u | NLS_SUBDIVIDE_MOBIUS), NLS_STATUS_INVALID_ARGUMENT);
     {
-        size_t su = 777, sp = 777;
-        CHECK_STATUS(nls_mesh_scratch_size(NLS_SCHEME_SPHERELIKE + 1u, 0, 6, 20, &su, &sp), NLS_STATUS_INVALID_ARGUMENT);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 4u, 6, 20, &su, &sp), NLS_STATUS_INVALID_ARGUMENT);
-        CHECK(su == 777 && sp == 777);
-        CHECK_STATUS(nls_mesh_scratch_size(0, NLS_SUBDIVIDE_MOBIUS, 6, 20, &su, &sp), NLS_STATUS_OK);
-        CHECK(su == 4 * 20 + 3 * 6 && sp == 40);
-        CHECK_STATUS(nls_mesh_scratch_size(0, NLS_SUBDIVIDE_STRICT, 6, 20, &su, &sp), NLS_STATUS_OK);
-        CHECK(sp == 0);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 0, SIZE_MAX / 2, 20, &su, &sp), NLS_STATUS_SIZE_OVERFLOW);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 0, 6, SIZE_MAX / 2, &su, &sp), NLS_STATUS_SIZE_OVERFLOW);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 0, (size_t)UINT32_MAX, 3, &su, &sp), NLS_STATUS_SIZE_OVERFLOW);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 0, 6, 20, NULL, &sp), NLS_STATUS_NULL_PARAMETER);
-        CHECK_STATUS(nls_mesh_scratch_size(0, 0, 6, 20, &su, NULL), NLS_STATUS_NULL_PARAMETER);
+        size_t su = 777;
+        nls_plan plan = {{777, 777, 777}, 777, 777};
+        nls_mesh_view v = flat_view(x.m.p, x.m.nv, x.m.off, x.m.nf, x.m.idx, x.m.ni);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_SPHERELIKE + 1u, 0, 1, MESH, x.su, 512, &plan, NULL),
+                     NLS_STATUS_INVALID_ARGUMENT);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 4u, 1, MESH, x.su, 512, &plan, NULL),
+                     NLS_STATUS_INVALID_ARGUMENT);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_SPHERELIKE, NLS_SUBDIVIDE_MOBIUS, 1, MESH, x.su, 512, &plan, NULL),
+                     NLS_STATUS_INVALID_ARGUMENT);
+        CHECK(plan.scratch_u32 == 777 && plan.scratch_points == 777);
+        /* the pyramid: 6 vertices, 20 corners; Möbius: two candidates per corner */
+        CHECK_STATUS(nls_mesh_plan_scratch_size(&v, &su), NLS_STATUS_OK);
+        CHECK(su == 4 * 20 + 3 * 6);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1, MESH, x.su, su, &plan, NULL),
+                     NLS_STATUS_OK);
+        CHECK(plan.scratch_u32 == su && plan.scratch_points == 40);
+        CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_STRICT, 1, MESH, x.su, su, &plan, NULL),
+                     NLS_STATUS_OK);
+        CHECK(plan.scratch_points == 0);
+        CHECK_STATUS(flat_plan_scratch_size(SIZE_MAX / 2, 20, &su), NLS_STATUS_SIZE_OVERFLOW);
+        CHECK_STATUS(flat_plan_scratch_size(6, SIZE_MAX / 2, &su), NLS_STATUS_SIZE_OVERFLOW);
+        CHECK_STATUS(flat_plan_scratch_size((size_t)UINT32_MAX, 3, &su), NLS_STATUS_SIZE_OVERFLOW);
+        CHECK_STATUS(nls_mesh_plan_scratch_size(&v, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_plan_scratch_size(NULL, &su), NLS_STATUS_NULL_PARAMETER);
+        v.positions_stride = 20;
+        CHECK_STATUS(nls_mesh_plan_scratch_size(&v, &su), NLS_STATUS_INVALID_ARGUMENT);
     }
     /* the strict flag is accepted by the linear schemes (which never fall back) */
     CHECK_STATUS(call(&x, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_STRICT), NLS_STATUS_OK);
-    CHECK(x.nv == 6 + 10 + 6 && x.nf == 20 && x.ni == 80);
+    CHECK(x.sz.vertex_count == 6 + 10 + 6 && x.sz.face_count == 20 && x.sz.index_count == 80);
     CHECK(x.rep.fallbacks == 0 && x.rep.first_fallback == NLS_NO_ELEMENT && x.element == 12345);
-    x.nv = x.nf = x.ni = 777;
+    x.sz.vertex_count = x.sz.face_count = x.sz.index_count = 777;
     x.rep.fallbacks = 777;
+    CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, NLS_MAX_LEVELS + 1, MESH, SCR, OUT, CNT, &x.rep,
+                                &x.element),
+                 NLS_STATUS_INVALID_ARGUMENT);
+    CHECK(x.element == NLS_NO_ELEMENT);
+    /* NULL structs */
+    {
+        nls_mesh_view v = flat_view(MESH);
+        nls_subdivide_options o = flat_options(NLS_SCHEME_CATMULL_CLARK, 0, 1);
+        nls_scratch sc = flat_scratch(SCR);
+        nls_mesh_buffers b = flat_buffers(OUT);
+        nls_plan plan;
+        CHECK_STATUS(nls_mesh_subdivide(NULL, &o, &sc, &b, &x.sz, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_subdivide(&v, NULL, &sc, &b, &x.sz, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_subdivide(&v, &o, NULL, &b, &x.sz, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_subdivide(&v, &o, &sc, NULL, &x.sz, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_plan(NULL, &o, x.su, 512, &plan, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_plan(&v, NULL, x.su, 512, &plan, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_plan(&v, &o, x.su, 512, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK_STATUS(nls_mesh_plan(&v, &o, NULL, 512, &plan, NULL), NLS_STATUS_NULL_PARAMETER);
+        CHECK(x.sz.vertex_count == 777);
+    }
     /* NULL with a non-zero count */
-#define CALL(...) nls_mesh_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, __VA_ARGS__, &x.rep, &x.element)
-#define MESH x.m.p, x.m.nv, x.m.off, x.m.nf, x.m.idx, x.m.ni
-#define SCR x.su, 512, x.sp, 128
-#define OUT x.op, 128, x.oo, 127, x.oi, 512
-#define CNT &x.nv, &x.nf, &x.ni
     CHECK_STATUS(CALL(NULL, 6, x.m.off, 6, x.m.idx, 20, SCR, OUT, CNT), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(CALL(x.m.p, 6, NULL, 6, x.m.idx, 20, SCR, OUT, CNT), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(CALL(x.m.p, 6, NULL, 0, x.m.idx, 0, SCR, OUT, CNT), NLS_STATUS_NULL_PARAMETER); /* offsets[1] */
@@ -572,12 +599,10 @@ static void test_bad_arguments(void) {
     CHECK_STATUS(CALL(MESH, SCR, NULL, 128, x.oo, 127, x.oi, 512, CNT), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(CALL(MESH, SCR, x.op, 128, NULL, 0, x.oi, 512, CNT), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(CALL(MESH, SCR, x.op, 128, x.oo, 127, NULL, 512, CNT), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(CALL(MESH, SCR, OUT, NULL, &x.nf, &x.ni), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(CALL(MESH, SCR, OUT, &x.nv, NULL, &x.ni), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(CALL(MESH, SCR, OUT, &x.nv, &x.nf, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(CALL(MESH, SCR, OUT, NULL), NLS_STATUS_NULL_PARAMETER);
     /* NULL point scratch with capacity 0 is fine for a linear scheme */
     CHECK_STATUS(CALL(MESH, x.su, 512, NULL, 0, OUT, CNT), NLS_STATUS_OK);
-    x.nv = x.nf = x.ni = 777;
+    x.sz.vertex_count = x.sz.face_count = x.sz.index_count = 777;
     /* misaligned pointers */
     {
         union {
@@ -586,20 +611,20 @@ static void test_bad_arguments(void) {
         } raw; /* aligned for double, so c + 1 is aligned for neither double nor uint32_t */
         double *mis = (double *)(void *)(raw.c + 1);
         uint32_t *mis32 = (uint32_t *)(void *)(raw.c + 1);
-        size_t *miss = (size_t *)(void *)(raw.c + 1);
+        nls_mesh_sizes *miss = (nls_mesh_sizes *)(void *)(raw.c + 1);
         CHECK_STATUS(CALL(mis, 6, x.m.off, 6, x.m.idx, 20, SCR, OUT, CNT), NLS_STATUS_MISALIGNED_POINTER);
         CHECK_STATUS(CALL(x.m.p, 6, mis32, 6, x.m.idx, 20, SCR, OUT, CNT), NLS_STATUS_MISALIGNED_POINTER);
         CHECK_STATUS(CALL(x.m.p, 6, x.m.off, 6, mis32, 20, SCR, OUT, CNT), NLS_STATUS_MISALIGNED_POINTER);
         CHECK_STATUS(CALL(MESH, mis32, 16, x.sp, 128, OUT, CNT), NLS_STATUS_MISALIGNED_POINTER);
         CHECK_STATUS(CALL(MESH, x.su, 512, mis, 1, OUT, CNT), NLS_STATUS_MISALIGNED_POINTER);
         CHECK_STATUS(CALL(MESH, SCR, mis, 1, x.oo, 127, x.oi, 512, CNT), NLS_STATUS_MISALIGNED_POINTER);
-        CHECK_STATUS(CALL(MESH, SCR, OUT, miss, &x.nf, &x.ni), NLS_STATUS_MISALIGNED_POINTER);
+        CHECK_STATUS(CALL(MESH, SCR, OUT, miss), NLS_STATUS_MISALIGNED_POINTER);
         x.element = 12345;
-        CHECK_STATUS(nls_mesh_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, MESH, SCR, OUT, CNT,
-                                        (nls_subdivide_report *)(void *)(raw.c + 1), &x.element),
+        CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, MESH, SCR, OUT, CNT,
+                                    (nls_subdivide_report *)(void *)(raw.c + 1), &x.element),
                      NLS_STATUS_MISALIGNED_POINTER);
         CHECK(x.element == NLS_NO_ELEMENT);
-        CHECK_STATUS(nls_mesh_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, MESH, SCR, OUT, CNT, &x.rep, mis32),
+        CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, MESH, SCR, OUT, CNT, &x.rep, mis32),
                      NLS_STATUS_MISALIGNED_POINTER);
     }
     /* SIZE_MAX/2 counts and capacities */
@@ -614,11 +639,11 @@ static void test_bad_arguments(void) {
     CHECK_STATUS(CALL(MESH, SCR, x.op, 128, x.oo, SIZE_MAX, x.oi, 512, CNT), NLS_STATUS_SIZE_OVERFLOW);
     CHECK_STATUS(CALL(MESH, SCR, x.op, 128, x.oo, 127, x.oi, SIZE_MAX / 2, CNT), NLS_STATUS_SIZE_OVERFLOW);
     {
-        size_t a = 777, b = 777, c = 777;
-        CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_LOOP, 0, x.m.p, SIZE_MAX / 2, x.m.off, 6, x.m.idx, 20, x.su,
-                                             512, &a, &b, &c, NULL),
+        nls_plan plan = {{777, 777, 777}, 777, 777};
+        CHECK_STATUS(flat_plan(NLS_SCHEME_LOOP, 0, 1, x.m.p, SIZE_MAX / 2, x.m.off, 6, x.m.idx, 20, x.su, 512, &plan,
+                               NULL),
                      NLS_STATUS_SIZE_OVERFLOW);
-        CHECK(a == 777);
+        CHECK(plan.output.vertex_count == 777);
     }
     /* aliasing: every output and scratch against the inputs and each other */
     {
@@ -643,24 +668,76 @@ static void test_bad_arguments(void) {
                      NLS_STATUS_ALIASING_BUFFERS);
         /* out_offsets holds out_face_capacity + 1 = 21 entries: adjacent is fine, one less is not */
         CHECK_STATUS(CALL(AMESH, SCR, x.op, 128, ubuf, 20, ubuf + 21, 80, CNT), NLS_STATUS_OK);
-        CHECK(x.nv == 22 && x.nf == 20 && x.ni == 80);
+        CHECK(x.sz.vertex_count == 22 && x.sz.face_count == 20 && x.sz.index_count == 80);
         CHECK_STATUS(CALL(AMESH, SCR, x.op, 128, ubuf, 20, ubuf + 20, 80, CNT), NLS_STATUS_ALIASING_BUFFERS);
         /* the input mesh right after the outputs */
         CHECK_STATUS(CALL(AMESH, SCR, pin - 3 * 22, 22, x.oo, 127, x.oi, 512, CNT), NLS_STATUS_OK);
         {   /* the size query's scratch over the mesh */
-            size_t a, b, c;
-            CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, AMESH, ubuf + 1106, 200, &a, &b, &c, NULL),
+            nls_plan plan;
+            CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, ubuf + 1106, 200, &plan, NULL),
                          NLS_STATUS_ALIASING_BUFFERS);
-            CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, AMESH, ubuf, 200, &a, &b, &c, NULL),
+            CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, ubuf, 200, &plan, NULL), NLS_STATUS_OK);
+            /* the plan itself, or out_element, inside the mesh or the scratch */
+            CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, ubuf, 200, (nls_plan *)(void *)(pin + 3),
+                                   NULL),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, ubuf, 200, (nls_plan *)(void *)(ubuf + 8),
+                                   NULL),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, ubuf, 200, &plan, iin + 4),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK(iin[4] == x.m.idx[4]); /* not written */
+        }
+        /* every out-pointer into every buffer of the call: refused before anything is written */
+        {
+            double *op = (double *)malloc(3 * 128 * sizeof(double));
+            uint32_t *sc = ubuf + 1200, *oo = ubuf + 1400, *oi = ubuf + 1600;
+            size_t k;
+            int which;
+            for (which = 0; which < 3; which++) {
+                void *into[6];
+                into[0] = pin + 3;     /* input positions */
+                into[1] = iin + 2;     /* input indices */
+                into[2] = sc + 2;      /* u32 scratch */
+                into[3] = op + 6;      /* output positions: the case that used to corrupt the output */
+                into[4] = oo + 2;      /* output offsets */
+                into[5] = oi + 10;     /* output indices */
+                for (k = 0; k < 6; k++) {
+                    nls_mesh_sizes *sz = which == 0 ? (nls_mesh_sizes *)into[k] : &x.sz;
+                    nls_subdivide_report *r = which == 1 ? (nls_subdivide_report *)into[k] : &x.rep;
+                    uint32_t *el = which == 2 ? (uint32_t *)into[k] : &x.element;
+                    uint32_t saved_in = iin[2];
+                    size_t q;
+                    for (q = 0; q < 3 * 128; q++) op[q] = 0.25;
+                    x.element = 12345;
+                    CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, sc, 200, NULL, 0, op, 128, oo, 21,
+                                                oi, 80, sz, r, el),
+                                 NLS_STATUS_ALIASING_BUFFERS);
+                    CHECK(op[6] == 0.25 && op[7] == 0.25 && iin[2] == saved_in);
+                    if (which != 2) CHECK(x.element == NLS_NO_ELEMENT);
+                }
+            }
+            /* two out-pointers on each other */
+            CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, sc, 200, NULL, 0, op, 128, oo, 21, oi, 80,
+                                        &x.sz, (nls_subdivide_report *)(void *)&x.sz, &x.element),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, sc, 200, NULL, 0, op, 128, oo, 21, oi, 80,
+                                        &x.sz, &x.rep, (uint32_t *)(void *)&x.rep),
+                         NLS_STATUS_ALIASING_BUFFERS);
+            /* and the same buffers with out-pointers of their own: fine */
+            CHECK_STATUS(flat_subdivide(NLS_SCHEME_CATMULL_CLARK, 0, 1, AMESH, sc, 200, NULL, 0, op, 128, oo, 21, oi, 80,
+                                        &x.sz, &x.rep, &x.element),
                          NLS_STATUS_OK);
+            CHECK(x.sz.vertex_count == 22);
+            free(op);
         }
         free(pbuf);
         free(ubuf);
 #undef AMESH
     }
-    x.nv = x.nf = x.ni = 777;
+    x.sz.vertex_count = x.sz.face_count = x.sz.index_count = 777;
     CHECK_STATUS(CALL(MESH, SCR, x.op, 128, x.oo, 127, x.oi, 512, CNT), NLS_STATUS_OK);
-    CHECK(x.nf == 20);
+    CHECK(x.sz.face_count == 20);
 #undef CALL
 #undef MESH
 #undef SCR
@@ -707,6 +784,80 @@ static void test_strict(void) {
     mesh_free(&c);
 }
 
+/* Positions with a byte stride (x, y, z then other attributes) give the bits of packed ones;
+ * a stride that is not 0, or is not a multiple of 8, or is below 24 is refused. */
+static void test_stride(void) {
+    mesh c = cube(), o;
+    nls_plan plan;
+    size_t su = 0, v;
+    const size_t stride = 7; /* doubles per vertex: x y z and four other attributes */
+    double *wide = (double *)malloc(stride * c.nv * sizeof(double));
+    uint32_t *scratch, *oo, *oi, *soo, *soi;
+    double *sp, *op, *sop;
+    nls_mesh_view view = flat_view(wide, c.nv, c.off, c.nf, c.idx, c.ni);
+    nls_subdivide_options opts = flat_options(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2);
+    nls_scratch sc;
+    nls_mesh_buffers b, sb;
+    nls_mesh_sizes sz = {0, 0, 0};
+    onto_unit_sphere(&c);
+    c.p[3 * 2] += 0.01;
+    for (v = 0; v < c.nv; v++) {
+        size_t k;
+        memcpy(wide + stride * v, c.p + 3 * v, 3 * sizeof(double));
+        for (k = 3; k < stride; k++) wide[stride * v + k] = k == 3 ? NAN : -1.0 * (double)k;
+    }
+    view.positions_stride = stride * sizeof(double);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &c, 2, &o, NULL), NLS_STATUS_OK);
+    CHECK_STATUS(nls_mesh_plan_scratch_size(&view, &su), NLS_STATUS_OK);
+    scratch = (uint32_t *)malloc(su * sizeof(uint32_t));
+    CHECK_STATUS(nls_mesh_plan(&view, &opts, scratch, su, &plan, NULL), NLS_STATUS_OK);
+    CHECK(plan.output.vertex_count == o.nv && plan.output.face_count == o.nf && plan.output.index_count == o.ni);
+    free(scratch);
+    scratch = (uint32_t *)malloc(plan.scratch_u32 * sizeof(uint32_t));
+    sp = (double *)malloc(3 * plan.scratch_points * sizeof(double));
+    op = (double *)malloc(3 * o.nv * sizeof(double));
+    oo = (uint32_t *)malloc((o.nf + 1) * sizeof(uint32_t));
+    oi = (uint32_t *)malloc(o.ni * sizeof(uint32_t));
+    sc = flat_scratch(scratch, plan.scratch_u32, sp, plan.scratch_points);
+    b = flat_buffers(op, o.nv, oo, o.nf, oi, o.ni);
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_OK);
+    CHECK(sz.vertex_count == o.nv && memcmp(op, o.p, 3 * o.nv * sizeof(double)) == 0);
+    CHECK(memcmp(oi, o.idx, o.ni * sizeof(uint32_t)) == 0);
+    /* 24 is packed too */
+    view.positions = c.p;
+    view.positions_stride = 24;
+    memset(op, 0, 3 * o.nv * sizeof(double));
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_OK);
+    CHECK(memcmp(op, o.p, 3 * o.nv * sizeof(double)) == 0);
+    /* bad strides */
+    {
+        const size_t bad[4] = {8, 16, 25, 60};
+        size_t k;
+        for (k = 0; k < 4; k++) {
+            view.positions_stride = bad[k];
+            CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &b, &sz, NULL, NULL), NLS_STATUS_INVALID_ARGUMENT);
+            CHECK_STATUS(nls_mesh_plan(&view, &opts, sc.u32s, su, &plan, NULL), NLS_STATUS_INVALID_ARGUMENT);
+        }
+    }
+    /* the strided input's extent counts for the overlap rule: an output inside the attributes
+     * of the last vertex but one is refused */
+    view.positions = wide;
+    view.positions_stride = stride * sizeof(double);
+    sop = wide + stride * (c.nv - 2) + 3;
+    soo = oo;
+    soi = oi;
+    sb = flat_buffers(sop, 1, soo, o.nf, soi, o.ni);
+    CHECK_STATUS(nls_mesh_subdivide(&view, &opts, &sc, &sb, &sz, NULL, NULL), NLS_STATUS_ALIASING_BUFFERS);
+    free(wide);
+    free(scratch);
+    free(sp);
+    free(op);
+    free(oo);
+    free(oi);
+    mesh_free(&o);
+    mesh_free(&c);
+}
+
 /* ------------------------------------------------------------------------------ MemorySafe */
 
 /* A block of exactly `n` elements of `size` bytes (NULL for 0), filled with 0xAB. */
@@ -726,45 +877,41 @@ static int untouched(const void *b, size_t bytes) {
     return 1;
 }
 
-/* Every too-small capacity of every buffer of one call (levels = 0: nls_mesh_subdivide, else
- * nls_mesh_subdivide_levels), then the exact sizes. Returns the number of calls made. */
+/* Every too-small capacity of every buffer of one call of `levels` levels (the plan's own
+ * scratch too), then the exact sizes. Returns the number of calls made. */
 static int sweep(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels) {
-    size_t need[5], nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+    size_t need[5], nv = 0, nf = 0, ni = 0, su = 0, sp = 0, su0 = 0;
     size_t elem[5];
     int b, calls = 0;
     elem[0] = sizeof(uint32_t);
     elem[1] = elem[2] = 3 * sizeof(double);
     elem[3] = elem[4] = sizeof(uint32_t);
-    if (levels == 0) {
+    {
         uint32_t *s;
-        CHECK_STATUS(nls_mesh_scratch_size(scheme, flags, m->nv, m->ni, &su, &sp), NLS_STATUS_OK);
-        s = (uint32_t *)block(su, sizeof(uint32_t));
-        CHECK_STATUS(nls_mesh_subdivide_size(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, s, su, &nv, &nf,
-                                             &ni, NULL),
+        nls_plan plan = {{0, 0, 0}, 0, 0};
+        CHECK_STATUS(flat_plan_scratch_size(m->nv, m->ni, &su0), NLS_STATUS_OK);
+        s = (uint32_t *)block(su0, sizeof(uint32_t));
+        CHECK_STATUS(flat_plan(scheme, flags, levels, m->p, m->nv, m->off, m->nf, m->idx, m->ni, s, su0, &plan, NULL),
                      NLS_STATUS_OK);
-        /* the size query's own scratch, every short size */
+        nv = plan.output.vertex_count;
+        nf = plan.output.face_count;
+        ni = plan.output.index_count;
+        su = plan.scratch_u32;
+        sp = plan.scratch_points;
+        /* the plan's own scratch, every short size */
         {
             size_t cap;
-            for (cap = 0; cap < su; cap++) {
+            for (cap = 0; cap < su0; cap++) {
                 uint32_t *t = (uint32_t *)block(cap, sizeof(uint32_t)), element = 0;
-                size_t a = 777, bb = 777, c = 777;
-                CHECK_STATUS(nls_mesh_subdivide_size(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, t, cap,
-                                                     &a, &bb, &c, &element),
+                nls_plan p2 = {{777, 777, 777}, 777, 777};
+                CHECK_STATUS(flat_plan(scheme, flags, levels, m->p, m->nv, m->off, m->nf, m->idx, m->ni, t, cap, &p2,
+                                       &element),
                              NLS_STATUS_BUFFER_TOO_SMALL);
-                CHECK(element == NLS_MESH_BUFFER_SCRATCH_U32 && a == 777 && bb == 777 && c == 777);
+                CHECK(element == NLS_MESH_BUFFER_SCRATCH_U32 && p2.output.vertex_count == 777 && p2.scratch_u32 == 777);
                 free(t);
                 calls++;
             }
         }
-        free(s);
-    } else {
-        size_t su0 = 0, sp0 = 0;
-        uint32_t *s;
-        CHECK_STATUS(nls_mesh_scratch_size(scheme, flags, m->nv, m->ni, &su0, &sp0), NLS_STATUS_OK);
-        s = (uint32_t *)block(su0, sizeof(uint32_t));
-        CHECK_STATUS(nls_mesh_subdivide_levels_size(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels, s,
-                                                    su0, &nv, &nf, &ni, &su, &sp, NULL),
-                     NLS_STATUS_OK);
         free(s);
     }
     need[0] = su;
@@ -778,7 +925,7 @@ static int sweep(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels
             void *buf[5];
             size_t capn[5];
             int k;
-            size_t cv = 777, cf = 777, ci = 777;
+            nls_mesh_sizes cs = {777, 777, 777};
             uint32_t element = 12345;
             nls_subdivide_report rep = {777, 777, 777};
             nls_status s;
@@ -786,32 +933,26 @@ static int sweep(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels
                 capn[k] = k == b ? cap : need[k];
                 buf[k] = block(k == 3 ? capn[k] + 1 : capn[k], elem[k]);
             }
-            if (levels == 0)
-                s = nls_mesh_subdivide(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, (uint32_t *)buf[0],
-                                       capn[0], (double *)buf[1], capn[1], (double *)buf[2], capn[2],
-                                       (uint32_t *)buf[3], capn[3], (uint32_t *)buf[4], capn[4], &cv, &cf, &ci, &rep,
-                                       &element);
-            else
-                s = nls_mesh_subdivide_levels(scheme, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels,
-                                              (uint32_t *)buf[0], capn[0], (double *)buf[1], capn[1], (double *)buf[2],
-                                              capn[2], (uint32_t *)buf[3], capn[3], (uint32_t *)buf[4], capn[4], &cv,
-                                              &cf, &ci, &rep, &element);
+            s = flat_subdivide(scheme, flags, levels, m->p, m->nv, m->off, m->nf, m->idx, m->ni, (uint32_t *)buf[0],
+                               capn[0], (double *)buf[1], capn[1], (double *)buf[2], capn[2], (uint32_t *)buf[3],
+                               capn[3], (uint32_t *)buf[4], capn[4], &cs, &rep, &element);
             calls++;
             if (b < 5) {
                 CHECK(s == NLS_STATUS_BUFFER_TOO_SMALL);
                 CHECK(element == (uint32_t)b);
                 CHECK(rep.fallbacks == 777);
                 if (b >= 2)
-                    CHECK(cv == nv && cf == nf && ci == ni);
+                    CHECK(cs.vertex_count == nv && cs.face_count == nf && cs.index_count == ni);
                 else
-                    CHECK(cv == 777 && cf == 777 && ci == 777);
+                    CHECK(cs.vertex_count == 777 && cs.face_count == 777 && cs.index_count == 777);
                 /* no output buffer was written */
                 CHECK(capn[2] == 0 || untouched(buf[2], capn[2] * elem[2]));
                 CHECK(untouched(buf[3], (capn[3] + 1) * elem[3]));
                 CHECK(capn[4] == 0 || untouched(buf[4], capn[4] * elem[4]));
             } else {
                 CHECK(s == NLS_STATUS_OK);
-                CHECK(cv == nv && cf == nf && ci == ni && element == 12345 && rep.fallbacks == 0);
+                CHECK(cs.vertex_count == nv && cs.face_count == nf && cs.index_count == ni && element == 12345 &&
+                      rep.fallbacks == 0);
             }
             for (k = 0; k < 5; k++) free(buf[k]);
         }
@@ -829,7 +970,7 @@ static void test_memory_safe_sweep(void) {
         const mesh *m = mesh_accepts(SCHEMES[si], &meshes[0]) ? &meshes[0]
                         : mesh_accepts(SCHEMES[si], &meshes[1]) ? &meshes[1]
                                                                  : &meshes[2];
-        for (mob = 0; mob <= 1; mob++) calls += sweep(SCHEMES[si], mob ? NLS_SUBDIVIDE_MOBIUS : 0u, m, 0);
+        for (mob = 0; mob <= 1; mob++) calls += sweep(SCHEMES[si], mob ? NLS_SUBDIVIDE_MOBIUS : 0u, m, 1);
     }
     calls += sweep(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &meshes[0], 2);
     calls += sweep(NLS_SCHEME_LOOP, 0, &meshes[1], 2);
@@ -912,9 +1053,19 @@ static nls_status rules_of(const mesh *m, uint32_t v, int cc, star_rules *r) {
         for (k = m->off[f]; k < m->off[f + 1]; k++) memcpy(corners + 3 * nc++, m->p + 3 * m->idx[k], 3 * sizeof(double));
         offs[j + 1] = (uint32_t)nc;
     }
-    if (!cc) return nls_mobius_loop_star(m->p + 3 * v, ring, r->n, 1, r->vertex, r->edges);
-    return nls_mobius_catmull_clark_star(m->p + 3 * v, ring, r->n, 1, offs, r->n, corners, nc, r->vertex, r->edges,
-                                         r->faces);
+    {
+        nls_star_view star;
+        star.v = m->p + 3 * v;
+        star.ring = ring;
+        star.ring_count = r->n;
+        star.closed = 1;
+        star.face_offsets = offs;
+        star.face_count = r->n;
+        star.face_corners = corners;
+        star.corner_count = nc;
+        if (!cc) return nls_mobius_loop_star(&star, r->vertex, r->edges);
+        return nls_mobius_catmull_clark_star(&star, r->vertex, r->edges, r->faces);
+    }
 }
 
 /* The candidate of edge v -> u from v's rules. */
@@ -976,36 +1127,65 @@ static void test_star_rules_match_the_driver(int cc) {
     mesh_free(&m);
 }
 
+/* The star rules with flat arguments (the fields of nls_star_view in order). */
+static nls_status cc_star(const double *v, const double *ring, size_t n, uint32_t closed, const uint32_t *offs,
+                          size_t nf, const double *corners, size_t nc, double *vp, double *e, double *f) {
+    nls_star_view star;
+    star.v = v;
+    star.ring = ring;
+    star.ring_count = n;
+    star.closed = closed;
+    star.face_offsets = offs;
+    star.face_count = nf;
+    star.face_corners = corners;
+    star.corner_count = nc;
+    return nls_mobius_catmull_clark_star(&star, vp, e, f);
+}
+
+static nls_status loop_star(const double *v, const double *ring, size_t n, uint32_t closed, double *vp, double *e) {
+    nls_star_view star;
+    star.v = v;
+    star.ring = ring;
+    star.ring_count = n;
+    star.closed = closed;
+    star.face_offsets = NULL;
+    star.face_count = 0;
+    star.face_corners = NULL;
+    star.corner_count = 0;
+    return nls_mobius_loop_star(&star, vp, e);
+}
+
 static void test_star_rules_edge_cases(void) {
     static const double v[3] = {0, 0, 0};
     static const double ring[3 * 4] = {1, 0, 0.1, 0, 1, -0.1, -1, 0, 0.1, 0, -1, -0.1};
     double vp[3], e[3 * 4], f[3 * 4];
     double sentinel = 777.0;
     /* a boundary star: no vertex point, no candidates on the two boundary edges */
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 4, 0, vp, e), NLS_STATUS_OK);
+    CHECK_STATUS(loop_star(v, ring, 4, 0, vp, e), NLS_STATUS_OK);
     CHECK(isnan(vp[0]) && isnan(e[0]) && isnan(e[9]) && isfinite(e[3]) && isfinite(e[6]));
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 4, 1, vp, e), NLS_STATUS_OK);
+    CHECK_STATUS(loop_star(v, ring, 4, 1, vp, e), NLS_STATUS_OK);
     CHECK(isfinite(vp[0]) && isfinite(e[0]) && isfinite(e[9]));
     /* bad arguments: nothing written */
     vp[0] = sentinel;
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 4, 2, vp, e), NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 1, 1, vp, e), NLS_STATUS_TOO_FEW_POINTS);
-    CHECK_STATUS(nls_mobius_loop_star(v, NULL, 4, 1, vp, e), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 4, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 200, 1, vp, e), NLS_STATUS_VALENCE_TOO_HIGH);
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, SIZE_MAX / 2, 1, vp, e), NLS_STATUS_SIZE_OVERFLOW);
-    CHECK_STATUS(nls_mobius_loop_star(v, e, 4, 1, vp, e), NLS_STATUS_ALIASING_BUFFERS);
-    CHECK_STATUS(nls_mobius_loop_star(v, ring, 4, 1, e + 3, e), NLS_STATUS_ALIASING_BUFFERS);
+    CHECK_STATUS(loop_star(v, ring, 4, 2, vp, e), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(loop_star(v, ring, 1, 1, vp, e), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(loop_star(v, NULL, 4, 1, vp, e), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(loop_star(v, ring, 4, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(loop_star(v, ring, 200, 1, vp, e), NLS_STATUS_VALENCE_TOO_HIGH);
+    CHECK_STATUS(loop_star(v, ring, SIZE_MAX / 2, 1, vp, e), NLS_STATUS_SIZE_OVERFLOW);
+    CHECK_STATUS(loop_star(v, e, 4, 1, vp, e), NLS_STATUS_ALIASING_BUFFERS);
+    CHECK_STATUS(loop_star(v, ring, 4, 1, e + 3, e), NLS_STATUS_ALIASING_BUFFERS);
     {
         double r2[3 * 4];
         memcpy(r2, ring, sizeof r2);
         r2[3] = 0.0;
         r2[4] = 0.0;
         r2[5] = 0.0; /* a neighbour on the centre */
-        CHECK_STATUS(nls_mobius_loop_star(v, r2, 4, 1, vp, e), NLS_STATUS_DEGENERATE_GEOMETRY);
+        CHECK_STATUS(loop_star(v, r2, 4, 1, vp, e), NLS_STATUS_DEGENERATE_GEOMETRY);
         r2[4] = NAN;
-        CHECK_STATUS(nls_mobius_loop_star(v, r2, 4, 1, vp, e), NLS_STATUS_NON_FINITE_INPUT);
+        CHECK_STATUS(loop_star(v, r2, 4, 1, vp, e), NLS_STATUS_NON_FINITE_INPUT);
     }
+    CHECK_STATUS(nls_mobius_loop_star(NULL, vp, e), NLS_STATUS_NULL_PARAMETER);
     CHECK(vp[0] == sentinel);
     /* Catmull–Clark: four quads around the centre */
     {
@@ -1021,36 +1201,36 @@ static void test_star_rules_edge_cases(void) {
             memcpy(corners + 12 * j + 6, diag, sizeof diag);
             memcpy(corners + 12 * j + 9, b, 3 * sizeof(double));
         }
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, offs, 4, corners, 16, vp, e, f), NLS_STATUS_OK);
+        CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 4, corners, 16, vp, e, f), NLS_STATUS_OK);
         CHECK(isfinite(vp[0]) && isfinite(e[0]) && isfinite(f[0]) && isfinite(f[9]));
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 0, offs, 3, corners, 12, vp, e, f), NLS_STATUS_OK);
+        CHECK_STATUS(cc_star(v, ring, 4, 0, offs, 3, corners, 12, vp, e, f), NLS_STATUS_OK);
         CHECK(isnan(vp[0]) && isnan(e[0]) && isnan(e[9]) && isfinite(e[3]) && isfinite(f[6]));
         vp[0] = sentinel;
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, offs, 3, corners, 12, vp, e, f),
+        CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 3, corners, 12, vp, e, f),
                      NLS_STATUS_INVALID_ARGUMENT);
         {
             const uint32_t bad[5] = {0, 4, 9, 8, 16};
-            CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, bad, 4, corners, 16, vp, e, f),
+            CHECK_STATUS(cc_star(v, ring, 4, 1, bad, 4, corners, 16, vp, e, f),
                          NLS_STATUS_BAD_OFFSETS);
         }
         {
             const uint32_t small[5] = {0, 4, 6, 12, 16};
-            CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, small, 4, corners, 16, vp, e, f),
+            CHECK_STATUS(cc_star(v, ring, 4, 1, small, 4, corners, 16, vp, e, f),
                          NLS_STATUS_FACE_TOO_SMALL);
         }
         {
             double c2[3 * 16];
             memcpy(c2, corners, sizeof c2);
             c2[0] = 5.0; /* face 0 no longer holds v */
-            CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, offs, 4, c2, 16, vp, e, f),
+            CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 4, c2, 16, vp, e, f),
                          NLS_STATUS_INVALID_ARGUMENT);
         }
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, offs, 4, corners, 16, vp, corners, f),
+        CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 4, corners, 16, vp, corners, f),
                      NLS_STATUS_ALIASING_BUFFERS);
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, NULL, 4, corners, 16, vp, e, f),
+        CHECK_STATUS(cc_star(v, ring, 4, 1, NULL, 4, corners, 16, vp, e, f),
                      NLS_STATUS_NULL_PARAMETER);
         corners[20] = INFINITY;
-        CHECK_STATUS(nls_mobius_catmull_clark_star(v, ring, 4, 1, offs, 4, corners, 16, vp, e, f),
+        CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 4, corners, 16, vp, e, f),
                      NLS_STATUS_NON_FINITE_INPUT);
         CHECK(vp[0] == sentinel);
     }
@@ -1073,7 +1253,7 @@ static void test_fp_environment(void) {
 #if defined(__x86_64__)
     mesh t = tetrahedron();
     uint32_t su[64];
-    size_t a = 777, b = 777, c = 777;
+    nls_plan plan = {{777, 777, 777}, 777, 777};
     if (getenv("NLS_TEST_UNDER_VALGRIND") != NULL) {
         printf("SKIP test_fp_environment under valgrind\n");
         mesh_free(&t);
@@ -1083,16 +1263,15 @@ static void test_fp_environment(void) {
         unsigned int saved = _mm_getcsr();
         nls_status s;
         _mm_setcsr(saved | 0x8040u); /* FTZ + DAZ */
-        s = nls_mesh_subdivide_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su, 64,
-                                    &a, &b, &c, NULL);
+        s = flat_plan(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 1, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su, 64, &plan, NULL);
         _mm_setcsr(saved);
         CHECK_STATUS(s, NLS_STATUS_FP_ENVIRONMENT);
-        CHECK(a == 777);
+        CHECK(plan.output.vertex_count == 777);
     }
-    CHECK_STATUS(nls_mesh_subdivide_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su,
-                                         64, &a, &b, &c, NULL),
+    CHECK_STATUS(flat_plan(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 1, t.p, t.nv, t.off, t.nf, t.idx, t.ni, su, 64, &plan,
+                           NULL),
                  NLS_STATUS_OK);
-    CHECK(a == 10 && b == 16 && c == 48);
+    CHECK(plan.output.vertex_count == 10 && plan.output.face_count == 16 && plan.output.index_count == 48);
     mesh_free(&t);
 #endif
 }
@@ -1105,6 +1284,7 @@ int main(void) {
     test_bad_meshes();
     test_bad_arguments();
     test_strict();
+    test_stride();
     test_memory_safe_sweep();
     test_star_rules_match_the_driver(0);
     test_star_rules_match_the_driver(1);

@@ -8,6 +8,7 @@
 
 #include "nlsubdiv.h"
 #include "check.h"
+#include "flat_args.h"
 
 typedef struct {
     size_t nv, nf, ni;
@@ -83,34 +84,31 @@ static mesh cube(void) {
     return m;
 }
 
-/* One level (levels == 0) or `levels` levels in one call, exactly sized; the output is
+/* One level (levels == 0 or 1) or `levels` levels in one call, exactly sized; the output is
  * pre-filled with a pattern so that "nothing written" can be checked on failure. */
 static nls_status run(uint32_t flags, const mesh *m, uint32_t levels, mesh *out, uint32_t *element) {
-    size_t su = 0, sp = 0, nv = 0, nf = 0, ni = 0, wv = 0, wf = 0, wi = 0, su2 = 0, sp2 = 0;
+    size_t su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
     uint32_t *scratch_u32;
     double *scratch_points;
-    nls_status s = nls_mesh_scratch_size(NLS_SCHEME_SPHERELIKE, 0, m->nv, m->ni, &su, &sp);
+    nls_plan plan;
+    nls_mesh_sizes w = {0, 0, 0};
+    const uint32_t n = levels == 0 ? 1 : levels;
+    nls_status s = flat_plan_scratch_size(m->nv, m->ni, &su);
     out->p = NULL;
     out->off = NULL;
     out->idx = NULL;
     if (s != NLS_STATUS_OK) return s;
     scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
-    if (levels == 0)
-        s = nls_mesh_subdivide_size(NLS_SCHEME_SPHERELIKE, 0, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su,
-                                    &nv, &nf, &ni, element);
-    else
-        s = nls_mesh_subdivide_levels_size(NLS_SCHEME_SPHERELIKE, 0, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels,
-                                           scratch_u32, su, &nv, &nf, &ni, &su2, &sp2, element);
-    if (s != NLS_STATUS_OK) {
-        free(scratch_u32);
-        return s;
-    }
-    if (levels > 0) {
-        free(scratch_u32);
-        su = su2;
-        sp = sp2;
-        scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
-    }
+    s = flat_plan(NLS_SCHEME_SPHERELIKE, 0, n, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su, &plan,
+                  element);
+    free(scratch_u32);
+    if (s != NLS_STATUS_OK) return s;
+    su = plan.scratch_u32;
+    sp = plan.scratch_points;
+    nv = plan.output.vertex_count;
+    nf = plan.output.face_count;
+    ni = plan.output.index_count;
+    scratch_u32 = (uint32_t *)malloc(su * sizeof(uint32_t) + 1);
     scratch_points = (double *)malloc(3 * sp * sizeof(double) + 8);
     out->p = (double *)malloc(3 * nv * sizeof(double) + 1);
     out->off = (uint32_t *)malloc((nf + 1) * sizeof(uint32_t));
@@ -119,14 +117,9 @@ static nls_status run(uint32_t flags, const mesh *m, uint32_t levels, mesh *out,
     out->nv = nv;
     out->nf = nf;
     out->ni = ni;
-    if (levels == 0)
-        s = nls_mesh_subdivide(NLS_SCHEME_SPHERELIKE, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su,
-                               scratch_points, sp, out->p, nv, out->off, nf, out->idx, ni, &wv, &wf, &wi, NULL, element);
-    else
-        s = nls_mesh_subdivide_levels(NLS_SCHEME_SPHERELIKE, flags, m->p, m->nv, m->off, m->nf, m->idx, m->ni, levels,
-                                      scratch_u32, su, scratch_points, sp, out->p, nv, out->off, nf, out->idx, ni, &wv,
-                                      &wf, &wi, NULL, element);
-    if (s == NLS_STATUS_OK) CHECK(wv == nv && wf == nf && wi == ni);
+    s = flat_subdivide(NLS_SCHEME_SPHERELIKE, flags, n, m->p, m->nv, m->off, m->nf, m->idx, m->ni, scratch_u32, su,
+                       scratch_points, sp, out->p, nv, out->off, nf, out->idx, ni, &w, NULL, element);
+    if (s == NLS_STATUS_OK) CHECK(w.vertex_count == nv && w.face_count == nf && w.index_count == ni);
     free(scratch_u32);
     free(scratch_points);
     return s;
@@ -194,7 +187,8 @@ static void test_torus_rows(void) {
 static void test_statuses(void) {
     mesh m = cube(), o;
     uint32_t element = 12345;
-    size_t su = 0, sp = 0, nv = 0, nf = 0, ni = 0, wv = 0, wf = 0, wi = 0;
+    size_t su = 0, sp = 0;
+    nls_mesh_sizes sizes = {0, 0, 0};
     uint32_t *scratch;
     double *pts, *outp;
     uint32_t *outo, *outi;
@@ -222,23 +216,27 @@ static void test_statuses(void) {
 
     /* A short positions buffer: BUFFER_TOO_SMALL naming it, exact sizes, nothing written. */
     m = cube();
-    CHECK_STATUS(nls_mesh_scratch_size(NLS_SCHEME_SPHERELIKE, 0, m.nv, m.ni, &su, &sp), NLS_STATUS_OK);
+    CHECK_STATUS(flat_plan_scratch_size(m.nv, m.ni, &su), NLS_STATUS_OK);
     scratch = (uint32_t *)malloc(su * sizeof(uint32_t));
+    {
+        nls_plan plan;
+        CHECK_STATUS(flat_plan(NLS_SCHEME_SPHERELIKE, 0, 1, m.p, m.nv, m.off, m.nf, m.idx, m.ni, scratch, su, &plan, NULL),
+                     NLS_STATUS_OK);
+        CHECK(plan.scratch_u32 == su);
+        sp = plan.scratch_points;
+    }
     pts = (double *)malloc(3 * sp * sizeof(double) + 8);
     outp = (double *)malloc(3 * 25 * sizeof(double));
     outo = (uint32_t *)malloc(25 * sizeof(uint32_t));
     outi = (uint32_t *)malloc(96 * sizeof(uint32_t));
     memset(outp, 0x5a, 3 * 25 * sizeof(double));
-    CHECK_STATUS(nls_mesh_subdivide(NLS_SCHEME_SPHERELIKE, 0, m.p, m.nv, m.off, m.nf, m.idx, m.ni, scratch, su, pts, sp,
-                                    outp, 25, outo, 24, outi, 96, &nv, &nf, &ni, NULL, &element),
+    CHECK_STATUS(flat_subdivide(NLS_SCHEME_SPHERELIKE, 0, 1, m.p, m.nv, m.off, m.nf, m.idx, m.ni, scratch, su, pts, sp,
+                                outp, 25, outo, 24, outi, 96, &sizes, NULL, &element),
                  NLS_STATUS_BUFFER_TOO_SMALL);
     CHECK(element == NLS_MESH_BUFFER_POSITIONS);
-    CHECK(nv == 26 && nf == 24 && ni == 96);
+    CHECK(sizes.vertex_count == 26 && sizes.face_count == 24 && sizes.index_count == 96);
     for (k = 0; k < 3 * 25 * sizeof(double); k++) untouched &= ((unsigned char *)outp)[k] == 0x5a;
     CHECK(untouched);
-    (void)wv;
-    (void)wf;
-    (void)wi;
     free(scratch);
     free(pts);
     free(outp);

@@ -1,4 +1,4 @@
-/* C tests of nls_mobius_butterfly_star (the tier-1 Möbius Modified Butterfly rule, issue 8):
+/* C tests of nls_mobius_butterfly_star (the tier-1 Möbius Modified Butterfly rule):
  * a whole level assembled from the star rules as its docs say equals nls_mesh_subdivide,
  * bit for bit, on meshes that exercise every branch (Zorin's stencil at irregular interior
  * vertices, the skipped spokes next to them, the regular half-stencil with its wings and with
@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "flat_args.h"
 #include "nlsubdiv.h"
 
 #define NONE UINT32_MAX
@@ -84,13 +85,15 @@ static size_t edge_id(const tri_mesh *m, uint32_t a, uint32_t b) {
 static void level_from_star_rules(tri_mesh *m, const char *what) {
     static double cand[64][3 * 64], out[3 * 512], spts[3 * 600];
     static uint32_t spokes[64][65], ring[64][65], scratch[4096], ooff[512], oidx[2048], off[97];
-    size_t n[64], nv, nf, ni, k, same = 0, nsingle = 0, nzorin = 0;
+    size_t n[64], nv, k, same = 0, nsingle = 0, nzorin = 0;
     int closed[64];
     uint32_t v, c, f;
     for (f = 0; f <= m->nf; f++) off[f] = 3 * f;
-    CHECK_STATUS(nls_mesh_subdivide(NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, m->p, m->nv, off, m->nf, m->idx, 3 * m->nf, scratch,
-                                    4096, spts, 600, out, 512, ooff, 511, oidx, 2048, &nv, &nf, &ni, NULL, NULL),
+    nls_mesh_sizes sz = {0, 0, 0};
+    CHECK_STATUS(flat_subdivide(NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, 1, m->p, m->nv, off, m->nf, m->idx,
+                                3 * m->nf, scratch, 4096, spts, 600, out, 512, ooff, 511, oidx, 2048, &sz, NULL, NULL),
                  NLS_STATUS_OK);
+    nv = sz.vertex_count;
     for (v = 0; v < m->nv; v++) n[v] = star(m, v, spokes[v], ring[v], &closed[v]);
     for (v = 0; v < m->nv; v++) {
         double rxyz[3 * 64];
@@ -101,7 +104,7 @@ static void level_from_star_rules(tri_mesh *m, const char *what) {
             irr[k] = (closed[u] && n[u] != 6) ? 1u : 0u;
         }
         if (closed[v] && n[v] != 6) nzorin++;
-        CHECK_STATUS(nls_mobius_butterfly_star(m->p + 3 * v, rxyz, n[v], (uint32_t)closed[v], irr, cand[v]), NLS_STATUS_OK);
+        CHECK_STATUS(flat_butterfly_star(m->p + 3 * v, rxyz, n[v], (uint32_t)closed[v], irr, cand[v]), NLS_STATUS_OK);
         CHECK(memcmp(out + 3 * v, m->p + 3 * v, sizeof(double) * 3) == 0); /* interpolating */
         same++;
     }
@@ -189,42 +192,42 @@ static void edge_cases(void) {
     const uint32_t bad_flags[6] = {0, 0, 2, 0, 0, 0}, flags[6] = {0, 1, 0, 0, 0, 0};
     double e[3 * 6], sentinel = 777.0;
     /* regular interior star: six candidates; a flagged neighbour gets none */
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 1, NULL, e), NLS_STATUS_OK);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 6, 1, NULL, e), NLS_STATUS_OK);
     CHECK(isfinite(e[0]) && isfinite(e[15]));
     {
         double all[3 * 6];
         memcpy(all, e, sizeof all);
-        CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 1, flags, e), NLS_STATUS_OK);
+        CHECK_STATUS(flat_butterfly_star(v, ring, 6, 1, flags, e), NLS_STATUS_OK);
         CHECK(isnan(e[3]) && nls_dist3(e, all) == 0.0 && nls_dist3(e + 6, all + 6) == 0.0); /* the others unchanged */
     }
     /* irregular interior star (valence 5): Zorin's stencil on every spoke, flags ignored */
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 5, 1, flags, e), NLS_STATUS_OK);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 5, 1, flags, e), NLS_STATUS_OK);
     CHECK(isfinite(e[3]));
     /* boundary star: no candidates on its two boundary spokes; an ear gets none at all */
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 4, 0, NULL, e), NLS_STATUS_OK);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 4, 0, NULL, e), NLS_STATUS_OK);
     CHECK(isnan(e[0]) && isnan(e[9]) && isfinite(e[3]) && isfinite(e[6]));
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 2, 0, NULL, e), NLS_STATUS_OK);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 2, 0, NULL, e), NLS_STATUS_OK);
     CHECK(isnan(e[0]) && isnan(e[3]));
     /* errors: nothing written */
     e[0] = sentinel;
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 2, NULL, e), NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 1, bad_flags, e), NLS_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 1, 0, NULL, e), NLS_STATUS_TOO_FEW_POINTS);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, NULL, 6, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_mobius_butterfly_star(NULL, ring, 6, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 1, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 200, 1, NULL, e), NLS_STATUS_VALENCE_TOO_HIGH);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, SIZE_MAX / 2, 1, NULL, e), NLS_STATUS_SIZE_OVERFLOW);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, e, 6, 1, NULL, e), NLS_STATUS_ALIASING_BUFFERS);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, ring, 6, 1, (const uint32_t *)(void *)e, e), NLS_STATUS_ALIASING_BUFFERS);
-    CHECK_STATUS(nls_mobius_butterfly_star(v, (const double *)((const char *)ring + 1), 6, 1, NULL, e), NLS_STATUS_MISALIGNED_POINTER);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 6, 2, NULL, e), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 6, 1, bad_flags, e), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 1, 0, NULL, e), NLS_STATUS_TOO_FEW_POINTS);
+    CHECK_STATUS(flat_butterfly_star(v, NULL, 6, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(flat_butterfly_star(NULL, ring, 6, 1, NULL, e), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 6, 1, NULL, NULL), NLS_STATUS_NULL_PARAMETER);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 200, 1, NULL, e), NLS_STATUS_VALENCE_TOO_HIGH);
+    CHECK_STATUS(flat_butterfly_star(v, ring, SIZE_MAX / 2, 1, NULL, e), NLS_STATUS_SIZE_OVERFLOW);
+    CHECK_STATUS(flat_butterfly_star(v, e, 6, 1, NULL, e), NLS_STATUS_ALIASING_BUFFERS);
+    CHECK_STATUS(flat_butterfly_star(v, ring, 6, 1, (const uint32_t *)(void *)e, e), NLS_STATUS_ALIASING_BUFFERS);
+    CHECK_STATUS(flat_butterfly_star(v, (const double *)((const char *)ring + 1), 6, 1, NULL, e), NLS_STATUS_MISALIGNED_POINTER);
     {
         double r2[3 * 6];
         memcpy(r2, ring, sizeof r2);
         r2[3] = r2[4] = r2[5] = 0.0; /* a neighbour on the centre: no canonical form */
-        CHECK_STATUS(nls_mobius_butterfly_star(v, r2, 6, 1, NULL, e), NLS_STATUS_DEGENERATE_GEOMETRY);
+        CHECK_STATUS(flat_butterfly_star(v, r2, 6, 1, NULL, e), NLS_STATUS_DEGENERATE_GEOMETRY);
         r2[4] = NAN;
-        CHECK_STATUS(nls_mobius_butterfly_star(v, r2, 6, 1, NULL, e), NLS_STATUS_NON_FINITE_INPUT);
+        CHECK_STATUS(flat_butterfly_star(v, r2, 6, 1, NULL, e), NLS_STATUS_NON_FINITE_INPUT);
     }
     CHECK(e[0] == sentinel);
 }

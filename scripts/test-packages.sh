@@ -5,7 +5,7 @@
 #
 # 1. the working tree (tracked and untracked files, not the ignored ones) is copied to
 #    OUTDIR/src/nlsubdiv, its crates vendored (cargo vendor --locked), and
-#    `dpkg-buildpackage -us -uc` builds the source package and libnlsubdiv0.1, libnlsubdiv-dev
+#    `dpkg-buildpackage -us -uc` builds the source package and libnlsubdiv0.2, libnlsubdiv-dev
 #    and nlsubdiv there offline (CARGO_NET_OFFLINE; cargo's target folder OUTDIR/cargo-target
 #    is kept between runs); debian/copyright must name the crates of Cargo.lock;
 # 2. lintian on the source and binary packages: no error and no warning;

@@ -17,7 +17,7 @@ static const uint32_t CUBE_I[24] = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7,
 
 /* Two levels of Catmull–Clark on the cube: 26 then 98 vertices, 24 then 96 quads. The
  * scratch holds the topology, the intermediate level and the Möbius candidates; the sizes
- * here are generous, and nls_mesh_subdivide_levels_size gives the exact ones at run time
+ * here are generous, and nls_mesh_plan gives the exact ones at run time
  * (a short buffer is NLS_STATUS_BUFFER_TOO_SMALL, never an overrun). */
 #define MAX_VERTICES 98
 #define MAX_FACES 96

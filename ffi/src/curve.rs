@@ -32,8 +32,21 @@ pub const NLS_CURVE_DIFFERENTIAL_FOUR_POINT: u32 = 5;
 /// scheme on the differential polygon.
 pub const NLS_CURVE_DIFFERENTIAL_BSPLINE: u32 = 6;
 
-/// "No element" in `out_element` of [`nls_curve_subdivide`].
+/// "No element" in `out_element`: the failure names no element.
 pub const NLS_NO_ELEMENT: u32 = 0xFFFF_FFFF;
+
+/// An input curve, read only: `count` points packed `x, y, z` (`3 * count` doubles), closed
+/// (`closed = 1`) or open (`closed = 0`). Plain data; nothing is kept.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct nls_curve_view {
+    /// The points, `3 * count` doubles.
+    pub points: *const f64,
+    /// Number of points.
+    pub count: usize,
+    /// 1 for a closed polygon, 0 for an open polyline.
+    pub closed: u32,
+}
 
 fn scheme_of(code: u32) -> Result<CurveScheme, Status> {
     CurveScheme::from_code(code).ok_or(Status::InvalidArgument)
@@ -67,53 +80,53 @@ unsafe fn points_mut<'a>(p: *mut f64, count: usize) -> &'a mut [Point] {
 /// `NLS_STATUS_SIZE_OVERFLOW`, `NLS_STATUS_INVALID_ARGUMENT` (`closed` not 0 or 1),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn nls_curve_refined_len(
+pub unsafe extern "C" fn nls_curve_refined_size(
     count: usize,
     closed: u32,
     levels: u32,
-    out_len: *mut usize,
+    out_size: *mut usize,
 ) -> Status {
     run(|| {
-        check_ptr(out_len.cast_const(), 1)?;
+        check_ptr(out_size.cast_const(), 1)?;
         let closed = flag(closed)?;
         let n = curve::refined_len(count, closed, levels).map_err(|e| e.status)?;
         // SAFETY: checked above.
-        unsafe { store(out_len, n) };
+        unsafe { store(out_size, n) };
         Ok(())
     })
 }
 
-/// The number of scratch points [`nls_curve_subdivide`] needs: the size of level
+/// The number of scratch points `nls_curve_subdivide` needs: the size of level
 /// `levels − 1` when `levels ≥ 2` (0 below) for the local schemes, and already for
 /// `levels = 1` for the differential schemes (their differential polygon needs a buffer).
 ///
-/// Errors: as [`nls_curve_refined_len`]; `NLS_STATUS_INVALID_ARGUMENT` for an unknown scheme.
+/// Errors: as `nls_curve_refined_size`; `NLS_STATUS_INVALID_ARGUMENT` for an unknown scheme.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn nls_curve_scratch_len(
+pub unsafe extern "C" fn nls_curve_scratch_size(
     scheme: u32,
     count: usize,
     closed: u32,
     levels: u32,
-    out_len: *mut usize,
+    out_size: *mut usize,
 ) -> Status {
     run(|| {
-        check_ptr(out_len.cast_const(), 1)?;
+        check_ptr(out_size.cast_const(), 1)?;
         let scheme = scheme_of(scheme)?;
         let closed = flag(closed)?;
         let n = curve::scratch_len(scheme, count, closed, levels).map_err(|e| e.status)?;
         // SAFETY: checked above.
-        unsafe { store(out_len, n) };
+        unsafe { store(out_size, n) };
         Ok(())
     })
 }
 
-/// Subdivides the curve `points[0..count]` (packed `x, y, z`) `levels` times with `scheme`
-/// (`NLS_CURVE_*`), closed (`closed = 1`) or open (`closed = 0`).
+/// Subdivides the curve (`curve->points[0..count]`, packed `x, y, z`, closed or open)
+/// `levels` times with `scheme` (`NLS_CURVE_*`).
 ///
 /// The final level is written to `out`, which holds `out_capacity` points
-/// (`3*out_capacity` doubles, at least [`nls_curve_refined_len`]); intermediate levels
+/// (`3*out_capacity` doubles, at least `nls_curve_refined_size`); intermediate levels
 /// ping-pong between `out` and `scratch` (`scratch_capacity` points, at least
-/// [`nls_curve_scratch_len`]; NULL with capacity 0 when that is 0). No buffer may overlap
+/// `nls_curve_scratch_size`; NULL with capacity 0 when that is 0). No buffer may overlap
 /// another: in-place calls are not supported. `levels = 0` copies the input.
 ///
 /// The local schemes give the same bits as `levels` calls of one level. The differential
@@ -124,6 +137,9 @@ pub unsafe extern "C" fn nls_curve_scratch_len(
 /// `*out_count` is the size needed by the first buffer that is too small (`out` is checked
 /// before `scratch`). Otherwise `*out_count` is not written. The contents of `out` and
 /// `scratch` are unspecified after an error.
+///
+/// `out_count` and `out_element` must not point into the input, `out` or `scratch`, nor into
+/// each other (`NLS_STATUS_ALIASING_BUFFERS`; `out_element` is then not written).
 ///
 /// `out_element` may be NULL. Otherwise it receives, on failure only (the one exception to
 /// "written only on success"), the element at fault or `NLS_NO_ELEMENT`: for
@@ -141,12 +157,9 @@ pub unsafe extern "C" fn nls_curve_scratch_len(
 /// `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,
 /// `NLS_STATUS_DEGENERATE_GEOMETRY`, `NLS_STATUS_NUMERICAL_FAILURE`.
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn nls_curve_subdivide(
     scheme: u32,
-    points_xyz: *const f64,
-    count: usize,
-    closed: u32,
+    curve: *const nls_curve_view,
     levels: u32,
     out: *mut f64,
     out_capacity: usize,
@@ -156,14 +169,49 @@ pub unsafe extern "C" fn nls_curve_subdivide(
     out_element: *mut u32,
 ) -> Status {
     let mut element = NO_ELEMENT;
+    let mut element_ok = !out_element.is_null() && out_element.is_aligned();
     let status = run(|| {
-        let scheme = scheme_of(scheme)?;
-        let closed = flag(closed)?;
+        check_ptr(curve, 1)?;
+        // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
+        let view = unsafe { curve.read() };
+        let (points_xyz, count) = (view.points, view.count);
         check_ptr(out_count.cast_const(), 1)?;
         check_ptr(
             out_element.cast_const(),
             usize::from(!out_element.is_null()),
         )?;
+        // The out-pointers must not point into a buffer of the call (arithmetic only: the
+        // buffers are checked below).
+        let range = |p: usize, bytes: usize| (p, p.saturating_add(bytes));
+        let buffers = [
+            range(points_xyz as usize, count.saturating_mul(24)),
+            range(out as usize, out_capacity.saturating_mul(24)),
+            range(scratch as usize, scratch_capacity.saturating_mul(24)),
+            range(out_count as usize, core::mem::size_of::<usize>()),
+        ];
+        let hits = |(a, b): (usize, usize)| {
+            buffers
+                .iter()
+                .any(|&(c, d)| a < b && c < d && a < d && c < b)
+        };
+        let oc = range(out_count as usize, core::mem::size_of::<usize>());
+        let oe = range(
+            out_element as usize,
+            4 * usize::from(!out_element.is_null()),
+        );
+        if hits(oe) {
+            element_ok = false;
+            return Err(Status::AliasingBuffers);
+        }
+        if buffers
+            .iter()
+            .take(3)
+            .any(|&(c, d)| c < d && c < oc.1 && oc.0 < d)
+        {
+            return Err(Status::AliasingBuffers);
+        }
+        let scheme = scheme_of(scheme)?;
+        let closed = flag(view.closed)?;
         check_ptr(points_xyz.cast::<Point>(), count)?;
         check_ptr(out.cast_const().cast::<Point>(), out_capacity)?;
         check_ptr(scratch.cast_const().cast::<Point>(), scratch_capacity)?;
@@ -211,8 +259,9 @@ pub unsafe extern "C" fn nls_curve_subdivide(
             }
         }
     });
-    if status != Status::Ok && !out_element.is_null() && out_element.is_aligned() {
-        // SAFETY: non-NULL and aligned; writable by the caller's contract.
+    if status != Status::Ok && element_ok {
+        // SAFETY: non-NULL, aligned and outside every buffer of the call; writable by the
+        // caller's contract.
         unsafe { store(out_element, element) };
     }
     status
@@ -258,9 +307,9 @@ mod tests {
         let mut need = 0usize;
         let mut scratch_need = 0usize;
         unsafe {
-            assert_eq!(nls_curve_refined_len(4, 1, 3, &mut need), Status::Ok);
+            assert_eq!(nls_curve_refined_size(4, 1, 3, &mut need), Status::Ok);
             assert_eq!(
-                nls_curve_scratch_len(NLS_CURVE_CIRCLE_BLEND, 4, 1, 3, &mut scratch_need),
+                nls_curve_scratch_size(NLS_CURVE_CIRCLE_BLEND, 4, 1, 3, &mut scratch_need),
                 Status::Ok
             );
         }
@@ -272,9 +321,11 @@ mod tests {
         let s = unsafe {
             nls_curve_subdivide(
                 NLS_CURVE_CIRCLE_BLEND,
-                p.as_ptr(),
-                4,
-                1,
+                &nls_curve_view {
+                    points: p.as_ptr(),
+                    count: 4,
+                    closed: 1,
+                },
                 3,
                 out.as_mut_ptr(),
                 need,
@@ -295,9 +346,11 @@ mod tests {
         let s = unsafe {
             nls_curve_subdivide(
                 NLS_CURVE_FOUR_POINT,
-                out.as_ptr(),
-                4,
-                1,
+                &nls_curve_view {
+                    points: out.as_ptr(),
+                    count: 4,
+                    closed: 1,
+                },
                 1,
                 out.as_mut_ptr().add(3),
                 8,
@@ -309,5 +362,29 @@ mod tests {
         };
         assert_eq!(s, Status::AliasingBuffers);
         assert_eq!(element, NLS_NO_ELEMENT);
+        // The count pointing into the output: refused, the output untouched.
+        let before = out.clone();
+        let s = unsafe {
+            nls_curve_subdivide(
+                NLS_CURVE_CIRCLE_BLEND,
+                &nls_curve_view {
+                    points: p.as_ptr(),
+                    count: 4,
+                    closed: 1,
+                },
+                3,
+                out.as_mut_ptr(),
+                need,
+                scratch.as_mut_ptr(),
+                scratch_need,
+                out.as_mut_ptr().add(6).cast(),
+                out.as_mut_ptr().add(9).cast(),
+            )
+        };
+        assert_eq!(s, Status::AliasingBuffers);
+        assert_eq!(
+            out.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+            before.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+        );
     }
 }

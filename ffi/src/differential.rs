@@ -3,8 +3,8 @@
 //! DirMag on top of Modified Butterfly) and the surface is reconstructed once at the last
 //! level by an iterative least-squares solve on caller scratch (`docs/differential.md`).
 //!
-//! A child module of [`crate::mesh`] so that it shares that module's buffer checks (mesh
-//! layout, aliasing, `out_element`, counts) without widening their visibility.
+//! A child module of the mesh exports so that it shares their structs and buffer checks
+//! (mesh view, aliasing, `out_element`, sizes) without widening their visibility.
 
 use nlsubdiv::differential::solve::SolveOptions;
 use nlsubdiv::differential::{self as diff, DifferentialOptions, DifferentialReport, Stencil};
@@ -12,8 +12,9 @@ use nlsubdiv::mesh::MeshSizes;
 use nlsubdiv::{Point, Status};
 
 use super::{
-    check_optional, check_scratch_u32, run_with_element, slice, store, too_small, Counts, Fail,
-    RawMesh, RawOut, Span, NLS_MESH_BUFFER_SCRATCH_POINTS, NLS_MESH_BUFFER_SCRATCH_U32,
+    check_optional, check_out_pointers, nls_mesh_buffers, nls_mesh_sizes, nls_mesh_view, nls_plan,
+    nls_scratch, run_with_element, sizes_of, slice, store, too_small, Fail, RawMesh, RawOut, Span,
+    NLS_MESH_BUFFER_SCRATCH_POINTS, NLS_MESH_BUFFER_SCRATCH_U32,
 };
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
@@ -28,8 +29,9 @@ pub const NLS_DIFFERENTIAL_BUTTERFLY: u32 = 1;
 /// `dirmag_levels` levels, plain Modified Butterfly on `Δ` after that.
 pub const NLS_DIFFERENTIAL_DIRMAG: u32 = 2;
 
-/// Options of [`nls_differential_plan`] and [`nls_differential_subdivide`]. Start from
-/// [`nls_differential_default_options`]. Plain data; the edit arrays are read, never kept.
+/// Options of `nls_differential_plan` and `nls_differential_subdivide`. Start from
+/// `nls_differential_default_options`; later versions append fields whose defaults keep the
+/// behaviour of this one. Plain data; the edit arrays are read, never kept.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct nls_differential_options {
@@ -51,10 +53,14 @@ pub struct nls_differential_options {
     /// §4.4 editing: NULL, or `3*vertex_count` replacement normal directions of the control
     /// vertices (normalised by the library; a zero vector keeps the vertex's own normal).
     pub normals: *const f64,
+    /// 0 or 1. With edits: a folded output (see the report's `folded_faces` and
+    /// `folded_edges`) is `NLS_STATUS_FOLDED_SURFACE` naming the first folded face. Without
+    /// edits it has no effect. Default 0.
+    pub strict: u32,
 }
 
-/// What [`nls_differential_subdivide`] did. Written on success and on
-/// `NLS_STATUS_NOT_CONVERGED` (then it says how far the solver got).
+/// What `nls_differential_subdivide` did. Written on success, on `NLS_STATUS_NOT_CONVERGED`
+/// (then it says how far the solver got) and on `NLS_STATUS_FOLDED_SURFACE`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct nls_differential_report {
@@ -70,6 +76,16 @@ pub struct nls_differential_report {
     pub relative_residual: f64,
     /// Relative residual of the warm start (the spatial subdivision).
     pub initial_residual: f64,
+    /// With edits: output faces whose normal turned by more than 90° from the same face of
+    /// the unedited reconstruction; 0 without edits.
+    pub folded_faces: u32,
+    /// The lowest such face, or `NLS_NO_ELEMENT`.
+    pub first_folded_face: u32,
+    /// With edits: interior output edges whose two faces' normals are more than 90° apart
+    /// where they are not in the unedited reconstruction; 0 without edits.
+    pub folded_edges: u32,
+    /// The lowest such edge as its two vertices `a < b`, or `NLS_NO_ELEMENT` twice.
+    pub first_folded_edge: [u32; 2],
 }
 
 fn report_of(r: &DifferentialReport) -> nls_differential_report {
@@ -80,10 +96,15 @@ fn report_of(r: &DifferentialReport) -> nls_differential_report {
         dirmag_degenerate: r.dirmag_degenerate,
         relative_residual: r.solve.relative_residual,
         initial_residual: r.solve.initial_residual,
+        folded_faces: r.folded_faces,
+        first_folded_face: r.first_folded_face,
+        folded_edges: r.folded_edges,
+        first_folded_edge: r.first_folded_edge,
     }
 }
 
-/// Writes the defaults: Loop, 1 level, no DirMag, 100 iterations, tolerance 1e-10, no edits.
+/// Writes the defaults: Loop, 1 level, no DirMag, 100 iterations, tolerance 1e-10, no edits,
+/// not strict.
 /// `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for a bad `out_options`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_differential_default_options(
@@ -104,6 +125,7 @@ pub unsafe extern "C" fn nls_differential_default_options(
                     tolerance: d.tolerance,
                     curvature_scale: core::ptr::null(),
                     normals: core::ptr::null(),
+                    strict: 0,
                 },
             )
         };
@@ -147,6 +169,7 @@ unsafe fn parse<'a>(
         vertex_count
     };
     let normal_n = if o.normals.is_null() { 0 } else { vertex_count };
+    let strict = crate::guard::flag(o.strict)?;
     check_ptr(o.curvature_scale, scale_n)?;
     check_ptr(o.normals.cast::<Point>(), normal_n)?;
     // SAFETY: checked (alignment, size); readable by the caller's contract.
@@ -169,8 +192,7 @@ unsafe fn parse<'a>(
             solve,
             curvature_scale: (!o.curvature_scale.is_null()).then_some(scale),
             normals: (!o.normals.is_null()).then_some(normals),
-            // The 0.1 options struct has no strict flag: edits are never refused here.
-            strict: false,
+            strict,
         },
         edits: [
             Span::of(o.curvature_scale, scale_n),
@@ -179,209 +201,155 @@ unsafe fn parse<'a>(
     })
 }
 
-/// The `uint32_t` scratch [`nls_differential_plan`] needs for a mesh of `vertex_count`
-/// vertices and `index_count` corners (its half-edge topology): `*out_scratch_u32` entries.
+/// Validates the mesh (triangles only) and the options and plans `nls_differential_subdivide`:
+/// the exact output sizes (those of the spatial Loop or Modified Butterfly subdivision) and
+/// the exact scratch it needs.
 ///
-/// Errors: `NLS_STATUS_SIZE_OVERFLOW`, `NLS_STATUS_NULL_PARAMETER`,
-/// `NLS_STATUS_MISALIGNED_POINTER`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn nls_differential_scratch_size(
-    vertex_count: usize,
-    index_count: usize,
-    out_scratch_u32: *mut usize,
-) -> Status {
-    run(|| {
-        check_ptr(out_scratch_u32.cast_const(), 1)?;
-        let mesh = RawMesh {
-            positions: core::ptr::null(),
-            vertex_count,
-            offsets: core::ptr::null(),
-            face_count: 0,
-            indices: core::ptr::null(),
-            index_count,
-        };
-        let u = super::topology_need(&mesh)?;
-        // SAFETY: checked above.
-        unsafe { store(out_scratch_u32, u) };
-        Ok(())
-    })
-}
-
-/// Validates the mesh (triangles only) and the options and plans
-/// [`nls_differential_subdivide`]: the exact output sizes (`*out_vertex_count`,
-/// `*out_face_count`, `*out_index_count`; those of the spatial Loop/Butterfly subdivision) and
-/// the scratch it needs, `*out_scratch_u32` entries and `*out_scratch_points` points
-/// (`3*` that many doubles).
+/// `scratch_u32` holds at least the entries of `nls_mesh_plan_scratch_size` (the input's
+/// topology) and must not overlap the mesh or the edit arrays.
 ///
-/// Mesh buffers as in `nls_mesh_subdivide_size`; `scratch_u32` holds at least
-/// `*out_scratch_u32` of [`nls_differential_scratch_size`] and must not overlap the mesh.
-///
-/// Errors: the validation errors of `nls_mesh_subdivide_size`;
+/// @param mesh the input mesh (positions may be strided).
+/// @param options the differential options.
+/// @param scratch_u32 `uint32_t` scratch for the validation.
+/// @param scratch_u32_capacity entries of `scratch_u32`.
+/// @param out_plan receives the plan, on success only.
+/// @param out_element may be NULL; otherwise receives, on failure only, the element at fault
+/// (as for `nls_mesh_plan`), `NLS_MESH_BUFFER_SCRATCH_U32` on `NLS_STATUS_BUFFER_TOO_SMALL`,
+/// or `NLS_NO_ELEMENT`.
+/// @return `NLS_STATUS_OK`; the validation errors of `nls_mesh_plan`;
 /// `NLS_STATUS_UNSUPPORTED_FACE_TYPE` naming the first face that is not a triangle;
 /// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `dirmag_levels` not matching the scheme,
-/// more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite
-/// edit value; `NLS_STATUS_BUFFER_TOO_SMALL` (`NLS_MESH_BUFFER_SCRATCH_U32`);
-/// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
-/// `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. `out_element` (may be NULL)
-/// as for `nls_mesh_subdivide_size`. Outputs are written on success only.
+/// more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0, `strict` not 0
+/// or 1, a bad stride); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite edit
+/// value; `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NULL_PARAMETER`,
+/// `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_ALIASING_BUFFERS` (also an out-pointer into a
+/// buffer of the call), `NLS_STATUS_FP_ENVIRONMENT`.
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn nls_differential_plan(
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
+    mesh: *const nls_mesh_view,
     options: *const nls_differential_options,
     scratch_u32: *mut u32,
     scratch_u32_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
-    out_scratch_u32: *mut usize,
-    out_scratch_points: *mut usize,
+    out_plan: *mut nls_plan,
     out_element: *mut u32,
 ) -> Status {
-    run_with_element(out_element, || {
-        let counts = Counts {
-            vertices: out_vertex_count,
-            faces: out_face_count,
-            indices: out_index_count,
-        };
-        counts.check()?;
-        check_ptr(out_scratch_u32.cast_const(), 1)?;
-        check_ptr(out_scratch_points.cast_const(), 1)?;
+    run_with_element(out_element, |element| {
+        // SAFETY: the caller passes NULL or a readable view.
+        let mesh = unsafe { RawMesh::read(mesh) }?;
+        check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let spans = mesh.check()?;
         // SAFETY: `options` and its arrays are readable by the caller's contract.
-        let parsed = unsafe { parse(options, vertex_count) }?;
-        check_scratch_u32(scratch_u32, scratch_u32_capacity, &spans)?;
-        let su = Span::of(scratch_u32.cast_const(), scratch_u32_capacity);
-        if parsed.edits.iter().any(|e| e.overlaps(su)) {
+        let parsed = unsafe { parse(options, mesh.vertex_count()) }?;
+        let [a, b, c] = mesh.spans();
+        let [e0, e1] = parsed.edits;
+        let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
+        check_out_pointers(
+            &[Span::of(out_plan.cast_const(), 1)],
+            element,
+            &[a, b, c, e0, e1, su],
+        )?;
+        mesh.check()?;
+        check_ptr(scratch_u32.cast_const(), scratch_u32_capacity)?;
+        if [a, b, c, e0, e1].iter().any(|i| su.overlaps(*i)) {
             return Err(Status::AliasingBuffers.into());
         }
-        if scratch_u32_capacity < super::topology_need(&mesh)? {
+        if scratch_u32_capacity < mesh.topology_need()? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) = unsafe {
             (
-                mesh.view(),
+                mesh.mesh()?,
                 super::slice_mut(scratch_u32, scratch_u32_capacity),
             )
         };
         let plan = diff::plan(view, &parsed.opts, scratch)?;
+        let plan = nls_plan {
+            output: sizes_of(&plan.output()),
+            scratch_u32: plan.scratch_u32,
+            scratch_points: plan.scratch_points,
+        };
         // SAFETY: checked above.
-        unsafe {
-            counts.write(&plan.output());
-            store(out_scratch_u32, plan.scratch_u32);
-            store(out_scratch_points, plan.scratch_points);
-        }
+        unsafe { store(out_plan, plan) };
         Ok(())
     })
 }
 
-/// Differential-space subdivision of the mesh (buffers as in `nls_mesh_subdivide`) with
-/// `options`, written to `out_positions` / `out_offsets` / `out_indices` (capacities as in
-/// `nls_mesh_subdivide`; output order and faces those of the spatial Loop or Modified
-/// Butterfly subdivision). Scratch: at least the sizes of [`nls_differential_plan`].
+/// Differential-space subdivision of the mesh with `options`, written to `out` (output order
+/// and faces those of the spatial Loop or Modified Butterfly subdivision). Scratch: at least
+/// the sizes of `nls_differential_plan`.
 ///
 /// Placement (documented choice): each boundary loop and each closed component is anchored
 /// at one vertex of the spatial subdivision, then every connected component is translated so
 /// its centroid equals that of the spatial subdivision. `levels = 0` returns the control mesh
 /// up to the tolerance; translating the input translates the output.
 ///
-/// On success the counts receive the sizes written and `*out_report` (may be NULL) the solver
-/// report. `NLS_STATUS_NOT_CONVERGED`: the solver reached `max_iterations`; the report is
-/// written (the one exception to "outputs on success only"), the counts are not, the output
-/// buffers hold no result. `NLS_STATUS_BUFFER_TOO_SMALL`: `*out_element` names the first
-/// short buffer (`NLS_MESH_BUFFER_*`, order scratch_u32, scratch_points, positions, offsets,
-/// indices) and the counts receive the output sizes; nothing is written to the outputs.
+/// `NLS_STATUS_NOT_CONVERGED`: the solver reached `max_iterations`; `NLS_STATUS_FOLDED_SURFACE`
+/// (`strict` with edits): an edit folded the output. In both cases the report is written (the
+/// exception to "outputs on success only"), `*out_sizes` is not, and the output buffers hold
+/// no result. `NLS_STATUS_BUFFER_TOO_SMALL`: `*out_element` names the first short buffer
+/// (`NLS_MESH_BUFFER_*`, order `scratch->u32s`, `scratch->points`, positions, offsets,
+/// indices) and `*out_sizes` receives the output sizes; nothing is written to the outputs.
 /// After any other error the output and scratch contents are unspecified.
 ///
-/// Errors: those of [`nls_differential_plan`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
-/// `NLS_STATUS_NOT_CONVERGED`; `NLS_STATUS_NUMERICAL_FAILURE` (a non-finite iterate or
-/// result, naming the vertex when known).
+/// @param mesh the input mesh (positions may be strided).
+/// @param options the differential options.
+/// @param scratch at least the scratch of `nls_differential_plan`.
+/// @param out the output buffers.
+/// @param out_sizes receives the sizes written (and see `NLS_STATUS_BUFFER_TOO_SMALL`).
+/// @param out_report may be NULL; receives the solver report.
+/// @param out_element may be NULL; otherwise receives, on failure only, the element at fault
+/// (for `NLS_STATUS_FOLDED_SURFACE` the first folded face), the buffer on
+/// `NLS_STATUS_BUFFER_TOO_SMALL`, or `NLS_NO_ELEMENT`.
+/// @return `NLS_STATUS_OK`; the errors of `nls_differential_plan`;
+/// `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NOT_CONVERGED`; `NLS_STATUS_FOLDED_SURFACE`;
+/// `NLS_STATUS_NUMERICAL_FAILURE` (a non-finite iterate or result, naming the vertex when
+/// known); `NLS_STATUS_DEGENERATE_GEOMETRY` (a normal edit at a control vertex whose surface
+/// normal is zero, naming the vertex); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
+/// call or into another out-pointer.
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn nls_differential_subdivide(
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
+    mesh: *const nls_mesh_view,
     options: *const nls_differential_options,
-    scratch_u32: *mut u32,
-    scratch_u32_capacity: usize,
-    scratch_points: *mut f64,
-    scratch_point_capacity: usize,
-    out_positions: *mut f64,
-    out_vertex_capacity: usize,
-    out_offsets: *mut u32,
-    out_face_capacity: usize,
-    out_indices: *mut u32,
-    out_index_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
+    scratch: *const nls_scratch,
+    out: *const nls_mesh_buffers,
+    out_sizes: *mut nls_mesh_sizes,
     out_report: *mut nls_differential_report,
     out_element: *mut u32,
 ) -> Status {
     let mut needed: Option<MeshSizes> = None;
     let mut partial: Option<nls_differential_report> = None;
-    let counts = Counts {
-        vertices: out_vertex_count,
-        faces: out_face_count,
-        indices: out_index_count,
-    };
-    let status = run_with_element(out_element, || {
-        counts.check()?;
+    let mut outs_ok = false;
+    let status = run_with_element(out_element, |element| {
+        // SAFETY: the caller passes NULL or readable structs.
+        let (mesh, raw) = unsafe { (RawMesh::read(mesh)?, RawOut::read(scratch, out)?) };
+        check_ptr(out_sizes.cast_const(), 1)?;
         check_optional(out_report)?;
         check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let [a, b, c] = mesh.check()?;
         // SAFETY: `options` and its arrays are readable by the caller's contract.
-        let parsed = unsafe { parse(options, vertex_count) }?;
-        let raw = RawOut {
-            scratch_u32,
-            scratch_u32_capacity,
-            scratch_points,
-            scratch_point_capacity,
-            positions: out_positions,
-            vertex_capacity: out_vertex_capacity,
-            offsets: out_offsets,
-            face_capacity: out_face_capacity,
-            indices: out_indices,
-            index_capacity: out_index_capacity,
-        };
-        raw.check(&[a, b, c])?;
+        let parsed = unsafe { parse(options, mesh.vertex_count()) }?;
+        let [a, b, c] = mesh.spans();
         let [e0, e1] = parsed.edits;
-        raw.check(&[e0, e1, e1])?;
-        if scratch_u32_capacity < super::topology_need(&mesh)? {
+        let [s0, s1, s2, s3, s4] = raw.spans();
+        check_out_pointers(
+            &[
+                Span::of(out_sizes.cast_const(), 1),
+                Span::of(out_report.cast_const(), usize::from(!out_report.is_null())),
+            ],
+            element,
+            &[a, b, c, e0, e1, s0, s1, s2, s3, s4],
+        )?;
+        outs_ok = true;
+        mesh.check()?;
+        raw.check(&[a, b, c, e0, e1])?;
+        if raw.scratch.u32_capacity < mesh.topology_need()? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
-        let (view, (su, sp, mut out)) = unsafe { (mesh.view(), raw.slices()) };
+        let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
         let plan = {
             let need = diff::plan_scratch_len(&view)?;
             let s = su
@@ -390,9 +358,9 @@ pub unsafe extern "C" fn nls_differential_subdivide(
             diff::plan(view, &parsed.opts, s)?
         };
         let sizes = plan.output();
-        let short = if scratch_u32_capacity < plan.scratch_u32 {
+        let short = if raw.scratch.u32_capacity < plan.scratch_u32 {
             Some(NLS_MESH_BUFFER_SCRATCH_U32)
-        } else if scratch_point_capacity < plan.scratch_points {
+        } else if raw.scratch.point_capacity < plan.scratch_points {
             Some(NLS_MESH_BUFFER_SCRATCH_POINTS)
         } else {
             None
@@ -410,7 +378,7 @@ pub unsafe extern "C" fn nls_differential_subdivide(
             Ok(written) => {
                 // SAFETY: checked above.
                 unsafe {
-                    counts.write(&written);
+                    store(out_sizes, sizes_of(&written));
                     if !out_report.is_null() {
                         store(out_report, report_of(&rep));
                     }
@@ -418,20 +386,20 @@ pub unsafe extern "C" fn nls_differential_subdivide(
                 Ok(())
             }
             Err(e) => {
-                if e.status == Status::NotConverged {
+                if matches!(e.status, Status::NotConverged | Status::FoldedSurface) {
                     partial = Some(report_of(&rep));
                 }
                 Err(Fail::from(e))
             }
         }
     });
-    if let (Status::BufferTooSmall, Some(sizes)) = (status, needed) {
-        // SAFETY: the counts were checked before the sizes were computed.
-        unsafe { counts.write(&sizes) };
+    if let (Status::BufferTooSmall, Some(sizes), true) = (status, needed, outs_ok) {
+        // SAFETY: checked before the sizes were computed.
+        unsafe { store(out_sizes, sizes_of(&sizes)) };
     }
-    if let (Status::NotConverged, Some(r)) = (status, partial) {
+    if let (Some(r), true) = (partial, outs_ok) {
         if !out_report.is_null() {
-            // SAFETY: checked (optional, aligned) before the solve ran.
+            // SAFETY: checked (optional, aligned, outside every buffer) before the solve ran.
             unsafe { store(out_report, r) };
         }
     }

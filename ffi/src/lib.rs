@@ -30,7 +30,7 @@ pub use nlsubdiv::Status;
 /// Major version of the library (also `NLS_VERSION_MAJOR` in the header).
 pub const NLS_VERSION_MAJOR: u32 = 0;
 /// Minor version of the library (also `NLS_VERSION_MINOR`).
-pub const NLS_VERSION_MINOR: u32 = 1;
+pub const NLS_VERSION_MINOR: u32 = 2;
 /// Patch version of the library (also `NLS_VERSION_PATCH`).
 pub const NLS_VERSION_PATCH: u32 = 0;
 
@@ -115,6 +115,83 @@ mod tests {
         ] {
             assert!(header.contains(sig), "missing exact signature:\n{sig}");
         }
+    }
+
+    /// The exported functions of the header, each as its name and parameter list.
+    fn header_functions() -> Vec<(String, Vec<String>)> {
+        let header = include_str!("../../include/nlsubdiv.h");
+        // Declarations only (comments removed), each ending at its `;`.
+        let mut code = String::new();
+        let mut in_block = false;
+        for line in header.lines() {
+            let t = line.trim_start();
+            if in_block {
+                in_block = !t.contains("*/");
+                continue;
+            }
+            if t.starts_with("/*") {
+                in_block = !t.contains("*/");
+                continue;
+            }
+            if t.starts_with('#') || t.starts_with("//") {
+                continue;
+            }
+            code.push_str(line);
+            code.push(' ');
+        }
+        let mut out = Vec::new();
+        for decl in code.split(';') {
+            // What follows a brace (`extern "C" {`, the end of a struct) starts a declaration.
+            let decl = decl.rsplit(['{', '}']).next().unwrap_or("").trim();
+            let Some(open) = decl.find('(') else { continue };
+            let head = &decl[..open];
+            let Some(name) = head.split_whitespace().last() else {
+                continue;
+            };
+            let name = name.trim_start_matches('*');
+            if !name.starts_with("nls_") || head.contains("typedef") {
+                continue;
+            }
+            let close = decl.rfind(')').unwrap();
+            let params: Vec<String> = decl[open + 1..close]
+                .split(',')
+                .map(|p| p.trim().to_string())
+                .filter(|p| !p.is_empty() && p != "void")
+                .collect();
+            out.push((name.to_string(), params));
+        }
+        out
+    }
+
+    /// No exported function takes more than ten parameters (struct arguments instead).
+    #[test]
+    fn no_export_has_more_than_ten_parameters() {
+        let fns = header_functions();
+        assert!(fns.len() >= 40, "{} functions found", fns.len());
+        assert!(fns
+            .iter()
+            .any(|(n, p)| n == "nls_mesh_subdivide" && p.len() == 7));
+        assert!(fns.iter().any(|(n, p)| n == "nls_version" && p.is_empty()));
+        for (name, params) in &fns {
+            assert!(
+                params.len() <= 10,
+                "{name} takes {} parameters",
+                params.len()
+            );
+            assert!(!name.ends_with("_len"), "{name}: sizes are named _size");
+        }
+    }
+
+    /// The header is for C readers: no rustdoc link syntax, a Doxygen file block.
+    #[test]
+    fn header_has_no_rustdoc_links() {
+        let header = include_str!("../../include/nlsubdiv.h");
+        for (i, line) in header.lines().enumerate() {
+            assert!(!line.contains("[`"), "line {}: {line}", i + 1);
+            assert!(!line.contains("`]"), "line {}: {line}", i + 1);
+            assert!(!line.contains("]("), "line {}: {line}", i + 1);
+        }
+        assert!(header.starts_with("/**\n * @file nlsubdiv.h"));
     }
 
     #[test]

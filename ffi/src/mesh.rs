@@ -1,15 +1,20 @@
 //! Exports of whole-mesh subdivision (`nlsubdiv::scheme`): the linear schemes and their
 //! canonical Möbius versions (seed 000 §4), one level or several, over caller buffers.
 //!
-//! Buffers follow meshoptimizer: positions `double[3*vertex_count]` (packed `x, y, z`), faces
-//! in CSR form, `offsets[face_count + 1]` and `indices[index_count]`, counter-clockwise seen
-//! from outside. Scratch comes from the caller in two arrays: `uint32_t` entries (the
-//! half-edge topology) and points (`double[3*n]`, the candidates of the Möbius schemes and the
-//! intermediate levels of a multi-level call). No buffer is allocated, none is kept.
+//! Buffers follow meshoptimizer: positions `x, y, z` per vertex (packed, or with a byte
+//! stride in the input), faces in CSR form, `offsets[face_count + 1]` and
+//! `indices[index_count]`, counter-clockwise seen from outside. Scratch comes from the caller
+//! in two arrays: `uint32_t` entries (the half-edge topology) and points (`double[3*n]`, the
+//! candidates of the Möbius schemes and the intermediate levels of a multi-level call). No
+//! buffer is allocated, none is kept.
+//!
+//! The arguments travel in plain-data structs (`nls_mesh_view`, `nls_mesh_buffers`,
+//! `nls_scratch`, `nls_subdivide_options`), so that no export needs more than ten
+//! parameters and the same description of a mesh serves every call.
 
 use core::mem::size_of;
 
-use nlsubdiv::mesh::{topology_scratch_size, Mesh, MeshOut, MeshSizes, MAX_COUNT};
+use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, MAX_COUNT};
 use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
@@ -55,15 +60,112 @@ pub const NLS_SUBDIVIDE_STRICT: u32 = 1u32 << 1;
 pub const NLS_MESH_BUFFER_SCRATCH_U32: u32 = 0;
 /// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the point scratch is short.
 pub const NLS_MESH_BUFFER_SCRATCH_POINTS: u32 = 1;
-/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_positions` is short.
+/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the output positions are short.
 pub const NLS_MESH_BUFFER_POSITIONS: u32 = 2;
-/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_offsets` is short.
+/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the output offsets are short.
 pub const NLS_MESH_BUFFER_OFFSETS: u32 = 3;
-/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: `out_indices` is short.
+/// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the output indices are short.
 pub const NLS_MESH_BUFFER_INDICES: u32 = 4;
 
-/// The largest number of levels of one [`nls_mesh_subdivide_levels`] call.
+/// The largest number of levels of one `nls_mesh_subdivide` or `nls_differential_subdivide`
+/// call.
 pub const NLS_MAX_LEVELS: u32 = 16;
+
+/// An input mesh, read only. Plain data: the library reads the struct and the arrays it
+/// points to during a call and keeps nothing.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct nls_mesh_view {
+    /// Vertex `v` is `x, y, z` at byte offset `v * positions_stride` (other attributes may
+    /// follow each vertex; they are not read).
+    pub positions: *const f64,
+    /// Number of vertices (referenced or not).
+    pub vertex_count: usize,
+    /// Bytes from one vertex to the next: 0 means packed (24 bytes); any other value must be
+    /// a multiple of 8 and at least 24, else `NLS_STATUS_INVALID_ARGUMENT`.
+    pub positions_stride: usize,
+    /// `face_count + 1` entries: `offsets[0] = 0`, non-decreasing,
+    /// `offsets[face_count] = index_count` (never NULL; an empty mesh is `{0}`).
+    pub offsets: *const u32,
+    /// Number of faces.
+    pub face_count: usize,
+    /// The corners of all faces, face after face (`offsets[face_count]` entries).
+    pub indices: *const u32,
+    /// Number of corners (entries of `indices`).
+    pub index_count: usize,
+}
+
+/// Output buffers and their capacities (positions always packed: 3 doubles per vertex).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct nls_mesh_buffers {
+    /// Room for `vertex_capacity` points (`3 * vertex_capacity` doubles).
+    pub positions: *mut f64,
+    /// Points `positions` holds.
+    pub vertex_capacity: usize,
+    /// Room for `face_capacity + 1` entries.
+    pub offsets: *mut u32,
+    /// Faces `offsets` can describe.
+    pub face_capacity: usize,
+    /// Room for `index_capacity` entries.
+    pub indices: *mut u32,
+    /// Entries `indices` holds.
+    pub index_capacity: usize,
+}
+
+/// The sizes of a mesh: what a call writes, or must be able to write.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct nls_mesh_sizes {
+    /// Number of vertices (points).
+    pub vertex_count: usize,
+    /// Number of faces (the offsets buffer holds one more entry).
+    pub face_count: usize,
+    /// Number of corners (entries of the indices buffer).
+    pub index_count: usize,
+}
+
+/// Caller scratch: `uint32_t` entries and points. The contents are unspecified after a call.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct nls_scratch {
+    /// Room for `u32_capacity` entries.
+    pub u32s: *mut u32,
+    /// Entries `u32s` holds.
+    pub u32_capacity: usize,
+    /// Room for `point_capacity` points (`3 * point_capacity` doubles).
+    pub points: *mut f64,
+    /// Points `points` holds.
+    pub point_capacity: usize,
+}
+
+/// What `nls_mesh_plan` and `nls_mesh_subdivide` are asked to do. Start from
+/// `nls_subdivide_default_options`; later versions append fields whose defaults keep the
+/// behaviour of this one.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct nls_subdivide_options {
+    /// `NLS_SCHEME_*`.
+    pub scheme: u32,
+    /// `NLS_SUBDIVIDE_MOBIUS` and/or `NLS_SUBDIVIDE_STRICT`; other bits are
+    /// `NLS_STATUS_INVALID_ARGUMENT`.
+    pub flags: u32,
+    /// Levels, 0 to `NLS_MAX_LEVELS` (0 validates the mesh and copies it).
+    pub levels: u32,
+}
+
+/// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
+/// is `nls_plan`: C has one name space for functions and types).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct nls_plan {
+    /// The exact sizes of the output: what the output buffers must hold.
+    pub output: nls_mesh_sizes,
+    /// The exact `uint32_t` scratch of the subdivision call (entries).
+    pub scratch_u32: usize,
+    /// The exact point scratch of the subdivision call (points, 3 doubles each).
+    pub scratch_points: usize,
+}
 
 /// What a subdivision call had to do besides the rules of the scheme: the elements that took
 /// the documented linear fallback (Möbius schemes on degenerate neighbourhoods: coincident
@@ -76,30 +178,33 @@ pub struct nls_subdivide_report {
     /// The first such output vertex (of level `first_fallback_level`), or `UINT32_MAX`
     /// (`NLS_NO_ELEMENT`) when there was none.
     pub first_fallback: u32,
-    /// The level of `first_fallback`, counted from 1 (always 1 for a one-level call), or 0
-    /// when there was no fallback.
+    /// The level of `first_fallback`, counted from 1, or 0 when there was no fallback.
     pub first_fallback_level: u32,
 }
 
-/// A scheme code and flag bits, parsed into the options of the Rust path (one level; the
-/// multi-level exports set their levels).
-fn options(scheme: u32, flags: u32) -> Result<Options, Status> {
-    let scheme = Scheme::from_code(scheme).ok_or(Status::InvalidArgument)?;
+/// The options struct as the Rust path's options.
+fn parse_options(o: &nls_subdivide_options) -> Result<Options, Status> {
+    let scheme = Scheme::from_code(o.scheme).ok_or(Status::InvalidArgument)?;
+    let flags = o.flags;
     if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT) != 0 {
         return Err(Status::InvalidArgument);
     }
     if flags & NLS_SUBDIVIDE_MOBIUS != 0 && !scheme.has_mobius_form() {
         return Err(Status::InvalidArgument);
     }
+    if o.levels > NLS_MAX_LEVELS {
+        return Err(Status::InvalidArgument);
+    }
     Ok(Options::new(scheme)
         .mobius(flags & NLS_SUBDIVIDE_MOBIUS != 0)
-        .strict(flags & NLS_SUBDIVIDE_STRICT != 0))
+        .strict(flags & NLS_SUBDIVIDE_STRICT != 0)
+        .levels(o.levels as usize))
 }
 
 /// A failure: the status and the element written to `out_element`.
-struct Fail {
-    status: Status,
-    element: u32,
+pub(crate) struct Fail {
+    pub(crate) status: Status,
+    pub(crate) element: u32,
 }
 
 impl From<Status> for Fail {
@@ -127,17 +232,32 @@ fn too_small(buffer: u32) -> Fail {
     }
 }
 
+/// Whether `out_element` may be written on failure: set to false by [`check_out_pointers`]
+/// when it points into a buffer of the call (the write would corrupt it).
+pub(crate) struct ElementSlot {
+    ptr: *mut u32,
+    writable: bool,
+}
+
 /// Runs an export body; on failure writes the element to `out_element` when it is a valid
-/// pointer (the one exception to "written only on success", as in `nls_curve_subdivide`).
-fn run_with_element(out_element: *mut u32, body: impl FnOnce() -> Result<(), Fail>) -> Status {
+/// pointer that points into no buffer of the call (the one exception to "written only on
+/// success").
+fn run_with_element(
+    out_element: *mut u32,
+    body: impl FnOnce(&mut ElementSlot) -> Result<(), Fail>,
+) -> Status {
     let _traps = crate::guard::FpTrapGuard::mask_traps();
-    match body() {
+    let mut slot = ElementSlot {
+        ptr: out_element,
+        writable: !out_element.is_null() && out_element.is_aligned(),
+    };
+    match body(&mut slot) {
         Ok(()) => Status::Ok,
         Err(f) => {
-            if !out_element.is_null() && out_element.is_aligned() {
-                // SAFETY: non-NULL and aligned; writable by the caller's contract. Every slice
-                // formed from the caller's buffers is gone by now.
-                unsafe { out_element.write(f.element) };
+            if slot.writable {
+                // SAFETY: non-NULL, aligned, outside every buffer of the call; writable by the
+                // caller's contract. Every slice formed from the caller's buffers is gone.
+                unsafe { slot.ptr.write(f.element) };
             }
             f.status
         }
@@ -149,6 +269,16 @@ fn check_optional<T>(p: *mut T) -> Result<(), Status> {
     check_ptr(p.cast_const(), usize::from(!p.is_null()))
 }
 
+/// Reads a struct argument.
+///
+/// # Safety
+/// `p` is NULL or points to a readable `T`.
+unsafe fn read_arg<T: Copy>(p: *const T) -> Result<T, Status> {
+    check_ptr(p, 1)?;
+    // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
+    Ok(unsafe { p.read() })
+}
+
 /// # Safety
 /// `p` passed `check_ptr(p, 1)` (non-NULL, aligned) and points to a writable `T`.
 unsafe fn store<T>(p: *mut T, v: T) {
@@ -158,21 +288,35 @@ unsafe fn store<T>(p: *mut T, v: T) {
 
 /// A byte range of a caller buffer, for the overlap checks.
 #[derive(Clone, Copy)]
-struct Span {
+pub(crate) struct Span {
     start: usize,
     bytes: usize,
 }
 
 impl Span {
-    /// `count` elements of `T` at `p` (`check_ptr` bounds the byte size by `isize::MAX`).
-    fn of<T>(p: *const T, count: usize) -> Span {
+    /// `count` elements of `T` at `p` (saturating: the pointer checks bound real sizes).
+    pub(crate) fn of<T>(p: *const T, count: usize) -> Span {
         Span {
             start: p as usize,
             bytes: count.saturating_mul(size_of::<T>()),
         }
     }
 
-    fn overlaps(self, other: Span) -> bool {
+    /// `count` elements of `T` at `p` when that is a valid buffer (`check_ptr`), else nothing:
+    /// a buffer that fails its own check is reported as such, never as an overlap.
+    pub(crate) fn checked<T>(p: *const T, count: usize) -> Span {
+        match check_ptr(p, count) {
+            Ok(()) => Span::of(p, count),
+            Err(_) => Span { start: 0, bytes: 0 },
+        }
+    }
+
+    /// One `T` at `p` when `p` is not NULL, else nothing.
+    fn of_one<T>(p: *mut T) -> Span {
+        Span::of(p.cast_const(), usize::from(!p.is_null()))
+    }
+
+    pub(crate) fn overlaps(self, other: Span) -> bool {
         self.bytes > 0
             && other.bytes > 0
             && self.start < other.start.saturating_add(other.bytes)
@@ -180,51 +324,122 @@ impl Span {
     }
 }
 
-/// The input mesh as the caller passed it.
+/// The out-pointers of a call (`out_sizes`, `out_report`, `out_plan`, `out_element`: each
+/// one value) must not point into any buffer of the call nor into each other: a write
+/// through one would corrupt an input, an output or scratch (`NLS_STATUS_ALIASING_BUFFERS`).
+/// `out_element` is then not written either.
+fn check_out_pointers(
+    outs: &[Span],
+    element: &mut ElementSlot,
+    buffers: &[Span],
+) -> Result<(), Status> {
+    let e = Span::of_one(element.ptr);
+    let all_outs = || outs.iter().copied().chain(core::iter::once(e));
+    for (i, o) in all_outs().enumerate() {
+        let clash =
+            buffers.iter().any(|b| o.overlaps(*b)) || all_outs().skip(i + 1).any(|b| o.overlaps(b));
+        if clash {
+            if buffers.iter().any(|b| e.overlaps(*b)) || outs.iter().any(|b| e.overlaps(*b)) {
+                element.writable = false;
+            }
+            return Err(Status::AliasingBuffers);
+        }
+    }
+    Ok(())
+}
+
+/// The input mesh of a call, with its positions described as `f64`s.
 #[derive(Clone, Copy)]
-struct RawMesh {
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
+pub(crate) struct RawMesh {
+    view: nls_mesh_view,
+    /// Stride in `f64`s (3 when packed).
+    stride: usize,
+    /// `f64`s from the first coordinate to the last one read.
+    coords: usize,
 }
 
 impl RawMesh {
-    /// Checks the three input pointers and returns their byte ranges.
-    fn check(&self) -> Result<[Span; 3], Status> {
-        let offsets_len = self.face_count.checked_add(1).ok_or(Status::SizeOverflow)?;
-        check_ptr(self.positions.cast::<Point>(), self.vertex_count)?;
-        check_ptr(self.offsets, offsets_len)?;
-        check_ptr(self.indices, self.index_count)?;
-        Ok([
-            Span::of(self.positions.cast::<Point>(), self.vertex_count),
-            Span::of(self.offsets, offsets_len),
-            Span::of(self.indices, self.index_count),
-        ])
+    /// Reads the view and its stride rule.
+    ///
+    /// # Safety
+    /// `p` is NULL or points to a readable `nls_mesh_view`.
+    pub(crate) unsafe fn read(p: *const nls_mesh_view) -> Result<RawMesh, Status> {
+        // SAFETY: by the caller's contract.
+        let view = unsafe { read_arg(p) }?;
+        let stride = match view.positions_stride {
+            0 => 3,
+            s if s % 8 == 0 && s >= 24 => s / 8,
+            _ => return Err(Status::InvalidArgument),
+        };
+        let coords = match view.vertex_count {
+            0 => 0,
+            n => (n - 1)
+                .checked_mul(stride)
+                .and_then(|c| c.checked_add(3))
+                .ok_or(Status::SizeOverflow)?,
+        };
+        Ok(RawMesh {
+            view,
+            stride,
+            coords,
+        })
     }
 
-    /// The core's view of the mesh.
+    /// The byte ranges of the three input arrays (empty for an array that fails its check).
+    pub(crate) fn spans(&self) -> [Span; 3] {
+        let v = &self.view;
+        [
+            Span::checked(v.positions, self.coords),
+            Span::checked(v.offsets, v.face_count.saturating_add(1)),
+            Span::checked(v.indices, v.index_count),
+        ]
+    }
+
+    /// Checks the three input pointers (NULL, alignment, size).
+    pub(crate) fn check(&self) -> Result<(), Status> {
+        let v = &self.view;
+        let offsets_len = v.face_count.checked_add(1).ok_or(Status::SizeOverflow)?;
+        check_ptr(v.positions, self.coords)?;
+        check_ptr(v.offsets, offsets_len)?;
+        check_ptr(v.indices, v.index_count)
+    }
+
+    pub(crate) fn vertex_count(&self) -> usize {
+        self.view.vertex_count
+    }
+
+    /// The `uint32_t` scratch of the input's topology (the validation), from the counts.
+    pub(crate) fn topology_need(&self) -> Result<usize, Status> {
+        let v = &self.view;
+        if v.vertex_count > MAX_COUNT || v.index_count > MAX_COUNT {
+            return Err(Status::SizeOverflow);
+        }
+        nlsubdiv::mesh::topology_scratch_size(v.vertex_count, v.index_count).map_err(|e| e.status)
+    }
+
+    /// The core's view of the mesh; strided positions are read in place.
     ///
     /// # Safety
     /// [`RawMesh::check`] passed, and the three buffers are readable for their counts and not
     /// written while the view lives.
-    unsafe fn view<'a>(&self) -> Mesh<'a> {
+    pub(crate) unsafe fn mesh<'a>(&self) -> Result<Mesh<'a>, Status> {
+        let v = &self.view;
         // SAFETY: by the caller's contract (checked, readable, unaliased by writes).
-        unsafe {
-            Mesh::new(
-                slice(self.positions.cast::<Point>(), self.vertex_count),
-                slice(self.offsets, self.face_count.saturating_add(1)),
-                slice(self.indices, self.index_count),
+        let (coords, offsets, indices) = unsafe {
+            (
+                slice(v.positions, self.coords),
+                slice(v.offsets, v.face_count.saturating_add(1)),
+                slice(v.indices, v.index_count),
             )
-        }
+        };
+        Mesh::with_stride(coords, self.stride, v.vertex_count, offsets, indices)
+            .map_err(|e| e.status)
     }
 }
 
 /// # Safety
 /// `p` passed `check_ptr(p, count)` and is readable for `count` elements during `'a`.
-unsafe fn slice<'a, T>(p: *const T, count: usize) -> &'a [T] {
+pub(crate) unsafe fn slice<'a, T>(p: *const T, count: usize) -> &'a [T] {
     if count == 0 {
         return &[];
     }
@@ -235,7 +450,7 @@ unsafe fn slice<'a, T>(p: *const T, count: usize) -> &'a [T] {
 /// # Safety
 /// `p` passed `check_ptr(p, count)`, is writable for `count` elements and overlaps no other
 /// slice alive during `'a`.
-unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> &'a mut [T] {
+pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> &'a mut [T] {
     if count == 0 {
         return &mut [];
     }
@@ -244,52 +459,53 @@ unsafe fn slice_mut<'a, T>(p: *mut T, count: usize) -> &'a mut [T] {
     unsafe { core::slice::from_raw_parts_mut(p, count) }
 }
 
-/// The caller's scratch and output buffers (capacities as passed: points, faces, entries).
+/// The caller's scratch and output buffers of a subdivision call.
 #[derive(Clone, Copy)]
-struct RawOut {
-    scratch_u32: *mut u32,
-    scratch_u32_capacity: usize,
-    scratch_points: *mut f64,
-    scratch_point_capacity: usize,
-    positions: *mut f64,
-    vertex_capacity: usize,
-    offsets: *mut u32,
-    face_capacity: usize,
-    indices: *mut u32,
-    index_capacity: usize,
+pub(crate) struct RawOut {
+    pub(crate) scratch: nls_scratch,
+    pub(crate) out: nls_mesh_buffers,
 }
 
 impl RawOut {
+    /// Reads the two structs.
+    ///
+    /// # Safety
+    /// Each pointer is NULL or points to a readable struct.
+    pub(crate) unsafe fn read(
+        scratch: *const nls_scratch,
+        out: *const nls_mesh_buffers,
+    ) -> Result<RawOut, Status> {
+        // SAFETY: by the caller's contract.
+        unsafe {
+            Ok(RawOut {
+                scratch: read_arg(scratch)?,
+                out: read_arg(out)?,
+            })
+        }
+    }
+
+    /// The byte ranges of the five buffers (empty for a buffer that fails its check).
+    pub(crate) fn spans(&self) -> [Span; 5] {
+        let (s, o) = (&self.scratch, &self.out);
+        [
+            Span::checked(s.u32s.cast_const(), s.u32_capacity),
+            Span::checked(s.points.cast_const().cast::<Point>(), s.point_capacity),
+            Span::checked(o.positions.cast_const().cast::<Point>(), o.vertex_capacity),
+            Span::checked(o.offsets.cast_const(), o.face_capacity.saturating_add(1)),
+            Span::checked(o.indices.cast_const(), o.index_capacity),
+        ]
+    }
+
     /// Checks every pointer and that no buffer overlaps an input or another buffer.
-    fn check(&self, inputs: &[Span; 3]) -> Result<(), Status> {
-        let offsets_len = self
-            .face_capacity
-            .checked_add(1)
-            .ok_or(Status::SizeOverflow)?;
-        check_ptr(self.scratch_u32.cast_const(), self.scratch_u32_capacity)?;
-        check_ptr(
-            self.scratch_points.cast_const().cast::<Point>(),
-            self.scratch_point_capacity,
-        )?;
-        check_ptr(
-            self.positions.cast_const().cast::<Point>(),
-            self.vertex_capacity,
-        )?;
-        check_ptr(self.offsets.cast_const(), offsets_len)?;
-        check_ptr(self.indices.cast_const(), self.index_capacity)?;
-        let spans = [
-            Span::of(self.scratch_u32.cast_const(), self.scratch_u32_capacity),
-            Span::of(
-                self.scratch_points.cast_const().cast::<Point>(),
-                self.scratch_point_capacity,
-            ),
-            Span::of(
-                self.positions.cast_const().cast::<Point>(),
-                self.vertex_capacity,
-            ),
-            Span::of(self.offsets.cast_const(), offsets_len),
-            Span::of(self.indices.cast_const(), self.index_capacity),
-        ];
+    pub(crate) fn check(&self, inputs: &[Span]) -> Result<(), Status> {
+        let (s, o) = (&self.scratch, &self.out);
+        let offsets_len = o.face_capacity.checked_add(1).ok_or(Status::SizeOverflow)?;
+        check_ptr(s.u32s.cast_const(), s.u32_capacity)?;
+        check_ptr(s.points.cast_const().cast::<Point>(), s.point_capacity)?;
+        check_ptr(o.positions.cast_const().cast::<Point>(), o.vertex_capacity)?;
+        check_ptr(o.offsets.cast_const(), offsets_len)?;
+        check_ptr(o.indices.cast_const(), o.index_capacity)?;
+        let spans = self.spans();
         for (i, a) in spans.iter().enumerate() {
             let clash = inputs.iter().any(|b| a.overlaps(*b))
                 || spans.iter().skip(i + 1).any(|b| a.overlaps(*b));
@@ -302,14 +518,14 @@ impl RawOut {
 
     /// `NLS_STATUS_BUFFER_TOO_SMALL` naming the first output buffer that cannot hold `sizes`
     /// (positions, offsets, indices).
-    fn check_sizes(&self, sizes: &MeshSizes) -> Result<(), Fail> {
-        if self.vertex_capacity < sizes.vertices {
+    pub(crate) fn check_sizes(&self, sizes: &MeshSizes) -> Result<(), Fail> {
+        if self.out.vertex_capacity < sizes.vertices {
             return Err(too_small(NLS_MESH_BUFFER_POSITIONS));
         }
-        if self.face_capacity < sizes.faces {
+        if self.out.face_capacity < sizes.faces {
             return Err(too_small(NLS_MESH_BUFFER_OFFSETS));
         }
-        if self.index_capacity < sizes.indices {
+        if self.out.index_capacity < sizes.indices {
             return Err(too_small(NLS_MESH_BUFFER_INDICES));
         }
         Ok(())
@@ -320,85 +536,31 @@ impl RawOut {
     /// # Safety
     /// [`RawOut::check`] passed and the buffers are writable for their capacities during
     /// `'a`; no other reference to them is alive.
-    unsafe fn slices<'a>(&self) -> (&'a mut [u32], &'a mut [Point], MeshOut<'a>) {
+    pub(crate) unsafe fn slices<'a>(&self) -> (&'a mut [u32], &'a mut [Point], MeshOut<'a>) {
+        let (s, o) = (&self.scratch, &self.out);
         // SAFETY: checked (NULL, alignment, size) and pairwise disjoint (RawOut::check);
         // writable by the caller's contract.
         unsafe {
             (
-                slice_mut(self.scratch_u32, self.scratch_u32_capacity),
-                slice_mut(
-                    self.scratch_points.cast::<Point>(),
-                    self.scratch_point_capacity,
-                ),
+                slice_mut(s.u32s, s.u32_capacity),
+                slice_mut(s.points.cast::<Point>(), s.point_capacity),
                 MeshOut::new(
-                    slice_mut(self.positions.cast::<Point>(), self.vertex_capacity),
-                    slice_mut(self.offsets, self.face_capacity.saturating_add(1)),
-                    slice_mut(self.indices, self.index_capacity),
+                    slice_mut(o.positions.cast::<Point>(), o.vertex_capacity),
+                    slice_mut(o.offsets, o.face_capacity.saturating_add(1)),
+                    slice_mut(o.indices, o.index_capacity),
                 ),
             )
         }
     }
 }
 
-/// Checks the `uint32_t` scratch of the size queries: pointer, and no overlap with the mesh.
-fn check_scratch_u32(p: *mut u32, capacity: usize, inputs: &[Span; 3]) -> Result<(), Status> {
-    check_ptr(p.cast_const(), capacity)?;
-    let span = Span::of(p.cast_const(), capacity);
-    if inputs.iter().any(|b| span.overlaps(*b)) {
-        return Err(Status::AliasingBuffers);
+/// The C sizes of Rust ones.
+pub(crate) fn sizes_of(s: &MeshSizes) -> nls_mesh_sizes {
+    nls_mesh_sizes {
+        vertex_count: s.vertices,
+        face_count: s.faces,
+        index_count: s.indices,
     }
-    Ok(())
-}
-
-/// The three count out-parameters.
-#[derive(Clone, Copy)]
-struct Counts {
-    vertices: *mut usize,
-    faces: *mut usize,
-    indices: *mut usize,
-}
-
-impl Counts {
-    fn check(&self) -> Result<(), Status> {
-        check_ptr(self.vertices.cast_const(), 1)?;
-        check_ptr(self.faces.cast_const(), 1)?;
-        check_ptr(self.indices.cast_const(), 1)
-    }
-
-    /// # Safety
-    /// [`Counts::check`] passed; the three pointers are writable.
-    unsafe fn write(&self, s: &MeshSizes) {
-        // SAFETY: checked non-NULL and aligned; writable by the caller's contract.
-        unsafe {
-            store(self.vertices, s.vertices);
-            store(self.faces, s.faces);
-            store(self.indices, s.indices);
-        }
-    }
-}
-
-/// The `uint32_t` scratch of one level: the topology of the input.
-fn topology_need(mesh: &RawMesh) -> Result<usize, Status> {
-    if mesh.vertex_count > MAX_COUNT || mesh.index_count > MAX_COUNT {
-        return Err(Status::SizeOverflow);
-    }
-    topology_scratch_size(mesh.vertex_count, mesh.index_count).map_err(|e| e.status)
-}
-
-/// The scratch sizes of [`nls_mesh_scratch_size`], from the counts alone: the scratch of a
-/// one-level plan ([`scheme::Plan::scratch`]), which is the input's topology (`u32`) and, for
-/// the Möbius version, two candidate points per corner (an edge and a face candidate per
-/// half-edge, seed 000 §4.1); the tests check it against the plan.
-fn scratch_need(opts: Options, mesh: &RawMesh) -> Result<(usize, usize), Status> {
-    let u = topology_need(mesh)?;
-    let p = if opts.mobius {
-        mesh.index_count
-            .checked_mul(2)
-            .ok_or(Status::SizeOverflow)?
-    } else {
-        0
-    };
-    Ok((u, p))
 }
 
 /// The C report of a Rust one.
@@ -410,11 +572,10 @@ fn report_of(r: &Report) -> nls_subdivide_report {
     }
 }
 
-/// The one call of the Rust path ([`scheme::subdivide`]) behind [`nls_mesh_subdivide`] and
-/// [`nls_mesh_subdivide_levels`]. On `NLS_STATUS_BUFFER_TOO_SMALL` the plan (computed again,
-/// on the error path only) names the first short buffer in the order `scratch_u32`,
-/// `scratch_points`, positions, offsets, indices, and `needed` receives the output sizes when
-/// the short buffer is an output buffer.
+/// The one call of the Rust path (`scheme::subdivide`) behind `nls_mesh_subdivide`. On
+/// `NLS_STATUS_BUFFER_TOO_SMALL` the plan (computed again, on the error path only) names the
+/// first short buffer in the order `scratch_u32`, `scratch_points`, positions, offsets,
+/// indices, and `needed` receives the output sizes when the short buffer is an output buffer.
 fn subdivide_call(
     view: Mesh<'_>,
     opts: &Options,
@@ -445,57 +606,63 @@ fn subdivide_call(
     }
 }
 
-/// The scratch that [`nls_mesh_subdivide_size`] and [`nls_mesh_subdivide`] need for a mesh of
-/// `vertex_count` vertices and `index_count` corners (the length of its `indices`):
-/// `*out_scratch_u32` `uint32_t` entries (its half-edge topology, `4·index_count +
-/// 3·vertex_count`) and `*out_scratch_points` points, i.e. `3*` that many doubles (two
-/// candidates per corner with `NLS_SUBDIVIDE_MOBIUS`, else 0). Depends on the counts only.
+/// Writes the default options: `NLS_SCHEME_LOOP`, no flags (linear, not strict), 1 level.
 ///
-/// Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits),
-/// `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_NULL_PARAMETER`,
-/// `NLS_STATUS_MISALIGNED_POINTER`.
+/// @return `NLS_STATUS_NULL_PARAMETER` or `NLS_STATUS_MISALIGNED_POINTER` for a bad
+/// `out_options`, else `NLS_STATUS_OK`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn nls_mesh_scratch_size(
-    scheme: u32,
-    flags: u32,
-    vertex_count: usize,
-    index_count: usize,
-    out_scratch_u32: *mut usize,
-    out_scratch_points: *mut usize,
+pub unsafe extern "C" fn nls_subdivide_default_options(
+    out_options: *mut nls_subdivide_options,
 ) -> Status {
     run(|| {
-        let opts = options(scheme, flags)?;
-        check_ptr(out_scratch_u32.cast_const(), 1)?;
-        check_ptr(out_scratch_points.cast_const(), 1)?;
-        let mesh = RawMesh {
-            positions: core::ptr::null(),
-            vertex_count,
-            offsets: core::ptr::null(),
-            face_count: 0,
-            indices: core::ptr::null(),
-            index_count,
-        };
-        let (u, p) = scratch_need(opts, &mesh)?;
-        // SAFETY: checked above.
+        check_ptr(out_options.cast_const(), 1)?;
+        // SAFETY: checked above; writable by the caller's contract.
         unsafe {
-            store(out_scratch_u32, u);
-            store(out_scratch_points, p);
-        }
+            store(
+                out_options,
+                nls_subdivide_options {
+                    scheme: NLS_SCHEME_LOOP,
+                    flags: 0,
+                    levels: 1,
+                },
+            )
+        };
         Ok(())
     })
 }
 
-/// Validates a mesh and gives the exact sizes of one level of `scheme` (`NLS_SCHEME_*`) with
-/// `flags` (`NLS_SUBDIVIDE_*`; the Möbius version has the same sizes): `*out_vertex_count`
-/// points, `*out_face_count` faces (the offsets buffer holds one more entry) and
-/// `*out_index_count` corners.
+/// The `uint32_t` scratch `nls_mesh_plan` (and `nls_differential_plan`) needs for `mesh`: its
+/// half-edge topology, `4 * index_count + 3 * vertex_count` entries. Depends on the counts
+/// (and the stride rule) only: no array of the mesh is read.
 ///
-/// The mesh: `positions[3*vertex_count]` (`x, y, z` per vertex), `offsets[face_count + 1]`
-/// (`offsets[0] = 0`, non-decreasing, `offsets[face_count] = index_count`; never NULL, an
-/// empty mesh is `{0}`) and `indices[index_count]`, faces counter-clockwise seen from outside.
-/// `scratch_u32` holds `scratch_u32_capacity` entries, at least `*out_scratch_u32` of
-/// [`nls_mesh_scratch_size`]; it must not overlap the mesh. Its contents are unspecified
-/// afterwards.
+/// @param mesh the input mesh.
+/// @param out_scratch_u32 receives the number of `uint32_t` entries.
+/// @return `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`),
+/// `NLS_STATUS_INVALID_ARGUMENT` (a bad stride), `NLS_STATUS_NULL_PARAMETER`,
+/// `NLS_STATUS_MISALIGNED_POINTER`, else `NLS_STATUS_OK`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
+    mesh: *const nls_mesh_view,
+    out_scratch_u32: *mut usize,
+) -> Status {
+    run(|| {
+        check_ptr(out_scratch_u32.cast_const(), 1)?;
+        // SAFETY: the caller passes NULL or a readable view.
+        let mesh = unsafe { RawMesh::read(mesh) }?;
+        let need = mesh.topology_need()?;
+        // SAFETY: checked above.
+        unsafe { store(out_scratch_u32, need) };
+        Ok(())
+    })
+}
+
+/// Validates the mesh and the options and plans `nls_mesh_subdivide`: the exact output sizes
+/// and the exact scratch of the call with the same mesh and options. The sizes of every
+/// level are exact functions of a few counts of the input, so nothing is subdivided here.
+///
+/// `scratch_u32` holds `scratch_u32_capacity` entries, at least what
+/// `nls_mesh_plan_scratch_size` gives; it must not overlap the mesh and its contents are
+/// unspecified afterwards.
 ///
 /// Validation, topology first and before anything else is computed (the first failure wins):
 /// `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_BAD_OFFSETS`,
@@ -504,372 +671,169 @@ pub unsafe extern "C" fn nls_mesh_scratch_size(
 /// `NLS_STATUS_DUPLICATE_FACE`, `NLS_STATUS_INCONSISTENT_ORIENTATION`,
 /// `NLS_STATUS_NON_MANIFOLD_EDGE` (naming the later face on the edge),
 /// `NLS_STATUS_NON_MANIFOLD_VERTEX` (bow-tie), `NLS_STATUS_VALENCE_TOO_HIGH` (a vertex above
-/// 128 neighbours), `NLS_STATUS_NON_FINITE_INPUT` (each naming the vertex), then the scheme's
-/// own: `NLS_STATUS_UNSUPPORTED_FACE_TYPE` (Loop and Modified Butterfly accept triangles,
-/// Kobbelt quads; naming the face), `NLS_STATUS_FACE_TOO_SMALL` naming an interior valence-2
-/// vertex (dual schemes), `NLS_STATUS_VALENCE_TOO_HIGH` (an output vertex or face above the
-/// capacity).
+/// 128 neighbours), `NLS_STATUS_NON_FINITE_INPUT` (each naming the vertex), then, for one or
+/// more levels, the scheme's own: `NLS_STATUS_UNSUPPORTED_FACE_TYPE` (Loop and Modified
+/// Butterfly accept triangles, Kobbelt quads; naming the face), `NLS_STATUS_FACE_TOO_SMALL`
+/// naming an interior valence-2 vertex (dual schemes), `NLS_STATUS_VALENCE_TOO_HIGH` (an
+/// output vertex or face above the capacity; no element when a later level would exceed
+/// it), `NLS_STATUS_SIZE_OVERFLOW` (a level above `UINT32_MAX − 1` vertices, faces or
+/// corners).
 ///
-/// `out_element` may be NULL. Otherwise it receives, on failure only, the element named
-/// above, the short buffer (`NLS_MESH_BUFFER_SCRATCH_U32`) on `NLS_STATUS_BUFFER_TOO_SMALL`,
-/// or `NLS_NO_ELEMENT`. The counts are written on success only.
-///
-/// Other errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits),
+/// @param mesh the input mesh.
+/// @param options scheme, flags, levels.
+/// @param scratch_u32 `uint32_t` scratch for the validation.
+/// @param scratch_u32_capacity entries of `scratch_u32`.
+/// @param out_plan receives the plan, on success only.
+/// @param out_element may be NULL; otherwise receives, on failure only, the element named
+/// above, `NLS_MESH_BUFFER_SCRATCH_U32` on `NLS_STATUS_BUFFER_TOO_SMALL`, or
+/// `NLS_NO_ELEMENT`.
+/// @return `NLS_STATUS_OK`, a validation error above, `NLS_STATUS_BUFFER_TOO_SMALL`,
+/// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits, `NLS_SUBDIVIDE_MOBIUS` with
+/// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
-/// `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`.
+/// `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
+/// into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn nls_mesh_subdivide_size(
-    scheme: u32,
-    flags: u32,
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
+pub unsafe extern "C" fn nls_mesh_plan(
+    mesh: *const nls_mesh_view,
+    options: *const nls_subdivide_options,
     scratch_u32: *mut u32,
     scratch_u32_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
+    out_plan: *mut nls_plan,
     out_element: *mut u32,
 ) -> Status {
-    run_with_element(out_element, || {
-        let opts = options(scheme, flags)?;
-        let counts = Counts {
-            vertices: out_vertex_count,
-            faces: out_face_count,
-            indices: out_index_count,
-        };
-        counts.check()?;
+    run_with_element(out_element, |element| {
+        // SAFETY: the caller passes NULL or readable structs.
+        let (mesh, opts) = unsafe { (RawMesh::read(mesh)?, read_arg(options)?) };
+        check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let spans = mesh.check()?;
-        check_scratch_u32(scratch_u32, scratch_u32_capacity, &spans)?;
-        if scratch_u32_capacity < topology_need(&mesh)? {
+        let [a, b, c] = mesh.spans();
+        let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
+        check_out_pointers(&[Span::of_one(out_plan)], element, &[a, b, c, su])?;
+        let opts = parse_options(&opts)?;
+        mesh.check()?;
+        check_ptr(scratch_u32.cast_const(), scratch_u32_capacity)?;
+        if [a, b, c].iter().any(|i| su.overlaps(*i)) {
+            return Err(Status::AliasingBuffers.into());
+        }
+        if scratch_u32_capacity < mesh.topology_need()? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) =
-            unsafe { (mesh.view(), slice_mut(scratch_u32, scratch_u32_capacity)) };
-        let sizes = scheme::plan(view, &opts, scratch)?.output();
+            unsafe { (mesh.mesh()?, slice_mut(scratch_u32, scratch_u32_capacity)) };
+        let plan = scheme::plan(view, &opts, scratch)?;
+        let plan = nls_plan {
+            output: sizes_of(&plan.output()),
+            scratch_u32: plan.scratch.u32s,
+            scratch_points: plan.scratch.points,
+        };
         // SAFETY: checked above.
-        unsafe { counts.write(&sizes) };
+        unsafe { store(out_plan, plan) };
         Ok(())
     })
 }
 
-/// One level of `scheme` (`NLS_SCHEME_*`) with `flags` (`NLS_SUBDIVIDE_*`) on the mesh
-/// (buffers as in [`nls_mesh_subdivide_size`]), written to `out_positions` (room for
-/// `out_vertex_capacity` points, `3*` that many doubles), `out_offsets`
-/// (`out_face_capacity + 1` entries) and `out_indices` (`out_index_capacity` entries).
-///
-/// Scratch: `scratch_u32` (`scratch_u32_capacity` entries) and `scratch_points`
-/// (`scratch_point_capacity` points), at least what [`nls_mesh_scratch_size`] gives (NULL with
-/// capacity 0 when that is 0). No buffer may overlap another one or the input
+/// Subdivides the mesh: `options.levels` levels (0 validates and copies) of
+/// `options.scheme`, linear or canonical Möbius (`NLS_SUBDIVIDE_MOBIUS`); the intermediate
+/// levels live in the scratch, the last one is written to `out`. The result of `k` levels
+/// equals `k` calls of one level, bit for bit. Buffer sizes come from `nls_mesh_plan` with the
+/// same mesh and options. No buffer may overlap another one or the input
 /// (`NLS_STATUS_ALIASING_BUFFERS`, checked before anything is read): in-place calls are not
 /// supported.
 ///
-/// Output order (DESIGN.md): primal schemes write the old vertices first at the same
-/// indices, then the edge points in edge order (edges sorted by their `(min, max)` vertex
-/// pair), then the face points in face order; the dual schemes as documented in
-/// `docs/mesh-and-linear-schemes.md`. The Möbius version has the connectivity and order of the
-/// linear one. Interpolating schemes keep the old vertices bit for bit.
+/// Output order: primal schemes write the old vertices first at the same indices, then the
+/// edge points in edge order (edges sorted by their `(min, max)` vertex pair), then the face
+/// points in face order; the dual schemes as documented in `docs/mesh-and-linear-schemes.md`.
+/// The Möbius version has the connectivity and order of the linear one. Interpolating schemes
+/// keep the old vertices bit for bit.
 ///
-/// On success the three counts receive the sizes written and `*out_report` (may be NULL) the
-/// fallbacks. On `NLS_STATUS_BUFFER_TOO_SMALL` nothing is written to the output buffers,
-/// `*out_element` names the first short buffer (`NLS_MESH_BUFFER_*`, checked in the order
-/// scratch_u32, scratch_points, positions, offsets, indices) and, when it is an output buffer,
-/// the three counts receive the exact sizes needed (a scratch buffer is checked before the
-/// mesh is validated, against the sizes of [`nls_mesh_scratch_size`]: the counts are not
-/// written then). After any other error the contents of the output and scratch buffers are
-/// unspecified and the counts and report are not written.
+/// `NLS_STATUS_BUFFER_TOO_SMALL`: `scratch->u32s` below `nls_mesh_plan_scratch_size` is found
+/// before the mesh is validated; after planning, the first short buffer in the order
+/// `scratch->u32s`, `scratch->points`, `out->positions`, `out->offsets`, `out->indices`.
+/// `*out_element` names it (`NLS_MESH_BUFFER_*`) and, when it is an output buffer,
+/// `*out_sizes` receives the exact sizes needed. Nothing is written to the output buffers
+/// then. After any other error the contents of the output and scratch buffers are unspecified
+/// and `*out_sizes` and `*out_report` are not written.
 ///
-/// `out_element` may be NULL. Otherwise it receives, on failure only: the element of a
-/// validation error (see [`nls_mesh_subdivide_size`]), the output vertex for
-/// `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, `NLS_STATUS_NUMERICAL_FAILURE` and
+/// @param mesh the input mesh (positions may be strided).
+/// @param options scheme, flags, levels.
+/// @param scratch at least the scratch of `nls_mesh_plan` (NULL arrays with capacity 0 when
+/// that is 0).
+/// @param out the output buffers, at least the plan's output sizes.
+/// @param out_sizes receives the sizes written (and see `NLS_STATUS_BUFFER_TOO_SMALL`).
+/// @param out_report may be NULL; receives the fallbacks (summed over the levels; its
+/// `first_fallback` is a vertex of level `first_fallback_level`).
+/// @param out_element may be NULL; otherwise receives, on failure only: the element of a
+/// validation error (see `nls_mesh_plan`), the output vertex (of the level being computed)
+/// for `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, `NLS_STATUS_NUMERICAL_FAILURE` and
 /// `NLS_STATUS_DEGENERATE_GEOMETRY` (`NLS_SCHEME_SPHERELIKE`), the buffer for
 /// `NLS_STATUS_BUFFER_TOO_SMALL`, else `NLS_NO_ELEMENT`.
-///
-/// Errors: those of [`nls_mesh_subdivide_size`]; `NLS_STATUS_BUFFER_TOO_SMALL`;
-/// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag, or `NLS_SUBDIVIDE_MOBIUS` with a
-/// scheme without Möbius form: `NLS_SCHEME_SPHERELIKE`); `NLS_STATUS_DEGENERATE_GEOMETRY`
-/// (`NLS_SCHEME_SPHERELIKE`: coincident points of one circle, or a spike);
-/// `NLS_STATUS_FALLBACK_IN_STRICT_MODE` (`NLS_SUBDIVIDE_STRICT`); `NLS_STATUS_NUMERICAL_FAILURE`
-/// (an output vertex would not be finite: coordinates near the ends of the double range).
+/// @return `NLS_STATUS_OK`; the errors of `nls_mesh_plan`; `NLS_STATUS_BUFFER_TOO_SMALL`;
+/// `NLS_STATUS_DEGENERATE_GEOMETRY` (`NLS_SCHEME_SPHERELIKE`: coincident points of one
+/// circle, or a spike); `NLS_STATUS_FALLBACK_IN_STRICT_MODE` (`NLS_SUBDIVIDE_STRICT`);
+/// `NLS_STATUS_NUMERICAL_FAILURE` (an output vertex would not be finite: coordinates near the
+/// ends of the double range); `NLS_STATUS_ALIASING_BUFFERS` also when `out_sizes`,
+/// `out_report` or `out_element` points into a buffer of the call or into another
+/// out-pointer.
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn nls_mesh_subdivide(
-    scheme: u32,
-    flags: u32,
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
-    scratch_u32: *mut u32,
-    scratch_u32_capacity: usize,
-    scratch_points: *mut f64,
-    scratch_point_capacity: usize,
-    out_positions: *mut f64,
-    out_vertex_capacity: usize,
-    out_offsets: *mut u32,
-    out_face_capacity: usize,
-    out_indices: *mut u32,
-    out_index_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
+    mesh: *const nls_mesh_view,
+    options: *const nls_subdivide_options,
+    scratch: *const nls_scratch,
+    out: *const nls_mesh_buffers,
+    out_sizes: *mut nls_mesh_sizes,
     out_report: *mut nls_subdivide_report,
     out_element: *mut u32,
 ) -> Status {
     let mut needed: Option<MeshSizes> = None;
-    let counts = Counts {
-        vertices: out_vertex_count,
-        faces: out_face_count,
-        indices: out_index_count,
-    };
-    let status = run_with_element(out_element, || {
-        let opts = options(scheme, flags)?;
-        counts.check()?;
+    let mut sizes_ok = false;
+    let status = run_with_element(out_element, |element| {
+        // SAFETY: the caller passes NULL or readable structs.
+        let (mesh, opts, raw) = unsafe {
+            (
+                RawMesh::read(mesh)?,
+                read_arg(options)?,
+                RawOut::read(scratch, out)?,
+            )
+        };
+        check_ptr(out_sizes.cast_const(), 1)?;
         check_optional(out_report)?;
         check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let spans = mesh.check()?;
-        let raw = RawOut {
-            scratch_u32,
-            scratch_u32_capacity,
-            scratch_points,
-            scratch_point_capacity,
-            positions: out_positions,
-            vertex_capacity: out_vertex_capacity,
-            offsets: out_offsets,
-            face_capacity: out_face_capacity,
-            indices: out_indices,
-            index_capacity: out_index_capacity,
-        };
-        raw.check(&spans)?;
-        let (need_u, need_p) = scratch_need(opts, &mesh)?;
-        if scratch_u32_capacity < need_u {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
-        }
-        if scratch_point_capacity < need_p {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_POINTS));
-        }
-        check_fp_env()?;
-        // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
-        // overlap nothing; the caller guarantees readability and writability.
-        let (view, (su, sp, mut out)) = unsafe { (mesh.view(), raw.slices()) };
-        let report = subdivide_call(view, &opts, su, sp, &mut out, &raw, &mut needed)?;
-        let (written, report) = (report.sizes, report_of(&report));
-        // SAFETY: checked above.
-        unsafe {
-            counts.write(&written);
-            if !out_report.is_null() {
-                store(out_report, report);
-            }
-        }
-        Ok(())
-    });
-    if let (Status::BufferTooSmall, Some(sizes)) = (status, needed) {
-        // SAFETY: the counts were checked before the sizes were computed.
-        unsafe { counts.write(&sizes) };
-    }
-    status
-}
-
-/// Validates the mesh and plans `levels` levels (at most `NLS_MAX_LEVELS`; 0 copies the
-/// mesh) of [`nls_mesh_subdivide_levels`]: the exact sizes of the last level
-/// (`*out_vertex_count`, `*out_face_count`, `*out_index_count`) and the scratch the call needs,
-/// `*out_scratch_u32` entries and `*out_scratch_points` points (the intermediate levels, their
-/// topology and, with `NLS_SUBDIVIDE_MOBIUS`, the candidates of the largest step). The sizes
-/// of every level are exact functions of a few counts of the input, so nothing is subdivided
-/// here.
-///
-/// `scratch_u32` is needed for the validation itself: at least `*out_scratch_u32` of
-/// [`nls_mesh_scratch_size`].
-///
-/// Errors: those of [`nls_mesh_subdivide_size`] for the first level;
-/// `NLS_STATUS_INVALID_ARGUMENT` for more than `NLS_MAX_LEVELS` levels;
-/// `NLS_STATUS_SIZE_OVERFLOW` when a level has more than `UINT32_MAX − 1` vertices, faces or
-/// corners; `NLS_STATUS_VALENCE_TOO_HIGH` (no element) when a later level would exceed the
-/// valence or face-size capacity. `out_element` as for [`nls_mesh_subdivide_size`].
-#[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn nls_mesh_subdivide_levels_size(
-    scheme: u32,
-    flags: u32,
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
-    levels: u32,
-    scratch_u32: *mut u32,
-    scratch_u32_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
-    out_scratch_u32: *mut usize,
-    out_scratch_points: *mut usize,
-    out_element: *mut u32,
-) -> Status {
-    run_with_element(out_element, || {
-        let opts = options(scheme, flags)?;
-        let counts = Counts {
-            vertices: out_vertex_count,
-            faces: out_face_count,
-            indices: out_index_count,
-        };
-        counts.check()?;
-        check_ptr(out_scratch_u32.cast_const(), 1)?;
-        check_ptr(out_scratch_points.cast_const(), 1)?;
-        check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let spans = mesh.check()?;
-        check_scratch_u32(scratch_u32, scratch_u32_capacity, &spans)?;
-        if scratch_u32_capacity < topology_need(&mesh)? {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
-        }
-        check_fp_env()?;
-        // SAFETY: inputs checked; scratch checked and disjoint from them.
-        let (view, scratch) =
-            unsafe { (mesh.view(), slice_mut(scratch_u32, scratch_u32_capacity)) };
-        let plan = scheme::plan(view, &opts.levels(levels as usize), scratch)?;
-        // SAFETY: checked above.
-        unsafe {
-            counts.write(&plan.output());
-            store(out_scratch_u32, plan.scratch.u32s);
-            store(out_scratch_points, plan.scratch.points);
-        }
-        Ok(())
-    })
-}
-
-/// `levels` levels (at most `NLS_MAX_LEVELS`; 0 copies the mesh) of `scheme` with `flags` in
-/// one call: the intermediate levels live in the scratch, the last one is written to the
-/// output buffers. Buffers as for [`nls_mesh_subdivide`]; the scratch and output sizes come
-/// from [`nls_mesh_subdivide_levels_size`]. The result equals `levels` calls of
-/// [`nls_mesh_subdivide`], bit for bit.
-///
-/// The report sums the fallbacks of all levels; its `first_fallback` is a vertex of level
-/// `first_fallback_level`. With `NLS_SUBDIVIDE_STRICT`, `*out_element` receives the output
-/// vertex of the level being computed.
-///
-/// `NLS_STATUS_BUFFER_TOO_SMALL` as for [`nls_mesh_subdivide`]: `scratch_u32` below the
-/// input's topology (checked before validation); then, after planning, `scratch_u32`,
-/// `scratch_points`, the output buffers in this order (the counts receive the exact sizes
-/// when an output buffer is short).
-///
-/// Errors: those of [`nls_mesh_subdivide_levels_size`] and [`nls_mesh_subdivide`].
-#[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn nls_mesh_subdivide_levels(
-    scheme: u32,
-    flags: u32,
-    positions: *const f64,
-    vertex_count: usize,
-    offsets: *const u32,
-    face_count: usize,
-    indices: *const u32,
-    index_count: usize,
-    levels: u32,
-    scratch_u32: *mut u32,
-    scratch_u32_capacity: usize,
-    scratch_points: *mut f64,
-    scratch_point_capacity: usize,
-    out_positions: *mut f64,
-    out_vertex_capacity: usize,
-    out_offsets: *mut u32,
-    out_face_capacity: usize,
-    out_indices: *mut u32,
-    out_index_capacity: usize,
-    out_vertex_count: *mut usize,
-    out_face_count: *mut usize,
-    out_index_count: *mut usize,
-    out_report: *mut nls_subdivide_report,
-    out_element: *mut u32,
-) -> Status {
-    let mut needed: Option<MeshSizes> = None;
-    let counts = Counts {
-        vertices: out_vertex_count,
-        faces: out_face_count,
-        indices: out_index_count,
-    };
-    let status = run_with_element(out_element, || {
-        let opts = options(scheme, flags)?;
-        counts.check()?;
-        check_optional(out_report)?;
-        check_optional(out_element)?;
-        let mesh = RawMesh {
-            positions,
-            vertex_count,
-            offsets,
-            face_count,
-            indices,
-            index_count,
-        };
-        let spans = mesh.check()?;
-        let raw = RawOut {
-            scratch_u32,
-            scratch_u32_capacity,
-            scratch_points,
-            scratch_point_capacity,
-            positions: out_positions,
-            vertex_capacity: out_vertex_capacity,
-            offsets: out_offsets,
-            face_capacity: out_face_capacity,
-            indices: out_indices,
-            index_capacity: out_index_capacity,
-        };
-        raw.check(&spans)?;
-        if scratch_u32_capacity < topology_need(&mesh)? {
+        let inputs = mesh.spans();
+        let [s0, s1, s2, s3, s4] = raw.spans();
+        let [i0, i1, i2] = inputs;
+        check_out_pointers(
+            &[Span::of_one(out_sizes), Span::of_one(out_report)],
+            element,
+            &[i0, i1, i2, s0, s1, s2, s3, s4],
+        )?;
+        sizes_ok = true;
+        let opts = parse_options(&opts)?;
+        mesh.check()?;
+        raw.check(&inputs)?;
+        if raw.scratch.u32_capacity < mesh.topology_need()? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
-        let (view, (su, sp, mut out)) = unsafe { (mesh.view(), raw.slices()) };
-        let opts = opts.levels(levels as usize);
+        let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
         let report = subdivide_call(view, &opts, su, sp, &mut out, &raw, &mut needed)?;
-        let (written, report) = (report.sizes, report_of(&report));
         // SAFETY: checked above.
         unsafe {
-            counts.write(&written);
+            store(out_sizes, sizes_of(&report.sizes));
             if !out_report.is_null() {
-                store(out_report, report);
+                store(out_report, report_of(&report));
             }
         }
         Ok(())
     });
-    if let (Status::BufferTooSmall, Some(sizes)) = (status, needed) {
-        // SAFETY: the counts were checked before the sizes were computed.
-        unsafe { counts.write(&sizes) };
+    if let (Status::BufferTooSmall, Some(sizes), true) = (status, needed, sizes_ok) {
+        // SAFETY: checked (non-NULL, aligned, outside every buffer) before the sizes were
+        // computed.
+        unsafe { store(out_sizes, sizes_of(&sizes)) };
     }
     status
 }
@@ -900,225 +864,166 @@ mod tests {
         assert_eq!((NLS_SUBDIVIDE_MOBIUS, NLS_SUBDIVIDE_STRICT), (1, 2));
     }
 
-    /// The counts-only scratch of `nls_mesh_scratch_size` is the scratch of a one-level plan
-    /// of the Rust path, for every scheme, linear and Möbius.
-    #[test]
-    fn counts_only_scratch_is_the_one_level_plan() {
-        // A triangle fan, a quad strip and a pentagon: every scheme accepts some of them.
-        let p: [[f64; 3]; 7] = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.2],
-            [0.0, 1.0, 0.0],
-            [-1.0, 0.5, 0.1],
-            [-0.5, -0.8, 0.0],
-            [2.0, 0.5, 0.3],
-        ];
-        let meshes: [(&[u32], &[u32]); 3] = [
-            (&[0, 3, 6, 9], &[0, 1, 2, 0, 2, 3, 0, 3, 4]),
-            (&[0, 4, 8], &[0, 1, 2, 3, 5, 1, 0, 4]),
-            (&[0, 5], &[0, 5, 1, 6, 2]),
-        ];
-        let mut checked = 0;
-        for (offsets, indices) in meshes {
-            let view = Mesh::new(&p, offsets, indices);
-            let raw = RawMesh {
-                positions: p.as_ptr().cast(),
-                vertex_count: p.len(),
-                offsets: offsets.as_ptr(),
-                face_count: offsets.len() - 1,
-                indices: indices.as_ptr(),
-                index_count: indices.len(),
-            };
-            for s in Scheme::ALL {
-                for flags in [0, NLS_SUBDIVIDE_MOBIUS] {
-                    let Ok(opts) = options(s.code(), flags) else {
-                        continue;
-                    };
-                    let mut su = vec![0u32; scheme::plan_scratch_size(&view).unwrap()];
-                    let Ok(plan) = scheme::plan(view, &opts, &mut su) else {
-                        continue;
-                    };
-                    let (u, q) = scratch_need(opts, &raw).unwrap();
-                    assert_eq!((u, q), (plan.scratch.u32s, plan.scratch.points), "{s:?}");
-                    checked += 1;
-                }
-            }
+    fn view(p: &[f64], off: &[u32], idx: &[u32], stride: usize) -> nls_mesh_view {
+        let vertex_count = match (p.len() * 8 + stride).checked_sub(24) {
+            Some(extent) if stride > 0 => extent / stride,
+            _ => p.len() / 3,
+        };
+        nls_mesh_view {
+            positions: p.as_ptr(),
+            vertex_count,
+            positions_stride: stride,
+            offsets: off.as_ptr(),
+            face_count: off.len() - 1,
+            indices: idx.as_ptr(),
+            index_count: idx.len(),
         }
-        assert!(checked >= 20, "{checked}");
     }
 
+    /// One quad, Möbius Catmull–Clark, through plan and subdivide; then one face short.
     #[test]
     fn one_quad_through_the_abi() {
         let p: [f64; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
         let (off, idx) = ([0u32, 4], [0u32, 1, 2, 3]);
-        let (mut su, mut sp) = (0usize, 0usize);
+        let m = view(&p, &off, &idx, 0);
+        let o = nls_subdivide_options {
+            scheme: NLS_SCHEME_CATMULL_CLARK,
+            flags: NLS_SUBDIVIDE_MOBIUS,
+            levels: 1,
+        };
+        let mut su0 = 0usize;
+        assert_eq!(
+            unsafe { nls_mesh_plan_scratch_size(&m, &mut su0) },
+            Status::Ok
+        );
+        assert_eq!(su0, 28);
+        let mut scratch = vec![0u32; su0];
+        let mut plan = nls_plan::default();
         let s = unsafe {
-            nls_mesh_scratch_size(
-                NLS_SCHEME_CATMULL_CLARK,
-                NLS_SUBDIVIDE_MOBIUS,
-                4,
-                4,
-                &mut su,
-                &mut sp,
+            nls_mesh_plan(
+                &m,
+                &o,
+                scratch.as_mut_ptr(),
+                su0,
+                &mut plan,
+                core::ptr::null_mut(),
             )
         };
-        assert_eq!((s, su, sp), (Status::Ok, 28, 8));
-        let mut scratch = vec![0u32; su];
-        let mut pts = vec![0.0; 3 * sp];
+        assert_eq!(s, Status::Ok);
+        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8));
+        let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
-        let (mut nv, mut nf, mut ni) = (0usize, 0usize, 0usize);
+        let sc = nls_scratch {
+            u32s: scratch.as_mut_ptr(),
+            u32_capacity: plan.scratch_u32,
+            points: pts.as_mut_ptr(),
+            point_capacity: plan.scratch_points,
+        };
+        let mut buf = nls_mesh_buffers {
+            positions: op.as_mut_ptr(),
+            vertex_capacity: 9,
+            offsets: oo.as_mut_ptr(),
+            face_capacity: 4,
+            indices: oi.as_mut_ptr(),
+            index_capacity: 16,
+        };
+        let mut sizes = nls_mesh_sizes::default();
         let mut rep = nls_subdivide_report {
             fallbacks: 9,
             first_fallback: 9,
             first_fallback_level: 9,
         };
         let mut element = 7u32;
-        let s = unsafe {
-            nls_mesh_subdivide(
-                NLS_SCHEME_CATMULL_CLARK,
-                NLS_SUBDIVIDE_MOBIUS,
-                p.as_ptr(),
-                4,
-                off.as_ptr(),
-                1,
-                idx.as_ptr(),
-                4,
-                scratch.as_mut_ptr(),
-                su,
-                pts.as_mut_ptr(),
-                sp,
-                op.as_mut_ptr(),
-                9,
-                oo.as_mut_ptr(),
-                4,
-                oi.as_mut_ptr(),
-                16,
-                &mut nv,
-                &mut nf,
-                &mut ni,
-                &mut rep,
-                &mut element,
-            )
-        };
+        let s =
+            unsafe { nls_mesh_subdivide(&m, &o, &sc, &buf, &mut sizes, &mut rep, &mut element) };
         assert_eq!(s, Status::Ok);
-        assert_eq!((nv, nf, ni, element), (9, 4, 16, 7));
-        // A face of ears only (DESIGN.md) takes its linear centroid: one fallback, the face
-        // point.
+        assert_eq!(sizes, plan.output);
+        assert_eq!((sizes.vertex_count, sizes.face_count, element), (9, 4, 7));
+        // A face of ears only takes its linear centroid: one fallback, the face point.
         let r = (rep.fallbacks, rep.first_fallback, rep.first_fallback_level);
         assert_eq!(r, (1, 8, 1));
         assert_eq!(&op[24..27], &[0.5, 0.5, 0.0]);
-        // One face short: the counts give the sizes, the element the buffer.
+        // One face short: the sizes are given, the element names the buffer.
+        buf.face_capacity = 3;
+        let lin = nls_subdivide_options { flags: 0, ..o };
+        let mut sizes = nls_mesh_sizes::default();
         let s = unsafe {
             nls_mesh_subdivide(
-                NLS_SCHEME_CATMULL_CLARK,
-                0,
-                p.as_ptr(),
-                4,
-                off.as_ptr(),
-                1,
-                idx.as_ptr(),
-                4,
-                scratch.as_mut_ptr(),
-                su,
-                core::ptr::null_mut(),
-                0,
-                op.as_mut_ptr(),
-                9,
-                oo.as_mut_ptr(),
-                3,
-                oi.as_mut_ptr(),
-                16,
-                &mut nv,
-                &mut nf,
-                &mut ni,
+                &m,
+                &lin,
+                &sc,
+                &buf,
+                &mut sizes,
                 core::ptr::null_mut(),
                 &mut element,
             )
         };
         assert_eq!(s, Status::BufferTooSmall);
-        assert_eq!((nv, nf, ni, element), (9, 4, 16, NLS_MESH_BUFFER_OFFSETS));
+        assert_eq!((sizes, element), (plan.output, NLS_MESH_BUFFER_OFFSETS));
     }
 
-    /// Zero levels copy the mesh but validate it into the `u32` scratch: the size query
-    /// reports that scratch (the topology, `4·corners + 3·vertices`, as
-    /// `nls_mesh_scratch_size`), an exact-size buffer is enough, one entry less is refused.
+    /// Strided positions give the bits of packed ones; a stride that is not a multiple of 8
+    /// or below 24 is refused.
     #[test]
-    fn zero_levels_scratch_through_the_abi() {
-        let p: [f64; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+    fn strided_positions() {
+        let p: [f64; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 1.0, 1.0, 0.0, 0.0, 1.0, 0.2];
+        let mut wide = Vec::new();
+        for q in p.chunks(3) {
+            wide.extend_from_slice(q);
+            wide.extend_from_slice(&[f64::NAN, 5.0]);
+        }
+        wide.truncate(wide.len() - 2);
         let (off, idx) = ([0u32, 4], [0u32, 1, 2, 3]);
-        for flags in [0, NLS_SUBDIVIDE_MOBIUS] {
-            let (mut su0, mut sp0) = (0usize, 0usize);
-            let s = unsafe {
-                nls_mesh_scratch_size(NLS_SCHEME_CATMULL_CLARK, flags, 4, 4, &mut su0, &mut sp0)
+        let run = |m: &nls_mesh_view| {
+            let o = nls_subdivide_options {
+                scheme: NLS_SCHEME_CATMULL_CLARK,
+                flags: NLS_SUBDIVIDE_MOBIUS,
+                levels: 2,
             };
-            assert_eq!((s, su0), (Status::Ok, 28));
-            let mut scratch = vec![0u32; su0];
-            let (mut nv, mut nf, mut ni, mut su, mut sp) = (0usize, 0usize, 0usize, 9usize, 9usize);
+            let mut su = vec![0u32; 4096];
+            let mut sp = vec![0.0; 3 * 512];
+            let (mut op, mut oo, mut oi) = (vec![0.0; 3 * 64], vec![0u32; 65], vec![0u32; 256]);
+            let sc = nls_scratch {
+                u32s: su.as_mut_ptr(),
+                u32_capacity: su.len(),
+                points: sp.as_mut_ptr(),
+                point_capacity: 512,
+            };
+            let buf = nls_mesh_buffers {
+                positions: op.as_mut_ptr(),
+                vertex_capacity: 64,
+                offsets: oo.as_mut_ptr(),
+                face_capacity: 64,
+                indices: oi.as_mut_ptr(),
+                index_capacity: 256,
+            };
+            let mut sizes = nls_mesh_sizes::default();
             let s = unsafe {
-                nls_mesh_subdivide_levels_size(
-                    NLS_SCHEME_CATMULL_CLARK,
-                    flags,
-                    p.as_ptr(),
-                    4,
-                    off.as_ptr(),
-                    1,
-                    idx.as_ptr(),
-                    4,
-                    0,
-                    scratch.as_mut_ptr(),
-                    su0,
-                    &mut nv,
-                    &mut nf,
-                    &mut ni,
-                    &mut su,
-                    &mut sp,
+                nls_mesh_subdivide(
+                    m,
+                    &o,
+                    &sc,
+                    &buf,
+                    &mut sizes,
+                    core::ptr::null_mut(),
                     core::ptr::null_mut(),
                 )
             };
-            assert_eq!(s, Status::Ok);
-            assert_eq!((nv, nf, ni, su, sp), (4, 1, 4, su0, 0), "flags {flags}");
-            for (cap, want) in [(su, Status::Ok), (su - 1, Status::BufferTooSmall)] {
-                let mut scratch = vec![0u32; cap];
-                let (mut op, mut oo, mut oi) = (vec![9.0; 12], vec![9u32; 2], vec![9u32; 4]);
-                let (mut nv, mut nf, mut ni) = (0usize, 0usize, 0usize);
-                let mut element = 7u32;
-                let s = unsafe {
-                    nls_mesh_subdivide_levels(
-                        NLS_SCHEME_CATMULL_CLARK,
-                        flags,
-                        p.as_ptr(),
-                        4,
-                        off.as_ptr(),
-                        1,
-                        idx.as_ptr(),
-                        4,
-                        0,
-                        scratch.as_mut_ptr(),
-                        cap,
-                        core::ptr::null_mut(),
-                        0,
-                        op.as_mut_ptr(),
-                        4,
-                        oo.as_mut_ptr(),
-                        1,
-                        oi.as_mut_ptr(),
-                        4,
-                        &mut nv,
-                        &mut nf,
-                        &mut ni,
-                        core::ptr::null_mut(),
-                        &mut element,
-                    )
-                };
-                assert_eq!(s, want, "flags {flags}, scratch {cap}");
-                if want == Status::Ok {
-                    assert_eq!((nv, nf, ni), (4, 1, 4));
-                    assert_eq!((&op[..], &oo[..], &oi[..]), (&p[..], &off[..], &idx[..]));
-                } else {
-                    assert_eq!(element, NLS_MESH_BUFFER_SCRATCH_U32);
-                }
-            }
+            (s, op.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), sizes)
+        };
+        let packed = run(&view(&p, &off, &idx, 0));
+        assert_eq!(packed.0, Status::Ok);
+        assert_eq!(packed.2.vertex_count, 25);
+        assert_eq!(run(&view(&p, &off, &idx, 24)), packed);
+        let strided = view(&wide, &off, &idx, 40);
+        assert_eq!(strided.vertex_count, 4);
+        assert_eq!(run(&strided), packed);
+        for bad in [8, 16, 25, 36] {
+            let m = nls_mesh_view {
+                positions_stride: bad,
+                ..strided
+            };
+            assert_eq!(run(&m).0, Status::InvalidArgument, "stride {bad}");
         }
     }
 }

@@ -284,7 +284,7 @@ pub unsafe extern "C" fn nls_mobius_apply(
     })
 }
 
-/// The canonical form of the vertex star `v ring[0..ring_len]` (seed 000 §4.2). `kind` is
+/// The canonical form of the vertex star `v ring[0..ring_count]` (seed 000 §4.2). `kind` is
 /// `NLS_STAR_INTERIOR` (cyclic ring), `NLS_STAR_BOUNDARY` or `NLS_STAR_EAR` (ring from one
 /// boundary neighbour to the other); at least 2 neighbours.
 ///
@@ -297,13 +297,13 @@ pub unsafe extern "C" fn nls_mobius_apply(
 pub unsafe extern "C" fn nls_canonical_form_new(
     v: *const f64,
     ring: *const f64,
-    ring_len: usize,
+    ring_count: usize,
     kind: u32,
     out: *mut nls_canonical_form,
 ) -> Status {
     run(|| {
         // SAFETY: the caller passes NULL or readable memory of the documented sizes.
-        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_len)?) };
+        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_count)?) };
         crate::guard::check_ptr(out.cast_const(), 1)?;
         let kind = kind_of(kind)?;
         check_fp_env()?;

@@ -92,10 +92,10 @@ pub unsafe extern "C" fn nls_f4(
     })
 }
 
-/// [`nls_f4`] with a fifth point `x` that decides the one case where F4 is not
+/// `nls_f4` with a fifth point `x` that decides the one case where F4 is not
 /// Möbius-equivariant: when `ρ = cr[c, a, b, d]` is a negative real (the four points are
 /// cocircular and `(b, c)` separates `(a, d)`), the new point is taken on the sphere through
-/// `a, b, c, x` instead of in the plane of the circle. Elsewhere identical to [`nls_f4`].
+/// `a, b, c, x` instead of in the plane of the circle. Elsewhere identical to `nls_f4`.
 ///
 /// This is the edge blend of the Möbius mesh schemes: the edge point of an interior edge
 /// `a → b` (the half-edge from the smaller to the larger vertex index) is
@@ -104,7 +104,7 @@ pub unsafe extern "C" fn nls_f4(
 /// the face on the left of `a → b` (the third vertex of a triangle), so a spherical mesh
 /// stays on its sphere in the cocircular case too.
 ///
-/// Errors: as [`nls_f4`]; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
+/// Errors: as `nls_f4`; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
 ///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [x;3], [out;3]]
 #[unsafe(no_mangle)]
@@ -139,7 +139,7 @@ pub unsafe extern "C" fn nls_f4_hinted(
 /// The six-point blend `F6(a, b, c, d, e, f)` of the chains `a, b, c` and `d, e, f`
 /// (seed 000 §4.4.2). Sphere preserving for cospherical points; `b = e` gives `b`.
 ///
-/// Errors: as [`nls_f4`]; `NLS_STATUS_DEGENERATE_GEOMETRY` also when a cross-ratio of the
+/// Errors: as `nls_f4`; `NLS_STATUS_DEGENERATE_GEOMETRY` also when a cross-ratio of the
 /// construction is undefined (`a = b`, `d = e`, `b = c`, `e = f`).
 ///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [e;3], [f;3], [out;3]]
@@ -230,8 +230,8 @@ pub unsafe extern "C" fn nls_corner_tangent(
 }
 
 /// The tangent polygon `T_i = (u_i − v)⁻¹` of the vertex star `v u_0 … u_{n−1}`
-/// (seed 000 §3.3, Lemma 3.1). `ring` holds `3*ring_len` doubles; `out` must hold
-/// `3*ring_len` doubles and must not overlap `ring`.
+/// (seed 000 §3.3, Lemma 3.1). `ring` holds `3*ring_count` doubles; `out` must hold
+/// `3*ring_count` doubles and must not overlap `ring`.
 ///
 /// Errors: also `NLS_STATUS_DEGENERATE_GEOMETRY` when a neighbour coincides with `v`.
 ///
@@ -240,15 +240,16 @@ pub unsafe extern "C" fn nls_corner_tangent(
 pub unsafe extern "C" fn nls_tangent_polygon(
     v: *const f64,
     ring: *const f64,
-    ring_len: usize,
+    ring_count: usize,
     out: *mut f64,
 ) -> Status {
     run(|| {
         // SAFETY: the caller passes NULL or readable memory of the documented sizes.
-        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_len)?) };
-        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_count)?) };
+        let n3 = ring_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
         check_out(out, n3)?;
-        if ring_len > 0 && crate::guard::overlaps(ring.as_ptr().cast(), n3, out.cast_const(), n3) {
+        if ring_count > 0 && crate::guard::overlaps(ring.as_ptr().cast(), n3, out.cast_const(), n3)
+        {
             return Err(Status::AliasingBuffers);
         }
         check_fp_env()?;
@@ -258,7 +259,7 @@ pub unsafe extern "C" fn nls_tangent_polygon(
         }
         for (i, u) in ring.iter().enumerate() {
             let t = status_of(quat::tangent_polygon_vertex(v, *u))?;
-            // SAFETY: `i < ring_len`, and `out` holds `3*ring_len` writable doubles.
+            // SAFETY: `i < ring_count`, and `out` holds `3*ring_count` writable doubles.
             unsafe { write(out.add(3 * i), t) };
         }
         Ok(())
@@ -345,13 +346,13 @@ pub unsafe extern "C" fn nls_quat_exp(q: *const f64, out: *mut f64) -> Status {
 pub unsafe extern "C" fn nls_star_willmore_energy(
     v: *const f64,
     ring: *const f64,
-    ring_len: usize,
+    ring_count: usize,
     closed: u32,
     out: *mut f64,
 ) -> Status {
     run(|| {
         // SAFETY: the caller passes NULL or readable memory of the documented sizes.
-        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_len)?) };
+        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_count)?) };
         check_out(out, 1)?;
         let closed = crate::guard::flag(closed)?;
         check_fp_env()?;
@@ -364,20 +365,20 @@ pub unsafe extern "C" fn nls_star_willmore_energy(
 
 /// The Möbius-regularity defect of the vertex star `v ring…`: the sum of squared differences
 /// of consecutive cross-ratios `cr[v, u_{i−1}, u_i, u_{i+1}]` (seed 000 Fig. 15); 0 iff the
-/// star is Möbius regular. `closed` as for [`nls_star_willmore_energy`].
+/// star is Möbius regular. `closed` as for `nls_star_willmore_energy`.
 ///
 /// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_star_mobius_regularity(
     v: *const f64,
     ring: *const f64,
-    ring_len: usize,
+    ring_count: usize,
     closed: u32,
     out: *mut f64,
 ) -> Status {
     run(|| {
         // SAFETY: the caller passes NULL or readable memory of the documented sizes.
-        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_len)?) };
+        let (v, ring) = unsafe { (read_point(v)?, points(ring, ring_count)?) };
         check_out(out, 1)?;
         let closed = crate::guard::flag(closed)?;
         check_fp_env()?;
@@ -396,7 +397,7 @@ pub unsafe extern "C" fn nls_star_mobius_regularity(
 /// `3*count` doubles each.
 ///
 /// Errors: `NLS_STATUS_TOO_FEW_POINTS` (`count < 3`), `NLS_STATUS_VALENCE_TOO_HIGH`, and
-/// those of [`nls_f4`] and [`nls_f6`].
+/// those of `nls_f4` and `nls_f6`.
 ///
 /// cbindgen:ptrs-as-arrays=[[out;3]]
 #[unsafe(no_mangle)]
@@ -418,13 +419,13 @@ pub unsafe extern "C" fn nls_face_point(
     })
 }
 
-/// [`nls_face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]`
+/// `nls_face_point` with ties of the noncircularity sort broken by the vertex ids `ids[i]`
 /// (`count` of them, the host's indices of the face's corners): the face point is then the
 /// same, bit for bit, whichever corner the face is listed from, and stays Möbius-equivariant.
 /// This is what `nls_mesh_subdivide` uses for its Möbius face points; a host driving the
 /// tier-1 rules should call it with its own vertex indices.
 ///
-/// Errors: those of [`nls_face_point`].
+/// Errors: those of `nls_face_point`.
 ///
 /// cbindgen:ptrs-as-arrays=[[out;3]]
 #[unsafe(no_mangle)]

@@ -4,7 +4,9 @@
 //! (`nlsubdiv::scheme::mobius::{loop_star, catmull_clark_star, butterfly_star}`), which the
 //! driver of `nls_mesh_subdivide` with `NLS_SUBDIVIDE_MOBIUS` evaluates too.
 //!
-//! How a host assembles a whole level from them: the docs of [`nls_mobius_loop_star`].
+//! Every star rule takes one `nls_star_view`: the centre, its 1-ring and (Catmull–Clark) the
+//! corners of its faces. How a host assembles a whole level from them: the docs of
+//! `nls_mobius_loop_star`.
 
 use nlsubdiv::scheme::mobius as smobius;
 use nlsubdiv::{Point, Status, MAX_VALENCE};
@@ -13,6 +15,43 @@ use crate::guard::{check_fp_env, check_out, check_ptr, flag, points, read_point}
 use crate::primitives::run;
 
 const NAN3: Point = [f64::NAN; 3];
+
+/// A vertex star, read only: the centre `v`, its neighbours and, for
+/// `nls_mobius_catmull_clark_star`, the corners of its faces. Plain data; nothing is kept.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct nls_star_view {
+    /// The centre: 3 doubles.
+    pub v: *const f64,
+    /// The neighbours, packed `x, y, z` (`3 * ring_count` doubles). `closed = 1`: an interior
+    /// vertex, the neighbours counter-clockwise (seen from outside) as a cycle. `closed = 0`: a
+    /// boundary vertex, from one boundary neighbour counter-clockwise to the other.
+    pub ring: *const f64,
+    /// Number of neighbours.
+    pub ring_count: usize,
+    /// 1 for an interior vertex, 0 for a boundary vertex.
+    pub closed: u32,
+    /// `nls_mobius_catmull_clark_star` only (ignored by the triangle rules): face `j` has
+    /// the corners `face_offsets[j]` up to `face_offsets[j + 1] - 1` of `face_corners`;
+    /// `face_count + 1` entries from 0 to `corner_count`.
+    pub face_offsets: *const u32,
+    /// Number of faces: `ring_count` for a closed star, `ring_count − 1` for an open one.
+    pub face_count: usize,
+    /// The positions of the corners of all faces, packed (`3 * corner_count` doubles).
+    pub face_corners: *const f64,
+    /// Number of face corners.
+    pub corner_count: usize,
+}
+
+/// Reads a star view.
+///
+/// # Safety
+/// `p` is NULL or points to a readable `nls_star_view`.
+unsafe fn read_star(p: *const nls_star_view) -> Result<nls_star_view, Status> {
+    check_ptr(p, 1)?;
+    // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
+    Ok(unsafe { p.read() })
+}
 
 /// Writes `values` packed to `out[0..3*values.len()]`.
 ///
@@ -50,8 +89,8 @@ fn disjoint(outputs: &[(usize, usize)], inputs: &[(usize, usize)]) -> Result<(),
     Ok(())
 }
 
-/// The canonical Möbius Loop rules at the vertex star `v ring[0..ring_len]` (packed `x, y, z`),
-/// exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_LOOP` with
+/// The canonical Möbius Loop rules at the vertex star `star` (`v` and `ring[0..ring_count]`,
+/// packed `x, y, z`), exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_LOOP` with
 /// `NLS_SUBDIVIDE_MOBIUS`: the star's canonical form (seed 000 §4.2), Loop's stencils on the
 /// mapped 1-ring, the results mapped back.
 ///
@@ -64,7 +103,7 @@ fn disjoint(outputs: &[(usize, usize)], inputs: &[(usize, usize)]) -> Result<(),
 /// vertex point is the boundary curve rule, and when it does not exist) and
 /// `out_edge_candidates[3j..3j+3]`, the candidate of the edge to `ring[j]` in this star's form
 /// (NaN for the two boundary edges of a boundary star, and when it does not exist); the
-/// outputs hold 3 and `3*ring_len` doubles and must not overlap `ring`. Edge points: see
+/// outputs hold 3 and `3*ring_count` doubles and must not overlap `ring`. Edge points: see
 /// `nls_f4_hinted` (the hint `x` of edge `a → b` is the third vertex
 /// of the triangle on its left).
 ///
@@ -93,25 +132,25 @@ fn disjoint(outputs: &[(usize, usize)], inputs: &[(usize, usize)]) -> Result<(),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
 /// `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
 ///
-/// cbindgen:ptrs-as-arrays=[[v;3], [out_vertex_point;3]]
+/// cbindgen:ptrs-as-arrays=[[out_vertex_point;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_loop_star(
-    v: *const f64,
-    ring: *const f64,
-    ring_len: usize,
-    closed: u32,
+    star: *const nls_star_view,
     out_vertex_point: *mut f64,
     out_edge_candidates: *mut f64,
 ) -> Status {
     run(|| {
-        // SAFETY: the caller passes NULL or three readable doubles.
-        let v = unsafe { read_point(v)? };
-        check_ptr(ring.cast::<Point>(), ring_len)?;
-        if ring_len > MAX_VALENCE {
+        // SAFETY: the caller passes NULL or a readable view whose `v` is NULL or three
+        // readable doubles.
+        let star = unsafe { read_star(star)? };
+        let (ring, ring_count, closed) = (star.ring, star.ring_count, star.closed);
+        let v = unsafe { read_point(star.v)? };
+        check_ptr(ring.cast::<Point>(), ring_count)?;
+        if ring_count > MAX_VALENCE {
             return Err(Status::ValenceTooHigh);
         }
         let closed = flag(closed)?;
-        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let n3 = ring_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
         check_out(out_vertex_point, 3)?;
         check_out(out_edge_candidates, n3)?;
         disjoint(
@@ -124,9 +163,9 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
         check_fp_env()?;
         // SAFETY: checked above; readable by the caller's contract and disjoint from the
         // outputs.
-        let ring_pts = unsafe { points(ring, ring_len)? };
+        let ring_pts = unsafe { points(ring, ring_count)? };
         let mut edges = [NAN3; MAX_VALENCE];
-        let cands = edges.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        let cands = edges.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
         let vp = smobius::loop_star(v, ring_pts, closed, cands).map_err(|e| e.status)?;
         // SAFETY: both outputs checked above for their sizes.
         unsafe {
@@ -137,21 +176,21 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
     })
 }
 
-/// The canonical Möbius Catmull–Clark rules at the vertex star `v ring[0..ring_len]`, exactly
-/// as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_CATMULL_CLARK` with
-/// `NLS_SUBDIVIDE_MOBIUS`. `ring` and `closed` as for [`nls_mobius_loop_star`].
+/// The canonical Möbius Catmull–Clark rules at the vertex star `star` (`v` and
+/// `ring[0..ring_count]`), exactly as `nls_mesh_subdivide` evaluates them for `NLS_SCHEME_CATMULL_CLARK` with
+/// `NLS_SUBDIVIDE_MOBIUS`. `ring` and `closed` as for `nls_mobius_loop_star`.
 ///
 /// The faces of the star: face `j` lies between the edges to `ring[j]` and `ring[j+1]`
-/// (counter-clockwise); `face_count` is `ring_len` for a closed star, `ring_len − 1` for an
+/// (counter-clockwise); `face_count` is `ring_count` for a closed star, `ring_count − 1` for an
 /// open one. Face `j` is `face_corners[3*face_offsets[j] .. 3*face_offsets[j+1]]`: the
 /// positions of all its corners in face order, `v` included (anywhere in the cycle);
 /// `face_offsets` holds `face_count + 1` entries, from 0 to `corner_count`.
 ///
-/// Writes `out_vertex_point` (NaN as for [`nls_mobius_loop_star`]),
+/// Writes `out_vertex_point` (NaN as for `nls_mobius_loop_star`),
 /// `out_edge_candidates[3j..3j+3]` (the candidate of the edge to `ring[j]`; NaN for boundary
 /// edges and when it does not exist) and `out_face_candidates[3j..3j+3]` (the centroid of
 /// face `j` taken in this star's canonical form; NaN when it does not exist); they hold 3,
-/// `3*ring_len` and `3*face_count` doubles and must not overlap the inputs. Face points are
+/// `3*ring_count` and `3*face_count` doubles and must not overlap the inputs. Face points are
 /// `nls_face_point_with_ids` of a face's corners (with the host's vertex indices) and the face candidates of the corners' stars (the
 /// Akleman schemes use the same face candidates); edge points as in
 /// `nls_f4_hinted` (hint: the corner after `b` in the face on the left
@@ -160,40 +199,38 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
 /// Bit-identical to the driver when `ring` starts at the driver's first spoke and each face
 /// lists its corners from its first corner in the mesh; otherwise equal up to rounding.
 ///
-/// Errors: those of [`nls_mobius_loop_star`], except that a neighbour sent to infinity only
+/// Errors: those of `nls_mobius_loop_star`, except that a neighbour sent to infinity only
 /// removes the rules that use it (NaN), as in the driver; `NLS_STATUS_INVALID_ARGUMENT`
-/// (`face_count` does not fit `ring_len` and `closed`, or a face does not contain `v`),
+/// (`face_count` does not fit `ring_count` and `closed`, or a face does not contain `v`),
 /// `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
 /// above 128 corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
 ///
-/// cbindgen:ptrs-as-arrays=[[v;3], [out_vertex_point;3]]
+/// cbindgen:ptrs-as-arrays=[[out_vertex_point;3]]
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
-    v: *const f64,
-    ring: *const f64,
-    ring_len: usize,
-    closed: u32,
-    face_offsets: *const u32,
-    face_count: usize,
-    face_corners: *const f64,
-    corner_count: usize,
+    star: *const nls_star_view,
     out_vertex_point: *mut f64,
     out_edge_candidates: *mut f64,
     out_face_candidates: *mut f64,
 ) -> Status {
     run(|| {
+        // SAFETY: the caller passes NULL or a readable view whose `v` is NULL or three
+        // readable doubles.
+        let star = unsafe { read_star(star)? };
+        let (ring, ring_count, closed) = (star.ring, star.ring_count, star.closed);
+        let (face_offsets, face_count) = (star.face_offsets, star.face_count);
+        let (face_corners, corner_count) = (star.face_corners, star.corner_count);
         let offsets_len = face_count.checked_add(1).ok_or(Status::SizeOverflow)?;
-        // SAFETY: the caller passes NULL or three readable doubles.
-        let v = unsafe { read_point(v)? };
-        check_ptr(ring.cast::<Point>(), ring_len)?;
+        // SAFETY: as above.
+        let v = unsafe { read_point(star.v)? };
+        check_ptr(ring.cast::<Point>(), ring_count)?;
         check_ptr(face_offsets, offsets_len)?;
         check_ptr(face_corners.cast::<Point>(), corner_count)?;
-        if ring_len > MAX_VALENCE || face_count > MAX_VALENCE {
+        if ring_count > MAX_VALENCE || face_count > MAX_VALENCE {
             return Err(Status::ValenceTooHigh);
         }
         let closed = flag(closed)?;
-        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let n3 = ring_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
         let f3 = face_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
         let c3 = corner_count.saturating_mul(3);
         check_out(out_vertex_point, 3)?;
@@ -216,14 +253,14 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
         // by the caller's contract and disjoint from the outputs.
         let (ring_pts, corners, offs) = unsafe {
             (
-                points(ring, ring_len)?,
+                points(ring, ring_count)?,
                 points(face_corners, corner_count)?,
                 core::slice::from_raw_parts(face_offsets, offsets_len),
             )
         };
         let mut edges = [NAN3; MAX_VALENCE];
         let mut faces = [NAN3; MAX_VALENCE];
-        let e = edges.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        let e = edges.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
         let f = faces.get_mut(..face_count).ok_or(Status::ValenceTooHigh)?;
         let vp = smobius::catmull_clark_star(v, ring_pts, closed, offs, corners, e, f)
             .map_err(|e| e.status)?;
@@ -237,8 +274,8 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
     })
 }
 
-/// The canonical Möbius Modified Butterfly rules at the vertex star `v ring[0..ring_len]`
-/// (`ring` and `closed` as for [`nls_mobius_loop_star`]; triangles), as `nls_mesh_subdivide`
+/// The canonical Möbius Modified Butterfly rules at the vertex star `star` (`v` and
+/// `ring[0..ring_count]`; `ring` and `closed` as for `nls_mobius_loop_star`; triangles), as `nls_mesh_subdivide`
 /// evaluates them for `NLS_SCHEME_MODIFIED_BUTTERFLY` with `NLS_SUBDIVIDE_MOBIUS` (seed 000
 /// §4.3, "partial candidates"): the star's canonical form, then for each interior spoke `j`
 /// the candidate of the edge to `ring[j]`:
@@ -249,7 +286,7 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
 ///   the wings `ring[j ± 2]` −⅛, reflected as `u + w − z` across a boundary edge, as OpenMesh
 ///   does), all in the canonical form, the result mapped back.
 ///
-/// `irregular_neighbours` holds `ring_len` flags (0 or 1), or is NULL (no neighbour is
+/// `irregular_neighbours` holds `ring_count` flags (0 or 1), or is NULL (no neighbour is
 /// irregular). Writes `out_edge_candidates[3j..3j+3]` (NaN for boundary spokes, the skipped
 /// spokes, a rule that needs a point the form sends to infinity, and every spoke of an *ear*,
 /// a boundary star of one face, to which the driver gives no form). Interior old vertices
@@ -262,33 +299,32 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
 /// Bit-identical to the driver when `ring` starts at the driver's first spoke (any start
 /// gives the same values here: each spoke's rule reads the ring relative to that spoke).
 ///
-/// Errors: those of [`nls_mobius_loop_star`] (including `NLS_STATUS_DEGENERATE_GEOMETRY` when
+/// Errors: those of `nls_mobius_loop_star` (including `NLS_STATUS_DEGENERATE_GEOMETRY` when
 /// the star has no canonical form); `NLS_STATUS_INVALID_ARGUMENT` also for a flag not 0 or 1;
 /// `NLS_STATUS_TOO_FEW_POINTS` for fewer than 2 neighbours. Nothing is written on error.
 ///
-/// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_butterfly_star(
-    v: *const f64,
-    ring: *const f64,
-    ring_len: usize,
-    closed: u32,
+    star: *const nls_star_view,
     irregular_neighbours: *const u32,
     out_edge_candidates: *mut f64,
 ) -> Status {
     run(|| {
-        // SAFETY: the caller passes NULL or three readable doubles.
-        let v = unsafe { read_point(v)? };
-        check_ptr(ring.cast::<Point>(), ring_len)?;
-        if ring_len > MAX_VALENCE {
+        // SAFETY: the caller passes NULL or a readable view whose `v` is NULL or three
+        // readable doubles.
+        let star = unsafe { read_star(star)? };
+        let (ring, ring_count, closed) = (star.ring, star.ring_count, star.closed);
+        let v = unsafe { read_point(star.v)? };
+        check_ptr(ring.cast::<Point>(), ring_count)?;
+        if ring_count > MAX_VALENCE {
             return Err(Status::ValenceTooHigh);
         }
         let closed = flag(closed)?;
-        let n3 = ring_len.checked_mul(3).ok_or(Status::SizeOverflow)?;
+        let n3 = ring_count.checked_mul(3).ok_or(Status::SizeOverflow)?;
         let flags_len = if irregular_neighbours.is_null() {
             0
         } else {
-            ring_len
+            ring_count
         };
         check_ptr(irregular_neighbours, flags_len)?;
         check_out(out_edge_candidates, n3)?;
@@ -301,7 +337,7 @@ pub unsafe extern "C" fn nls_mobius_butterfly_star(
         // output.
         let (ring_pts, flags) = unsafe {
             (
-                points(ring, ring_len)?,
+                points(ring, ring_count)?,
                 if flags_len == 0 {
                     &[][..]
                 } else {
@@ -315,10 +351,10 @@ pub unsafe extern "C" fn nls_mobius_butterfly_star(
         }
         let irregular = irregular.get(..flags_len).ok_or(Status::ValenceTooHigh)?;
         let mut cands = [NAN3; MAX_VALENCE];
-        let c = cands.get_mut(..ring_len).ok_or(Status::ValenceTooHigh)?;
+        let c = cands.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
         smobius::butterfly_star(v, ring_pts, closed, irregular, c).map_err(|e| e.status)?;
-        let out = cands.get(..ring_len).ok_or(Status::ValenceTooHigh)?;
-        // SAFETY: checked above for `3*ring_len` doubles.
+        let out = cands.get(..ring_count).ok_or(Status::ValenceTooHigh)?;
+        // SAFETY: checked above for `3*ring_count` doubles.
         unsafe { write_points(out_edge_candidates, out) };
         Ok(())
     })

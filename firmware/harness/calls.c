@@ -1,4 +1,4 @@
-/* C ABI 0.1 calls behind the harness's adapter (calls.h). This is the file to rewrite when
+/* C ABI 0.2 calls behind the harness's adapter (calls.h). This is the file to rewrite when
  * the mesh, curve, differential or star-rule signatures change; nothing else in firmware/
  * calls those functions. */
 #include <string.h>
@@ -16,54 +16,73 @@ static void clear(fw_mesh_result *out) {
     out->first_fallback = NLS_NO_ELEMENT;
 }
 
-/* One level: nls_mesh_subdivide_size, then nls_mesh_subdivide. Several levels (or 0):
- * nls_mesh_subdivide_levels_size, then nls_mesh_subdivide_levels. Both take the input's
- * topology scratch from nls_mesh_scratch_size first. */
+/* The harness's mesh as the library's view (packed positions). */
+static nls_mesh_view view_of(const fw_mesh *m) {
+    nls_mesh_view v;
+    v.positions = m->positions;
+    v.vertex_count = m->vertex_count;
+    v.positions_stride = 0;
+    v.offsets = m->offsets;
+    v.face_count = m->face_count;
+    v.indices = m->indices;
+    v.index_count = m->index_count;
+    return v;
+}
+
+/* Allocates the plan's scratch and output buffers from the arena. */
+static uint32_t buffers_of(const nls_plan *plan, fw_mesh_result *out, nls_scratch *scratch,
+                           nls_mesh_buffers *buffers) {
+    fw_arena_reset();
+    scratch->u32s = ALLOC(uint32_t, plan->scratch_u32);
+    scratch->u32_capacity = plan->scratch_u32;
+    scratch->points = ALLOC(double, 3 * plan->scratch_points);
+    scratch->point_capacity = plan->scratch_points;
+    out->positions = ALLOC(double, 3 * plan->output.vertex_count);
+    out->offsets = ALLOC(uint32_t, plan->output.face_count + 1);
+    out->indices = ALLOC(uint32_t, plan->output.index_count);
+    if (scratch->u32s == NULL || scratch->points == NULL || out->positions == NULL || out->offsets == NULL ||
+        out->indices == NULL)
+        return FW_STATUS_NO_MEMORY;
+    buffers->positions = out->positions;
+    buffers->vertex_capacity = plan->output.vertex_count;
+    buffers->offsets = out->offsets;
+    buffers->face_capacity = plan->output.face_count;
+    buffers->indices = out->indices;
+    buffers->index_capacity = plan->output.index_count;
+    return NLS_STATUS_OK;
+}
+
+/* nls_mesh_plan_scratch_size (the input's topology), nls_mesh_plan, nls_mesh_subdivide. */
 uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
                            fw_mesh_result *out) {
-    size_t topo_u32 = 0, topo_points = 0, nv = 0, nf = 0, ni = 0, need_u32 = 0, need_points = 0;
-    uint32_t *scratch_u32;
-    double *scratch_points;
+    nls_mesh_view view = view_of(m);
+    nls_subdivide_options options;
+    nls_plan plan;
+    nls_scratch scratch;
+    nls_mesh_buffers buffers;
+    nls_mesh_sizes written;
+    size_t topo_u32 = 0;
+    uint32_t *topo;
     nls_subdivide_report report;
     nls_status s;
     clear(out);
-    s = nls_mesh_scratch_size(scheme, flags, m->vertex_count, m->index_count, &topo_u32, &topo_points);
+    s = nls_subdivide_default_options(&options);
     if (s != NLS_STATUS_OK) return s;
-    if ((scratch_u32 = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
-    if (levels == 1) {
-        s = nls_mesh_subdivide_size(scheme, flags, m->positions, m->vertex_count, m->offsets, m->face_count,
-                                    m->indices, m->index_count, scratch_u32, topo_u32, &nv, &nf, &ni,
-                                    &out->element);
-        need_u32 = topo_u32;
-        need_points = topo_points;
-    } else {
-        s = nls_mesh_subdivide_levels_size(scheme, flags, m->positions, m->vertex_count, m->offsets,
-                                           m->face_count, m->indices, m->index_count, levels, scratch_u32,
-                                           topo_u32, &nv, &nf, &ni, &need_u32, &need_points, &out->element);
-        if (s == NLS_STATUS_OK && need_u32 > topo_u32) {
-            fw_arena_reset();
-            if ((scratch_u32 = ALLOC(uint32_t, need_u32)) == NULL) return FW_STATUS_NO_MEMORY;
-        }
-    }
+    options.scheme = scheme;
+    options.flags = flags;
+    options.levels = levels;
+    s = nls_mesh_plan_scratch_size(&view, &topo_u32);
     if (s != NLS_STATUS_OK) return s;
-    scratch_points = ALLOC(double, 3 * need_points);
-    out->positions = ALLOC(double, 3 * nv);
-    out->offsets = ALLOC(uint32_t, nf + 1);
-    out->indices = ALLOC(uint32_t, ni);
-    if (scratch_points == NULL || out->positions == NULL || out->offsets == NULL || out->indices == NULL)
-        return FW_STATUS_NO_MEMORY;
-    if (levels == 1)
-        s = nls_mesh_subdivide(scheme, flags, m->positions, m->vertex_count, m->offsets, m->face_count,
-                               m->indices, m->index_count, scratch_u32, need_u32, scratch_points, need_points,
-                               out->positions, nv, out->offsets, nf, out->indices, ni, &out->vertex_count,
-                               &out->face_count, &out->index_count, &report, &out->element);
-    else
-        s = nls_mesh_subdivide_levels(scheme, flags, m->positions, m->vertex_count, m->offsets, m->face_count,
-                                      m->indices, m->index_count, levels, scratch_u32, need_u32,
-                                      scratch_points, need_points, out->positions, nv, out->offsets, nf,
-                                      out->indices, ni, &out->vertex_count, &out->face_count,
-                                      &out->index_count, &report, &out->element);
+    if ((topo = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
+    s = nls_mesh_plan(&view, &options, topo, topo_u32, &plan, &out->element);
     if (s != NLS_STATUS_OK) return s;
+    s = buffers_of(&plan, out, &scratch, &buffers);
+    if (s != NLS_STATUS_OK) return s;
+    s = nls_mesh_subdivide(&view, &options, &scratch, &buffers, &written, &report, &out->element);
+    if (s != NLS_STATUS_OK) return s;
+    out->vertex_count = written.vertex_count;
+    out->face_count = written.face_count;
+    out->index_count = written.index_count;
     out->fallbacks = report.fallbacks;
     out->first_fallback = report.first_fallback;
     out->first_fallback_level = report.first_fallback_level;
@@ -77,25 +96,33 @@ uint32_t fw_curve_subdivide(uint32_t scheme, const double *points, size_t count,
     nls_status s;
     memset(out, 0, sizeof *out);
     out->element = NLS_NO_ELEMENT;
-    s = nls_curve_refined_len(count, closed, levels, &len);
+    nls_curve_view curve;
+    curve.points = points;
+    curve.count = count;
+    curve.closed = closed;
+    s = nls_curve_refined_size(count, closed, levels, &len);
     if (s != NLS_STATUS_OK) return s;
-    s = nls_curve_scratch_len(scheme, count, closed, levels, &scratch_len);
+    s = nls_curve_scratch_size(scheme, count, closed, levels, &scratch_len);
     if (s != NLS_STATUS_OK) return s;
     out->points = ALLOC(double, 3 * len);
     scratch = ALLOC(double, 3 * scratch_len);
     if (out->points == NULL || scratch == NULL) return FW_STATUS_NO_MEMORY;
-    return nls_curve_subdivide(scheme, points, count, closed, levels, out->points, len, scratch, scratch_len,
-                               &out->count, &out->element);
+    return nls_curve_subdivide(scheme, &curve, levels, out->points, len, scratch, scratch_len, &out->count,
+                               &out->element);
 }
 
 uint32_t fw_differential_subdivide(uint32_t scheme, uint32_t levels, uint32_t dirmag_levels,
                                    const fw_mesh *m, fw_mesh_result *out,
                                    fw_differential_report *report) {
+    nls_mesh_view view = view_of(m);
     nls_differential_options options;
     nls_differential_report r;
-    size_t topo_u32 = 0, nv = 0, nf = 0, ni = 0, need_u32 = 0, need_points = 0;
-    uint32_t *scratch_u32;
-    double *scratch_points;
+    nls_plan plan;
+    nls_scratch scratch;
+    nls_mesh_buffers buffers;
+    nls_mesh_sizes written;
+    size_t topo_u32 = 0;
+    uint32_t *topo;
     nls_status s;
     clear(out);
     memset(report, 0, sizeof *report);
@@ -104,27 +131,19 @@ uint32_t fw_differential_subdivide(uint32_t scheme, uint32_t levels, uint32_t di
     options.scheme = scheme;
     options.levels = levels;
     options.dirmag_levels = dirmag_levels;
-    s = nls_differential_scratch_size(m->vertex_count, m->index_count, &topo_u32);
+    s = nls_mesh_plan_scratch_size(&view, &topo_u32);
     if (s != NLS_STATUS_OK) return s;
-    if ((scratch_u32 = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
-    s = nls_differential_plan(m->positions, m->vertex_count, m->offsets, m->face_count, m->indices,
-                              m->index_count, &options, scratch_u32, topo_u32, &nv, &nf, &ni, &need_u32,
-                              &need_points, &out->element);
+    if ((topo = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
+    s = nls_differential_plan(&view, &options, topo, topo_u32, &plan, &out->element);
     if (s != NLS_STATUS_OK) return s;
-    fw_arena_reset();
-    scratch_u32 = ALLOC(uint32_t, need_u32);
-    scratch_points = ALLOC(double, 3 * need_points);
-    out->positions = ALLOC(double, 3 * nv);
-    out->offsets = ALLOC(uint32_t, nf + 1);
-    out->indices = ALLOC(uint32_t, ni);
-    if (scratch_u32 == NULL || scratch_points == NULL || out->positions == NULL || out->offsets == NULL ||
-        out->indices == NULL)
-        return FW_STATUS_NO_MEMORY;
-    s = nls_differential_subdivide(m->positions, m->vertex_count, m->offsets, m->face_count, m->indices,
-                                   m->index_count, &options, scratch_u32, need_u32, scratch_points,
-                                   need_points, out->positions, nv, out->offsets, nf, out->indices, ni,
-                                   &out->vertex_count, &out->face_count, &out->index_count, &r,
-                                   &out->element);
+    s = buffers_of(&plan, out, &scratch, &buffers);
+    if (s != NLS_STATUS_OK) return s;
+    s = nls_differential_subdivide(&view, &options, &scratch, &buffers, &written, &r, &out->element);
+    if (s == NLS_STATUS_OK) {
+        out->vertex_count = written.vertex_count;
+        out->face_count = written.face_count;
+        out->index_count = written.index_count;
+    }
     if (s == NLS_STATUS_OK || s == NLS_STATUS_NOT_CONVERGED) {
         report->iterations = r.iterations;
         report->converged = r.converged;
@@ -136,17 +155,32 @@ uint32_t fw_differential_subdivide(uint32_t scheme, uint32_t levels, uint32_t di
     return s;
 }
 
+/* The harness's star as the library's view. */
+static nls_star_view star_of(const fw_star *st) {
+    nls_star_view v;
+    v.v = st->v;
+    v.ring = st->ring;
+    v.ring_count = st->ring_count;
+    v.closed = st->closed;
+    v.face_offsets = st->face_offsets;
+    v.face_count = st->face_count;
+    v.face_corners = st->face_corners;
+    v.corner_count = st->corner_count;
+    return v;
+}
+
 uint32_t fw_loop_star(const fw_star *st, double *vertex_point, double *edge_candidates) {
-    return nls_mobius_loop_star(st->v, st->ring, st->ring_count, st->closed, vertex_point, edge_candidates);
+    nls_star_view v = star_of(st);
+    return nls_mobius_loop_star(&v, vertex_point, edge_candidates);
 }
 
 uint32_t fw_catmull_clark_star(const fw_star *st, double *vertex_point, double *edge_candidates,
                                double *face_candidates) {
-    return nls_mobius_catmull_clark_star(st->v, st->ring, st->ring_count, st->closed, st->face_offsets,
-                                         st->face_count, st->face_corners, st->corner_count, vertex_point,
-                                         edge_candidates, face_candidates);
+    nls_star_view v = star_of(st);
+    return nls_mobius_catmull_clark_star(&v, vertex_point, edge_candidates, face_candidates);
 }
 
 uint32_t fw_butterfly_star(const fw_star *st, const uint32_t *irregular, double *edge_candidates) {
-    return nls_mobius_butterfly_star(st->v, st->ring, st->ring_count, st->closed, irregular, edge_candidates);
+    nls_star_view v = star_of(st);
+    return nls_mobius_butterfly_star(&v, irregular, edge_candidates);
 }

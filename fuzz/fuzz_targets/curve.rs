@@ -1,7 +1,7 @@
 //! Fuzz target `curve`: curve subdivision through the C ABI (`nls_curve_*`).
 //!
 //! Contract checked (include/nlsubdiv.h, docs/bad-input-catalogue.md):
-//! - `nls_curve_refined_len`, `nls_curve_scratch_len` and `nls_curve_subdivide` agree on
+//! - `nls_curve_refined_size`, `nls_curve_scratch_size` and `nls_curve_subdivide` agree on
 //!   refusals; a refusal writes no count and no output;
 //! - the output or the scratch shortened by any amount gives `BUFFER_TOO_SMALL` with the exact
 //!   size of that buffer in `*out_count` and nothing written to the output;
@@ -52,9 +52,11 @@ fn call(
     let status = unsafe {
         nls_curve_subdivide(
             scheme,
-            pts.as_ptr(),
-            pts.len() / 3,
-            closed,
+            &nls_curve_view {
+                points: pts.as_ptr(),
+                count: pts.len() / 3,
+                closed,
+            },
             levels,
             out.as_mut_ptr(),
             cap,
@@ -75,8 +77,8 @@ fn call(
 /// The sizes: `Ok((out, scratch))` or the first refusal.
 fn sizes(scheme: u32, n: usize, closed: u32, levels: u32) -> Result<(usize, usize), Status> {
     let (mut a, mut b) = (SENTINEL_COUNT, SENTINEL_COUNT);
-    let s = unsafe { nls_curve_refined_len(n, closed, levels, &mut a) };
-    let t = unsafe { nls_curve_scratch_len(scheme, n, closed, levels, &mut b) };
+    let s = unsafe { nls_curve_refined_size(n, closed, levels, &mut a) };
+    let t = unsafe { nls_curve_scratch_size(scheme, n, closed, levels, &mut b) };
     if s != Status::Ok {
         assert_eq!(a, SENTINEL_COUNT);
     }

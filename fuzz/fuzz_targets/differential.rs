@@ -1,5 +1,5 @@
 //! Fuzz target `differential`: differential-space subdivision through the C ABI
-//! (`nls_differential_default_options`, `_scratch_size`, `_plan`, `_subdivide`; seed 001,
+//! (`nls_differential_default_options`, `nls_mesh_plan_scratch_size`, `_plan`, `_subdivide`; seed 001,
 //! docs/differential.md).
 //!
 //! Contract checked (include/nlsubdiv.h, docs/bad-input-catalogue.md), on every execution:
@@ -8,7 +8,7 @@
 //!   caller buffer; ASan sees writes past the allocation);
 //! - every status is one of the documented set of the function;
 //! - `nls_differential_default_options` writes the documented defaults, refuses NULL and
-//!   misaligned pointers writing nothing; `nls_differential_scratch_size` gives `OK` or
+//!   misaligned pointers writing nothing; `nls_mesh_plan_scratch_size` gives `OK` or
 //!   `SIZE_OVERFLOW`, writing its count on `OK` only;
 //! - options the header calls invalid (unknown scheme, `dirmag_levels` not matching the
 //!   scheme, more than `NLS_MAX_LEVELS` levels, a tolerance not finite and ≥ 0) give
@@ -20,7 +20,7 @@
 //!   the outputs or the report; the counts receive the planned sizes (unless the scratch is
 //!   below the topology's need, when no size can be computed and none is written);
 //! - success: the counts are exactly the planned sizes, every position is finite, the faces
-//!   are those of the spatial Loop / Modified Butterfly subdivision (`nls_mesh_subdivide_levels`)
+//!   are those of the spatial Loop / Modified Butterfly subdivision (`nls_mesh_subdivide`)
 //!   index for index, the report says converged with a residual ≤ the tolerance in at most
 //!   `max_iterations` iterations, `out_element` untouched; `NOT_CONVERGED` writes the report
 //!   (converged = 0) and no count.
@@ -65,7 +65,39 @@ const REPORT_SENTINEL: nls_differential_report = nls_differential_report {
     dirmag_degenerate: 0xdead,
     relative_residual: -7.0,
     initial_residual: -7.0,
+    folded_faces: 0xdead,
+    first_folded_face: 0xdead,
+    folded_edges: 0xdead,
+    first_folded_edge: [0xdead; 2],
 };
+
+/// The view of a packed mesh.
+fn view(m: &Mesh) -> nls_mesh_view {
+    nls_mesh_view {
+        positions: m.pos.as_ptr(),
+        vertex_count: m.nv(),
+        positions_stride: 0,
+        offsets: m.off.as_ptr(),
+        face_count: m.nf(),
+        indices: m.idx.as_ptr(),
+        index_count: m.idx.len(),
+    }
+}
+
+/// `nls_plan` filled with sentinels.
+const PLAN_SENTINEL: nls_plan = nls_plan {
+    output: nls_mesh_sizes {
+        vertex_count: SENTINEL_COUNT,
+        face_count: SENTINEL_COUNT,
+        index_count: SENTINEL_COUNT,
+    },
+    scratch_u32: SENTINEL_COUNT,
+    scratch_points: SENTINEL_COUNT,
+};
+
+fn counts_of(s: &nls_mesh_sizes) -> [usize; 3] {
+    [s.vertex_count, s.face_count, s.index_count]
+}
 
 /// What the `edits` byte's bits 2–4 ask for.
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -162,27 +194,15 @@ struct Plan {
 
 fn plan(m: &Mesh, o: Option<&nls_differential_options>, su: usize) -> Plan {
     let mut scratch = Guarded::new(su, SENTINEL_U32);
-    let mut c = [SENTINEL_COUNT; 3];
-    let mut s2 = [SENTINEL_COUNT; 2];
+    let mut p = PLAN_SENTINEL;
     let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut c;
-    let [s0, s1] = &mut s2;
     let status = unsafe {
         nls_differential_plan(
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
+            &view(m),
             o.map_or(core::ptr::null(), |o| o as *const _),
             scratch.ptr(),
             su,
-            c0,
-            c1,
-            c2,
-            s0,
-            s1,
+            &mut p,
             &mut element,
         )
     };
@@ -192,8 +212,8 @@ fn plan(m: &Mesh, o: Option<&nls_differential_options>, su: usize) -> Plan {
     );
     Plan {
         status,
-        counts: c,
-        scratch: s2,
+        counts: counts_of(&p.output),
+        scratch: [p.scratch_u32, p.scratch_points],
         element,
     }
 }
@@ -204,31 +224,12 @@ fn plan_aliased(m: &Mesh, o: &Opts, su: usize) {
     let mut scratch = Guarded::new(su.max(2 * m.nv() + 2), SENTINEL_U32);
     let mut raw = o.raw();
     raw.curvature_scale = scratch.ptr().cast::<f64>().cast_const();
-    let mut c = [SENTINEL_COUNT; 3];
-    let mut s2 = [SENTINEL_COUNT; 2];
-    let [c0, c1, c2] = &mut c;
-    let [s0, s1] = &mut s2;
+    let mut p = PLAN_SENTINEL;
     let mut element = SENTINEL_ELEMENT;
     let cap = scratch.cap;
-    let status = unsafe {
-        nls_differential_plan(
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            &raw,
-            scratch.ptr(),
-            cap,
-            c0,
-            c1,
-            c2,
-            s0,
-            s1,
-            &mut element,
-        )
-    };
+    let status =
+        unsafe { nls_differential_plan(&view(m), &raw, scratch.ptr(), cap, &mut p, &mut element) };
+    let (c, s2) = (counts_of(&p.output), [p.scratch_u32, p.scratch_points]);
     assert!(scratch.guard_intact());
     assert_eq!((c, s2), ([SENTINEL_COUNT; 3], [SENTINEL_COUNT; 2]));
     let want = if (raw.curvature_scale as usize) % core::mem::align_of::<f64>() == 0 {
@@ -276,41 +277,44 @@ fn subdivide(
             r.curvature_scale = pos.ptr().cast_const().cast::<f64>();
         }
     }
-    let mut counts = [SENTINEL_COUNT; 3];
+    let mut sizes = nls_mesh_sizes {
+        vertex_count: SENTINEL_COUNT,
+        face_count: SENTINEL_COUNT,
+        index_count: SENTINEL_COUNT,
+    };
     let mut report = REPORT_SENTINEL;
     let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut counts;
     let (rep_ptr, el_ptr): (*mut nls_differential_report, *mut u32) = if null_optional {
         (core::ptr::null_mut(), core::ptr::null_mut())
     } else {
         (&mut report, &mut element)
     };
+    let scratch = nls_scratch {
+        u32s: su.ptr(),
+        u32_capacity: caps[0],
+        points: sp.ptr().cast::<f64>(),
+        point_capacity: caps[1],
+    };
+    let buffers = nls_mesh_buffers {
+        positions: pos.ptr().cast::<f64>(),
+        vertex_capacity: caps[2],
+        offsets: off.ptr(),
+        face_capacity: caps[3],
+        indices: idx.ptr(),
+        index_capacity: caps[4],
+    };
     let status = unsafe {
         nls_differential_subdivide(
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
+            &view(m),
             raw.as_ref().map_or(core::ptr::null(), |o| o as *const _),
-            su.ptr(),
-            caps[0],
-            sp.ptr().cast::<f64>(),
-            caps[1],
-            pos.ptr().cast::<f64>(),
-            caps[2],
-            off.ptr(),
-            caps[3],
-            idx.ptr(),
-            caps[4],
-            c0,
-            c1,
-            c2,
+            &scratch,
+            &buffers,
+            &mut sizes,
             rep_ptr,
             el_ptr,
         )
     };
+    let counts = counts_of(&sizes);
     let scratch_intact = su.guard_intact() && sp.guard_intact();
     assert!(
         scratch_intact && pos.guard_intact() && off.guard_intact() && idx.guard_intact(),
@@ -328,8 +332,8 @@ fn subdivide(
     }
 }
 
-/// Statuses `nls_differential_plan` may return (its doc and that of
-/// `nls_mesh_subdivide_size` it refers to).
+/// Statuses `nls_differential_plan` may return (its doc and that of `nls_mesh_plan` it refers
+/// to).
 fn plan_status_documented(s: Status) -> bool {
     matches!(
         s,
@@ -355,79 +359,76 @@ fn plan_status_documented(s: Status) -> bool {
     )
 }
 
-/// Statuses only the computation of `nls_differential_subdivide` (after the plan) may give.
+/// Statuses only the computation of `nls_differential_subdivide` (after the plan) may give:
+/// the solver's, a normal edit at a vertex whose surface normal is zero
+/// (`DEGENERATE_GEOMETRY`), a fold with `strict` (`FOLDED_SURFACE`).
 fn compute_failure(s: Status) -> bool {
-    matches!(s, Status::NotConverged | Status::NumericalFailure)
+    matches!(
+        s,
+        Status::NotConverged
+            | Status::NumericalFailure
+            | Status::DegenerateGeometry
+            | Status::FoldedSurface
+    )
 }
 
 /// The spatial subdivision's topology after `levels` levels, when it is computable.
 fn spatial(scheme: u32, m: &Mesh, levels: u32) -> Option<(Vec<u32>, Vec<u32>)> {
-    let (mut su, mut sp) = (0usize, 0usize);
-    if unsafe { nls_mesh_scratch_size(scheme, 0, m.nv(), m.idx.len(), &mut su, &mut sp) }
-        != Status::Ok
-    {
+    let v = view(m);
+    let mut su = 0usize;
+    if unsafe { nls_mesh_plan_scratch_size(&v, &mut su) } != Status::Ok {
         return None;
     }
+    let mut o = core::mem::MaybeUninit::<nls_subdivide_options>::uninit();
+    if unsafe { nls_subdivide_default_options(o.as_mut_ptr()) } != Status::Ok {
+        return None;
+    }
+    let mut o = unsafe { o.assume_init() };
+    o.scheme = scheme;
+    o.levels = levels;
     let mut scratch = vec![0u32; su];
-    let mut c = [0usize; 3];
-    let mut s2 = [0usize; 2];
-    let [c0, c1, c2] = &mut c;
-    let [s0, s1] = &mut s2;
+    let mut p = PLAN_SENTINEL;
     let s = unsafe {
-        nls_mesh_subdivide_levels_size(
-            scheme,
-            0,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            levels,
+        nls_mesh_plan(
+            &v,
+            &o,
             scratch.as_mut_ptr(),
             su,
-            c0,
-            c1,
-            c2,
-            s0,
-            s1,
+            &mut p,
             core::ptr::null_mut(),
         )
     };
     if s != Status::Ok {
         return None;
     }
-    let mut scratch = vec![0u32; s2[0]];
-    let mut points = vec![0.0f64; 3 * s2[1]];
+    let c = counts_of(&p.output);
+    let mut scratch = vec![0u32; p.scratch_u32];
+    let mut points = vec![0.0f64; 3 * p.scratch_points];
     let mut pos = vec![0.0f64; 3 * c[0]];
     let mut off = vec![0u32; c[1] + 1];
     let mut idx = vec![0u32; c[2]];
-    let mut w = [0usize; 3];
-    let [w0, w1, w2] = &mut w;
+    let sc = nls_scratch {
+        u32s: scratch.as_mut_ptr(),
+        u32_capacity: p.scratch_u32,
+        points: points.as_mut_ptr(),
+        point_capacity: p.scratch_points,
+    };
+    let b = nls_mesh_buffers {
+        positions: pos.as_mut_ptr(),
+        vertex_capacity: c[0],
+        offsets: off.as_mut_ptr(),
+        face_capacity: c[1],
+        indices: idx.as_mut_ptr(),
+        index_capacity: c[2],
+    };
+    let mut w = nls_mesh_sizes::default();
     let s = unsafe {
-        nls_mesh_subdivide_levels(
-            scheme,
-            0,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            levels,
-            scratch.as_mut_ptr(),
-            s2[0],
-            points.as_mut_ptr(),
-            s2[1],
-            pos.as_mut_ptr(),
-            c[0],
-            off.as_mut_ptr(),
-            c[1],
-            idx.as_mut_ptr(),
-            c[2],
-            w0,
-            w1,
-            w2,
+        nls_mesh_subdivide(
+            &v,
+            &o,
+            &sc,
+            &b,
+            &mut w,
             core::ptr::null_mut(),
             core::ptr::null_mut(),
         )
@@ -445,6 +446,7 @@ fn check_default_options() {
         (NLS_DIFFERENTIAL_LOOP, 1, 0, 100)
     );
     assert!(o.tolerance == 1e-10 && o.curvature_scale.is_null() && o.normals.is_null());
+    assert_eq!(o.strict, 0);
     let s = unsafe { nls_differential_default_options(core::ptr::null_mut()) };
     assert_eq!(s, Status::NullParameter);
     // A misaligned pointer: refused, nothing written.
@@ -496,6 +498,7 @@ fn decode_options(r: &mut Reader<'_>, m: &Mesh, head: [u8; 5], edits: u8, mode: 
             tolerance,
             curvature_scale: core::ptr::null(),
             normals: core::ptr::null(),
+            strict: 0,
         },
         invalid,
         scale,
@@ -521,16 +524,20 @@ fuzz_target!(|data: &[u8]| {
         check_default_options();
     }
     let mut topo_need = SENTINEL_COUNT;
-    let s = unsafe { nls_differential_scratch_size(m.nv(), m.idx.len(), &mut topo_need) };
+    let s = unsafe { nls_mesh_plan_scratch_size(&view(&m), &mut topo_need) };
     assert_eq!(s, Status::Ok, "scratch size of a small mesh");
     assert_ne!(topo_need, SENTINEL_COUNT);
     if tweak & 0x80 != 0 {
         // Counts past the u32 range: SIZE_OVERFLOW, nothing written.
         let mut n = SENTINEL_COUNT;
         let big = usize::from(tweak_at) << 32 | 0xffff_ffff;
-        let s = unsafe { nls_differential_scratch_size(big, m.idx.len(), &mut n) };
+        let big_view = nls_mesh_view {
+            vertex_count: big,
+            ..view(&m)
+        };
+        let s = unsafe { nls_mesh_plan_scratch_size(&big_view, &mut n) };
         assert_eq!((s, n), (Status::SizeOverflow, SENTINEL_COUNT));
-        let s = unsafe { nls_differential_scratch_size(0, 0, core::ptr::null_mut()) };
+        let s = unsafe { nls_mesh_plan_scratch_size(&view(&m), core::ptr::null_mut()) };
         assert_eq!(s, Status::NullParameter);
     }
     let su0 = topo_need;
@@ -562,7 +569,7 @@ fuzz_target!(|data: &[u8]| {
     assert_ne!(
         p.status,
         Status::BufferTooSmall,
-        "scratch of nls_differential_scratch_size is short"
+        "scratch of nls_mesh_plan_scratch_size is short"
     );
     if opts.invalid {
         assert_eq!(p.status, Status::InvalidArgument, "invalid options");
@@ -698,6 +705,8 @@ fuzz_target!(|data: &[u8]| {
                 if s == Status::NotConverged {
                     assert_ne!(c.report, REPORT_SENTINEL, "no report on NOT_CONVERGED");
                     assert_eq!(c.report.converged, 0);
+                } else if s == Status::FoldedSurface {
+                    assert!(c.report.folded_faces + c.report.folded_edges > 0, "{:?}", c.report);
                 } else {
                     assert_eq!(c.report, REPORT_SENTINEL, "report written on {s:?}");
                 }

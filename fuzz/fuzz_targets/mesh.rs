@@ -1,15 +1,15 @@
 //! Fuzz target `mesh`: whole-mesh subdivision through the C ABI (`nls_mesh_*`).
 //!
 //! Checks the contract of include/nlsubdiv.h, not only "no crash" (docs/bad-input-catalogue.md):
-//! - `nls_mesh_scratch_size`, `nls_mesh_subdivide_size` and `nls_mesh_subdivide` agree on every
-//!   refusal (same status, same element), and a refusal writes no count, no report and no
+//! - `nls_mesh_plan_scratch_size`, `nls_mesh_plan` and `nls_mesh_subdivide` agree on every
+//!   refusal (same status, same element), and a refusal writes no sizes, no report and no
 //!   output;
 //! - one buffer shortened by any amount gives `BUFFER_TOO_SMALL` naming exactly that buffer,
 //!   writes nothing to the outputs, and reports the exact sizes when it is an output buffer;
 //! - on success: the counts are the planned sizes, every position is finite, the output
 //!   validates again, interpolating schemes keep the old vertices bit for bit, and the report
 //!   is consistent;
-//! - `nls_mesh_subdivide_levels` equals the chain of one-level calls bit for bit (or fails
+//! - one call of several levels equals the chain of one-level calls bit for bit (or fails
 //!   with the status the chain fails with).
 //!
 //! Input layout (fuzz/make_corpus.py writes the seeds in it; missing bytes read as 0):
@@ -70,129 +70,76 @@ fn buffers(caps: [usize; 3]) -> Mesh {
     }
 }
 
-/// `nls_mesh_scratch_size`.
-fn scratch_size(scheme: u32, flags: u32, m: &Mesh) -> (Status, usize, usize) {
-    let (mut su, mut sp) = (SENTINEL_COUNT, SENTINEL_COUNT);
-    let s = unsafe { nls_mesh_scratch_size(scheme, flags, m.nv(), m.idx.len(), &mut su, &mut sp) };
-    (s, su, sp)
-}
-
-/// `nls_mesh_subdivide_size` with `su` scratch entries.
-fn subdivide_size(scheme: u32, flags: u32, m: &Mesh, su: usize) -> (Status, [usize; 3], u32) {
-    let mut scratch = vec![0u32; su];
-    let mut c = [SENTINEL_COUNT; 3];
-    let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut c;
-    let s = unsafe {
-        nls_mesh_subdivide_size(
-            scheme,
-            flags,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            scratch.as_mut_ptr(),
-            su,
-            c0,
-            c1,
-            c2,
-            &mut element,
-        )
-    };
-    (s, c, element)
-}
-
-/// `nls_mesh_subdivide` with exactly sized fresh buffers (so ASan sees any overrun).
-fn subdivide(scheme: u32, flags: u32, m: &Mesh, su: usize, sp: usize, caps: [usize; 3]) -> Call {
-    let mut scratch = vec![0u32; su];
-    let mut points = vec![0.0f64; 3 * sp];
-    let mut out = buffers(caps);
-    let mut counts = [SENTINEL_COUNT; 3];
-    let mut report = REPORT_SENTINEL;
-    let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut counts;
-    let status = unsafe {
-        nls_mesh_subdivide(
-            scheme,
-            flags,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            scratch.as_mut_ptr(),
-            su,
-            points.as_mut_ptr(),
-            sp,
-            out.pos.as_mut_ptr(),
-            caps[0],
-            out.off.as_mut_ptr(),
-            caps[1],
-            out.idx.as_mut_ptr(),
-            caps[2],
-            c0,
-            c1,
-            c2,
-            &mut report,
-            &mut element,
-        )
-    };
-    Call {
-        status,
-        mesh: out,
-        counts,
-        report,
-        element,
+/// The view of a packed mesh.
+fn view(m: &Mesh) -> nls_mesh_view {
+    nls_mesh_view {
+        positions: m.pos.as_ptr(),
+        vertex_count: m.nv(),
+        positions_stride: 0,
+        offsets: m.off.as_ptr(),
+        face_count: m.nf(),
+        indices: m.idx.as_ptr(),
+        index_count: m.idx.len(),
     }
 }
 
-/// `nls_mesh_subdivide_levels_size`: status, last-level counts, scratch, element.
-fn levels_size(
+fn options(scheme: u32, flags: u32, levels: u32) -> nls_subdivide_options {
+    let mut o = core::mem::MaybeUninit::<nls_subdivide_options>::uninit();
+    assert_eq!(
+        unsafe { nls_subdivide_default_options(o.as_mut_ptr()) },
+        Status::Ok
+    );
+    let mut o = unsafe { o.assume_init() };
+    o.scheme = scheme;
+    o.flags = flags;
+    o.levels = levels;
+    o
+}
+
+/// `nls_mesh_plan_scratch_size`.
+fn plan_scratch(m: &Mesh) -> (Status, usize) {
+    let mut su = SENTINEL_COUNT;
+    let s = unsafe { nls_mesh_plan_scratch_size(&view(m), &mut su) };
+    (s, su)
+}
+
+/// `nls_mesh_plan` with `su` scratch entries: status, output sizes, scratch, element.
+fn plan(
     scheme: u32,
     flags: u32,
-    m: &Mesh,
     levels: u32,
+    m: &Mesh,
     su: usize,
 ) -> (Status, [usize; 3], [usize; 2], u32) {
     let mut scratch = vec![0u32; su];
-    let mut c = [SENTINEL_COUNT; 3];
-    let mut s2 = [SENTINEL_COUNT; 2];
-    let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut c;
-    let [s0, s1] = &mut s2;
-    let s = unsafe {
-        nls_mesh_subdivide_levels_size(
-            scheme,
-            flags,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            levels,
-            scratch.as_mut_ptr(),
-            su,
-            c0,
-            c1,
-            c2,
-            s0,
-            s1,
-            &mut element,
-        )
+    let mut p = nls_plan {
+        output: nls_mesh_sizes {
+            vertex_count: SENTINEL_COUNT,
+            face_count: SENTINEL_COUNT,
+            index_count: SENTINEL_COUNT,
+        },
+        scratch_u32: SENTINEL_COUNT,
+        scratch_points: SENTINEL_COUNT,
     };
-    (s, c, s2, element)
+    let mut element = SENTINEL_ELEMENT;
+    let o = options(scheme, flags, levels);
+    let s = unsafe { nls_mesh_plan(&view(m), &o, scratch.as_mut_ptr(), su, &mut p, &mut element) };
+    let out = p.output;
+    (
+        s,
+        [out.vertex_count, out.face_count, out.index_count],
+        [p.scratch_u32, p.scratch_points],
+        element,
+    )
 }
 
+/// `nls_mesh_subdivide` with exactly sized fresh buffers (so ASan sees any overrun).
 #[allow(clippy::too_many_arguments)]
-fn subdivide_levels(
+fn subdivide(
     scheme: u32,
     flags: u32,
-    m: &Mesh,
     levels: u32,
+    m: &Mesh,
     su: usize,
     sp: usize,
     caps: [usize; 3],
@@ -200,42 +147,34 @@ fn subdivide_levels(
     let mut scratch = vec![0u32; su];
     let mut points = vec![0.0f64; 3 * sp];
     let mut out = buffers(caps);
-    let mut counts = [SENTINEL_COUNT; 3];
+    let mut sizes = nls_mesh_sizes {
+        vertex_count: SENTINEL_COUNT,
+        face_count: SENTINEL_COUNT,
+        index_count: SENTINEL_COUNT,
+    };
     let mut report = REPORT_SENTINEL;
     let mut element = SENTINEL_ELEMENT;
-    let [c0, c1, c2] = &mut counts;
-    let status = unsafe {
-        nls_mesh_subdivide_levels(
-            scheme,
-            flags,
-            m.pos.as_ptr(),
-            m.nv(),
-            m.off.as_ptr(),
-            m.nf(),
-            m.idx.as_ptr(),
-            m.idx.len(),
-            levels,
-            scratch.as_mut_ptr(),
-            su,
-            points.as_mut_ptr(),
-            sp,
-            out.pos.as_mut_ptr(),
-            caps[0],
-            out.off.as_mut_ptr(),
-            caps[1],
-            out.idx.as_mut_ptr(),
-            caps[2],
-            c0,
-            c1,
-            c2,
-            &mut report,
-            &mut element,
-        )
+    let o = options(scheme, flags, levels);
+    let sc = nls_scratch {
+        u32s: scratch.as_mut_ptr(),
+        u32_capacity: su,
+        points: points.as_mut_ptr(),
+        point_capacity: sp,
     };
+    let b = nls_mesh_buffers {
+        positions: out.pos.as_mut_ptr(),
+        vertex_capacity: caps[0],
+        offsets: out.off.as_mut_ptr(),
+        face_capacity: caps[1],
+        indices: out.idx.as_mut_ptr(),
+        index_capacity: caps[2],
+    };
+    let status =
+        unsafe { nls_mesh_subdivide(&view(m), &o, &sc, &b, &mut sizes, &mut report, &mut element) };
     Call {
         status,
         mesh: out,
-        counts,
+        counts: [sizes.vertex_count, sizes.face_count, sizes.index_count],
         report,
         element,
     }
@@ -291,8 +230,8 @@ fn written(c: &Call) -> Mesh {
 }
 
 /// Checks a successful one-level call against its plan.
-fn check_success(scheme: u32, flags: u32, input: &Mesh, c: &Call, plan: [usize; 3]) -> Mesh {
-    assert_eq!(c.counts, plan, "counts differ from the size query");
+fn check_success(scheme: u32, flags: u32, input: &Mesh, c: &Call, sizes: [usize; 3]) -> Mesh {
+    assert_eq!(c.counts, sizes, "sizes differ from the plan");
     assert_eq!(c.element, SENTINEL_ELEMENT, "element written on success");
     let out = written(c);
     assert!(
@@ -311,7 +250,7 @@ fn check_success(scheme: u32, flags: u32, input: &Mesh, c: &Call, plan: [usize; 
     if r.fallbacks == 0 {
         assert_eq!((r.first_fallback, r.first_fallback_level), (u32::MAX, 0));
     } else {
-        assert!(r.fallbacks as usize <= plan[0] && (r.first_fallback as usize) < plan[0]);
+        assert!(r.fallbacks as usize <= sizes[0] && (r.first_fallback as usize) < sizes[0]);
         assert_eq!(r.first_fallback_level, 1);
     }
     if INTERPOLATING.contains(&scheme) {
@@ -321,39 +260,36 @@ fn check_success(scheme: u32, flags: u32, input: &Mesh, c: &Call, plan: [usize; 
         );
     }
     // The output is a valid mesh again (Catmull–Clark accepts every face size).
-    let (su, _) = {
-        let (s, su, sp) = scratch_size(NLS_SCHEME_CATMULL_CLARK, 0, &out);
-        assert_eq!(s, Status::Ok);
-        (su, sp)
-    };
-    let (s, _, e) = subdivide_size(NLS_SCHEME_CATMULL_CLARK, 0, &out, su);
+    let (s, su) = plan_scratch(&out);
+    assert_eq!(s, Status::Ok);
+    let (s, _, _, e) = plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, &out, su);
     assert_eq!(s, Status::Ok, "the output does not validate (element {e})");
     out
 }
 
 /// One level, with the exact sizes: `Ok(output, report)` or the refusal.
 fn one_level(scheme: u32, flags: u32, m: &Mesh) -> Result<(Mesh, nls_subdivide_report), Status> {
-    let (s, su, sp) = scratch_size(scheme, flags, m);
+    let (s, su0) = plan_scratch(m);
     if s != Status::Ok {
         return Err(s);
     }
-    let (s, plan, _) = subdivide_size(scheme, flags, m, su);
+    let (s, sizes, [su, sp], _) = plan(scheme, flags, 1, m, su0);
     if s != Status::Ok {
         return Err(s);
     }
-    let c = subdivide(scheme, flags, m, su, sp, plan);
+    let c = subdivide(scheme, flags, 1, m, su, sp, sizes);
     if c.status != Status::Ok {
         return Err(c.status);
     }
-    Ok((check_success(scheme, flags, m, &c, plan), c.report))
+    Ok((check_success(scheme, flags, m, &c, sizes), c.report))
 }
 
 fn check_levels(scheme: u32, flags: u32, m: &Mesh, levels: u32, su_in: usize) {
-    let (s, plan, [su, sp], element) = levels_size(scheme, flags, m, levels, su_in);
+    let (s, sizes, [su, sp], element) = plan(scheme, flags, levels, m, su_in);
     if s != Status::Ok {
         assert_ne!(s, Status::BufferTooSmall);
         // The multi-level call refuses the same way and writes nothing.
-        let c = subdivide_levels(scheme, flags, m, levels, su_in, 0, [0, 0, 0]);
+        let c = subdivide(scheme, flags, levels, m, su_in, 0, [0, 0, 0]);
         assert_eq!(
             (c.status, c.element),
             (s, element),
@@ -362,10 +298,10 @@ fn check_levels(scheme: u32, flags: u32, m: &Mesh, levels: u32, su_in: usize) {
         assert_nothing_written(&c, true);
         return;
     }
-    if plan[0] > MAX_LEVEL_VERTICES {
+    if sizes[0] > MAX_LEVEL_VERTICES {
         return;
     }
-    let c = subdivide_levels(scheme, flags, m, levels, su, sp, plan);
+    let c = subdivide(scheme, flags, levels, m, su, sp, sizes);
     // The chain of one-level calls.
     let mut cur = m.clone();
     let mut chain = Ok(());
@@ -393,7 +329,7 @@ fn check_levels(scheme: u32, flags: u32, m: &Mesh, levels: u32, su_in: usize) {
                 Status::Ok,
                 "levels call failed where the chain did not"
             );
-            assert_eq!(c.counts, plan);
+            assert_eq!(c.counts, sizes);
             let out = written(&c);
             assert!(
                 same_bits(&out.pos, &cur.pos),
@@ -431,39 +367,39 @@ fuzz_target!(|data: &[u8]| {
     let tweak_at = r.u16();
     let m = decode_mesh(&mut r, tweak, tweak_at, LIMITS);
 
-    // 1. Size queries and the call agree on refusals of the arguments.
-    let (s0, su, sp) = scratch_size(scheme, flags, &m);
+    // 1. The plan's scratch depends on the counts only.
+    let (s0, su0) = plan_scratch(&m);
     if s0 != Status::Ok {
-        assert_eq!((su, sp), (SENTINEL_COUNT, SENTINEL_COUNT));
+        assert_eq!(su0, SENTINEL_COUNT);
+        assert_eq!(s0, Status::SizeOverflow, "{s0:?}");
+        let c = subdivide(scheme, flags, 1, &m, 0, 0, [4, 4, 4]);
         assert!(
-            matches!(s0, Status::InvalidArgument | Status::SizeOverflow),
-            "{s0:?}"
+            matches!(c.status, Status::InvalidArgument | Status::SizeOverflow),
+            "{:?}",
+            c.status
         );
-        let (s1, c, _) = subdivide_size(scheme, flags, &m, 0);
-        assert_eq!((s1, c), (s0, [SENTINEL_COUNT; 3]));
-        let c = subdivide(scheme, flags, &m, 0, 0, [4, 4, 4]);
-        assert_eq!(c.status, s0);
         assert_nothing_written(&c, true);
         return;
     }
 
-    // 2. Validation: the size query and the call refuse with the same status and element.
-    let (s1, plan, element) = subdivide_size(scheme, flags, &m, su);
+    // 2. Options and validation: the plan and the call refuse with the same status and element.
+    let (s1, plan1, [su, sp], element) = plan(scheme, flags, 1, &m, su0);
     assert_ne!(
         s1,
         Status::BufferTooSmall,
-        "scratch of nls_mesh_scratch_size is short"
+        "scratch of nls_mesh_plan_scratch_size is short"
     );
     if s1 != Status::Ok {
-        assert_eq!(plan, [SENTINEL_COUNT; 3], "counts written on {s1:?}");
+        assert_eq!(plan1, [SENTINEL_COUNT; 3], "sizes written on {s1:?}");
         let caps = [m.nv() * 4, m.nf() * 4, m.idx.len() * 4];
-        let c = subdivide(scheme, flags, &m, su, sp, caps);
-        assert_eq!((c.status, c.element), (s1, element), "call vs size query");
+        let c = subdivide(scheme, flags, 1, &m, su0, 4 * m.idx.len(), caps);
+        assert_eq!((c.status, c.element), (s1, element), "call vs plan");
         assert_nothing_written(&c, true);
         return;
     }
-    if shrink == 1 && su > 0 {
-        let (s, c, e) = subdivide_size(scheme, flags, &m, su - 1 - amount % su);
+    assert!(su >= su0, "the call's scratch below the plan's own");
+    if shrink == 1 && su0 > 0 {
+        let (s, c, _, e) = plan(scheme, flags, 1, &m, su0 - 1 - amount % su0);
         assert_eq!(
             (s, c, e),
             (
@@ -473,6 +409,7 @@ fuzz_target!(|data: &[u8]| {
             )
         );
     }
+    let plan = plan1;
 
     // 3. One buffer short by any amount: BUFFER_TOO_SMALL naming it, nothing written.
     if shrink > 0 {
@@ -485,7 +422,7 @@ fuzz_target!(|data: &[u8]| {
         };
         if *need > 0 {
             *need -= 1 + amount % *need;
-            let c = subdivide(scheme, flags, &m, su2, sp2, caps);
+            let c = subdivide(scheme, flags, 1, &m, su2, sp2, caps);
             assert_eq!((c.status, c.element), (Status::BufferTooSmall, buffer));
             let counts = if buffer >= NLS_MESH_BUFFER_POSITIONS {
                 plan
@@ -503,7 +440,7 @@ fuzz_target!(|data: &[u8]| {
     }
 
     // 4. The call itself.
-    let c = subdivide(scheme, flags, &m, su, sp, plan);
+    let c = subdivide(scheme, flags, 1, &m, su, sp, plan);
     if c.status != Status::Ok {
         assert!(
             compute_failure(c.status, flags),
@@ -517,6 +454,6 @@ fuzz_target!(|data: &[u8]| {
 
     // 5. Several levels (0, 2 or 3) in one call = the chain of one-level calls.
     if levels != 1 {
-        check_levels(scheme, flags, &m, levels, su);
+        check_levels(scheme, flags, &m, levels, su0);
     }
 });

@@ -291,14 +291,17 @@ fuzz_target!(|data: &[u8]| {
             21 => {
                 let mut vp = f64_sentinels(3);
                 let mut ec = f64_sentinels(3 * n);
-                let s = nls_mobius_loop_star(
-                    a.as_ptr(),
-                    ring.as_ptr(),
-                    n,
+                let star = nls_star_view {
+                    v: a.as_ptr(),
+                    ring: ring.as_ptr(),
+                    ring_count: n,
                     closed,
-                    vp.as_mut_ptr(),
-                    ec.as_mut_ptr(),
-                );
+                    face_offsets: core::ptr::null(),
+                    face_count: 0,
+                    face_corners: core::ptr::null(),
+                    corner_count: 0,
+                };
+                let s = nls_mobius_loop_star(&star, vp.as_mut_ptr(), ec.as_mut_ptr());
                 check("mobius_loop_star", s, &[vp, ec].concat(), true);
             }
             _ => {
@@ -319,15 +322,18 @@ fuzz_target!(|data: &[u8]| {
                 let mut vp = f64_sentinels(3);
                 let mut ec = f64_sentinels(3 * n);
                 let mut fc = f64_sentinels(3 * faces);
-                let s = nls_mobius_catmull_clark_star(
-                    a.as_ptr(),
-                    ring.as_ptr(),
-                    n,
+                let star = nls_star_view {
+                    v: a.as_ptr(),
+                    ring: ring.as_ptr(),
+                    ring_count: n,
                     closed,
-                    offsets.as_ptr(),
-                    faces,
-                    corners.as_ptr(),
-                    corners.len() / 3,
+                    face_offsets: offsets.as_ptr(),
+                    face_count: faces,
+                    face_corners: corners.as_ptr(),
+                    corner_count: corners.len() / 3,
+                };
+                let s = nls_mobius_catmull_clark_star(
+                    &star,
                     vp.as_mut_ptr(),
                     ec.as_mut_ptr(),
                     fc.as_mut_ptr(),

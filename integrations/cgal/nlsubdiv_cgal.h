@@ -21,7 +21,7 @@
 //   corner, as the driver's quad pattern does, so levels chain like the driver's);
 // * free functions for every scheme, in CGAL's named-parameter style
 //   (number_of_iterations, vertex_point_map): mask + host where a mask fits, otherwise the
-//   bulk path (flat copy -> nls_mesh_subdivide_levels -> mesh rebuilt); spherelike_subdivision
+//   bulk path (flat copy -> nls_mesh_subdivide -> mesh rebuilt); spherelike_subdivision
 //   (bulk) and differential_{loop,butterfly,dirmag}_subdivision (flat copy -> one
 //   nls_differential_subdivide call for all levels -> mesh rebuilt).
 //
@@ -522,9 +522,11 @@ class Star_mask_3 {
         if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
           irregular.assign(n, 0);
           for (std::size_t j = 0; j < n; ++j) irregular[j] = singular[id(ring[j])] ? 1u : 0u;
-          s = nls_mobius_butterfly_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
+          const nls_star_view star = flat::star_of(pv.data(), xyz.data(), n, !boundary);
+          s = nls_mobius_butterfly_star(&star, irregular.data(), ec.data());
         } else {
-          s = nls_mobius_loop_star(pv.data(), xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+          const nls_star_view star = flat::star_of(pv.data(), xyz.data(), n, !boundary);
+          s = nls_mobius_loop_star(&star, vp.data(), ec.data());
         }
         if (s == NLS_STATUS_OK) {
           for (std::size_t j = 0; j < spokes.size(); ++j)
@@ -690,7 +692,7 @@ bool rebuild(PM& pm, const FlatMesh& out) {
   return true;
 }
 
-/// The bulk path: flat copy -> nls_mesh_subdivide_levels -> the mesh rebuilt (old vertices
+/// The bulk path: flat copy -> nls_mesh_subdivide -> the mesh rebuilt (old vertices
 /// first, in order; the mesh's internal point map receives the positions).
 template <class PM, class NP>
 Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts) {

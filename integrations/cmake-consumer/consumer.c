@@ -10,17 +10,44 @@ int main(void) {
     static const double pos[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
     static const uint32_t idx[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
     uint32_t off[9];
-    size_t su, sp, nv, nf, ni, k;
+    size_t su, sp, nv = 0, nf = 0, k;
     double worst = 0.0;
+    nls_mesh_view mesh = {pos, 6, 0, NULL, 8, idx, 24};
+    nls_subdivide_options options;
+    nls_plan plan;
     for (k = 0; k < 9; k++) off[k] = (uint32_t)(3 * k);
-    if (nls_mesh_scratch_size(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, 6, 24, &su, &sp) != NLS_STATUS_OK) return 1;
+    mesh.offsets = off;
+    if (nls_subdivide_default_options(&options) != NLS_STATUS_OK) return 1;
+    options.scheme = NLS_SCHEME_LOOP;
+    options.flags = NLS_SUBDIVIDE_MOBIUS;
+    if (nls_mesh_plan_scratch_size(&mesh, &su) != NLS_STATUS_OK) return 1;
+    {
+        uint32_t *scratch = malloc(su * sizeof *scratch);
+        nls_status s = nls_mesh_plan(&mesh, &options, scratch, su, &plan, NULL);
+        free(scratch);
+        if (s != NLS_STATUS_OK) return 1;
+        su = plan.scratch_u32;
+        sp = plan.scratch_points;
+    }
     {
         uint32_t *scratch = malloc(su * sizeof *scratch);
         double *spts = malloc(3 * sp * sizeof *spts);
         double out_p[3 * 18];
         uint32_t out_o[33], out_i[96];
-        nls_status s = nls_mesh_subdivide(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, pos, 6, off, 8, idx, 24, scratch, su, spts, sp,
-                                          out_p, 18, out_o, 32, out_i, 96, &nv, &nf, &ni, NULL, NULL);
+        nls_scratch sc;
+        nls_mesh_buffers out = {NULL, 18, NULL, 32, NULL, 96};
+        nls_mesh_sizes written = {0, 0, 0};
+        nls_status s;
+        sc.u32s = scratch;
+        sc.u32_capacity = su;
+        sc.points = spts;
+        sc.point_capacity = sp;
+        out.positions = out_p;
+        out.offsets = out_o;
+        out.indices = out_i;
+        s = nls_mesh_subdivide(&mesh, &options, &sc, &out, &written, NULL, NULL);
+        nv = written.vertex_count;
+        nf = written.face_count;
         free(scratch);
         free(spts);
         if (s != NLS_STATUS_OK) {

@@ -10,12 +10,12 @@
 int main() {
     const double ctrl[] = {1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
     std::size_t len = 0, scratch = 0;
-    if (nls_curve_refined_len(4, 1, 4, &len) != NLS_STATUS_OK) return 1;
-    if (nls_curve_scratch_len(NLS_CURVE_MOBIUS_INTERPOLATING, 4, 1, 4, &scratch) != NLS_STATUS_OK) return 1;
+    if (nls_curve_refined_size(4, 1, 4, &len) != NLS_STATUS_OK) return 1;
+    if (nls_curve_scratch_size(NLS_CURVE_MOBIUS_INTERPOLATING, 4, 1, 4, &scratch) != NLS_STATUS_OK) return 1;
     std::vector<double> out(3 * len), work(3 * scratch + 3);
     std::size_t n = 0;
-    nls_status s = nls_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, ctrl, 4, 1, 4, out.data(), len, work.data(), scratch, &n,
-                                       nullptr);
+    const nls_curve_view curve{ctrl, 4, 1};
+    nls_status s = nls_curve_subdivide(NLS_CURVE_MOBIUS_INTERPOLATING, &curve, 4, out.data(), len, work.data(), scratch, &n, nullptr);
     if (s != NLS_STATUS_OK) {
         std::printf("consumer_static: %s\n", nls_status_str(s));
         return 1;

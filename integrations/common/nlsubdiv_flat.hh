@@ -25,15 +25,55 @@ struct FlatMesh {
   std::size_t face_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
 };
 
-/// Validates `flat` for one level of `scheme` with `flags` (nls_mesh_subdivide_size).
+/// The C ABI's view of `flat` (packed positions).
+inline nls_mesh_view view_of(const FlatMesh& flat) {
+  nls_mesh_view v{};
+  v.positions = flat.positions.data();
+  v.vertex_count = flat.vertex_count();
+  v.positions_stride = 0;
+  v.offsets = flat.offsets.data();
+  v.face_count = flat.face_count();
+  v.indices = flat.indices.data();
+  v.index_count = flat.indices.size();
+  return v;
+}
+
+/// The C ABI's view of a vertex star: centre `v`, `n` neighbours packed in `ring`, closed or
+/// open, and (Catmull–Clark) the corners of its faces.
+inline nls_star_view star_of(const double* v, const double* ring, std::size_t n, bool closed, const uint32_t* face_offsets = nullptr,
+                             std::size_t face_count = 0, const double* face_corners = nullptr, std::size_t corner_count = 0) {
+  nls_star_view s{};
+  s.v = v;
+  s.ring = ring;
+  s.ring_count = n;
+  s.closed = closed ? 1u : 0u;
+  s.face_offsets = face_offsets;
+  s.face_count = face_count;
+  s.face_corners = face_corners;
+  s.corner_count = corner_count;
+  return s;
+}
+
+/// Options for `levels` levels of `scheme` with `flags`, from the library's defaults.
+inline nls_subdivide_options options_of(uint32_t scheme, uint32_t flags, uint32_t levels) {
+  nls_subdivide_options o{};
+  nls_subdivide_default_options(&o);
+  o.scheme = scheme;
+  o.flags = flags;
+  o.levels = levels;
+  return o;
+}
+
+/// Validates `flat` for one level of `scheme` with `flags` (nls_mesh_plan).
 inline nls_status validate(uint32_t scheme, uint32_t flags, const FlatMesh& flat, uint32_t& element) {
-  std::size_t su = 0, sp = 0, nv = 0, nf = 0, ni = 0;
-  nls_status s = nls_mesh_scratch_size(scheme, flags, flat.vertex_count(), flat.indices.size(), &su, &sp);
+  const nls_mesh_view v = view_of(flat);
+  const nls_subdivide_options o = options_of(scheme, flags, 1);
+  std::size_t su = 0;
+  nls_status s = nls_mesh_plan_scratch_size(&v, &su);
   if (s != NLS_STATUS_OK) return s;
   std::vector<uint32_t> scratch(su + 1);
-  return nls_mesh_subdivide_size(scheme, flags, flat.positions.data(), flat.vertex_count(), flat.offsets.data(),
-                                 flat.face_count(), flat.indices.data(), flat.indices.size(), scratch.data(), scratch.size(), &nv,
-                                 &nf, &ni, &element);
+  nls_plan plan{};
+  return nls_mesh_plan(&v, &o, scratch.data(), scratch.size(), &plan, &element);
 }
 
 /// The input checks of strict mode beyond the kernel's validation, the same as the
@@ -83,33 +123,36 @@ inline nls_status strict_check(const FlatMesh& flat, uint32_t& element) {
   return NLS_STATUS_OK;
 }
 
-/// `levels` levels of `scheme` with `flags` on `in` through nls_mesh_subdivide_levels (exact
-/// sizes first, then one call); `out` receives the result. `element` the element of a
-/// failure, `fallbacks` the report's count.
+/// `levels` levels of `scheme` with `flags` on `in` through nls_mesh_plan and
+/// nls_mesh_subdivide (exact sizes first, then one call); `out` receives the result.
+/// `element` the element of a failure, `fallbacks` the report's count.
 inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in, uint32_t levels, FlatMesh& out, uint32_t& element,
                              uint32_t& fallbacks) {
-  std::size_t su0 = 0, sp0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  const nls_mesh_view v = view_of(in);
+  const nls_subdivide_options o = options_of(scheme, flags, levels);
+  std::size_t su0 = 0;
   element = NLS_NO_ELEMENT;
-  nls_status s = nls_mesh_scratch_size(scheme, flags, in.vertex_count(), in.indices.size(), &su0, &sp0);
+  nls_status s = nls_mesh_plan_scratch_size(&v, &su0);
   if (s != NLS_STATUS_OK) return s;
   std::vector<uint32_t> scratch(su0 + 1);
-  s = nls_mesh_subdivide_levels_size(scheme, flags, in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(),
-                                     in.indices.data(), in.indices.size(), levels, scratch.data(), scratch.size(), &nv, &nf, &ni, &su, &sp,
-                                     &element);
+  nls_plan plan{};
+  s = nls_mesh_plan(&v, &o, scratch.data(), scratch.size(), &plan, &element);
   if (s != NLS_STATUS_OK) return s;
-  scratch.assign(std::max(su, su0) + 1, 0);
-  std::vector<double> spts(3 * sp + 3);
+  const std::size_t nv = plan.output.vertex_count, nf = plan.output.face_count, ni = plan.output.index_count;
+  scratch.assign(std::max(plan.scratch_u32, su0) + 1, 0);
+  std::vector<double> spts(3 * plan.scratch_points + 3);
   out.positions.assign(3 * nv + 3, 0.0);
   out.offsets.assign(nf + 1, 0);
   out.indices.assign(ni + 1, 0);
+  const nls_scratch sc{scratch.data(), scratch.size(), spts.data(), plan.scratch_points};
+  const nls_mesh_buffers b{out.positions.data(), nv, out.offsets.data(), nf, out.indices.data(), ni};
+  nls_mesh_sizes written{};
   nls_subdivide_report rep{};
-  s = nls_mesh_subdivide_levels(scheme, flags, in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(), in.indices.data(),
-                                in.indices.size(), levels, scratch.data(), scratch.size(), spts.data(), sp, out.positions.data(), nv,
-                                out.offsets.data(), nf, out.indices.data(), ni, &nv, &nf, &ni, &rep, &element);
+  s = nls_mesh_subdivide(&v, &o, &sc, &b, &written, &rep, &element);
   if (s != NLS_STATUS_OK) return s;
-  out.positions.resize(3 * nv);
-  out.offsets.resize(nf + 1);
-  out.indices.resize(ni);
+  out.positions.resize(3 * written.vertex_count);
+  out.offsets.resize(written.face_count + 1);
+  out.indices.resize(written.index_count);
   fallbacks = rep.fallbacks;
   return NLS_STATUS_OK;
 }
@@ -117,31 +160,34 @@ inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in
 /// Differential-space subdivision of `in` (triangles) with `opt` (its `levels` levels in one
 /// call: the reconstruction is global, so k levels are one solve, not k solves of one level)
 /// through nls_differential_plan + nls_differential_subdivide. `out` receives the result on
-/// success; `rep` is written on success and on NLS_STATUS_NOT_CONVERGED (then `out` is
-/// untouched). `element` the element of a failure.
+/// success; `rep` is written on success, on NLS_STATUS_NOT_CONVERGED and on
+/// NLS_STATUS_FOLDED_SURFACE (then `out` is untouched). `element` the element of a failure.
 inline nls_status run_differential(const nls_differential_options& opt, const FlatMesh& in, FlatMesh& out, uint32_t& element,
                                    nls_differential_report& rep) {
-  std::size_t su0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  const nls_mesh_view v = view_of(in);
+  std::size_t su0 = 0;
   element = NLS_NO_ELEMENT;
-  nls_status s = nls_differential_scratch_size(in.vertex_count(), in.indices.size(), &su0);
+  nls_status s = nls_mesh_plan_scratch_size(&v, &su0);
   if (s != NLS_STATUS_OK) return s;
   std::vector<uint32_t> scratch(su0 + 1);
-  s = nls_differential_plan(in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(), in.indices.data(), in.indices.size(),
-                            &opt, scratch.data(), scratch.size(), &nv, &nf, &ni, &su, &sp, &element);
+  nls_plan plan{};
+  s = nls_differential_plan(&v, &opt, scratch.data(), scratch.size(), &plan, &element);
   if (s != NLS_STATUS_OK) return s;
-  scratch.assign(std::max(su, su0) + 1, 0);
-  std::vector<double> spts(3 * sp + 3);
+  const std::size_t nv = plan.output.vertex_count, nf = plan.output.face_count, ni = plan.output.index_count;
+  scratch.assign(std::max(plan.scratch_u32, su0) + 1, 0);
+  std::vector<double> spts(3 * plan.scratch_points + 3);
   std::vector<double> pos(3 * nv + 3, 0.0);
   std::vector<uint32_t> offs(nf + 1, 0), idx(ni + 1, 0);
+  const nls_scratch sc{scratch.data(), scratch.size(), spts.data(), plan.scratch_points};
+  const nls_mesh_buffers b{pos.data(), nv, offs.data(), nf, idx.data(), ni};
+  nls_mesh_sizes written{};
   nls_differential_report r{};
-  s = nls_differential_subdivide(in.positions.data(), in.vertex_count(), in.offsets.data(), in.face_count(), in.indices.data(),
-                                 in.indices.size(), &opt, scratch.data(), scratch.size(), spts.data(), sp, pos.data(), nv, offs.data(), nf,
-                                 idx.data(), ni, &nv, &nf, &ni, &r, &element);
-  if (s == NLS_STATUS_OK || s == NLS_STATUS_NOT_CONVERGED) rep = r;
+  s = nls_differential_subdivide(&v, &opt, &sc, &b, &written, &r, &element);
+  if (s == NLS_STATUS_OK || s == NLS_STATUS_NOT_CONVERGED || s == NLS_STATUS_FOLDED_SURFACE) rep = r;
   if (s != NLS_STATUS_OK) return s;
-  pos.resize(3 * nv);
-  offs.resize(nf + 1);
-  idx.resize(ni);
+  pos.resize(3 * written.vertex_count);
+  offs.resize(written.face_count + 1);
+  idx.resize(written.index_count);
   out.positions = std::move(pos);
   out.offsets = std::move(offs);
   out.indices = std::move(idx);

@@ -17,11 +17,11 @@
 //   driver's spokes, which this header arranges);
 // * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
 //   LinearLoopT, SpherelikeT, ...): the mesh is copied to flat arrays, subdivided with
-//   nls_mesh_subdivide_levels and the connectivity rebuilt;
+//   nls_mesh_subdivide (any number of levels) and the connectivity rebuilt;
 // * differential (DifferentialT and DifferentialLoopT / ButterflyT / DirMagT, triangles):
 //   one nls_differential_subdivide call for all k levels of sd(k), the connectivity rebuilt.
 //
-// In both, the mesh is validated (nls_mesh_subdivide_size: manifold, oriented, finite, face
+// In both, the mesh is validated (nls_mesh_plan: manifold, oriented, finite, face
 // types of the scheme) before anything is computed, and on any error the mesh is left exactly
 // as it was: operator() returns false and status(), element() and message() say why. Nothing
 // aborts the host and nothing throws (except std::bad_alloc from the host's own containers).
@@ -239,11 +239,11 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
 };
 
 // ---------------------------------------------------------------------------------------
-// Bulk path: every scheme, through nls_mesh_subdivide_levels.
+// Bulk path: every scheme, through nls_mesh_subdivide.
 // ---------------------------------------------------------------------------------------
 
 /// `levels` levels of `Scheme` (NLS_SCHEME_*) with `Flags` (NLS_SUBDIVIDE_MOBIUS or 0) in one
-/// nls_mesh_subdivide_levels call on a flat copy of the mesh, then the connectivity is
+/// nls_mesh_subdivide call on a flat copy of the mesh, then the connectivity is
 /// rebuilt in the driver's layout: the result is the driver's, bit for bit (modulo the point
 /// type). With update_points = false the old vertices keep their positions at every level.
 template <typename MeshType, uint32_t Scheme, uint32_t Flags, typename RealType = double>
@@ -697,12 +697,14 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
         nls_status s;
         const P3 pv = pos_[vi];
         if (Scheme == NLS_SCHEME_LOOP) {
-          s = nls_mobius_loop_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, vp.data(), ec.data());
+          const nls_star_view star = flat::star_of(pv.data(), ring_xyz.data(), n, !boundary);
+          s = nls_mobius_loop_star(&star, vp.data(), ec.data());
         } else if (Scheme == NLS_SCHEME_MODIFIED_BUTTERFLY) {
           irregular.assign(n, 0);
           for (std::size_t j = 0; j < n; ++j)
             irregular[j] = (!m.is_boundary(ring[j]) && m.valence(ring[j]) != 6) ? 1u : 0u;
-          s = nls_mobius_butterfly_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, irregular.data(), ec.data());
+          const nls_star_view star = flat::star_of(pv.data(), ring_xyz.data(), n, !boundary);
+          s = nls_mobius_butterfly_star(&star, irregular.data(), ec.data());
         } else {
           const std::size_t nfs = boundary ? n - 1 : n;
           offs.assign(1, 0);
@@ -712,8 +714,9 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
             offs.push_back(static_cast<uint32_t>(corners.size() / 3));
           }
           fc.assign(3 * nfs, NAN);
-          s = nls_mobius_catmull_clark_star(pv.data(), ring_xyz.data(), n, boundary ? 0u : 1u, offs.data(), nfs, corners.data(),
-                                            corners.size() / 3, vp.data(), ec.data(), fc.data());
+          const nls_star_view star =
+              flat::star_of(pv.data(), ring_xyz.data(), n, !boundary, offs.data(), nfs, corners.data(), corners.size() / 3);
+          s = nls_mobius_catmull_clark_star(&star, vp.data(), ec.data(), fc.data());
           if (s == NLS_STATUS_OK)
             for (std::size_t j = 0; j < nfs; ++j) face_c_[static_cast<std::size_t>(spokes[j].idx())] = {fc[3 * j], fc[3 * j + 1], fc[3 * j + 2]};
         }

@@ -1,4 +1,4 @@
-// Shared helpers of the integration tests: the driver (nls_mesh_subdivide_levels) on flat
+// Shared helpers of the integration tests: the driver (nls_mesh_subdivide) on flat
 // meshes, an order-independent comparison of two meshes, and the test bookkeeping.
 #ifndef NLSUBDIV_INTEGRATION_TESTS_COMMON_HPP
 #define NLSUBDIV_INTEGRATION_TESTS_COMMON_HPP
@@ -29,29 +29,49 @@ struct Flat {
   bool operator==(const Flat& o) const { return pos == o.pos && off == o.off && idx == o.idx; }
 };
 
+/// The C ABI's view of `in` (packed positions).
+inline nls_mesh_view view_of(const Flat& in) {
+  nls_mesh_view v{};
+  v.positions = in.pos.data();
+  v.vertex_count = in.nv();
+  v.offsets = in.off.data();
+  v.face_count = in.nf();
+  v.indices = in.idx.data();
+  v.index_count = in.idx.size();
+  return v;
+}
+
 /// The driver: `levels` levels of `scheme` with `flags`; status, and the result in `out`.
 inline nls_status driver(uint32_t scheme, uint32_t flags, const Flat& in, uint32_t levels, Flat& out) {
-  std::size_t su0 = 0, sp0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  const nls_mesh_view v = view_of(in);
+  nls_subdivide_options o{};
+  nls_subdivide_default_options(&o);
+  o.scheme = scheme;
+  o.flags = flags;
+  o.levels = levels;
+  std::size_t su0 = 0;
   uint32_t el = 0;
-  nls_status s = nls_mesh_scratch_size(scheme, flags, in.nv(), in.idx.size(), &su0, &sp0);
+  nls_status s = nls_mesh_plan_scratch_size(&v, &su0);
   if (s) return s;
   std::vector<uint32_t> scratch(su0 + 1);
-  s = nls_mesh_subdivide_levels_size(scheme, flags, in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), levels,
-                                     scratch.data(), scratch.size(), &nv, &nf, &ni, &su, &sp, &el);
+  nls_plan plan{};
+  s = nls_mesh_plan(&v, &o, scratch.data(), scratch.size(), &plan, &el);
   if (s) return s;
-  scratch.assign(std::max(su, su0) + 1, 0);
-  std::vector<double> spts(3 * sp + 3);
+  const std::size_t nv = plan.output.vertex_count, nf = plan.output.face_count, ni = plan.output.index_count;
+  scratch.assign(std::max(plan.scratch_u32, su0) + 1, 0);
+  std::vector<double> spts(3 * plan.scratch_points + 3);
   out.pos.assign(3 * nv + 3, 0);
   out.off.assign(nf + 1, 0);
   out.idx.assign(ni + 1, 0);
+  const nls_scratch sc{scratch.data(), scratch.size(), spts.data(), plan.scratch_points};
+  const nls_mesh_buffers b{out.pos.data(), nv, out.off.data(), nf, out.idx.data(), ni};
+  nls_mesh_sizes w{};
   nls_subdivide_report rep{};
-  s = nls_mesh_subdivide_levels(scheme, flags, in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), levels,
-                                scratch.data(), scratch.size(), spts.data(), sp, out.pos.data(), nv, out.off.data(), nf, out.idx.data(), ni,
-                                &nv, &nf, &ni, &rep, &el);
+  s = nls_mesh_subdivide(&v, &o, &sc, &b, &w, &rep, &el);
   if (s) return s;
-  out.pos.resize(3 * nv);
-  out.off.resize(nf + 1);
-  out.idx.resize(ni);
+  out.pos.resize(3 * w.vertex_count);
+  out.off.resize(w.face_count + 1);
+  out.idx.resize(w.index_count);
   return NLS_STATUS_OK;
 }
 
@@ -60,6 +80,7 @@ inline nls_status driver(uint32_t scheme, uint32_t flags, const Flat& in, uint32
 /// cap and tolerance; status, the result in `out`, the solver report in `rep`.
 inline nls_status driver_differential(uint32_t stencil, uint32_t dirmag, uint32_t max_it, double tol, const Flat& in, uint32_t levels, Flat& out,
                                       nls_differential_report& rep) {
+  const nls_mesh_view v = view_of(in);
   nls_differential_options o{};
   nls_differential_default_options(&o);
   o.scheme = stencil;
@@ -67,26 +88,29 @@ inline nls_status driver_differential(uint32_t stencil, uint32_t dirmag, uint32_
   o.dirmag_levels = dirmag;
   o.max_iterations = max_it;
   o.tolerance = tol;
-  std::size_t su0 = 0, nv = 0, nf = 0, ni = 0, su = 0, sp = 0;
+  std::size_t su0 = 0;
   uint32_t el = 0;
-  nls_status s = nls_differential_scratch_size(in.nv(), in.idx.size(), &su0);
+  nls_status s = nls_mesh_plan_scratch_size(&v, &su0);
   if (s) return s;
   std::vector<uint32_t> scratch(su0 + 1);
-  s = nls_differential_plan(in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), &o, scratch.data(), scratch.size(), &nv,
-                            &nf, &ni, &su, &sp, &el);
+  nls_plan plan{};
+  s = nls_differential_plan(&v, &o, scratch.data(), scratch.size(), &plan, &el);
   if (s) return s;
-  scratch.assign(std::max(su, su0) + 1, 0);
-  std::vector<double> spts(3 * sp + 3);
+  const std::size_t nv = plan.output.vertex_count, nf = plan.output.face_count, ni = plan.output.index_count;
+  scratch.assign(std::max(plan.scratch_u32, su0) + 1, 0);
+  std::vector<double> spts(3 * plan.scratch_points + 3);
   out.pos.assign(3 * nv + 3, 0);
   out.off.assign(nf + 1, 0);
   out.idx.assign(ni + 1, 0);
+  const nls_scratch sc{scratch.data(), scratch.size(), spts.data(), plan.scratch_points};
+  const nls_mesh_buffers b{out.pos.data(), nv, out.off.data(), nf, out.idx.data(), ni};
+  nls_mesh_sizes w{};
   rep = nls_differential_report{};
-  s = nls_differential_subdivide(in.pos.data(), in.nv(), in.off.data(), in.nf(), in.idx.data(), in.idx.size(), &o, scratch.data(), scratch.size(),
-                                 spts.data(), sp, out.pos.data(), nv, out.off.data(), nf, out.idx.data(), ni, &nv, &nf, &ni, &rep, &el);
+  s = nls_differential_subdivide(&v, &o, &sc, &b, &w, &rep, &el);
   if (s) return s;
-  out.pos.resize(3 * nv);
-  out.off.resize(nf + 1);
-  out.idx.resize(ni);
+  out.pos.resize(3 * w.vertex_count);
+  out.off.resize(w.face_count + 1);
+  out.idx.resize(w.index_count);
   return NLS_STATUS_OK;
 }
 

@@ -30,9 +30,12 @@ static int level(const uint32_t *idx, double *out) {
     static const uint32_t off[] = {0, 3, 6, 9, 12};
     uint32_t scratch[128], out_off[13], out_idx[48];
     double spts[3 * 24];
-    size_t nv, nf, ni;
-    return nls_mesh_subdivide(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, pos, 4, off, 4, idx, 12, scratch, 128, spts, 24, out, 14, out_off,
-                              12, out_idx, 48, &nv, &nf, &ni, NULL, NULL) != NLS_STATUS_OK;
+    const nls_mesh_view mesh = {pos, 4, 0, off, 4, idx, 12};
+    const nls_subdivide_options options = {NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1};
+    const nls_scratch s = {scratch, 128, spts, 24};
+    const nls_mesh_buffers b = {out, 14, out_off, 12, out_idx, 48};
+    nls_mesh_sizes written;
+    return nls_mesh_subdivide(&mesh, &options, &s, &b, &written, NULL, NULL) != NLS_STATUS_OK;
 }
 
 int main(void) {

@@ -2,7 +2,7 @@
 //
 //   test_openmesh MESH_DIR
 //
-// 1. every subdivider equals the driver (nls_mesh_subdivide_levels on the same mesh, same
+// 1. every subdivider equals the driver (nls_mesh_subdivide on the same mesh, same
 //    scheme and flags), order-independent, <= 1e-12 relative, on every mesh of MESH_DIR that
 //    OpenMesh loads whole (1 or 2 levels by size); where the driver refuses a mesh the
 //    subdivider must refuse it with the same status and leave it unchanged;
