@@ -100,6 +100,7 @@ pub(super) fn run(
     let (scheme, levels) = (opts.scheme, opts.levels);
     let mobius = opts.mobius.then_some(MobiusOptions {
         strict: opts.strict,
+        guard: !opts.literal,
     });
     let extra = match mobius {
         Some(_) => p.mobius_step_points()?,
@@ -177,6 +178,11 @@ pub(super) fn run(
         if report.first_fallback_level == 0 && r.fallbacks > 0 {
             report.first_fallback = r.first_fallback;
             report.first_fallback_level = (k + 1) as u32;
+        }
+        report.guarded = report.guarded.saturating_add(r.guarded);
+        if report.first_guarded_level == 0 && r.guarded > 0 {
+            report.first_guarded = r.first_guarded;
+            report.first_guarded_level = (k + 1) as u32;
         }
         if written != out_sizes {
             return Err(internal());

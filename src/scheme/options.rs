@@ -35,6 +35,16 @@ pub struct Options {
     pub strict: bool,
     /// Levels, `0..=`[`MAX_LEVELS`]; 0 validates the input and copies it.
     pub levels: usize,
+    /// With [`Options::mobius`]: the paper's algorithm exactly as printed (seed 000 §4),
+    /// without the fold guard. By default (`false`) a Möbius step guards the stars whose
+    /// canonical form is ill-conditioned (Loop, Modified Butterfly, Catmull–Clark; seed 000
+    /// §7.1, §7.2; `docs/folds.md`): they are evaluated in a form interpolated toward the
+    /// linear rule, and the elements this changes are counted in the
+    /// [`Report`](super::Report) (`guarded`) or, with [`Options::strict`], refused with
+    /// [`Status::FallbackInStrictMode`]. Named for what it gives rather than for the guard,
+    /// so that `true` always means "the published rules, bit for bit". Accepted and without
+    /// effect for the linear schemes.
+    pub literal: bool,
 }
 
 impl Options {
@@ -45,6 +55,7 @@ impl Options {
             mobius: false,
             strict: false,
             levels: 1,
+            literal: false,
         }
     }
 
@@ -58,6 +69,13 @@ impl Options {
     #[must_use]
     pub const fn strict(self, on: bool) -> Options {
         Options { strict: on, ..self }
+    }
+
+    /// The paper's literal Möbius rules (`true`) or the guarded ones (`false`, the default;
+    /// [`Options::literal`]).
+    #[must_use]
+    pub const fn literal(self, on: bool) -> Options {
+        Options { literal: on, ..self }
     }
 
     /// The number of levels (checked against [`MAX_LEVELS`] by the calls).

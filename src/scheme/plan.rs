@@ -48,7 +48,8 @@ pub struct Plan {
     ///   since the call still validates the input.
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
-    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1).
+    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and
+    ///   the fold guard's trust of every vertex (one `f64` each, three to a point).
     pub scratch: ScratchSizes,
 }
 
@@ -59,13 +60,16 @@ impl Plan {
     }
 
     /// The candidate points of the largest Möbius step: two per corner of the largest level
-    /// stepped from (0 for zero levels).
+    /// stepped from, and the fold guard's trust per vertex, three to a point (0 for zero
+    /// levels).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {
-        let mut corners = 0usize;
+        let (mut vertices, mut corners) = (0usize, 0usize);
         for k in 0..self.levels {
-            corners = corners.max(self.sizes.get(k).ok_or(internal())?.indices);
+            let sz = self.sizes.get(k).ok_or(internal())?;
+            vertices = vertices.max(sz.vertices);
+            corners = corners.max(sz.indices);
         }
-        super::mobius::candidate_points(corners)
+        super::mobius::candidate_points(vertices, corners)
     }
 }
 

@@ -51,8 +51,11 @@ mod ears;
 mod edges;
 mod faces;
 mod form;
+mod guard;
 mod memo;
 mod rules;
+mod spectrum;
+mod trust;
 mod vertex_pass;
 
 pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star, loop_star};
@@ -68,8 +71,10 @@ use driver::Driver;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct MobiusOptions {
     /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
-    /// vertex.
+    /// vertex (and every element the guard changes).
     pub(crate) strict: bool,
+    /// The fold guard (`guard.rs`); `false` runs the paper's rules exactly.
+    pub(crate) guard: bool,
 }
 
 /// What one Möbius step had to do besides the paper's rules (gathered over the levels into
@@ -80,6 +85,10 @@ pub(crate) struct MobiusReport {
     pub(crate) fallbacks: u32,
     /// The first such output vertex, or [`NO_ELEMENT`].
     pub(crate) first_fallback: u32,
+    /// Output vertices the fold guard changed.
+    pub(crate) guarded: u32,
+    /// The first such output vertex, or [`NO_ELEMENT`].
+    pub(crate) first_guarded: u32,
 }
 
 impl Default for MobiusReport {
@@ -87,18 +96,22 @@ impl Default for MobiusReport {
         MobiusReport {
             fallbacks: 0,
             first_fallback: NO_ELEMENT,
+            guarded: 0,
+            first_guarded: NO_ELEMENT,
         }
     }
 }
 
-/// The candidate points one step needs on a level of `num_corners` corners (= half-edges):
-/// an edge candidate and a face candidate per half-edge.
+/// The candidate points one step needs on a level of `num_vertices` vertices and
+/// `num_corners` corners (= half-edges): an edge candidate and a face candidate per
+/// half-edge, then the fold guard's trust per vertex, three `f64` to a point.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub(crate) fn candidate_points(num_corners: usize) -> Result<usize> {
+pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Result<usize> {
     num_corners
         .checked_mul(2)
+        .and_then(|c| c.checked_add(num_vertices.div_ceil(3)))
         .ok_or(Error::new(Status::SizeOverflow))
 }
 
@@ -125,7 +138,8 @@ pub(crate) fn step(
     }
     let sizes = super::size::step_size(scheme, topo)?;
     out.check(&sizes)?;
-    let need = candidate_points(topo.num_half_edges())?;
+    let nv = topo.num_vertices();
+    let need = candidate_points(nv, topo.num_half_edges())?;
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }
@@ -133,8 +147,12 @@ pub(crate) fn step(
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
     let (edge_c, rest) = scratch.split_at_mut(nh);
-    let face_c = rest.get_mut(..nh).ok_or(internal())?;
-    let mut d = Driver::new(topo, pos, edge_c, face_c, opts.strict);
+    let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let trust = rest
+        .as_flattened_mut()
+        .get_mut(..nv)
+        .ok_or(internal())?;
+    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
