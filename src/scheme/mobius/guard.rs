@@ -146,7 +146,7 @@ impl Driver<'_, '_, '_, '_> {
             };
             self.count_guarded(v, &spokes, out)?;
             let cf = form.form();
-            let mut frame = Spectrum::new(cf.v, cf.c, tau);
+            let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
             let mut star = Star {
                 v,
                 boundary,

@@ -108,6 +108,12 @@ impl StarForm {
         &self.cf
     }
 
+    /// The tangent polygon `T_i = (u_i − v)⁻¹` of the form (after a successful
+    /// [`StarForm::reset`]).
+    pub(super) fn tangents(&self) -> &[Point] {
+        &self.tangents
+    }
+
     /// Forgets the form and every memo entry (`v = NONE`).
     pub(super) fn clear(&mut self) {
         self.v = NONE;

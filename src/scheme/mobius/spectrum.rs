@@ -22,7 +22,7 @@
 
 use super::form::{MapBack, ORIGIN};
 use crate::error::{Error, Result, Status};
-use crate::point::{self, add, scale, sub, Point};
+use crate::point::{self, add, cross, dot, scale, sub, Point};
 use crate::quat::inverse_point;
 
 /// `m_τ` of one star (module docs).
@@ -34,11 +34,14 @@ pub(super) struct Spectrum {
 }
 
 impl Spectrum {
-    /// `m_τ` of the star centred at `v` whose tangent polygon has centre `c`.
-    pub(super) fn new(v: Point, c: Point, tau: f64) -> Spectrum {
+    /// `m_τ` of the star centred at `v` whose tangent polygon `tangents` has centre `c`
+    /// (module docs: `τ c` moves toward `c₀`, the foot of the perpendicular from the origin
+    /// onto the polygon's plane, as far as the polygon is planar).
+    pub(super) fn new(v: Point, c: Point, tangents: &[Point], tau: f64) -> Spectrum {
+        let c0 = scale(sphere_foot(c, tangents), 1.0 - tau);
         Spectrum {
             v,
-            tc: scale(c, tau),
+            tc: add(scale(c, tau), c0),
         }
     }
 
@@ -75,6 +78,55 @@ impl MapBack for Spectrum {
         } else {
             Err(bad)
         }
+    }
+}
+
+/// Out-of-plane spread of the tangent polygon (over its in-plane spread) at or below which the
+/// star counts as spherical (`c₀` is the foot of the perpendicular), and at or above which
+/// it counts as not (`c₀ = 0`); linear between.
+const PLANAR: f64 = 1e-6;
+const NOT_PLANAR: f64 = 1e-4;
+
+/// `c₀` of the module docs: the foot of the perpendicular from the origin onto the plane of
+/// the tangent polygon (through its centre `c`, Newell normal), scaled by how planar the
+/// polygon is. A planar tangent polygon is a star whose vertex and neighbours lie on one
+/// sphere (or plane): `x ↦ (x − v)⁻¹` sends that sphere to the polygon's plane. With `c₀`
+/// in that plane, every `m_τ` sends the sphere to a plane through the origin, so the affine
+/// stencils stay on it and their images on the sphere (sphere reproduction, seed 000
+/// Lemma A.1); `m_0` is then the inversion about the antipode of `v` on the sphere (a
+/// stereographic projection), and a plane's `c₀` is 0. The planarity is a ratio of lengths
+/// of `T`, which a Möbius map of the input changes by a similarity only (seed 000 Lemma 3.2),
+/// so `c₀`'s choice is Möbius-invariant.
+fn sphere_foot(c: Point, tangents: &[Point]) -> Point {
+    let mut n = [0.0; 3];
+    for (i, t) in tangents.iter().enumerate() {
+        let u = tangents.get((i + 1) % tangents.len()).copied().unwrap_or(*t);
+        n = add(n, cross(*t, u));
+    }
+    let nn = dot(n, n);
+    if !(nn.is_finite() && nn > 0.0) {
+        return [0.0; 3];
+    }
+    let (mut off, mut spread) = (0.0f64, 0.0f64);
+    for t in tangents {
+        let d = sub(*t, c);
+        let h = dot(d, n);
+        off = off.max(h * h / nn);
+        spread = spread.max(dot(d, d));
+    }
+    let planarity = libm::sqrt(off / spread);
+    let w = if planarity <= PLANAR {
+        1.0
+    } else if planarity < NOT_PLANAR {
+        (NOT_PLANAR - planarity) / (NOT_PLANAR - PLANAR)
+    } else {
+        0.0
+    };
+    let foot = scale(n, w * dot(n, c) / nn);
+    if point::is_finite(&foot) {
+        foot
+    } else {
+        [0.0; 3]
     }
 }
 
