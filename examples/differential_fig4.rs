@@ -154,8 +154,18 @@ impl<'a> Bvh<'a> {
                 centroid(x, axis).total_cmp(&centroid(y, axis))
             });
             let left = nodes.len();
-            nodes.push(Node { lo, hi, first, count: half });
-            nodes.push(Node { lo, hi, first: first + half, count: count - half });
+            nodes.push(Node {
+                lo,
+                hi,
+                first,
+                count: half,
+            });
+            nodes.push(Node {
+                lo,
+                hi,
+                first: first + half,
+                count: count - half,
+            });
             nodes[ni].first = left;
             nodes[ni].count = 0;
             stack.push(left);
@@ -261,7 +271,13 @@ fn cage(d: usize) -> OwnedMesh {
         .map(|i| vec![0, 1 + i as u32, 1 + ((i + 1) % d) as u32])
         .collect();
     let flat = subdivide_n(Scheme::Loop, &OwnedMesh::from_faces(p, &faces), 2).unwrap();
-    flat.map_positions(|q| [q[0], q[1], 0.4 * q[0] * q[0] + 0.2 * q[1] * q[1] + 0.1 * q[0] * q[1]])
+    flat.map_positions(|q| {
+        [
+            q[0],
+            q[1],
+            0.4 * q[0] * q[0] + 0.2 * q[1] * q[1] + 0.1 * q[0] * q[1],
+        ]
+    })
 }
 
 fn diagonal(m: &OwnedMesh) -> f64 {
@@ -328,7 +344,11 @@ fn distances(
         let ts = t.elapsed().as_secs_f64();
         let (vc, vp) = (region(i, &cur), region(i - 1, &prev));
         h.push(hausdorff(&cur, &vc, &prev, &vp) / d);
-        eprintln!("  level {i}: {} V run {ts:.3} s, hausdorff {:.3} s", cur.positions.len(), t.elapsed().as_secs_f64() - ts);
+        eprintln!(
+            "  level {i}: {} V run {ts:.3} s, hausdorff {:.3} s",
+            cur.positions.len(),
+            t.elapsed().as_secs_f64() - ts
+        );
         prev = cur;
     }
     h

@@ -91,7 +91,11 @@ fn gaussian_curvature(m: &OwnedMesh) -> Vec<f64> {
     let (mut ang, mut area) = (vec![0.0; n], vec![0.0; n]);
     for f in m.faces() {
         for k in 0..3 {
-            let (a, b, c) = (f[k] as usize, f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
+            let (a, b, c) = (
+                f[k] as usize,
+                f[(k + 1) % 3] as usize,
+                f[(k + 2) % 3] as usize,
+            );
             let (u, v) = (
                 sub(m.positions[b], m.positions[a]),
                 sub(m.positions[c], m.positions[a]),

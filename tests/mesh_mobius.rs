@@ -28,7 +28,10 @@ fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, 
 /// the numbering) and for the fallback reports, which the guard would precede. The guarded
 /// default mode has its own tests in `tests/mesh_fold_guard.rs`.
 fn msub_lit(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, Report)> {
-    run(m, &Options::new(s).mobius(true).literal(true).strict(strict))
+    run(
+        m,
+        &Options::new(s).mobius(true).literal(true).strict(strict),
+    )
 }
 
 fn msub_n(s: Scheme, m: &OwnedMesh, levels: usize) -> (OwnedMesh, u32) {

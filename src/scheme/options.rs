@@ -75,7 +75,10 @@ impl Options {
     /// [`Options::literal`]).
     #[must_use]
     pub const fn literal(self, on: bool) -> Options {
-        Options { literal: on, ..self }
+        Options {
+            literal: on,
+            ..self
+        }
     }
 
     /// The number of levels (checked against [`MAX_LEVELS`] by the calls).

@@ -54,7 +54,12 @@ pub(super) trait Frame: MapBack {
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point>;
 
     /// The centroid of face `f`'s corners taken in the frame; `pts` is scratch.
-    fn face_centroid(&mut self, topo: &Topology<'_, '_>, f: u32, pts: &mut FacePts) -> Result<Point>;
+    fn face_centroid(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        f: u32,
+        pts: &mut FacePts,
+    ) -> Result<Point>;
 }
 
 /// An identity [`MapBack`]: a rule *in form* run with it leaves its results in the

@@ -23,7 +23,7 @@ use super::driver::Driver;
 use super::form::{present, FacePts, Frame, Spokes};
 use super::memo::StarForm;
 use super::spectrum::Spectrum;
-use super::trust::{f4_trust, position_trust, spread_trust};
+use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
@@ -135,6 +135,18 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
+        // Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
+        // before anything is counted: the counts read the neighbours' final trust.
+        for v in 0..topo.num_vertices() as u32 {
+            let tau = get(self.trust, v as usize)?;
+            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
+                continue;
+            }
+            if spokes.len() >= 4 {
+                let s = sphericity(form.tangents(), form.centre());
+                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
+            }
+        }
         for v in 0..topo.num_vertices() as u32 {
             let tau = get(self.trust, v as usize)?;
             if tau >= 1.0 {

@@ -114,6 +114,11 @@ impl StarForm {
         &self.tangents
     }
 
+    /// The centre `c` of the tangent polygon (after a successful [`StarForm::reset`]).
+    pub(super) fn centre(&self) -> Point {
+        self.cf.c
+    }
+
     /// Forgets the form and every memo entry (`v = NONE`).
     pub(super) fn clear(&mut self) {
         self.v = NONE;
@@ -248,7 +253,12 @@ impl Frame for StarForm {
     }
 
     #[inline(always)]
-    fn face_centroid(&mut self, topo: &Topology<'_, '_>, f: u32, pts: &mut FacePts) -> Result<Point> {
+    fn face_centroid(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        f: u32,
+        pts: &mut FacePts,
+    ) -> Result<Point> {
         StarForm::face_centroid(self, topo, f, pts)
     }
 }

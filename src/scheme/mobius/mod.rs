@@ -148,10 +148,7 @@ pub(crate) fn step(
     let nh = topo.num_half_edges();
     let (edge_c, rest) = scratch.split_at_mut(nh);
     let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-    let trust = rest
-        .as_flattened_mut()
-        .get_mut(..nv)
-        .ok_or(internal())?;
+    let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
     let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,

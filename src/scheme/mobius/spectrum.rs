@@ -1,9 +1,18 @@
 //! The fold guard's fallback: a star's canonical form interpolated toward a similarity by the
 //! star's trust `τ` (`trust.rs`), the Möbius–linear spectrum of seed 000 §7.2 taken per star:
 //!
-//! `m_τ(x) = −((x − v)⁻¹ − τ c)⁻¹`, with inverse `P ↦ v + (τ c − P⁻¹)⁻¹`,
+//! `m_τ(x) = −((x − v)⁻¹ − c_τ)⁻¹`, with inverse `P ↦ v + (c_τ − P⁻¹)⁻¹`, `c_τ = τ c`,
 //!
 //! where `v` is the centre and `c` the centre of the star's tangent polygon (seed 000 §4.2).
+//!
+//! **Spherical stars.** When the vertex and its neighbours lie on one sphere (the tangent
+//! polygon is planar, `trust::sphericity`), `c_τ = τ c + (1 − τ) c₀` with `c₀` the foot of the
+//! perpendicular from the origin onto the polygon's plane: `c_τ` stays in that plane, so every
+//! `m_τ` sends the sphere to a plane through the origin, the affine stencils stay in it, and
+//! their images stay on the sphere (sphere reproduction, seed 000 Lemma A.1). `m_0` is then
+//! the inversion about the antipode of `v` on its sphere (a stereographic projection); for a
+//! planar star `c₀ = 0`. `c₀` is weighted by the sphericity, so the frame stays continuous in
+//! the star's geometry.
 //!
 //! * At `τ = 1` it is the normalised canonical form `x ↦ −r (T − c)⁻¹` divided by `r`, a
 //!   scale that affine stencils ignore: the paper's rule.
@@ -21,8 +30,9 @@
 //! canonical form's own maps, bit for bit.
 
 use super::form::{MapBack, ORIGIN};
+use super::trust::{newell, sphericity};
 use crate::error::{Error, Result, Status};
-use crate::point::{self, add, cross, dot, scale, sub, Point};
+use crate::point::{self, add, dot, scale, sub, Point};
 use crate::quat::inverse_point;
 
 /// `m_τ` of one star (module docs).
@@ -35,13 +45,25 @@ pub(super) struct Spectrum {
 
 impl Spectrum {
     /// `m_τ` of the star centred at `v` whose tangent polygon `tangents` has centre `c`
-    /// (module docs: `τ c` moves toward `c₀`, the foot of the perpendicular from the origin
-    /// onto the polygon's plane, as far as the polygon is planar).
+    /// (module docs: `c_τ = τ c + (1 − τ) s c₀`).
     pub(super) fn new(v: Point, c: Point, tangents: &[Point], tau: f64) -> Spectrum {
-        let c0 = scale(sphere_foot(c, tangents), 1.0 - tau);
+        let s = sphericity(tangents, c);
+        let mut foot = [0.0; 3];
+        if s > 0.0 {
+            let n = newell(tangents);
+            let nn = dot(n, n);
+            if nn > 0.0 && nn.is_finite() {
+                foot = scale(n, s * dot(n, c) / nn);
+            }
+        }
+        let tc = add(scale(c, tau), scale(foot, 1.0 - tau));
         Spectrum {
             v,
-            tc: add(scale(c, tau), c0),
+            tc: if point::is_finite(&tc) {
+                tc
+            } else {
+                scale(c, tau)
+            },
         }
     }
 
@@ -81,55 +103,6 @@ impl MapBack for Spectrum {
     }
 }
 
-/// Out-of-plane spread of the tangent polygon (over its in-plane spread) at or below which the
-/// star counts as spherical (`c₀` is the foot of the perpendicular), and at or above which
-/// it counts as not (`c₀ = 0`); linear between.
-const PLANAR: f64 = 1e-6;
-const NOT_PLANAR: f64 = 1e-4;
-
-/// `c₀` of the module docs: the foot of the perpendicular from the origin onto the plane of
-/// the tangent polygon (through its centre `c`, Newell normal), scaled by how planar the
-/// polygon is. A planar tangent polygon is a star whose vertex and neighbours lie on one
-/// sphere (or plane): `x ↦ (x − v)⁻¹` sends that sphere to the polygon's plane. With `c₀`
-/// in that plane, every `m_τ` sends the sphere to a plane through the origin, so the affine
-/// stencils stay on it and their images on the sphere (sphere reproduction, seed 000
-/// Lemma A.1); `m_0` is then the inversion about the antipode of `v` on the sphere (a
-/// stereographic projection), and a plane's `c₀` is 0. The planarity is a ratio of lengths
-/// of `T`, which a Möbius map of the input changes by a similarity only (seed 000 Lemma 3.2),
-/// so `c₀`'s choice is Möbius-invariant.
-fn sphere_foot(c: Point, tangents: &[Point]) -> Point {
-    let mut n = [0.0; 3];
-    for (i, t) in tangents.iter().enumerate() {
-        let u = tangents.get((i + 1) % tangents.len()).copied().unwrap_or(*t);
-        n = add(n, cross(*t, u));
-    }
-    let nn = dot(n, n);
-    if !(nn.is_finite() && nn > 0.0) {
-        return [0.0; 3];
-    }
-    let (mut off, mut spread) = (0.0f64, 0.0f64);
-    for t in tangents {
-        let d = sub(*t, c);
-        let h = dot(d, n);
-        off = off.max(h * h / nn);
-        spread = spread.max(dot(d, d));
-    }
-    let planarity = libm::sqrt(off / spread);
-    let w = if planarity <= PLANAR {
-        1.0
-    } else if planarity < NOT_PLANAR {
-        (NOT_PLANAR - planarity) / (NOT_PLANAR - PLANAR)
-    } else {
-        0.0
-    };
-    let foot = scale(n, w * dot(n, c) / nn);
-    if point::is_finite(&foot) {
-        foot
-    } else {
-        [0.0; 3]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,7 +123,7 @@ mod tests {
     fn round_trip() {
         let cf = CanonicalForm::new(V, &RING, StarKind::Interior).unwrap();
         for tau in [0.0, 0.3, 1.0] {
-            let m = Spectrum::new(V, cf.c, tau);
+            let m = Spectrum::new(V, cf.c, &[], tau);
             for x in RING {
                 let y = m.back(m.to(x).unwrap()).unwrap();
                 assert!(norm(sub(x, y)) < 1e-13, "{tau}: {x:?} {y:?}");
@@ -164,8 +137,8 @@ mod tests {
     #[test]
     fn ends() {
         let cf = CanonicalForm::new(V, &RING, StarKind::Interior).unwrap();
-        let one = Spectrum::new(V, cf.c, 1.0);
-        let zero = Spectrum::new(V, cf.c, 0.0);
+        let one = Spectrum::new(V, cf.c, &[], 1.0);
+        let zero = Spectrum::new(V, cf.c, &[], 0.0);
         for x in RING {
             let n = scale(cf.to_normalised(x).unwrap(), 1.0 / cf.r);
             assert!(norm(sub(one.to(x).unwrap(), n)) < 1e-12 * norm(n));

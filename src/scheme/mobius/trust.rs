@@ -35,7 +35,7 @@
 //! percentile 5.9 on bunny against ≥ 9.5 for the folding stars; at most 5.2 on the sphere
 //! meshes), not from an optimisation.
 
-use crate::point::{dot, Point};
+use crate::point::{add, cross, dot, sub, Point};
 use crate::quat::Quat;
 
 /// Spread at or below which a star is trusted (`ln` of it).
@@ -110,6 +110,58 @@ pub(super) fn f4_trust(rho: Quat) -> f64 {
         return 1.0;
     }
     ramp(libm::atan2(im, re), RHO_DISTRUSTED, RHO_TRUSTED)
+}
+
+/// Out-of-plane spread of the tangent polygon, over its in-plane spread, at or below which a
+/// star counts as spherical, and at or above which it does not; linear between.
+const PLANAR: f64 = 1e-6;
+const NOT_PLANAR: f64 = 1e-4;
+
+/// The Newell normal (area vector) `Σ T_i × T_{i+1}` of a closed polygon.
+pub(super) fn newell(polygon: &[Point]) -> Point {
+    let mut n = [0.0; 3];
+    for (i, t) in polygon.iter().enumerate() {
+        let u = polygon.get((i + 1) % polygon.len()).copied().unwrap_or(*t);
+        n = add(n, cross(*t, u));
+    }
+    n
+}
+
+/// How spherical a star is, in `[0, 1]`, from its tangent polygon `T_i` (centre `c`): 1 when
+/// the `T_i` lie in one plane, which is exactly when the vertex and its neighbours lie on one
+/// sphere or plane (`x ↦ (x − v)⁻¹` sends that sphere to a plane); 0 from an out-of-plane
+/// spread of 1e-4 of the in-plane one. The planarity is a ratio of lengths of `T`, which a
+/// Möbius map of the input changes by a similarity only (seed 000 Lemma 3.2), so it is
+/// Möbius-invariant like the trust. The guard uses it twice (`guard.rs`, `spectrum.rs`):
+///
+/// * the trust of a spherical star of valence 4 or more is raised to 1: the paper's rules
+///   keep its points on its sphere (seed 000 Lemma A.1) and commute with every Möbius map,
+///   which no fallback toward the linear rule can, so meshes on a sphere keep sphere
+///   reproduction and Möbius equivariance;
+/// * three points always lie in a plane, so a valence-3 star gives no such evidence and
+///   stays guarded, but its fallback keeps it on its sphere (`spectrum.rs`).
+pub(super) fn sphericity(tangents: &[Point], c: Point) -> f64 {
+    let n = newell(tangents);
+    let nn = dot(n, n);
+    if !(nn.is_finite() && nn > 0.0) {
+        return 0.0;
+    }
+    let (mut off, mut spread) = (0.0f64, 0.0f64);
+    for t in tangents {
+        let d = sub(*t, c);
+        let h = dot(d, n);
+        off = off.max(h * h / nn);
+        spread = spread.max(dot(d, d));
+    }
+    let planarity = libm::sqrt(off / spread);
+    if planarity <= PLANAR {
+        1.0
+    } else if planarity < NOT_PLANAR {
+        (NOT_PLANAR - planarity) / (NOT_PLANAR - PLANAR)
+    } else {
+        // Also a NaN planarity (spread 0).
+        0.0
+    }
 }
 
 #[cfg(test)]

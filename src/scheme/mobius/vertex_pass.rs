@@ -88,7 +88,12 @@ impl Driver<'_, '_, '_, '_> {
 
     /// [`Driver::local_into`], returning with a form whether `v` lies on the boundary.
     #[inline(always)]
-    pub(super) fn retarget(&self, v: u32, form: &mut StarForm, spokes: &mut Spokes) -> Result<Option<bool>> {
+    pub(super) fn retarget(
+        &self,
+        v: u32,
+        form: &mut StarForm,
+        spokes: &mut Spokes,
+    ) -> Result<Option<bool>> {
         let topo = self.topo;
         // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
         let h = topo.vertex_half_edge(v)?;

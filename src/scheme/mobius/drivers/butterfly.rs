@@ -7,8 +7,8 @@
 use super::super::driver::Driver;
 use super::super::form::{Frame, Ring, MISSING};
 use super::super::guard::Outputs;
-use super::super::vertex_pass::Star;
 use super::super::rules::butterfly_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::{internal, NONE};
 use crate::point::Point;

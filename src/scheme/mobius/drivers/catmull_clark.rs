@@ -7,8 +7,8 @@
 use super::super::driver::Driver;
 use super::super::form::{FacePts, Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
-use super::super::vertex_pass::Star;
 use super::super::rules::catmull_clark_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::face_points;
 use crate::mesh::internal;

@@ -5,8 +5,8 @@
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
-use super::super::vertex_pass::Star;
 use super::super::rules::loop_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::{apex, ring_points};
 use crate::mesh::internal;
