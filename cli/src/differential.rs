@@ -144,6 +144,8 @@ pub fn run(
         },
         curvature_scale: None,
         normals: None,
+        // No edits here, so no fold census to be strict about.
+        strict: false,
     };
     let mut rep = DifferentialReport::default();
     let err = |e, rep: &DifferentialReport| core_error(e, src, scheme.name(), rep);
