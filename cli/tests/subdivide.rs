@@ -564,7 +564,10 @@ fn literal_and_the_fold_guard_match_the_library_and_are_summarised() {
     assert_same(&got.unwrap(), &guarded, "default");
     let summary = stderr(&o);
     assert!(
-        summary.contains(&format!("{} elements changed by the fold guard", report.guarded)),
+        summary.contains(&format!(
+            "{} elements changed by the fold guard",
+            report.guarded
+        )),
         "{summary}"
     );
     assert!(summary.contains("folded edge"), "{summary}");
@@ -583,5 +586,9 @@ fn literal_and_the_fold_guard_match_the_library_and_are_summarised() {
     assert_same(&read_off(&out), &literal, "--literal");
     assert!(stderr(&o).contains("literal rules"), "{}", stderr(&o));
     let o = run(&["metrics", out.to_str().unwrap()]);
-    assert!(stdout(&o).contains("folds (interior edges"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("folds (interior edges"),
+        "{}",
+        stdout(&o)
+    );
 }

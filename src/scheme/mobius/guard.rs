@@ -28,8 +28,12 @@ use super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::Point;
-use crate::quat::cross_ratio;
 use crate::stencil::centroid;
+
+/// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
+/// F4-angle term ([`Driver::trust_edges`]) can tell it from an interior star without a
+/// topology query.
+const EXEMPT: f64 = 2.0;
 
 impl Frame for Spectrum {
     const CANONICAL: bool = false;
@@ -73,8 +77,11 @@ impl Driver<'_, '_, '_, '_> {
         ring: &[Point],
         normalised: &[Point],
     ) -> Result<()> {
-        if !self.guard || !F::CANONICAL || star.boundary {
+        if !self.guard || !F::CANONICAL {
             return Ok(());
+        }
+        if star.boundary {
+            return set(self.trust, star.v as usize, EXEMPT);
         }
         let mut tau = spread_trust(ring);
         for (c, e) in ring.iter().zip(normalised.iter()) {
@@ -86,7 +93,8 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// Step 2 (module docs): lowers the trust of both end stars of every interior edge
-    /// between two interior stars to the F4-angle term of the blend of their candidates.
+    /// between two interior stars to the F4-angle term of the blend of their candidates
+    /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
     pub(super) fn trust_edges(&mut self) -> Result<()> {
@@ -97,25 +105,19 @@ impl Driver<'_, '_, '_, '_> {
             if t == NONE {
                 continue;
             }
-            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-            if topo.is_boundary_vertex(a)? || topo.is_boundary_vertex(b)? {
-                continue;
-            }
             let (ca, cb) = (get(self.edge_c, h as usize)?, get(self.edge_c, t as usize)?);
             if !present(&ca) || !present(&cb) {
                 continue;
             }
-            // The cross-ratio of `F4(a, e_a, e_b, b)` (seed 000 §4.4.3).
-            let Ok(rho) = cross_ratio(cb, topo.position(a)?, ca, topo.position(b)?) else {
-                continue;
-            };
-            let g = f4_trust(rho);
+            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+            let (ta, tb) = (get(self.trust, a as usize)?, get(self.trust, b as usize)?);
+            if ta > 1.0 || tb > 1.0 {
+                continue; // a boundary star (`EXEMPT`)
+            }
+            let g = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
             if g < 1.0 {
-                for v in [a, b] {
-                    let k = v as usize;
-                    let cur = get(self.trust, k)?;
-                    set(self.trust, k, cur.min(g))?;
-                }
+                set(self.trust, a as usize, ta.min(g))?;
+                set(self.trust, b as usize, tb.min(g))?;
             }
         }
         Ok(())

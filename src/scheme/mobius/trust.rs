@@ -36,7 +36,6 @@
 //! meshes), not from an optimisation.
 
 use crate::point::{add, cross, dot, sub, Point};
-use crate::quat::Quat;
 
 /// Spread at or below which a star is trusted (`ln` of it).
 const LN_SPREAD_TRUSTED: f64 = 1.386_294_361_119_890_6; // ln 4
@@ -101,15 +100,24 @@ pub(super) fn position_trust(e: Point, c: Point) -> f64 {
     ramp(t, 0.0, T_MARGIN).min(ramp(t, 1.0, 1.0 - T_MARGIN))
 }
 
-/// Term 3: the trust of an edge from the cross-ratio `rho` of its F4 blend.
-pub(super) fn f4_trust(rho: Quat) -> f64 {
-    let im = rho.abs_im();
-    let re = rho.w;
-    // arg ρ ≤ 120° iff Re ρ ≥ −½ |ρ|, the common case, without an arctangent.
-    if re >= 0.0 || re * re * 4.0 <= re * re + im * im {
+/// Term 3: the trust of the edge `(a, b)` from the cross-ratio `ρ = cr[e_b, a, e_a, b]` of its
+/// blend `F4(a, e_a, e_b, b)` (seed 000 §4.4.3), without forming `ρ`: with the differences
+/// `A = a − e_b`, `B = e_a − a`, `C = b − e_a`, `D = e_b − b` (imaginary quaternions),
+/// `ρ = A B⁻¹ C D⁻¹ = A B C D / (|B|² |D|²)`, and for imaginary quaternions
+/// `Re(A B C D) = (A·B)(C·D) − (A·C)(B·D) + (A·D)(B·C)` (Binet–Cauchy), `|A B C D| =
+/// |A||B||C||D|`: so `cos arg ρ` takes six dot products and no division, and the common case
+/// (`arg ρ ≤ 120°`) no square root either. A degenerate blend (a zero difference) gives 1:
+/// the blend's own fallback handles it.
+pub(super) fn f4_trust(a: Point, ea: Point, eb: Point, b: Point) -> f64 {
+    let (qa, qb, qc, qd) = (sub(a, eb), sub(ea, a), sub(b, ea), sub(eb, b));
+    let re = dot(qa, qb) * dot(qc, qd) - dot(qa, qc) * dot(qb, qd) + dot(qa, qd) * dot(qb, qc);
+    let p2 = dot(qa, qa) * dot(qb, qb) * dot(qc, qc) * dot(qd, qd);
+    // arg ρ ≤ 120° iff cos ≥ −½.
+    if re >= 0.0 || 4.0 * re * re <= p2 || !(p2 > 0.0 && p2.is_finite()) {
         return 1.0;
     }
-    ramp(libm::atan2(im, re), RHO_DISTRUSTED, RHO_TRUSTED)
+    let cos = re / libm::sqrt(p2);
+    ramp(libm::acos(cos.max(-1.0)), RHO_DISTRUSTED, RHO_TRUSTED)
 }
 
 /// Out-of-plane spread of the tangent polygon, over its in-plane spread, at or below which a
@@ -201,15 +209,37 @@ mod tests {
     }
 
     #[test]
-    fn f4_angle_ramp() {
-        let at = |deg: f64| {
-            let a = deg.to_radians();
-            f4_trust(Quat::new(3.0 * libm::cos(a), 0.0, 3.0 * libm::sin(a), 0.0))
+    fn f4_angle_matches_the_cross_ratio() {
+        use crate::quat::cross_ratio;
+        let mut x: u64 = 7;
+        let mut rnd = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
-        assert_eq!(at(0.0), 1.0);
-        assert_eq!(at(119.0), 1.0);
-        assert!((at(140.0) - 0.5).abs() < 1e-12);
-        assert_eq!(at(160.0), 0.0);
-        assert_eq!(at(180.0), 0.0);
+        let mut seen = [false; 3];
+        for _ in 0..2000 {
+            let p: [Point; 4] = core::array::from_fn(|_| [rnd(), rnd(), rnd()]);
+            let [a, ea, eb, b] = p;
+            let rho = cross_ratio(eb, a, ea, b).unwrap();
+            let angle = libm::atan2(rho.abs_im(), rho.w);
+            let want = ramp(angle, RHO_DISTRUSTED, RHO_TRUSTED);
+            let got = f4_trust(a, ea, eb, b);
+            assert!((got - want).abs() < 1e-9, "{p:?}: {got} {want}");
+            seen[if want == 1.0 {
+                0
+            } else if want == 0.0 {
+                2
+            } else {
+                1
+            }] = true;
+        }
+        assert_eq!(seen, [true; 3], "every part of the ramp exercised");
+        // Agreeing candidates: angle 0.
+        assert_eq!(
+            f4_trust([0.0; 3], [0.5, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            1.0
+        );
     }
 }
