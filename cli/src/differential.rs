@@ -144,7 +144,8 @@ pub fn run(
         },
         curvature_scale: None,
         normals: None,
-        // No edits here, so no fold census to be strict about.
+        // The command makes no edits, and the fold census compares an edited result with
+        // the unedited one: nothing to refuse.
         strict: false,
     };
     let mut rep = DifferentialReport::default();
