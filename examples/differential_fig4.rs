@@ -176,8 +176,8 @@ impl<'a> Bvh<'a> {
 
     fn box_d2(n: &Node, p: Point) -> f64 {
         let mut d = 0.0;
-        for a in 0..3 {
-            let e = (n.lo[a] - p[a]).max(p[a] - n.hi[a]).max(0.0);
+        for ((lo, hi), x) in n.lo.iter().zip(&n.hi).zip(&p) {
+            let e = (lo - x).max(x - hi).max(0.0);
             d += e * e;
         }
         d

@@ -6,7 +6,12 @@
 //! A *folded edge* is an interior edge whose two faces have Newell normals (area vectors)
 //! more than 90° apart: computed here from the output alone, independently of the library's
 //! own fold measures.
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
 
 mod common;
 
