@@ -121,7 +121,7 @@ pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
 /// Validation errors of [`Topology::build`]; [`Status::UnsupportedFaceType`] naming the first
 /// face that is not a triangle; [`Status::InvalidArgument`] for more than [`MAX_LEVELS`]
 /// levels or a bad tolerance, and for an edit slice whose length is not the vertex count
-/// (naming the first index without a partner, [`check_len`]);
+/// (naming the first index without a partner);
 /// [`Status::NonFiniteInput`] for a non-finite edit value (naming the vertex);
 /// [`Status::SizeOverflow`]; [`Status::ValenceTooHigh`].
 pub fn plan(
