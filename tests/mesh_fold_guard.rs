@@ -367,3 +367,82 @@ fn where_nothing_is_distrusted_the_default_is_the_literal_rule() {
     }
     assert!(compared >= 5, "{compared} comparisons");
 }
+
+/// The Möbius–linear spectrum (`Options::spectrum`, seed 000 §7.2): weight 0 is the linear
+/// result and weight 1 the Möbius one (guarded or literal), bit for bit; one level at weight
+/// `w` is `w · Möbius + (1 − w) · linear` of the same input; the result moves continuously
+/// toward either end; NaN and weights outside `[0, 1]` are refused.
+#[test]
+fn the_spectrum_runs_from_the_linear_to_the_mobius_result() {
+    let meshes = [
+        (Scheme::Loop, jitter(&tri_torus(12, 8), 0.08, 21)),
+        (
+            Scheme::ModifiedButterfly,
+            jitter(&tri_torus(12, 8), 0.08, 22),
+        ),
+        (
+            Scheme::CatmullClark,
+            jitter(&quad_torus(12, 8, 2.0, 0.7), 0.08, 23),
+        ),
+    ];
+    for (s, m) in &meshes {
+        let s = *s;
+        let mob = Options::new(s).mobius(true).levels(2);
+        let (lin, _) = run(m, &Options::new(s).levels(2)).unwrap();
+        let (def, _) = run(m, &mob).unwrap();
+        let (lit, _) = run(m, &mob.literal(true)).unwrap();
+        assert_eq!(
+            run(m, &mob.spectrum(0.0)).unwrap().0.positions,
+            lin.positions,
+            "{s:?} w=0"
+        );
+        assert_eq!(
+            run(m, &mob.spectrum(1.0)).unwrap().0.positions,
+            def.positions,
+            "{s:?} w=1"
+        );
+        assert_eq!(
+            run(m, &mob.literal(true).spectrum(1.0))
+                .unwrap()
+                .0
+                .positions,
+            lit.positions,
+            "{s:?} literal w=1"
+        );
+        // One level at w = 0.25: the blend of the two one-level results.
+        let one = Options::new(s).mobius(true);
+        let (l1, _) = run(m, &Options::new(s)).unwrap();
+        let (m1, _) = run(m, &one).unwrap();
+        let (b1, _) = run(m, &one.spectrum(0.25)).unwrap();
+        for ((b, p), q) in b1.positions.iter().zip(&m1.positions).zip(&l1.positions) {
+            for k in 0..3 {
+                let want = 0.25 * p[k] + 0.75 * q[k];
+                assert!((b[k] - want).abs() <= 1e-15 * (1.0 + want.abs()), "{s:?}");
+            }
+        }
+        // Continuity at both ends, two levels.
+        let scale = diameter(&lin);
+        let gap = |a: &OwnedMesh, b: &OwnedMesh| {
+            a.positions
+                .iter()
+                .zip(&b.positions)
+                .map(|(p, q)| {
+                    let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                    dot(d, d).sqrt() / scale
+                })
+                .fold(0.0, f64::max)
+        };
+        let near0 = run(m, &mob.spectrum(1e-9)).unwrap().0;
+        let near1 = run(m, &mob.spectrum(1.0 - 1e-9)).unwrap().0;
+        assert!(gap(&near0, &lin) < 1e-7, "{s:?}: {:e}", gap(&near0, &lin));
+        assert!(gap(&near1, &def) < 1e-7, "{s:?}: {:e}", gap(&near1, &def));
+        assert!(
+            gap(&def, &lin) > 1e-6,
+            "{s:?}: Möbius and linear agree on this mesh"
+        );
+        for w in [f64::NAN, -0.1, 1.5, f64::INFINITY] {
+            let e = run(m, &mob.spectrum(w)).unwrap_err();
+            assert_eq!(e.status, Status::InvalidArgument, "{s:?} w={w}");
+        }
+    }
+}

@@ -45,6 +45,13 @@ pub struct Options {
     /// so that `true` always means "the published rules, bit for bit". Accepted and without
     /// effect for the linear schemes.
     pub literal: bool,
+    /// With [`Options::mobius`]: the global weight `w ∈ [0, 1]` of the Möbius–linear
+    /// spectrum (seed 000 §7.2): every output vertex of every level is
+    /// `w · (Möbius point) + (1 − w) · (linear point)` of that level's input. 1 (the default)
+    /// is the Möbius result bit for bit (guarded or [`Options::literal`]), 0 the linear
+    /// result bit for bit; continuous in `w` between. NaN or outside `[0, 1]` is
+    /// [`Status::InvalidArgument`]. Checked, and without effect, for the linear schemes.
+    pub spectrum: f64,
 }
 
 impl Options {
@@ -56,6 +63,7 @@ impl Options {
             strict: false,
             levels: 1,
             literal: false,
+            spectrum: 1.0,
         }
     }
 
@@ -81,16 +89,27 @@ impl Options {
         }
     }
 
+    /// The weight of the Möbius–linear spectrum ([`Options::spectrum`]; checked by the calls).
+    #[must_use]
+    pub const fn spectrum(self, w: f64) -> Options {
+        Options {
+            spectrum: w,
+            ..self
+        }
+    }
+
     /// The number of levels (checked against [`MAX_LEVELS`] by the calls).
     #[must_use]
     pub const fn levels(self, levels: usize) -> Options {
         Options { levels, ..self }
     }
 
-    /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or the Möbius version
-    /// of a scheme without one; checked before the mesh is read.
+    /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels, the Möbius version
+    /// of a scheme without one, or a spectrum weight that is NaN or outside `[0, 1]`;
+    /// checked before the mesh is read.
     pub(crate) fn check(&self) -> crate::Result<()> {
-        if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) {
+        let w_ok = self.spectrum >= 0.0 && self.spectrum <= 1.0;
+        if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) || !w_ok {
             return Err(crate::Error::new(crate::Status::InvalidArgument));
         }
         Ok(())

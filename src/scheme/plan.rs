@@ -49,7 +49,9 @@ pub struct Plan {
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and
-    ///   the fold guard's trust of every vertex (one `f64` each, three to a point).
+    ///   the fold guard's trust of every vertex (one `f64` each, three to a point); with a
+    ///   spectrum weight below 1 ([`Options::spectrum`]), the linear positions of the
+    ///   largest level written.
     pub scratch: ScratchSizes,
 }
 
@@ -57,6 +59,17 @@ impl Plan {
     /// The sizes of the last level: what the output buffers must hold.
     pub fn output(&self) -> MeshSizes {
         self.sizes.get(self.levels).copied().unwrap_or_default()
+    }
+
+    /// The linear positions a Möbius step blends with for a spectrum weight below 1
+    /// ([`Options::spectrum`]): the vertices of the largest level written (0 for zero
+    /// levels).
+    pub(super) fn spectrum_points(&self) -> Result<usize> {
+        let mut vertices = 0usize;
+        for k in 1..=self.levels {
+            vertices = vertices.max(self.sizes.get(k).ok_or(internal())?.vertices);
+        }
+        Ok(vertices)
     }
 
     /// The candidate points of the largest Möbius step: two per corner of the largest level
@@ -114,7 +127,11 @@ pub(super) fn plan_with_topology(
     if scratch_u32.len() < need {
         return Err(Error::too_small(need));
     }
-    levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)
+    let (mut p, counts) = levels_plan(opts.scheme, opts.mobius, mesh, opts.levels, scratch_u32)?;
+    if opts.mobius && opts.spectrum < 1.0 {
+        p.scratch.points = cadd(p.scratch.points, p.spectrum_points()?)?;
+    }
+    Ok((p, counts))
 }
 
 /// The plan of `levels` linear levels of `scheme`, validating `mesh` into `scratch`: the

@@ -68,13 +68,17 @@ use crate::point::{self, Point};
 use driver::Driver;
 
 /// Options of one Möbius step (from [`super::Options`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MobiusOptions {
     /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
     /// vertex (and every element the guard changes).
     pub(crate) strict: bool,
     /// The fold guard (`guard.rs`); `false` runs the paper's rules exactly.
     pub(crate) guard: bool,
+    /// The weight `w ∈ (0, 1]` of the Möbius–linear spectrum (seed 000 §7.2): below 1, every
+    /// output vertex is `w · (Möbius point) + (1 − w) · (linear point)`, the linear points
+    /// written to the scratch after the candidates.
+    pub(crate) spectrum: f64,
 }
 
 /// What one Möbius step had to do besides the paper's rules (gathered over the levels into
@@ -139,10 +143,19 @@ pub(crate) fn step(
     let sizes = super::size::step_size(scheme, topo)?;
     out.check(&sizes)?;
     let nv = topo.num_vertices();
-    let need = candidate_points(nv, topo.num_half_edges())?;
+    let candidates = candidate_points(nv, topo.num_half_edges())?;
+    let blend = opts.spectrum < 1.0;
+    let need = if blend {
+        candidates
+            .checked_add(sizes.vertices)
+            .ok_or(Error::new(Status::SizeOverflow))?
+    } else {
+        candidates
+    };
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }
+    let (scratch, linear_pos) = scratch.split_at_mut(candidates);
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
@@ -163,10 +176,44 @@ pub(crate) fn step(
         // No Möbius form (refused above).
         Scheme::Spherelike => return Err(Error::new(Status::InvalidArgument)),
     }
-    for (i, p) in d.pos.iter().enumerate() {
+    let report = d.report;
+    if blend {
+        spectrum_blend(
+            scheme,
+            topo,
+            pos_of(out, sizes.vertices)?,
+            linear_pos,
+            opts.spectrum,
+        )?;
+    }
+    for (i, p) in pos_of(out, sizes.vertices)?.iter().enumerate() {
         if !point::is_finite(p) {
             return Err(Error::at(Status::NumericalFailure, i as u32));
         }
     }
-    Ok((sizes, d.report))
+    Ok((sizes, report))
+}
+
+/// The first `n` output positions.
+fn pos_of<'a>(out: &'a mut MeshOut<'_>, n: usize) -> Result<&'a mut [Point]> {
+    out.positions.get_mut(..n).ok_or(internal())
+}
+
+/// The Möbius–linear spectrum at weight `w` (seed 000 §7.2): `pos[i] ← w · pos[i] + (1 − w) ·
+/// lin[i]`, with `lin` the linear rule's positions of the same step, written to `scratch`.
+/// Plain multiplications and an addition (no FMA), so the result is continuous in `w` and
+/// the same on every platform.
+fn spectrum_blend(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    scratch: &mut [Point],
+    w: f64,
+) -> Result<()> {
+    let lin = scratch.get_mut(..pos.len()).ok_or(internal())?;
+    super::linear::positions(scheme, topo, lin)?;
+    for (p, l) in pos.iter_mut().zip(lin.iter()) {
+        *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
+    }
+    Ok(())
 }
