@@ -10,12 +10,15 @@
 //!    terms of its trust ([`Driver::trust_star`]), then mapped back as the paper does;
 //! 2. the F4-angle term over the interior edges between two interior stars, from the
 //!    candidates of step 1 ([`Driver::trust_edges`]);
-//! 3. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
+//! 3. spherical stars of valence 4 or more have their trust raised toward 1 by their
+//!    sphericity (`trust::sphericity`: on a sphere the paper's rules keep the sphere and
+//!    commute with every Möbius map);
+//! 4. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
 //!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]); the
 //!    output vertices this changes are counted (or refused in strict mode);
-//! 4. the paper's blends (F4, the face chain, the boundary curves), unchanged.
+//! 5. the paper's blends (F4, the face chain, the boundary curves), unchanged.
 //!
-//! The trust is decided on the paper's candidates only (steps 1–2), never on re-evaluated
+//! The trust is decided on the paper's candidates only (steps 1–3), never on re-evaluated
 //! ones, so it does not depend on the order of the stars. A mesh without a distrusted star
 //! gets the paper's output bit for bit (step 3 does nothing).
 
@@ -123,7 +126,7 @@ impl Driver<'_, '_, '_, '_> {
         Ok(())
     }
 
-    /// Step 3 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
+    /// Steps 3 and 4 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
     /// form `m_τ`, in vertex order, after counting the output vertices `out` says the star
     /// changes (or refusing the first in strict mode). Without the guard, nothing.
     pub(super) fn guarded_pass(

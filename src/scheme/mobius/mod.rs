@@ -23,6 +23,15 @@
 //! which keeps the rule Möbius-invariant and exact on Möbius images of regular grids. A face
 //! of ears only takes its linear centroid, counted as a fallback.
 //!
+//! **The fold guard** (Loop, Modified Butterfly, Catmull–Clark; the default, off with
+//! [`Options::literal`](super::Options::literal)): seed 000 §7.1 notes that the scheme can
+//! fold non-Delaunay meshes, and `docs/folds.md` traces the folds to ill-conditioned
+//! canonical forms. Stars whose Möbius-invariant trust (`trust.rs`) is below 1 are evaluated
+//! again in their form interpolated toward the linear rule (`spectrum.rs`, §7.2); the changed
+//! elements are counted in the [`Report`](super::Report) (`guarded`) or refused in strict
+//! mode (`guard.rs`). [`Options::spectrum`](super::Options::spectrum) blends every output
+//! with the linear one globally.
+//!
 //! **Degenerate neighbourhoods** (coincident points, a star whose canonical form does not
 //! exist, a blend at infinity): the element takes its linear rule, evaluated on the original
 //! positions; it is counted in the [`Report`](super::Report) (count and first output vertex),
@@ -40,6 +49,8 @@
 //!   (substitute forms for ears);
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
 //!   (boundary curves);
+//! * the fold guard: `trust.rs` (the criterion), `spectrum.rs` (the interpolated form
+//!   `m_τ`), `guard.rs` (its passes and counts);
 //! * `drivers/`: one per scheme, choosing the rule and the blends; `driver.rs`: the state of
 //!   one step and the fallback report. `step` below dispatches; the public entry is
 //!   [`super::subdivide`] with [`Options::mobius`](super::Options::mobius).
