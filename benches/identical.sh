@@ -20,9 +20,10 @@ for m in epcot cube spot_quad house_pentagons pyramid_mixed cylinder_tri_pole20 
   [ -f "$meshes/$m.off" ] || { echo "SKIP $m (not found)"; continue; }
   for s in $schemes; do
     for mode in lin mob; do
-      flag=; [ $mode = mob ] && flag=--mobius
+      # The Möbius rows run the paper's literal rules (the fold guard is the default).
+      flags=; [ $mode = mob ] && flags="--mobius --literal"
       f=$out/$m.$s.$mode.off
-      "$bin/subdivide_off" "$s" 2 "$meshes/$m.off" "$f" $flag 2>/dev/null
+      "$bin/subdivide_off" "$s" 2 "$meshes/$m.off" "$f" $flags 2>/dev/null
       echo "exit $?" > "$f.status"
     done
   done

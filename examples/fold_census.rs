@@ -3,7 +3,7 @@
 //! (docs/folds.md).
 //!
 //! ```text
-//! fold_census census   SCHEME LEVELS IN.off...        folded edges, library Möbius vs linear
+//! fold_census census   SCHEME LEVELS IN.off...        folded edges: literal Möbius, linear, guarded
 //! fold_census check    SCHEME LEVELS IN.off...        re-implementation == library, bit for bit
 //! fold_census trace    SCHEME LEVELS IN.off [--list]  every fold traced to its element and cause
 //! fold_census features SCHEME LEVELS IN.off...        per-element features as TSV
@@ -66,10 +66,18 @@ fn build<R>(m: &OwnedMesh, f: impl FnOnce(&Topology<'_, '_>) -> R) -> R {
     f(&topo)
 }
 
-/// One library step, linear or Möbius (not strict), and the number of fallbacks.
+/// One library step, linear or the paper's literal Möbius rules (not strict), and the number
+/// of fallbacks. The re-implementation below is of the literal rules.
 fn lib_step(s: Scheme, m: &OwnedMesh, mobius_on: bool) -> (OwnedMesh, u32) {
-    let (out, report) = run(m, &Options::new(s).mobius(mobius_on)).unwrap();
+    let (out, report) = run(m, &Options::new(s).mobius(mobius_on).literal(true)).unwrap();
     (out, report.fallbacks)
+}
+
+/// One library step of the Möbius rules with the fold guard (the library's default), and the
+/// number of elements the guard changed.
+fn guarded_step(s: Scheme, m: &OwnedMesh) -> (OwnedMesh, u32) {
+    let (out, report) = run(m, &Options::new(s).mobius(true)).unwrap();
+    (out, report.guarded)
 }
 
 fn lib_levels(s: Scheme, m: &OwnedMesh, levels: usize, mobius_on: bool) -> OwnedMesh {
@@ -1207,21 +1215,25 @@ fn my_step_with(s: Scheme, m: &OwnedMesh, proto: Option<Proto>, trust: Option<Ve
 // ------------------------------------------------------------------------------------------
 
 fn cmd_census(s: Scheme, levels: usize, files: &[String]) {
-    println!("mesh\tlevel\tmobius\tlinear\tfallbacks");
+    println!("mesh\tlevel\tmobius\tlinear\tfallbacks\tguarded\tguarded_elements");
     for f in files {
         let m = load(f);
-        let (mut cm, mut cl) = (m.clone(), m.clone());
+        let (mut cm, mut cl, mut cg) = (m.clone(), m.clone(), m.clone());
         for l in 1..=levels {
             let (nm, fb) = lib_step(s, &cm, true);
             cm = nm;
             cl = lib_step(s, &cl, false).0;
+            let (ng, ge) = guarded_step(s, &cg);
+            cg = ng;
             println!(
-                "{}\t{}\t{}\t{}\t{}",
+                "{}\t{}\t{}\t{}\t{}\t{}\t{}",
                 stem(f),
                 l,
                 folds(&cm).len(),
                 folds(&cl).len(),
-                fb
+                fb,
+                folds(&cg).len(),
+                ge
             );
         }
     }

@@ -1,6 +1,7 @@
 //! Our linear (or Möbius) subdivision of an OFF file, for the peer comparison script:
-//! `subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius]`. Exit 2 when the kernel rejects
-//! the mesh (the status is printed on stderr).
+//! `subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius [--literal]]`. `--literal` runs the
+//! paper's Möbius rules without the fold guard (`Options::literal`). Exit 2 when the kernel
+//! rejects the mesh (the status is printed on stderr).
 #![allow(
     clippy::expect_used,
     clippy::unwrap_used,
@@ -25,8 +26,12 @@ fn levels_call(
     m: &OwnedMesh,
     levels: usize,
     mobius_on: bool,
+    literal: bool,
 ) -> nlsubdiv::Result<OwnedMesh> {
-    let opts = Options::new(s).mobius(mobius_on).levels(levels);
+    let opts = Options::new(s)
+        .mobius(mobius_on)
+        .literal(literal)
+        .levels(levels);
     let mut su = vec![0u32; scheme::plan_scratch_size(&m.view())?];
     let p = scheme::plan(m.view(), &opts, &mut su)?;
     let o = p.output();
@@ -72,7 +77,7 @@ fn write_off_streamed(path: &Path, m: &OwnedMesh) -> std::io::Result<()> {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 5 {
-        eprintln!("usage: subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius]");
+        eprintln!("usage: subdivide_off SCHEME LEVELS IN.off OUT.off [--mobius [--literal]]");
         std::process::exit(1);
     }
     let s = Scheme::from_name(&args[1]).unwrap_or_else(|| {
@@ -80,7 +85,9 @@ fn main() {
         std::process::exit(1)
     });
     let levels: usize = args[2].parse().expect("levels");
-    let mobius_on = args.get(5).is_some_and(|a| a == "--mobius");
+    let flags = args.get(5..).unwrap_or(&[]);
+    let mobius_on = flags.iter().any(|a| a == "--mobius");
+    let literal = flags.iter().any(|a| a == "--literal");
     let m = read_off(Path::new(&args[3])).unwrap_or_else(|e| {
         eprintln!("{}: {e}", args[3]);
         std::process::exit(1)
@@ -88,7 +95,7 @@ fn main() {
     // Wall time of the subdivision (buffers, validation, topology and every level), without
     // file I/O, printed for scripts/bench_peers.py.
     let t0 = std::time::Instant::now();
-    let m = levels_call(s, &m, levels, mobius_on).unwrap_or_else(|e| {
+    let m = levels_call(s, &m, levels, mobius_on, literal).unwrap_or_else(|e| {
         eprintln!("{}: rejected: {e}", args[3]);
         std::process::exit(2)
     });

@@ -180,6 +180,15 @@
 #define NLS_SUBDIVIDE_STRICT (1u << 1)
 
 /**
+ * Subdivision flag (with `NLS_SUBDIVIDE_MOBIUS`): the paper's Möbius rules exactly (seed
+ * 000 §4), without the fold guard. By default a star whose canonical form is
+ * ill-conditioned (a Möbius-invariant test) is evaluated in a form interpolated toward the
+ * linear rule, which removes most folds on real meshes; the report counts those elements
+ * (`guarded`), and `NLS_SUBDIVIDE_STRICT` refuses the first one.
+ */
+#define NLS_SUBDIVIDE_LITERAL (1u << 2)
+
+/**
  * `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the `uint32_t` scratch is short.
  */
 #define NLS_MESH_BUFFER_SCRATCH_U32 0
@@ -414,14 +423,22 @@ typedef struct nls_subdivide_options {
      */
     uint32_t scheme;
     /**
-     * `NLS_SUBDIVIDE_MOBIUS` and/or `NLS_SUBDIVIDE_STRICT`; other bits are
-     * `NLS_STATUS_INVALID_ARGUMENT`.
+     * `NLS_SUBDIVIDE_MOBIUS`, `NLS_SUBDIVIDE_STRICT`, `NLS_SUBDIVIDE_LITERAL`; other bits
+     * are `NLS_STATUS_INVALID_ARGUMENT`.
      */
     uint32_t flags;
     /**
      * Levels, 0 to `NLS_MAX_LEVELS` (0 validates the mesh and copies it).
      */
     uint32_t levels;
+    /**
+     * With `NLS_SUBDIVIDE_MOBIUS`: the weight `u` of the linear result in the Möbius–linear
+     * spectrum of seed 000 §7.2, in [0, 1]; each level's output is
+     * `(1 − u) · Möbius + u · linear`, so 0 (the default, and what a zero-initialised
+     * struct holds) is the Möbius result and 1 the linear one, bit for bit. NaN or outside
+     * [0, 1] is `NLS_STATUS_INVALID_ARGUMENT`.
+     */
+    double linear_weight;
 } nls_subdivide_options;
 
 /**
@@ -570,6 +587,19 @@ typedef struct nls_subdivide_report {
      * The level of `first_fallback`, counted from 1, or 0 when there was no fallback.
      */
     uint32_t first_fallback_level;
+    /**
+     * Output vertices the Möbius fold guard changed (all levels; 0 with
+     * `NLS_SUBDIVIDE_LITERAL` and for the linear schemes).
+     */
+    uint32_t guarded;
+    /**
+     * The first such output vertex (of level `first_guarded_level`), or `NLS_NO_ELEMENT`.
+     */
+    uint32_t first_guarded;
+    /**
+     * The level of `first_guarded`, counted from 1, or 0 when the guard changed nothing.
+     */
+    uint32_t first_guarded_level;
 } nls_subdivide_report;
 
 /**

@@ -23,11 +23,27 @@ fn msub(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, 
     mobius_subdivide(s, m, strict)
 }
 
+/// One step of the paper's literal rules (`Options::literal`: no fold guard), for the
+/// properties the paper proves for them on every mesh (Möbius equivariance, independence of
+/// the numbering) and for the fallback reports, which the guard would precede. The guarded
+/// default mode has its own tests in `tests/mesh_fold_guard.rs`.
+fn msub_lit(s: Scheme, m: &OwnedMesh, strict: bool) -> nlsubdiv::Result<(OwnedMesh, Report)> {
+    run(
+        m,
+        &Options::new(s).mobius(true).literal(true).strict(strict),
+    )
+}
+
 fn msub_n(s: Scheme, m: &OwnedMesh, levels: usize) -> (OwnedMesh, u32) {
+    msub_n_mode(s, m, levels, false)
+}
+
+fn msub_n_mode(s: Scheme, m: &OwnedMesh, levels: usize, literal: bool) -> (OwnedMesh, u32) {
     let mut cur = m.clone();
     let mut fallbacks = 0;
     for _ in 0..levels {
-        let (next, r) = msub(s, &cur, false).unwrap_or_else(|e| panic!("{s:?}: {e}"));
+        let step = if literal { msub_lit } else { msub };
+        let (next, r) = step(s, &cur, false).unwrap_or_else(|e| panic!("{s:?}: {e}"));
         fallbacks += r.fallbacks;
         cur = next;
     }
@@ -286,13 +302,27 @@ fn every_mobius_scheme_commutes_with_mobius_maps() {
                 continue;
             }
             let f = random_mobius(&m, &mut rng);
-            let (a, fa) = msub(s, &map_mesh(&m, &f), false).unwrap();
-            let (b, fb) = msub(s, &m, false).unwrap();
+            // The paper's rules are equivariant on every mesh; the fold guard gives up
+            // equivariance at the stars it distrusts (by design: its fallback ends at the
+            // linear rule), but which elements it changes is Möbius-invariant.
+            let (a, fa) = msub_lit(s, &map_mesh(&m, &f), false).unwrap();
+            let (b, fb) = msub_lit(s, &m, false).unwrap();
             assert_eq!(
                 (fa.fallbacks, fb.fallbacks),
                 (0, 0),
                 "{name} {s:?}: fallbacks"
             );
+            let (ga, ra) = msub(s, &map_mesh(&m, &f), false).unwrap();
+            let (gb, rb) = msub(s, &m, false).unwrap();
+            assert_eq!(
+                (ra.guarded, ra.first_guarded),
+                (rb.guarded, rb.first_guarded),
+                "{name} {s:?}: the guard changes other elements on a Möbius image"
+            );
+            if rb.guarded == 0 {
+                assert_eq!(ga.positions, a.positions, "{name} {s:?}: image");
+                assert_eq!(gb.positions, b.positions, "{name} {s:?}");
+            }
             let fb_mapped = map_mesh(&b, &f);
             let scale = diameter(&a);
             let err = a
@@ -420,14 +450,16 @@ fn degenerate_stars_fall_back_and_strict_mode_refuses() {
         Scheme::Dual,
         Scheme::Kobbelt,
     ] {
-        let (out, rep) = msub(s, &m, false).unwrap();
+        // Literal rules: the guard distrusts these stars too, and its strict refusal would
+        // come first (tests/mesh_fold_guard.rs).
+        let (out, rep) = msub_lit(s, &m, false).unwrap();
         assert!(rep.fallbacks > 0, "{s:?}: no fallback reported");
         assert!((rep.first_fallback as usize) < out.positions.len());
         assert!(out
             .positions
             .iter()
             .all(|p| p.iter().all(|c| c.is_finite())));
-        let e = msub(s, &m, true).unwrap_err();
+        let e = msub_lit(s, &m, true).unwrap_err();
         assert_eq!(e.status, Status::FallbackInStrictMode, "{s:?}");
         assert_eq!(
             e.element, rep.first_fallback,
@@ -565,7 +597,8 @@ fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
     let mut m = onto_sphere(&cube().map_positions(|p| [p[0] - 0.5, p[1] - 0.5, p[2] - 0.5]));
     m.positions[1] = m.positions[0];
     let s = Scheme::CatmullClark;
-    let opts = Options::new(s).mobius(true).levels(2);
+    // Literal rules: the guard's refusal would come first (tests/mesh_fold_guard.rs).
+    let opts = Options::new(s).mobius(true).literal(true).levels(2);
     let mut su = vec![0u32; 4096];
     let p = scheme::plan(m.view(), &opts, &mut su).unwrap();
     let mut sp = vec![[0.0; 3]; p.scratch.points];
@@ -584,7 +617,7 @@ fn mobius_levels_report_the_first_fallback_and_strict_refuses() {
         )
     };
     let rep = run(false, &mut su, &mut sp, &mut out).unwrap();
-    let (_, first) = msub(s, &m, false).unwrap();
+    let (_, first) = msub_lit(s, &m, false).unwrap();
     assert!(first.fallbacks > 0);
     assert_eq!(rep.first_fallback_level, 1);
     assert_eq!(rep.first_fallback, first.first_fallback);
@@ -886,8 +919,19 @@ fn mobius_schemes_versus_vertex_renumbering() {
                 if !s.has_mobius_form() || !accepts(s, mesh) {
                     continue;
                 }
-                let (a, _) = msub_n(s, mesh, 2);
-                let (b, _) = msub_n(s, &r, 2);
+                // The paper's rules; the guard's figures are printed below (its distrusted
+                // faces' candidates can nearly coincide, and the face chain then orders
+                // their near-ties by vertex id).
+                let (a, _) = msub_n_mode(s, mesh, 2, true);
+                let (b, _) = msub_n_mode(s, &r, 2, true);
+                if generic {
+                    let (ga, _) = msub_n(s, mesh, 2);
+                    let (gb, _) = msub_n(s, &r, 2);
+                    let gap = nearest_gap(&ga, &gb).max(nearest_gap(&gb, &ga));
+                    if gap >= 1e-12 {
+                        println!("guarded: {name} jittered, {s:?}: renumbering moves the result by {gap:.2e}");
+                    }
+                }
                 assert_eq!(a.positions.len(), b.positions.len(), "{name}, {s:?}");
                 let gap = nearest_gap(&a, &b).max(nearest_gap(&b, &a));
                 if generic {

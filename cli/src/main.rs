@@ -10,6 +10,7 @@ mod differential;
 mod dome;
 mod exit;
 mod fields;
+mod folds;
 mod memory;
 mod out;
 mod progress;

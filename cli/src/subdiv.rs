@@ -106,6 +106,11 @@ pub struct Outcome {
     pub fallbacks: u64,
     /// The first fallback: a description naming the level and the element.
     pub first_fallback: Option<String>,
+    /// Elements the fold guard changed, over all levels (Möbius schemes without
+    /// `--literal`; `docs/folds.md`).
+    pub guarded: u64,
+    /// The first of them: a description naming the level and the element.
+    pub first_guarded: Option<String>,
     /// Time spent in the core (planning and every level).
     pub elapsed: Duration,
 }
@@ -318,7 +323,9 @@ fn core_error(
             let why = if e.status == Status::FallbackInStrictMode {
                 "needed the linear fallback (a degenerate neighbourhood: coincident points, a \
                  star without a canonical form, a blend at infinity, or a face whose corners \
-                 are all ears, boundary vertices of one face) and --strict is set"
+                 are all ears, boundary vertices of one face), or the fold guard changed it (a \
+                 star with an ill-conditioned canonical form; --literal runs the paper's \
+                 rules), and --strict is set"
                     .to_string()
             } else if e.status == Status::DegenerateGeometry {
                 "has no circle through its points (coincident vertices or a spike; the \
@@ -365,7 +372,7 @@ fn core_error(
 }
 
 /// [`describe_output_vertex`] for output vertex `i` of one step of `ms` on `mesh` (a
-/// fallback), with `mesh`'s topology built here.
+/// fallback or an element the fold guard changed), with `mesh`'s topology built here.
 fn describe_fallback(ms: MeshScheme, mesh: CoreMesh<'_>, i: u32, n: &Namer<'_>) -> String {
     let topology = scheme::plan_scratch_size(&mesh)
         .ok()
@@ -445,8 +452,9 @@ fn plan_sizes(
     }
 }
 
-/// Runs `levels` steps of `ms` on `input` (read from `src`). `strict`: a Möbius fallback is
-/// an error naming the element. Level 0 returns a copy.
+/// Runs `levels` steps of `ms` on `input` (read from `src`). `strict`: a Möbius fallback (or
+/// an element the fold guard changes) is an error naming the element. `literal`: the paper's
+/// Möbius rules without the fold guard (`Options::literal`). Level 0 returns a copy.
 ///
 /// # Errors
 /// Exit 2 for meshes the scheme refuses (naming the file, the level and the element), exit 4
@@ -457,6 +465,7 @@ pub fn run(
     ms: MeshScheme,
     levels: usize,
     strict: bool,
+    literal: bool,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
     let started = Instant::now();
@@ -496,11 +505,16 @@ pub fn run(
     let mut current = input.clone();
     let mut fallbacks = 0u64;
     let mut first_fallback = None;
+    let mut guarded = 0u64;
+    let mut first_guarded = None;
     for level in 0..levels {
         let out_sizes = sizes.get(level + 1).copied().unwrap_or_default();
         let namer = Namer { src, level };
         let mesh = CoreMesh::new(&current.positions, &current.offsets, &current.indices);
-        let opts = Options::new(ms.scheme).mobius(ms.mobius).strict(strict);
+        let opts = Options::new(ms.scheme)
+            .mobius(ms.mobius)
+            .strict(strict)
+            .literal(literal);
         let len = scheme::plan_scratch_size(&mesh)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;
@@ -532,6 +546,17 @@ pub fn run(
                 ));
             }
         }
+        if report.guarded > 0 {
+            guarded += u64::from(report.guarded);
+            if first_guarded.is_none() {
+                let what = describe_fallback(ms, mesh, report.first_guarded, &namer);
+                first_guarded = Some(format!(
+                    "step {}, output vertex {} ({what})",
+                    level + 1,
+                    report.first_guarded
+                ));
+            }
+        }
         let written = report.sizes;
         if written != out_sizes {
             return Err(CliError::internal(format!(
@@ -548,6 +573,8 @@ pub fn run(
         mesh: current,
         fallbacks,
         first_fallback,
+        guarded,
+        first_guarded,
         elapsed: started.elapsed(),
     })
 }
@@ -675,10 +702,13 @@ pub fn run_tagged(
             "tagged subdivision wrote other sizes than planned",
         ));
     }
+    // Tags are taken by the linear schemes only: no fallback, no fold guard.
     Ok(Outcome {
         mesh: next,
         fallbacks: 0,
         first_fallback: None,
+        guarded: 0,
+        first_guarded: None,
         elapsed: started.elapsed(),
     })
 }

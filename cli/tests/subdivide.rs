@@ -20,9 +20,14 @@ use nlsubdiv::scheme::{self, Options, Scheme, Scratch};
 /// (the command makes one call per level), buffers from `scheme::plan`. `Err` with the
 /// status when the library refuses the mesh.
 fn library(m: &TMesh, s: Scheme, is_mobius: bool, levels: usize) -> Result<TMesh, String> {
+    library_with(m, &Options::new(s).mobius(is_mobius).levels(levels)).map(|(m, _)| m)
+}
+
+/// [`library`] with any options, and the report.
+fn library_with(m: &TMesh, opts: &Options) -> Result<(TMesh, scheme::Report), String> {
     let (offsets, indices) = m.csr();
     let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
-    let opts = Options::new(s).mobius(is_mobius).levels(levels);
+    let opts = *opts;
     let mut s0 = vec![0u32; scheme::plan_scratch_size(&mesh).unwrap()];
     let plan = scheme::plan(mesh, &opts, &mut s0).map_err(|e| e.to_string())?;
     let mut su = vec![0u32; plan.scratch.u32s];
@@ -34,9 +39,9 @@ fn library(m: &TMesh, s: Scheme, is_mobius: bool, levels: usize) -> Result<TMesh
         vec![0u32; o.indices],
     );
     let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
-    scheme::subdivide(mesh, &opts, Scratch::new(&mut su, &mut sp), &mut out)
+    let report = scheme::subdivide(mesh, &opts, Scratch::new(&mut su, &mut sp), &mut out)
         .map_err(|e| e.to_string())?;
-    Ok(TMesh::from_csr(pos, &offs, &idx))
+    Ok((TMesh::from_csr(pos, &offs, &idx), report))
 }
 
 fn name(s: Scheme, is_mobius: bool) -> String {
@@ -562,5 +567,60 @@ fn spherelike_interpolates_and_names_a_degenerate_circle() {
         2,
         &["d.off", "output vertex 12", "no circle"],
         &["g.off", "d.off"],
+    );
+}
+
+/// The fold guard is the default of `mobius-*`; `--literal` gives the paper's rules; both are
+/// the library's bits, and the summary counts the guarded elements and the folded edges. The
+/// mesh: a triangulated saddle with one interior vertex pulled most of the way to a
+/// neighbour, so that its star's canonical form is ill-conditioned.
+#[test]
+fn literal_and_the_fold_guard_match_the_library_and_are_summarised() {
+    let dir = TempDir::new("subdivide-literal");
+    let mut m = tri_grid(6, 6);
+    let (v, u) = (3 * 7 + 3, 3 * 7 + 4);
+    let (p, q) = (m.positions[v], m.positions[u]);
+    m.positions[v] = [
+        p[0] + 0.9 * (q[0] - p[0]),
+        p[1] + 0.9 * (q[1] - p[1]),
+        p[2] + 0.9 * (q[2] - p[2]),
+    ];
+    m.write_off(&dir.path("in.off"));
+    let opts = Options::new(Scheme::Loop).mobius(true).levels(2);
+    let (guarded, report) = library_with(&m, &opts).unwrap();
+    let (literal, lit_report) = library_with(&m, &opts.literal(true)).unwrap();
+    assert!(report.guarded > 0, "the guard changes nothing on this mesh");
+    assert_eq!(lit_report.guarded, 0);
+    assert_ne!(guarded.positions, literal.positions);
+    let (o, got) = run_subdivide(&dir, "in.off", "mobius-loop", 2, "out.off");
+    assert_same(&got.unwrap(), &guarded, "default");
+    let summary = stderr(&o);
+    assert!(
+        summary.contains(&format!(
+            "{} elements changed by the fold guard",
+            report.guarded
+        )),
+        "{summary}"
+    );
+    assert!(summary.contains("folded edge"), "{summary}");
+    let out = dir.path("lit.off");
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "mobius-loop",
+        "--levels",
+        "2",
+        "--literal",
+        dir.path("in.off").to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert_same(&read_off(&out), &literal, "--literal");
+    assert!(stderr(&o).contains("literal rules"), "{}", stderr(&o));
+    let o = run(&["metrics", out.to_str().unwrap()]);
+    assert!(
+        stdout(&o).contains("folds (interior edges"),
+        "{}",
+        stdout(&o)
     );
 }

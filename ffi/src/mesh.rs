@@ -55,6 +55,12 @@ pub const NLS_SUBDIVIDE_MOBIUS: u32 = 1u32 << 0;
 /// neighbourhood) is an error, `NLS_STATUS_FALLBACK_IN_STRICT_MODE`, instead of a count in the
 /// report. The linear schemes never fall back.
 pub const NLS_SUBDIVIDE_STRICT: u32 = 1u32 << 1;
+/// Subdivision flag (with `NLS_SUBDIVIDE_MOBIUS`): the paper's Möbius rules exactly (seed
+/// 000 §4), without the fold guard. By default a star whose canonical form is
+/// ill-conditioned (a Möbius-invariant test) is evaluated in a form interpolated toward the
+/// linear rule, which removes most folds on real meshes; the report counts those elements
+/// (`guarded`), and `NLS_SUBDIVIDE_STRICT` refuses the first one.
+pub const NLS_SUBDIVIDE_LITERAL: u32 = 1u32 << 2;
 
 /// `out_element` on `NLS_STATUS_BUFFER_TOO_SMALL`: the `uint32_t` scratch is short.
 pub const NLS_MESH_BUFFER_SCRATCH_U32: u32 = 0;
@@ -143,15 +149,21 @@ pub struct nls_scratch {
 /// `nls_subdivide_default_options`; later versions append fields whose defaults keep the
 /// behaviour of this one.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct nls_subdivide_options {
     /// `NLS_SCHEME_*`.
     pub scheme: u32,
-    /// `NLS_SUBDIVIDE_MOBIUS` and/or `NLS_SUBDIVIDE_STRICT`; other bits are
-    /// `NLS_STATUS_INVALID_ARGUMENT`.
+    /// `NLS_SUBDIVIDE_MOBIUS`, `NLS_SUBDIVIDE_STRICT`, `NLS_SUBDIVIDE_LITERAL`; other bits
+    /// are `NLS_STATUS_INVALID_ARGUMENT`.
     pub flags: u32,
     /// Levels, 0 to `NLS_MAX_LEVELS` (0 validates the mesh and copies it).
     pub levels: u32,
+    /// With `NLS_SUBDIVIDE_MOBIUS`: the weight `u` of the linear result in the Möbius–linear
+    /// spectrum of seed 000 §7.2, in [0, 1]; each level's output is
+    /// `(1 − u) · Möbius + u · linear`, so 0 (the default, and what a zero-initialised
+    /// struct holds) is the Möbius result and 1 the linear one, bit for bit. NaN or outside
+    /// [0, 1] is `NLS_STATUS_INVALID_ARGUMENT`.
+    pub linear_weight: f64,
 }
 
 /// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
@@ -180,13 +192,30 @@ pub struct nls_subdivide_report {
     pub first_fallback: u32,
     /// The level of `first_fallback`, counted from 1, or 0 when there was no fallback.
     pub first_fallback_level: u32,
+    /// Output vertices the Möbius fold guard changed (all levels; 0 with
+    /// `NLS_SUBDIVIDE_LITERAL` and for the linear schemes).
+    pub guarded: u32,
+    /// The first such output vertex (of level `first_guarded_level`), or `NLS_NO_ELEMENT`.
+    pub first_guarded: u32,
+    /// The level of `first_guarded`, counted from 1, or 0 when the guard changed nothing.
+    pub first_guarded_level: u32,
+}
+
+/// The Rust path's spectrum weight `w` (of the Möbius result) from the C struct's weight of
+/// the linear result, `w = 1 − u`: exact at both ends, so 0 and 1 give the Möbius and the
+/// linear results bit for bit.
+fn spectrum_of(u: f64) -> Result<f64, Status> {
+    if u.is_nan() || !(0.0..=1.0).contains(&u) {
+        return Err(Status::InvalidArgument);
+    }
+    Ok(1.0 - u)
 }
 
 /// The options struct as the Rust path's options.
 fn parse_options(o: &nls_subdivide_options) -> Result<Options, Status> {
     let scheme = Scheme::from_code(o.scheme).ok_or(Status::InvalidArgument)?;
     let flags = o.flags;
-    if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT) != 0 {
+    if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT | NLS_SUBDIVIDE_LITERAL) != 0 {
         return Err(Status::InvalidArgument);
     }
     if flags & NLS_SUBDIVIDE_MOBIUS != 0 && !scheme.has_mobius_form() {
@@ -198,6 +227,8 @@ fn parse_options(o: &nls_subdivide_options) -> Result<Options, Status> {
     Ok(Options::new(scheme)
         .mobius(flags & NLS_SUBDIVIDE_MOBIUS != 0)
         .strict(flags & NLS_SUBDIVIDE_STRICT != 0)
+        .literal(flags & NLS_SUBDIVIDE_LITERAL != 0)
+        .spectrum(spectrum_of(o.linear_weight)?)
         .levels(o.levels as usize))
 }
 
@@ -569,6 +600,9 @@ fn report_of(r: &Report) -> nls_subdivide_report {
         fallbacks: r.fallbacks,
         first_fallback: r.first_fallback,
         first_fallback_level: r.first_fallback_level,
+        guarded: r.guarded,
+        first_guarded: r.first_guarded,
+        first_guarded_level: r.first_guarded_level,
     }
 }
 
@@ -624,6 +658,7 @@ pub unsafe extern "C" fn nls_subdivide_default_options(
                     scheme: NLS_SCHEME_LOOP,
                     flags: 0,
                     levels: 1,
+                    linear_weight: 0.0,
                 },
             )
         };

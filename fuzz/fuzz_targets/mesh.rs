@@ -59,6 +59,9 @@ const REPORT_SENTINEL: nls_subdivide_report = nls_subdivide_report {
     fallbacks: 0xdead,
     first_fallback: 0xdead,
     first_fallback_level: 0xdead,
+    guarded: 0xdead,
+    first_guarded: 0xdead,
+    first_guarded_level: 0xdead,
 };
 
 /// Output buffers of the given capacities, filled with sentinels.

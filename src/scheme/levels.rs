@@ -102,10 +102,15 @@ pub(super) fn run(
         return Err(Error::too_small(p.scratch.points));
     }
     let (scheme, levels) = (opts.scheme, opts.levels);
-    let mobius = opts.mobius.then_some(MobiusOptions {
+    // A spectrum weight of 0 is the linear scheme (bit for bit: its steps are the linear
+    // ones); between 0 and 1 each Möbius step blends with the linear positions.
+    let mobius = (opts.mobius && opts.spectrum > 0.0).then_some(MobiusOptions {
         strict: opts.strict,
+        guard: !opts.literal,
+        spectrum: opts.spectrum,
     });
     let extra = match mobius {
+        Some(_) if opts.spectrum < 1.0 => cadd(p.mobius_step_points()?, p.spectrum_points()?)?,
         Some(_) => p.mobius_step_points()?,
         None => 0,
     };
@@ -203,6 +208,11 @@ pub(super) fn run(
         if report.first_fallback_level == 0 && r.fallbacks > 0 {
             report.first_fallback = r.first_fallback;
             report.first_fallback_level = (k + 1) as u32;
+        }
+        report.guarded = report.guarded.saturating_add(r.guarded);
+        if report.first_guarded_level == 0 && r.guarded > 0 {
+            report.first_guarded = r.first_guarded;
+            report.first_guarded_level = (k + 1) as u32;
         }
         if written != out_sizes {
             return Err(internal());

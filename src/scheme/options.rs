@@ -35,6 +35,23 @@ pub struct Options {
     pub strict: bool,
     /// Levels, `0..=`[`MAX_LEVELS`]; 0 validates the input and copies it.
     pub levels: usize,
+    /// With [`Options::mobius`]: the paper's algorithm exactly as printed (seed 000 §4),
+    /// without the fold guard. By default (`false`) a Möbius step guards the stars whose
+    /// canonical form is ill-conditioned (Loop, Modified Butterfly, Catmull–Clark; seed 000
+    /// §7.1, §7.2; `docs/folds.md`): they are evaluated in a form interpolated toward the
+    /// linear rule, and the elements this changes are counted in the
+    /// [`Report`](super::Report) (`guarded`) or, with [`Options::strict`], refused with
+    /// [`Status::FallbackInStrictMode`]. Named for what it gives rather than for the guard,
+    /// so that `true` always means "the published rules, bit for bit". Accepted and without
+    /// effect for the linear schemes.
+    pub literal: bool,
+    /// With [`Options::mobius`]: the global weight `w ∈ [0, 1]` of the Möbius–linear
+    /// spectrum (seed 000 §7.2): every output vertex of every level is
+    /// `w · (Möbius point) + (1 − w) · (linear point)` of that level's input. 1 (the default)
+    /// is the Möbius result bit for bit (guarded or [`Options::literal`]), 0 the linear
+    /// result bit for bit; continuous in `w` between. NaN or outside `[0, 1]` is
+    /// [`Status::InvalidArgument`]. Checked, and without effect, for the linear schemes.
+    pub spectrum: f64,
 }
 
 impl Options {
@@ -45,6 +62,8 @@ impl Options {
             mobius: false,
             strict: false,
             levels: 1,
+            literal: false,
+            spectrum: 1.0,
         }
     }
 
@@ -60,16 +79,37 @@ impl Options {
         Options { strict: on, ..self }
     }
 
+    /// The paper's literal Möbius rules (`true`) or the guarded ones (`false`, the default;
+    /// [`Options::literal`]).
+    #[must_use]
+    pub const fn literal(self, on: bool) -> Options {
+        Options {
+            literal: on,
+            ..self
+        }
+    }
+
+    /// The weight of the Möbius–linear spectrum ([`Options::spectrum`]; checked by the calls).
+    #[must_use]
+    pub const fn spectrum(self, w: f64) -> Options {
+        Options {
+            spectrum: w,
+            ..self
+        }
+    }
+
     /// The number of levels (checked against [`MAX_LEVELS`] by the calls).
     #[must_use]
     pub const fn levels(self, levels: usize) -> Options {
         Options { levels, ..self }
     }
 
-    /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels or the Möbius version
-    /// of a scheme without one; checked before the mesh is read.
+    /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels, the Möbius version
+    /// of a scheme without one, or a spectrum weight that is NaN or outside `[0, 1]`;
+    /// checked before the mesh is read.
     pub(crate) fn check(&self) -> crate::Result<()> {
-        if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) {
+        let w_ok = self.spectrum >= 0.0 && self.spectrum <= 1.0;
+        if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) || !w_ok {
             return Err(crate::Error::new(crate::Status::InvalidArgument));
         }
         Ok(())

@@ -55,7 +55,10 @@ pub struct Plan {
     ///   [`plan_scratch_size_tagged`].
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
-    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1).
+    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and
+    ///   the fold guard's trust of every vertex (one `f64` each, three to a point); with a
+    ///   spectrum weight below 1 ([`Options::spectrum`]), the linear positions of the
+    ///   largest level written.
     pub scratch: ScratchSizes,
     /// `u32` entries of one of the two sharpness buffers of a tagged mesh (one value per
     /// edge and per vertex of the largest level stepped from); 0 without tags.
@@ -68,14 +71,28 @@ impl Plan {
         self.sizes.get(self.levels).copied().unwrap_or_default()
     }
 
-    /// The candidate points of the largest Möbius step: two per corner of the largest level
-    /// stepped from (0 for zero levels).
-    pub(super) fn mobius_step_points(&self) -> Result<usize> {
-        let mut corners = 0usize;
-        for k in 0..self.levels {
-            corners = corners.max(self.sizes.get(k).ok_or(internal())?.indices);
+    /// The linear positions a Möbius step blends with for a spectrum weight below 1
+    /// ([`Options::spectrum`]): the vertices of the largest level written (0 for zero
+    /// levels).
+    pub(super) fn spectrum_points(&self) -> Result<usize> {
+        let mut vertices = 0usize;
+        for k in 1..=self.levels {
+            vertices = vertices.max(self.sizes.get(k).ok_or(internal())?.vertices);
         }
-        super::mobius::candidate_points(corners)
+        Ok(vertices)
+    }
+
+    /// The candidate points of the largest Möbius step: two per corner of the largest level
+    /// stepped from, and the fold guard's trust per vertex, three to a point (0 for zero
+    /// levels).
+    pub(super) fn mobius_step_points(&self) -> Result<usize> {
+        let (mut vertices, mut corners) = (0usize, 0usize);
+        for k in 0..self.levels {
+            let sz = self.sizes.get(k).ok_or(internal())?;
+            vertices = vertices.max(sz.vertices);
+            corners = corners.max(sz.indices);
+        }
+        super::mobius::candidate_points(vertices, corners)
     }
 }
 
@@ -164,7 +181,7 @@ pub(super) fn plan_with_topology(
     if scratch_u32.len() < need {
         return Err(Error::too_small(need));
     }
-    let mut p = levels_plan(
+    let (mut p, counts) = levels_plan(
         opts.scheme,
         opts.mobius,
         mesh,
@@ -173,13 +190,16 @@ pub(super) fn plan_with_topology(
         tagged.then_some(tags),
     )?;
     // The plan's own scratch (topology and tag markers) is also the start of the call's.
-    p.0.scratch.u32s = p.0.scratch.u32s.max(need);
+    p.scratch.u32s = p.scratch.u32s.max(need);
+    if opts.mobius && opts.spectrum < 1.0 {
+        p.scratch.points = cadd(p.scratch.points, p.spectrum_points()?)?;
+    }
     // The circle blend measures squared distances: outside this range they underflow or
     // overflow and the shape is lost (mesh/extent.rs).
     if opts.scheme == Scheme::Spherelike && opts.levels > 0 {
         crate::mesh::check_extent(&mesh)?;
     }
-    Ok(p)
+    Ok((p, counts))
 }
 
 /// The plan of `levels` linear levels of `scheme`, validating `mesh` into `scratch`: the

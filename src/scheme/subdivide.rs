@@ -45,6 +45,15 @@ pub struct Report {
     pub first_fallback: u32,
     /// That level, counted from 1, or 0 when there was no fallback.
     pub first_fallback_level: u32,
+    /// Output vertices the fold guard changed (elements of a star whose canonical form is
+    /// ill-conditioned, evaluated in a form interpolated toward the linear rule: seed 000
+    /// §7.1, §7.2; [`Options::literal`]), summed over the levels; 0 for the literal and the
+    /// linear schemes.
+    pub guarded: u32,
+    /// The first such vertex of the first level that had one, or [`NO_ELEMENT`].
+    pub first_guarded: u32,
+    /// That level, counted from 1, or 0 when the guard changed nothing.
+    pub first_guarded_level: u32,
 }
 
 impl Report {
@@ -55,6 +64,9 @@ impl Report {
             fallbacks: 0,
             first_fallback: NO_ELEMENT,
             first_fallback_level: 0,
+            guarded: 0,
+            first_guarded: NO_ELEMENT,
+            first_guarded_level: 0,
         }
     }
 }

@@ -161,6 +161,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     let used_ids: Vec<usize> = (0..nv).filter(|&v| topo.face_count(v as u32) > 0).collect();
     let sphere = sphere::fit(&used);
     let bbox = m.bbox();
+    let folds = crate::folds::measure(m);
     let errors = l.findings.iter().any(|f| f.severity == Severity::Error);
     let topo_json = topology_json(m, topo, !errors);
 
@@ -183,6 +184,11 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         "mobius_regularity": stats_json(&sm),
         "mean_curvature": stats_json(&sh),
         "thin_plate": crate::differential::thin_plate(m),
+        "folds": json!({
+            "folded_edges": folds.folded,
+            "worst_normal_angle_degrees": if folds.worst_degrees.is_nan() { Value::Null } else { json!(folds.worst_degrees) },
+            "worst_edge": folds.worst_edge.map(|(a, b)| json!([a, b])),
+        }),
         "sphere": sphere.map(|s| json!({
             "center": s.center,
             "radius": s.radius,
@@ -325,6 +331,20 @@ fn print_text(
             "  thin-plate energy: none (not a triangle mesh, or no area)"
         ),
     };
+    writeln!(
+        o,
+        "  folds (interior edges whose faces' normals are > 90° apart): {}",
+        crate::folds::Folds {
+            folded: r["folds"]["folded_edges"].as_u64().unwrap_or(0) as usize,
+            worst_degrees: r["folds"]["worst_normal_angle_degrees"]
+                .as_f64()
+                .unwrap_or(f64::NAN),
+            worst_edge: r["folds"]["worst_edge"]
+                .as_array()
+                .and_then(|a| { Some((a.first()?.as_u64()? as u32, a.get(1)?.as_u64()? as u32)) }),
+        }
+        .describe()
+    );
     let _ = match sphere {
         Some(s) => writeln!(
             o,

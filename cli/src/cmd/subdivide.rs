@@ -1,4 +1,4 @@
-//! `nlsubdiv subdivide --scheme NAME --levels N [--strict] IN OUT`: `N` levels of a linear
+//! `nlsubdiv subdivide --scheme NAME --levels N [--strict] [--literal] IN OUT`: `N` levels of a linear
 //! or Möbius mesh scheme of the core, or of differential-space subdivision (seed 001,
 //! [`crate::differential`]), file to file.
 //!
@@ -64,6 +64,11 @@ pub struct Args {
     /// cracks) refuse it.
     #[arg(long)]
     pub strict: bool,
+    /// mobius-*: the paper's rules exactly, without the fold guard (by default stars with an
+    /// ill-conditioned canonical form are evaluated in a form interpolated toward the
+    /// linear rule, and the elements this changes are counted in the summary; docs/folds.md).
+    #[arg(long)]
+    pub literal: bool,
     /// differential-dirmag: the first this many levels use DirMag (the paper: 1 or 2).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub dirmag_levels: u32,
@@ -121,7 +126,15 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         SchemeArg::Differential(d) => return run_differential(args, d, &l, ctx),
     };
     let r = if tags.is_empty() {
-        subdiv::run(&l.mesh, &l.source, scheme, levels, args.strict, ctx)?
+        subdiv::run(
+            &l.mesh,
+            &l.source,
+            scheme,
+            levels,
+            args.strict,
+            args.literal,
+            ctx,
+        )?
     } else {
         subdiv::run_tagged(
             &l.mesh,
@@ -152,8 +165,22 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     } else {
         "; 0 fallbacks".to_string()
     };
+    let guarded = if !scheme.mobius {
+        String::new()
+    } else if let Some(first) = &r.first_guarded {
+        format!(
+            "; {} element{} changed by the fold guard, the first at {first}",
+            r.guarded,
+            if r.guarded == 1 { "" } else { "s" }
+        )
+    } else if args.literal {
+        "; literal rules".to_string()
+    } else {
+        "; 0 elements changed by the fold guard".to_string()
+    };
+    let folds = crate::folds::measure(&r.mesh).describe();
     ctx.note(&format!(
-        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s{fallbacks}",
+        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s{fallbacks}{guarded}; {folds}",
         args.output.display(),
         scheme.name(),
         levels,

@@ -11,7 +11,7 @@
 use arrayvec::ArrayVec;
 
 use crate::error::{Error, Result, Status};
-use crate::mesh::Spoke;
+use crate::mesh::{Spoke, Topology};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
 use crate::MAX_VALENCE;
@@ -39,6 +39,40 @@ impl MapBack for CanonicalForm {
     #[inline(always)]
     fn back(&self, p: Point) -> Result<Point> {
         self.from_normalised(p)
+    }
+}
+
+/// A frame the rules of a star are evaluated in: the images of mesh vertices in it, and
+/// [`MapBack`] out of it. The memoised canonical form of a mesh vertex (`memo.rs`: the
+/// paper's rules) or the fold guard's interpolated form (`spectrum.rs`).
+pub(super) trait Frame: MapBack {
+    /// Whether this is the star's canonical form (the pass that also measures the star's
+    /// trust, `guard.rs`).
+    const CANONICAL: bool;
+
+    /// The image of vertex `u` (the centre goes to [`ORIGIN`]).
+    fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point>;
+
+    /// The centroid of face `f`'s corners taken in the frame; `pts` is scratch.
+    fn face_centroid(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        f: u32,
+        pts: &mut FacePts,
+    ) -> Result<Point>;
+}
+
+/// An identity [`MapBack`]: a rule *in form* run with it leaves its results in the
+/// normalised frame, where the fold guard reads them (`trust.rs`) before the drivers map
+/// them back with the star's own frame. `back(p)` of the frame afterwards is the same
+/// function of the same value as inside the rule, so the bits are those of the rule run with
+/// the frame directly.
+pub(super) struct Normalised;
+
+impl MapBack for Normalised {
+    #[inline(always)]
+    fn back(&self, p: Point) -> Result<Point> {
+        Ok(p)
     }
 }
 

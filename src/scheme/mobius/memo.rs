@@ -8,7 +8,7 @@
 //! times per vertex (measured with callgrind: those copies cost half of Möbius
 //! Catmull–Clark's instructions).
 
-use super::form::{FacePts, MapBack, Ring, Spokes, ORIGIN};
+use super::form::{FacePts, Frame, MapBack, Ring, Spokes, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
@@ -101,6 +101,22 @@ impl StarForm {
             stamp: 0,
             tangents: Ring::new(),
         }
+    }
+
+    /// The canonical form (meaningful after a successful [`StarForm::reset`]).
+    pub(super) fn form(&self) -> &CanonicalForm {
+        &self.cf
+    }
+
+    /// The tangent polygon `T_i = (u_i − v)⁻¹` of the form (after a successful
+    /// [`StarForm::reset`]).
+    pub(super) fn tangents(&self) -> &[Point] {
+        &self.tangents
+    }
+
+    /// The centre `c` of the tangent polygon (after a successful [`StarForm::reset`]).
+    pub(super) fn centre(&self) -> Point {
+        self.cf.c
     }
 
     /// Forgets the form and every memo entry (`v = NONE`).
@@ -225,6 +241,25 @@ impl MapBack for StarForm {
     #[inline(always)]
     fn back(&self, p: Point) -> Result<Point> {
         self.cf.from_normalised(p)
+    }
+}
+
+impl Frame for StarForm {
+    const CANONICAL: bool = true;
+
+    #[inline(always)]
+    fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
+        self.canon(topo, u)
+    }
+
+    #[inline(always)]
+    fn face_centroid(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        f: u32,
+        pts: &mut FacePts,
+    ) -> Result<Point> {
+        StarForm::face_centroid(self, topo, f, pts)
     }
 }
 

@@ -23,6 +23,15 @@
 //! which keeps the rule Möbius-invariant and exact on Möbius images of regular grids. A face
 //! of ears only takes its linear centroid, counted as a fallback.
 //!
+//! **The fold guard** (Loop, Modified Butterfly, Catmull–Clark; the default, off with
+//! [`Options::literal`](super::Options::literal)): seed 000 §7.1 notes that the scheme can
+//! fold non-Delaunay meshes, and `docs/folds.md` traces the folds to ill-conditioned
+//! canonical forms. Stars whose Möbius-invariant trust (`trust.rs`) is below 1 are evaluated
+//! again in their form interpolated toward the linear rule (`spectrum.rs`, §7.2); the changed
+//! elements are counted in the [`Report`](super::Report) (`guarded`) or refused in strict
+//! mode (`guard.rs`). [`Options::spectrum`](super::Options::spectrum) blends every output
+//! with the linear one globally.
+//!
 //! **Degenerate neighbourhoods** (coincident points, a star whose canonical form does not
 //! exist, a blend at infinity): the element takes its linear rule, evaluated on the original
 //! positions; it is counted in the [`Report`](super::Report) (count and first output vertex),
@@ -40,6 +49,8 @@
 //!   (substitute forms for ears);
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
 //!   (boundary curves);
+//! * the fold guard: `trust.rs` (the criterion), `spectrum.rs` (the interpolated form
+//!   `m_τ`), `guard.rs` (its passes and counts);
 //! * `drivers/`: one per scheme, choosing the rule and the blends; `driver.rs`: the state of
 //!   one step and the fallback report. `step` below dispatches; the public entry is
 //!   [`super::subdivide`] with [`Options::mobius`](super::Options::mobius).
@@ -51,8 +62,11 @@ mod ears;
 mod edges;
 mod faces;
 mod form;
+mod guard;
 mod memo;
 mod rules;
+mod spectrum;
+mod trust;
 mod vertex_pass;
 
 pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star, loop_star};
@@ -65,11 +79,17 @@ use crate::point::{self, Point};
 use driver::Driver;
 
 /// Options of one Möbius step (from [`super::Options`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MobiusOptions {
     /// Turn every linear fallback into [`Status::FallbackInStrictMode`] naming the output
-    /// vertex.
+    /// vertex (and every element the guard changes).
     pub(crate) strict: bool,
+    /// The fold guard (`guard.rs`); `false` runs the paper's rules exactly.
+    pub(crate) guard: bool,
+    /// The weight `w ∈ (0, 1]` of the Möbius–linear spectrum (seed 000 §7.2): below 1, every
+    /// output vertex is `w · (Möbius point) + (1 − w) · (linear point)`, the linear points
+    /// written to the scratch after the candidates.
+    pub(crate) spectrum: f64,
 }
 
 /// What one Möbius step had to do besides the paper's rules (gathered over the levels into
@@ -80,6 +100,10 @@ pub(crate) struct MobiusReport {
     pub(crate) fallbacks: u32,
     /// The first such output vertex, or [`NO_ELEMENT`].
     pub(crate) first_fallback: u32,
+    /// Output vertices the fold guard changed.
+    pub(crate) guarded: u32,
+    /// The first such output vertex, or [`NO_ELEMENT`].
+    pub(crate) first_guarded: u32,
 }
 
 impl Default for MobiusReport {
@@ -87,18 +111,22 @@ impl Default for MobiusReport {
         MobiusReport {
             fallbacks: 0,
             first_fallback: NO_ELEMENT,
+            guarded: 0,
+            first_guarded: NO_ELEMENT,
         }
     }
 }
 
-/// The candidate points one step needs on a level of `num_corners` corners (= half-edges):
-/// an edge candidate and a face candidate per half-edge.
+/// The candidate points one step needs on a level of `num_vertices` vertices and
+/// `num_corners` corners (= half-edges): an edge candidate and a face candidate per
+/// half-edge, then the fold guard's trust per vertex, three `f64` to a point.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub(crate) fn candidate_points(num_corners: usize) -> Result<usize> {
+pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Result<usize> {
     num_corners
         .checked_mul(2)
+        .and_then(|c| c.checked_add(num_vertices.div_ceil(3)))
         .ok_or(Error::new(Status::SizeOverflow))
 }
 
@@ -125,16 +153,27 @@ pub(crate) fn step(
     }
     let sizes = super::size::step_size(scheme, topo)?;
     out.check(&sizes)?;
-    let need = candidate_points(topo.num_half_edges())?;
+    let nv = topo.num_vertices();
+    let candidates = candidate_points(nv, topo.num_half_edges())?;
+    let blend = opts.spectrum < 1.0;
+    let need = if blend {
+        candidates
+            .checked_add(sizes.vertices)
+            .ok_or(Error::new(Status::SizeOverflow))?
+    } else {
+        candidates
+    };
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }
+    let (scratch, linear_pos) = scratch.split_at_mut(candidates);
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
     let (edge_c, rest) = scratch.split_at_mut(nh);
-    let face_c = rest.get_mut(..nh).ok_or(internal())?;
-    let mut d = Driver::new(topo, pos, edge_c, face_c, opts.strict);
+    let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
+    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
@@ -148,10 +187,44 @@ pub(crate) fn step(
         // No Möbius form (refused above).
         Scheme::Spherelike => return Err(Error::new(Status::InvalidArgument)),
     }
-    for (i, p) in d.pos.iter().enumerate() {
+    let report = d.report;
+    if blend {
+        spectrum_blend(
+            scheme,
+            topo,
+            pos_of(out, sizes.vertices)?,
+            linear_pos,
+            opts.spectrum,
+        )?;
+    }
+    for (i, p) in pos_of(out, sizes.vertices)?.iter().enumerate() {
         if !point::is_finite(p) {
             return Err(Error::at(Status::NumericalFailure, i as u32));
         }
     }
-    Ok((sizes, d.report))
+    Ok((sizes, report))
+}
+
+/// The first `n` output positions.
+fn pos_of<'a>(out: &'a mut MeshOut<'_>, n: usize) -> Result<&'a mut [Point]> {
+    out.positions.get_mut(..n).ok_or(internal())
+}
+
+/// The Möbius–linear spectrum at weight `w` (seed 000 §7.2): `pos[i] ← w · pos[i] + (1 − w) ·
+/// lin[i]`, with `lin` the linear rule's positions of the same step, written to `scratch`.
+/// Plain multiplications and an addition (no FMA), so the result is continuous in `w` and
+/// the same on every platform.
+fn spectrum_blend(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    scratch: &mut [Point],
+    w: f64,
+) -> Result<()> {
+    let lin = scratch.get_mut(..pos.len()).ok_or(internal())?;
+    super::linear::positions(scheme, topo, lin)?;
+    for (p, l) in pos.iter_mut().zip(lin.iter()) {
+        *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
+    }
+    Ok(())
 }

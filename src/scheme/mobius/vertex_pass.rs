@@ -9,14 +9,15 @@
 //! given takes its linear rule later, counted as a fallback.
 
 use super::driver::Driver;
-use super::form::{present, FacePts, MapBack, Ring, Spokes, MISSING};
+use super::form::{present, FacePts, Frame, Ring, Spokes, MISSING};
 use super::memo::StarForm;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::Point;
 
-/// One vertex star with its canonical form, as the pass hands it to a driver's rule.
-pub(super) struct Star<'p> {
+/// One vertex star with the frame its rules are evaluated in (its canonical form, or the
+/// fold guard's interpolated form), as the pass hands it to a driver's rule.
+pub(super) struct Star<'p, F: Frame = StarForm> {
     /// The centre vertex.
     pub(super) v: u32,
     /// Whether `v` lies on the boundary (its star is open).
@@ -24,11 +25,11 @@ pub(super) struct Star<'p> {
     /// The spokes of `v`, counter-clockwise from the star's first spoke
     /// ([`Topology::star`]).
     pub(super) spokes: &'p Spokes,
-    /// The canonical form of the star, with its memo.
-    pub(super) form: &'p mut StarForm,
+    /// The frame of the star (the canonical form with its memo, for the paper's rules).
+    pub(super) form: &'p mut F,
 }
 
-impl Star<'_> {
+impl<F: Frame> Star<'_, F> {
     /// The images of the ring neighbours in star order into `ring` ([`MISSING`] for one the
     /// form sends to infinity); whether all exist.
     #[inline(always)]
@@ -36,7 +37,7 @@ impl Star<'_> {
         ring.clear();
         let mut all = true;
         for s in self.spokes {
-            let c = match self.form.canon(topo, s.neighbour) {
+            let c = match self.form.image(topo, s.neighbour) {
                 Ok(c) => c,
                 Err(_) => {
                     all = false;
@@ -87,7 +88,12 @@ impl Driver<'_, '_, '_, '_> {
 
     /// [`Driver::local_into`], returning with a form whether `v` lies on the boundary.
     #[inline(always)]
-    fn retarget(&self, v: u32, form: &mut StarForm, spokes: &mut Spokes) -> Result<Option<bool>> {
+    pub(super) fn retarget(
+        &self,
+        v: u32,
+        form: &mut StarForm,
+        spokes: &mut Spokes,
+    ) -> Result<Option<bool>> {
         let topo = self.topo;
         // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
         let h = topo.vertex_half_edge(v)?;
@@ -124,27 +130,11 @@ impl Driver<'_, '_, '_, '_> {
         Ok(())
     }
 
-    /// Keeps `candidates[j]`, the candidate of the edge of spoke `j`, for every spoke that
-    /// has an outgoing half-edge and a candidate.
-    pub(super) fn keep_edge_candidates(
-        &mut self,
-        spokes: &Spokes,
-        candidates: &[Point],
-    ) -> Result<()> {
-        // By reference: zipping an array by value would copy it per vertex.
-        for (s, c) in spokes.iter().zip(candidates.iter()) {
-            if s.half_edge != NONE && present(c) {
-                set(self.edge_c, s.half_edge as usize, *c)?;
-            }
-        }
-        Ok(())
-    }
-
     /// Keeps the face candidates of a star: `centroids[j]` (in the form, from
     /// [`Star::face_centroids`]) mapped back, for every face that has one.
-    pub(super) fn keep_face_candidates(
+    pub(super) fn keep_face_candidates<F: Frame>(
         &mut self,
-        star: &Star<'_>,
+        star: &Star<'_, F>,
         centroids: &[Point],
     ) -> Result<()> {
         for (s, c) in star.spokes.iter().zip(centroids.iter()) {

@@ -5,10 +5,12 @@
 //! Möbius interpolating curve rule.
 
 use super::super::driver::Driver;
-use super::super::form::{MapBack, Ring, MISSING};
+use super::super::form::{Frame, Ring, MISSING};
+use super::super::guard::Outputs;
 use super::super::rules::butterfly_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
-use crate::mesh::NONE;
+use crate::mesh::{internal, NONE};
 use crate::point::Point;
 use crate::scheme::carry::copy_old;
 use crate::scheme::linear::butterfly_edge;
@@ -21,25 +23,46 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     copy_old(topo, d.pos)?;
     let mut ring = Ring::new();
     let mut cands = [MISSING; MAX_VALENCE];
-    d.vertex_pass(|d, star| {
-        star.ring_images(topo, &mut ring)?;
-        let n = star.spokes.len();
-        for (j, (s, c)) in star.spokes.iter().zip(cands.iter_mut()).enumerate() {
-            *c = MISSING;
-            let h = s.half_edge;
-            if h == NONE || topo.twin(h)? == NONE {
-                continue;
-            }
-            let other = s.neighbour;
-            let other_irregular = !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
-            if let Some(p) = butterfly_star_in_form(&ring, !star.boundary, j, other_irregular) {
-                *c = star.form.back(p).unwrap_or(MISSING);
-            }
-        }
-        d.keep_edge_candidates(star.spokes, cands.get(..n).unwrap_or(&[]))
-    })?;
+    d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    if d.guard {
+        d.trust_edges()?;
+        let out = Outputs {
+            vertex: false,
+            edges: nv,
+            faces: None,
+        };
+        d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    }
     let linear =
         |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> { butterfly_edge(d.topo, e) };
     d.blend_interior_edges(nv, &linear)?;
     d.boundary_edges(nv, butterfly::edge_boundary)
+}
+
+/// The Butterfly candidates of one star in its frame (the canonical form, or the guard's
+/// `m_τ`), measured for the guard's trust while still in the frame, then mapped back.
+fn star_rule<F: Frame>(
+    d: &mut Driver<'_, '_, '_, '_>,
+    star: &mut Star<'_, F>,
+    ring: &mut Ring,
+    cands: &mut [Point; MAX_VALENCE],
+) -> Result<()> {
+    let topo = d.topo;
+    star.ring_images(topo, ring)?;
+    let n = star.spokes.len();
+    for (j, (s, c)) in star.spokes.iter().zip(cands.iter_mut()).enumerate() {
+        *c = MISSING;
+        let h = s.half_edge;
+        if h == NONE || topo.twin(h)? == NONE {
+            continue;
+        }
+        let other = s.neighbour;
+        let other_irregular = !topo.is_boundary_vertex(other)? && topo.valence(other)? != 6;
+        if let Some(p) = butterfly_star_in_form(ring, !star.boundary, j, other_irregular) {
+            *c = p;
+        }
+    }
+    let cands = cands.get(..n).ok_or(internal())?;
+    d.trust_star(star, ring, cands)?;
+    d.keep_edges_from(star, cands)
 }

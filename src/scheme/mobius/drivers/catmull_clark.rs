@@ -5,11 +5,13 @@
 //! approximating curve rule. Ears take their face candidates from a substitute's form.
 
 use super::super::driver::Driver;
-use super::super::form::{FacePts, Ring, MISSING};
+use super::super::form::{FacePts, Frame, Normalised, Ring, MISSING};
+use super::super::guard::Outputs;
 use super::super::rules::catmull_clark_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::face_points;
-use crate::mesh::{internal, set};
+use crate::mesh::internal;
 use crate::point::Point;
 use crate::stencil::{catmull_clark, centroid};
 use crate::MAX_VALENCE;
@@ -22,24 +24,22 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // pass below, which maps each face into the corner's form once.
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
-    let mut ring = Ring::new();
-    let mut fc = Ring::new();
-    let mut pts = FacePts::new();
-    let mut cands = [MISSING; MAX_VALENCE];
-    d.vertex_pass(|d, star| {
-        // Canonical centroids of the faces after each spoke and images of the neighbours
-        // ([`MISSING`] when unavailable).
-        star.face_centroids(topo, &mut fc, &mut pts)?;
-        d.keep_face_candidates(star, &fc)?;
-        star.ring_images(topo, &mut ring)?;
-        let form = &*star.form;
-        let vertex = catmull_clark_star_in_form(&ring, &fc, !star.boundary, form, &mut cands)?;
-        d.keep_edge_candidates(star.spokes, &cands)?;
-        if let Some(q) = vertex {
-            set(d.pos, star.v as usize, q)?;
-        }
-        Ok(())
-    })?;
+    let mut b = Bufs {
+        ring: Ring::new(),
+        fc: Ring::new(),
+        pts: FacePts::new(),
+        cands: [MISSING; MAX_VALENCE],
+    };
+    d.vertex_pass(|d, star| star_rule(d, star, &mut b))?;
+    if d.guard {
+        d.trust_edges()?;
+        let out = Outputs {
+            vertex: true,
+            edges: nv,
+            faces: Some(fp0),
+        };
+        d.guarded_pass(out, |d, star| star_rule(d, star, &mut b))?;
+    }
     d.finish_vertex_points(false, |t, v, p| {
         let mut ring = Ring::new();
         let mut faces = Ring::new();
@@ -66,4 +66,33 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.blend_interior_edges(nv, &linear)?;
     d.boundary_edges(nv, |_, a, b, _| catmull_clark::edge_boundary(a, b))?;
     d.boundary_vertices_approximating(nv)
+}
+
+/// The buffers of [`star_rule`], one set per step.
+struct Bufs {
+    ring: Ring,
+    fc: Ring,
+    pts: FacePts,
+    cands: [Point; MAX_VALENCE],
+}
+
+/// The Catmull–Clark rules of one star in its frame (the canonical form, or the guard's
+/// `m_τ`): the canonical centroids of the faces after each spoke and the images of the
+/// neighbours ([`MISSING`] when unavailable), the face candidates, edge candidates (measured
+/// for the guard's trust while still in the frame) and the vertex point, mapped back.
+fn star_rule<F: Frame>(
+    d: &mut Driver<'_, '_, '_, '_>,
+    star: &mut Star<'_, F>,
+    b: &mut Bufs,
+) -> Result<()> {
+    let topo = d.topo;
+    star.face_centroids(topo, &mut b.fc, &mut b.pts)?;
+    d.keep_face_candidates(star, &b.fc)?;
+    star.ring_images(topo, &mut b.ring)?;
+    let vertex =
+        catmull_clark_star_in_form(&b.ring, &b.fc, !star.boundary, &Normalised, &mut b.cands)?;
+    let cands = b.cands.get(..b.ring.len()).ok_or(internal())?;
+    d.trust_star(star, &b.ring, cands)?;
+    d.keep_edges_from(star, cands)?;
+    d.keep_vertex_from(star, vertex)
 }

@@ -3,11 +3,13 @@
 //! candidates, boundary loops follow the Möbius approximating curve rule.
 
 use super::super::driver::Driver;
-use super::super::form::{Ring, MISSING};
+use super::super::form::{Frame, Normalised, Ring, MISSING};
+use super::super::guard::Outputs;
 use super::super::rules::loop_star_in_form;
+use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::{apex, ring_points};
-use crate::mesh::set;
+use crate::mesh::internal;
 use crate::point::Point;
 use crate::stencil::loop_scheme;
 use crate::MAX_VALENCE;
@@ -18,18 +20,16 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.clear_vertex_points()?;
     let mut ring = Ring::new();
     let mut cands = [MISSING; MAX_VALENCE];
-    d.vertex_pass(|d, star| {
-        if star.ring_images(topo, &mut ring)? {
-            // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
-            let form = &*star.form;
-            let vertex = loop_star_in_form(&ring, !star.boundary, form, &mut cands)?;
-            d.keep_edge_candidates(star.spokes, &cands)?;
-            if let Some(q) = vertex {
-                set(d.pos, star.v as usize, q)?;
-            }
-        }
-        Ok(())
-    })?;
+    d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    if d.guard {
+        d.trust_edges()?;
+        let out = Outputs {
+            vertex: true,
+            edges: nv,
+            faces: None,
+        };
+        d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    }
     d.finish_vertex_points(false, |t, v, p| {
         loop_scheme::vertex_interior(p, &ring_points(t, v)?)
     })?;
@@ -46,4 +46,25 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.blend_interior_edges(nv, &linear)?;
     d.boundary_edges(nv, |_, a, b, _| loop_scheme::edge_boundary(a, b))?;
     d.boundary_vertices_approximating(nv)
+}
+
+/// The Loop rules of one star in its frame (the canonical form, or the guard's `m_τ`): the
+/// vertex point and the edge candidates, measured for the guard's trust while still in the
+/// frame, then mapped back. A star whose ring is not all in the frame gives nothing.
+fn star_rule<F: Frame>(
+    d: &mut Driver<'_, '_, '_, '_>,
+    star: &mut Star<'_, F>,
+    ring: &mut Ring,
+    cands: &mut [Point; MAX_VALENCE],
+) -> Result<()> {
+    if !star.ring_images(d.topo, ring)? {
+        return Ok(());
+    }
+    // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
+    let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
+    let n = ring.len();
+    let cands = cands.get(..n).ok_or(internal())?;
+    d.trust_star(star, ring, cands)?;
+    d.keep_edges_from(star, cands)?;
+    d.keep_vertex_from(star, vertex)
 }
