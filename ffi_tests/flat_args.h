@@ -19,12 +19,16 @@ static inline nls_mesh_view flat_view(const double *p, size_t nv, const uint32_t
     return v;
 }
 
+/* The linear_weight every flat_* call passes (the default 0 unless a test sets it). */
+static double flat_linear_weight = 0.0;
+
 static inline nls_subdivide_options flat_options(uint32_t scheme, uint32_t flags, uint32_t levels) {
     nls_subdivide_options o;
     nls_subdivide_default_options(&o);
     o.scheme = scheme;
     o.flags = flags;
     o.levels = levels;
+    o.linear_weight = flat_linear_weight;
     return o;
 }
 

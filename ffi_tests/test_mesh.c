@@ -265,14 +265,14 @@ static double sphere_deviation(const mesh *o) {
 
 static void test_constants(void) {
     CHECK(NLS_SCHEME_LOOP == 0 && NLS_SCHEME_DUAL_TRUNCATION == 8);
-    CHECK(NLS_SUBDIVIDE_MOBIUS == 1u && NLS_SUBDIVIDE_STRICT == 2u);
+    CHECK(NLS_SUBDIVIDE_MOBIUS == 1u && NLS_SUBDIVIDE_STRICT == 2u && NLS_SUBDIVIDE_LITERAL == 4u);
     CHECK(NLS_NO_ELEMENT == UINT32_MAX);
     {
         nls_subdivide_report r;
-        nls_subdivide_options o = {777, 777, 777};
-        CHECK(sizeof r == 3 * sizeof(uint32_t));
+        nls_subdivide_options o = {777, 777, 777, 777.0};
+        CHECK(sizeof r == 6 * sizeof(uint32_t));
         CHECK_STATUS(nls_subdivide_default_options(&o), NLS_STATUS_OK);
-        CHECK(o.scheme == NLS_SCHEME_LOOP && o.flags == 0 && o.levels == 1);
+        CHECK(o.scheme == NLS_SCHEME_LOOP && o.flags == 0 && o.levels == 1 && o.linear_weight == 0.0);
         CHECK_STATUS(nls_subdivide_default_options(NULL), NLS_STATUS_NULL_PARAMETER);
     }
 }
@@ -292,7 +292,7 @@ static void test_every_scheme(void) {
             for (mob = 0; mob <= 1; mob++) {
                 const uint32_t flags = mob ? NLS_SUBDIVIDE_MOBIUS : 0u;
                 mesh o;
-                nls_subdivide_report rep = {777, 777, 777};
+                nls_subdivide_report rep = {777, 777, 777, 777, 777, 777};
                 uint32_t element = 12345;
                 nls_status s = subdivide(SCHEMES[si], flags, m, &o, &rep, &element);
                 if (mesh_accepts(SCHEMES[si], m)) {
@@ -748,7 +748,7 @@ static void test_bad_arguments(void) {
 
 static void test_strict(void) {
     mesh c = cube(), o;
-    nls_subdivide_report rep = {777, 777, 777};
+    nls_subdivide_report rep = {777, 777, 777, 777, 777, 777};
     uint32_t element = 12345;
     onto_unit_sphere(&c);
     memcpy(c.p + 3, c.p, 3 * sizeof(double)); /* vertex 1 on vertex 0 */
@@ -758,7 +758,7 @@ static void test_strict(void) {
     CHECK(valid_output(&o));
     mesh_free(&o);
     {
-        nls_subdivide_report r2 = {777, 777, 777};
+        nls_subdivide_report r2 = {777, 777, 777, 777, 777, 777};
         CHECK_STATUS(subdivide(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT, &c, &o, &r2,
                                &element),
                      NLS_STATUS_FALLBACK_IN_STRICT_MODE);
@@ -768,7 +768,7 @@ static void test_strict(void) {
     }
     /* several levels: the report counts every level, the first fallback is in level 1 */
     {
-        nls_subdivide_report r3 = {777, 777, 777};
+        nls_subdivide_report r3 = {777, 777, 777, 777, 777, 777};
         CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &c, 2, &o, &r3), NLS_STATUS_OK);
         CHECK(r3.fallbacks >= rep.fallbacks && r3.first_fallback == rep.first_fallback && r3.first_fallback_level == 1);
         mesh_free(&o);
@@ -781,6 +781,68 @@ static void test_strict(void) {
     CHECK_STATUS(subdivide(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_STRICT, &c, &o, &rep, NULL), NLS_STATUS_OK);
     CHECK(rep.fallbacks == 0);
     mesh_free(&o);
+    mesh_free(&c);
+}
+
+static int same_mesh_bits(const mesh *a, const mesh *b) {
+    return a->nv == b->nv && a->ni == b->ni && memcmp(a->p, b->p, 3 * a->nv * sizeof(double)) == 0;
+}
+
+/* The fold guard and the Möbius–linear spectrum through the C options: linear_weight 1 is
+ * the linear result and 0 (the default) the Möbius result, bit for bit; a weight in between
+ * is neither; NaN or outside [0, 1] is refused; NLS_SUBDIVIDE_LITERAL is accepted, changes
+ * nothing where the guard has nothing to do (a mesh on a sphere), and reports no guarded
+ * element; an unknown flag bit is refused. */
+static void test_spectrum_and_literal(void) {
+    mesh g = grid(4, 4, 0), lin, mob, mid, lit, c = cube(), cm, cl;
+    nls_subdivide_report rep = {777, 777, 777, 777, 777, 777};
+    size_t i;
+    for (i = 0; i < g.nv; i++) g.p[3 * i + 2] = 0.3 * sin(1.7 * g.p[3 * i]) * cos(1.1 * g.p[3 * i + 1]);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, 0, &g, 2, &lin, &rep), NLS_STATUS_OK);
+    CHECK(rep.guarded == 0 && rep.first_guarded == NLS_NO_ELEMENT && rep.first_guarded_level == 0);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &g, 2, &mob, &rep), NLS_STATUS_OK);
+    flat_linear_weight = 1.0;
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &g, 2, &mid, &rep), NLS_STATUS_OK);
+    CHECK(same_mesh_bits(&mid, &lin));
+    mesh_free(&mid);
+    flat_linear_weight = 0.5;
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &g, 2, &mid, &rep), NLS_STATUS_OK);
+    CHECK(!same_mesh_bits(&mid, &lin) && !same_mesh_bits(&mid, &mob) && valid_output(&mid));
+    mesh_free(&mid);
+    {
+        const double bad[3] = {NAN, -0.25, 1.5};
+        int k;
+        for (k = 0; k < 3; k++) {
+            uint32_t element = 5;
+            flat_linear_weight = bad[k];
+            CHECK_STATUS(subdivide_levels_el(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &g, 2, &mid, &rep,
+                                             &element),
+                         NLS_STATUS_INVALID_ARGUMENT);
+            mesh_free(&mid);
+        }
+    }
+    flat_linear_weight = 0.0;
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL, &g, 2, &lit,
+                                  &rep),
+                 NLS_STATUS_OK);
+    CHECK(rep.guarded == 0 && rep.first_guarded == NLS_NO_ELEMENT && valid_output(&lit));
+    onto_unit_sphere(&c);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, &c, 2, &cm, &rep), NLS_STATUS_OK);
+    CHECK(rep.guarded == 0);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL, &c, 2, &cl,
+                                  &rep),
+                 NLS_STATUS_OK);
+    CHECK(same_mesh_bits(&cm, &cl));
+    CHECK(sphere_deviation(&cm) < 1e-12);
+    CHECK_STATUS(subdivide_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS | (1u << 3), &c, 1, &mid, &rep),
+                 NLS_STATUS_INVALID_ARGUMENT);
+    mesh_free(&mid);
+    mesh_free(&cm);
+    mesh_free(&cl);
+    mesh_free(&lit);
+    mesh_free(&mob);
+    mesh_free(&lin);
+    mesh_free(&g);
     mesh_free(&c);
 }
 
@@ -927,7 +989,7 @@ static int sweep(uint32_t scheme, uint32_t flags, const mesh *m, uint32_t levels
             int k;
             nls_mesh_sizes cs = {777, 777, 777};
             uint32_t element = 12345;
-            nls_subdivide_report rep = {777, 777, 777};
+            nls_subdivide_report rep = {777, 777, 777, 777, 777, 777};
             nls_status s;
             for (k = 0; k < 5; k++) {
                 capn[k] = k == b ? cap : need[k];
@@ -1284,6 +1346,7 @@ int main(void) {
     test_bad_meshes();
     test_bad_arguments();
     test_strict();
+    test_spectrum_and_literal();
     test_stride();
     test_memory_safe_sweep();
     test_star_rules_match_the_driver(0);

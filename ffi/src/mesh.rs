@@ -925,6 +925,7 @@ mod tests {
             scheme: NLS_SCHEME_CATMULL_CLARK,
             flags: NLS_SUBDIVIDE_MOBIUS,
             levels: 1,
+            linear_weight: 0.0,
         };
         let mut su0 = 0usize;
         assert_eq!(
@@ -967,6 +968,9 @@ mod tests {
             fallbacks: 9,
             first_fallback: 9,
             first_fallback_level: 9,
+            guarded: 9,
+            first_guarded: 9,
+            first_guarded_level: 9,
         };
         let mut element = 7u32;
         let s =
@@ -1014,6 +1018,7 @@ mod tests {
                 scheme: NLS_SCHEME_CATMULL_CLARK,
                 flags: NLS_SUBDIVIDE_MOBIUS,
                 levels: 2,
+                linear_weight: 0.0,
             };
             let mut su = vec![0u32; 4096];
             let mut sp = vec![0.0; 3 * 512];
