@@ -454,7 +454,9 @@ fn plan_sizes(
 
 /// Runs `levels` steps of `ms` on `input` (read from `src`). `strict`: a Möbius fallback (or
 /// an element the fold guard changes) is an error naming the element. `literal`: the paper's
-/// Möbius rules without the fold guard (`Options::literal`). Level 0 returns a copy.
+/// Möbius rules without the fold guard (`Options::literal`). `spectrum`: the weight of the
+/// Möbius result in the Möbius–linear spectrum (`Options::spectrum`; 1 for the Möbius
+/// result). Level 0 returns a copy.
 ///
 /// # Errors
 /// Exit 2 for meshes the scheme refuses (naming the file, the level and the element), exit 4
@@ -466,6 +468,7 @@ pub fn run(
     levels: usize,
     strict: bool,
     literal: bool,
+    spectrum: f64,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
     let started = Instant::now();
@@ -514,7 +517,8 @@ pub fn run(
         let opts = Options::new(ms.scheme)
             .mobius(ms.mobius)
             .strict(strict)
-            .literal(literal);
+            .literal(literal)
+            .spectrum(spectrum);
         let len = scheme::plan_scratch_size(&mesh)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;

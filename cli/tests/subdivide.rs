@@ -624,3 +624,50 @@ fn literal_and_the_fold_guard_match_the_library_and_are_summarised() {
         stdout(&o)
     );
 }
+
+#[test]
+fn spectrum_runs_from_the_linear_to_the_mobius_result() {
+    let dir = TempDir::new("spectrum");
+    let mut m = tri_grid(4, 3);
+    for p in &mut m.positions {
+        p[2] = 0.3 * (1.7 * p[0]).sin() * (1.1 * p[1]).cos();
+    }
+    m.write_off(&dir.path("grid.off"));
+    let input = dir.path("grid.off").to_str().unwrap().to_string();
+    let sub = |scheme: &str, extra: &[&str], out: &str| {
+        let out = dir.path(out);
+        let mut a = vec!["subdivide", "--scheme", scheme, "--levels", "2"];
+        a.extend_from_slice(extra);
+        a.push(&input);
+        let o_str = out.to_str().unwrap().to_string();
+        let o = run(&[a, vec![o_str.as_str()]].concat());
+        (o, out)
+    };
+    let (o, lin) = sub("loop", &[], "lin.off");
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let (o, mob) = sub("mobius-loop", &[], "mob.off");
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let (o, w0) = sub("mobius-loop", &["--spectrum", "0"], "w0.off");
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let (o, w1) = sub("mobius-loop", &["--spectrum", "1"], "w1.off");
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let (o, half) = sub("mobius-loop", &["--spectrum", "0.5"], "half.off");
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let (lin, mob, w0, w1, half) = (
+        read_off(&lin),
+        read_off(&mob),
+        read_off(&w0),
+        read_off(&w1),
+        read_off(&half),
+    );
+    assert_same(&w0, &lin, "--spectrum 0 is the linear result");
+    assert_same(&w1, &mob, "--spectrum 1 is the Möbius result");
+    assert!(half.positions != lin.positions && half.positions != mob.positions);
+    // Out of range, or with a linear scheme: refused, nothing written.
+    let (o, _) = sub("mobius-loop", &["--spectrum", "1.5"], "bad.off");
+    assert_ne!(code(&o), 0);
+    let (o, _) = sub("loop", &["--spectrum", "0.5"], "bad.off");
+    assert_eq!(code(&o), 4, "{}", stderr(&o));
+    assert!(stderr(&o).contains("--spectrum"), "{}", stderr(&o));
+    assert!(!dir.path("bad.off").exists());
+}

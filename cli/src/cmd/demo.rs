@@ -120,12 +120,30 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     let src = Source::new(Path::new("demo_cage.off"));
     write_mesh(&cage_path, &cage, &WriteOptions::default())?;
 
-    let r = subdiv::run(&cage, &src, MOBIUS_CC, levels, false, false, ctx)?;
-    let lin = subdiv::run(&cage, &src, LINEAR_CC, levels, false, false, ctx)?;
+    let r = subdiv::run(&cage, &src, MOBIUS_CC, levels, false, false, 1.0, ctx)?;
+    let lin = subdiv::run(&cage, &src, LINEAR_CC, levels, false, false, 1.0, ctx)?;
     // The same connectivity on the unit sphere: Möbius subdivision reproduces spheres.
     let sphere_cage = dome::cage(false);
-    let rs = subdiv::run(&sphere_cage, &src, MOBIUS_CC, levels, false, false, ctx)?;
-    let ls = subdiv::run(&sphere_cage, &src, LINEAR_CC, levels, false, false, ctx)?;
+    let rs = subdiv::run(
+        &sphere_cage,
+        &src,
+        MOBIUS_CC,
+        levels,
+        false,
+        false,
+        1.0,
+        ctx,
+    )?;
+    let ls = subdiv::run(
+        &sphere_cage,
+        &src,
+        LINEAR_CC,
+        levels,
+        false,
+        false,
+        1.0,
+        ctx,
+    )?;
     let off_unit = |m: &Mesh| {
         m.positions
             .iter()

@@ -36,6 +36,13 @@ fn parse_method(name: &str) -> Result<CreaseMethod, String> {
     }
 }
 
+fn parse_weight(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(w) if (0.0..=1.0).contains(&w) => Ok(w),
+        _ => Err(format!("'{s}': a weight from 0 (linear) to 1 (Möbius)")),
+    }
+}
+
 fn parse_scheme(name: &str) -> Result<SchemeArg, String> {
     if let Some(d) = DifferentialScheme::from_name(name) {
         return Ok(SchemeArg::Differential(d));
@@ -69,6 +76,11 @@ pub struct Args {
     /// linear rule, and the elements this changes are counted in the summary; docs/folds.md).
     #[arg(long)]
     pub literal: bool,
+    /// mobius-*: the Möbius–linear spectrum of seed 000 §7.2, the weight W in [0, 1] of the
+    /// Möbius result in each level (1, the default: Möbius; 0: the linear result, bit for
+    /// bit; docs/folds.md).
+    #[arg(long, value_name = "W", default_value_t = 1.0, value_parser = parse_weight)]
+    pub spectrum: f64,
     /// differential-dirmag: the first this many levels use DirMag (the paper: 1 or 2).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub dirmag_levels: u32,
@@ -125,6 +137,14 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         }
         SchemeArg::Differential(d) => return run_differential(args, d, &l, ctx),
     };
+    if args.spectrum != 1.0 && !scheme.mobius {
+        return Err(crate::error::CliError::usage(format!(
+            "--spectrum {}: the spectrum runs between a mobius-* scheme and its linear version; \
+             {} is linear",
+            args.spectrum,
+            scheme.name()
+        )));
+    }
     let r = if tags.is_empty() {
         subdiv::run(
             &l.mesh,
@@ -133,6 +153,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             levels,
             args.strict,
             args.literal,
+            args.spectrum,
             ctx,
         )?
     } else {
