@@ -452,9 +452,29 @@ fn plan_sizes(
     }
 }
 
-/// Runs `levels` steps of `ms` on `input` (read from `src`). `strict`: a Möbius fallback (or
-/// an element the fold guard changes) is an error naming the element. `literal`: the paper's
-/// Möbius rules without the fold guard (`Options::literal`). `spectrum`: the weight of the
+/// How `run` treats the Möbius schemes' special elements.
+#[derive(Clone, Copy, Debug)]
+pub struct Mode {
+    /// A Möbius fallback or an element the fold guard changes is an error naming it.
+    pub strict: bool,
+    /// The paper's Möbius rules without the fold guard (`Options::literal`).
+    pub literal: bool,
+    /// The weight of the Möbius result in the Möbius–linear spectrum (`Options::spectrum`).
+    pub spectrum: f64,
+}
+
+impl Mode {
+    /// Not strict, the fold guard on, the Möbius result.
+    pub const DEFAULT: Mode = Mode {
+        strict: false,
+        literal: false,
+        spectrum: 1.0,
+    };
+}
+
+/// Runs `levels` steps of `ms` on `input` (read from `src`). `mode.strict`: a Möbius fallback (or
+/// an element the fold guard changes) is an error naming the element. `mode.literal`: the paper's
+/// Möbius rules without the fold guard (`Options::literal`). `mode.spectrum`: the weight of the
 /// Möbius result in the Möbius–linear spectrum (`Options::spectrum`; 1 for the Möbius
 /// result). Level 0 returns a copy.
 ///
@@ -466,11 +486,14 @@ pub fn run(
     src: &Source,
     ms: MeshScheme,
     levels: usize,
-    strict: bool,
-    literal: bool,
-    spectrum: f64,
+    mode: Mode,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
+    let Mode {
+        strict,
+        literal,
+        spectrum,
+    } = mode;
     let started = Instant::now();
     if levels > MAX_LEVELS {
         return Err(CliError::usage(format!(

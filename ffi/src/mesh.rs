@@ -946,7 +946,9 @@ mod tests {
             )
         };
         assert_eq!(s, Status::Ok);
-        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8));
+        // Points: two candidates per corner (4 corners), and ⌈4 / 3⌉ for the fold guard's
+        // per-vertex trust (three values to a point).
+        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 2));
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {

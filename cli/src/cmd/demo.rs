@@ -120,8 +120,8 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     let src = Source::new(Path::new("demo_cage.off"));
     write_mesh(&cage_path, &cage, &WriteOptions::default())?;
 
-    let r = subdiv::run(&cage, &src, MOBIUS_CC, levels, false, false, 1.0, ctx)?;
-    let lin = subdiv::run(&cage, &src, LINEAR_CC, levels, false, false, 1.0, ctx)?;
+    let r = subdiv::run(&cage, &src, MOBIUS_CC, levels, subdiv::Mode::DEFAULT, ctx)?;
+    let lin = subdiv::run(&cage, &src, LINEAR_CC, levels, subdiv::Mode::DEFAULT, ctx)?;
     // The same connectivity on the unit sphere: Möbius subdivision reproduces spheres.
     let sphere_cage = dome::cage(false);
     let rs = subdiv::run(
@@ -129,9 +129,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         &src,
         MOBIUS_CC,
         levels,
-        false,
-        false,
-        1.0,
+        subdiv::Mode::DEFAULT,
         ctx,
     )?;
     let ls = subdiv::run(
@@ -139,9 +137,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         &src,
         LINEAR_CC,
         levels,
-        false,
-        false,
-        1.0,
+        subdiv::Mode::DEFAULT,
         ctx,
     )?;
     let off_unit = |m: &Mesh| {

@@ -151,9 +151,11 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             &l.source,
             scheme,
             levels,
-            args.strict,
-            args.literal,
-            args.spectrum,
+            subdiv::Mode {
+                strict: args.strict,
+                literal: args.literal,
+                spectrum: args.spectrum,
+            },
             ctx,
         )?
     } else {
