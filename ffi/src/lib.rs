@@ -107,7 +107,7 @@ mod tests {
             "#define NLS_VERSION_STRING \"{}\"",
             nlsubdiv::VERSION
         )));
-        // The three signatures DESIGN.md fixes, exactly.
+        // The three primitive signatures the C API promises (array parameters, out last).
         for sig in [
             "nls_status nls_cross_ratio(const double a[3], const double b[3], const double c[3], const double d[3], double out_wxyz[4]);",
             "nls_status nls_f4(const double a[3], const double b[3], const double c[3], const double d[3], double out[3]);",

@@ -32,7 +32,7 @@
 // garbage_collection() first). Use a mesh with double points (OpenMesh::DefaultTraitsDouble):
 // float points round every level.
 //
-// OpenMesh 9 pitfalls avoided (aesthetics-anchors.md §3.7): there is no (mesh&) constructor
+// OpenMesh 9 pitfalls avoided: there is no (mesh&) constructor
 // (the base one calls the pure prepare() before the derived object exists), and the
 // destructor detaches first (the base destructor would call the pure cleanup()).
 //
