@@ -526,22 +526,98 @@ pub fn run(
         "use fewer levels",
     )?;
 
+    let opts = Options::new(ms.scheme)
+        .mobius(ms.mobius)
+        .strict(strict)
+        .literal(literal)
+        .spectrum(spectrum);
+    // One multi-level call of the library, as a host makes it: the child topologies are
+    // derived level to level, the intermediate levels live in the scratch. An error is
+    // diagnosed afterwards by running the levels one call each, so that the message names
+    // the level and the element of that level's mesh (the error path only).
+    let all = opts.levels(levels);
+    let plan = {
+        let len = scheme::plan_scratch_size(&mesh0)
+            .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
+        let mut scratch = memory::filled(len, 0u32, "the topology")?;
+        scheme::plan(mesh0, &all, &mut scratch).map_err(|e| call_error(e, ms, mesh0, &n0))?
+    };
+    let out_sizes = plan.output();
+    let mut u32s = memory::filled(plan.scratch.u32s, 0u32, "the topologies")?;
+    let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the intermediate levels")?;
+    let mut next = Mesh {
+        positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
+        offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
+        indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
+    };
+    let spinner = ctx.spinner("subdividing");
+    let result = {
+        let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
+        scheme::subdivide(mesh0, &all, Scratch::new(&mut u32s, &mut points), &mut out)
+    };
+    drop(spinner);
+    drop((u32s, points));
+    let report = match result {
+        Ok(report) => report,
+        Err(e) => {
+            drop(next);
+            let by_levels = run_by_levels(input, src, ms, &sizes, opts, ctx);
+            return Err(match by_levels {
+                Err(diagnosed) => diagnosed,
+                // Not reproduced one level at a time: report the call's own error.
+                Ok(_) => call_error(e, ms, mesh0, &n0),
+            });
+        }
+    };
+    if report.sizes != out_sizes {
+        return Err(CliError::internal(format!(
+            "{} levels of {}: wrote {:?}, planned {out_sizes:?}",
+            levels,
+            ms.name(),
+            report.sizes
+        )));
+    }
+    // Elements of level 1 are described by the input's elements (file lines); later levels
+    // by their index.
+    let describe = |level: u32, i: u32| {
+        let what = if level == 1 {
+            describe_fallback(ms, mesh0, i, &n0)
+        } else {
+            format!("an element of level {}", level - 1)
+        };
+        format!("step {level}, output vertex {i} ({what})")
+    };
+    Ok(Outcome {
+        mesh: next,
+        fallbacks: u64::from(report.fallbacks),
+        first_fallback: (report.fallbacks > 0)
+            .then(|| describe(report.first_fallback_level, report.first_fallback)),
+        guarded: u64::from(report.guarded),
+        first_guarded: (report.guarded > 0)
+            .then(|| describe(report.first_guarded_level, report.first_guarded)),
+        elapsed: started.elapsed(),
+    })
+}
+
+/// The levels one call each, for diagnosing an error of the multi-level call: the failing
+/// level's error names the element of that level's mesh. Returns the result as `run` would
+/// have (`Ok` when no level fails).
+fn run_by_levels(
+    input: &Mesh,
+    src: &Source,
+    ms: MeshScheme,
+    sizes: &[MeshSizes],
+    opts: Options,
+    ctx: &Ctx,
+) -> CliResult<Mesh> {
+    let levels = sizes.len().saturating_sub(1);
     let total: usize = sizes.iter().skip(1).map(|s| s.vertices).sum();
     let progress = ctx.steps(total, levels, "level");
     let mut current = input.clone();
-    let mut fallbacks = 0u64;
-    let mut first_fallback = None;
-    let mut guarded = 0u64;
-    let mut first_guarded = None;
     for level in 0..levels {
         let out_sizes = sizes.get(level + 1).copied().unwrap_or_default();
         let namer = Namer { src, level };
         let mesh = CoreMesh::new(&current.positions, &current.offsets, &current.indices);
-        let opts = Options::new(ms.scheme)
-            .mobius(ms.mobius)
-            .strict(strict)
-            .literal(literal)
-            .spectrum(spectrum);
         let len = scheme::plan_scratch_size(&mesh)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh, &namer))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;
@@ -562,28 +638,6 @@ pub fn run(
             &mut out,
         )
         .map_err(|e| call_error(e, ms, mesh, &namer))?;
-        if report.fallbacks > 0 {
-            fallbacks += u64::from(report.fallbacks);
-            if first_fallback.is_none() {
-                let what = describe_fallback(ms, mesh, report.first_fallback, &namer);
-                first_fallback = Some(format!(
-                    "step {}, output vertex {} ({what})",
-                    level + 1,
-                    report.first_fallback
-                ));
-            }
-        }
-        if report.guarded > 0 {
-            guarded += u64::from(report.guarded);
-            if first_guarded.is_none() {
-                let what = describe_fallback(ms, mesh, report.first_guarded, &namer);
-                first_guarded = Some(format!(
-                    "step {}, output vertex {} ({what})",
-                    level + 1,
-                    report.first_guarded
-                ));
-            }
-        }
         let written = report.sizes;
         if written != out_sizes {
             return Err(CliError::internal(format!(
@@ -596,14 +650,7 @@ pub fn run(
         current = next;
     }
     drop(progress);
-    Ok(Outcome {
-        mesh: current,
-        fallbacks,
-        first_fallback,
-        guarded,
-        first_guarded,
-        elapsed: started.elapsed(),
-    })
+    Ok(current)
 }
 
 /// [`run`] for a mesh with sharp-feature tags: every level in one core call

@@ -2,9 +2,10 @@
 //! or Möbius mesh scheme of the core, or of differential-space subdivision (seed 001,
 //! [`crate::differential`]), file to file.
 //!
-//! The output is the library's, bit for bit: the calls a host makes (`scheme::plan` and
-//! `scheme::subdivide`, one level per call so that an error names the level and the element
-//! of that level's mesh), and the library's vertex order (see [`crate::subdiv`]).
+//! The output is the library's, bit for bit: the calls a host makes (`scheme::plan` and one
+//! multi-level `scheme::subdivide`; on an error the levels are run again one call each so
+//! that the message names the level and the element of that level's mesh), and the
+//! library's vertex order (see [`crate::subdiv`]).
 //! `--levels 0` copies the input after checking it.
 
 use std::path::PathBuf;
