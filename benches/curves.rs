@@ -37,7 +37,7 @@ fn input() -> Vec<Point> {
 fn main() {
     let p = input();
     let closed = true;
-    let m = curve::refined_len(N, closed, LEVELS).expect("size");
+    let m = curve::refined_size(N, closed, LEVELS).expect("size");
     println!("curve subdivision: closed curve, {N} points, {LEVELS} levels -> {m} output points");
     println!(
         "{:<26} {:>12} {:>12} {:>16}",
@@ -45,7 +45,7 @@ fn main() {
     );
     let mut linear_best = None;
     for scheme in CurveScheme::ALL {
-        let s = curve::scratch_len(scheme, N, closed, LEVELS).expect("scratch size");
+        let s = curve::scratch_size(scheme, N, closed, LEVELS).expect("scratch size");
         let mut out = vec![[0.0; 3]; m];
         let mut scratch = vec![[0.0; 3]; s];
         // Warm-up.

@@ -82,8 +82,8 @@ fn run(
     closed: bool,
     levels: u32,
 ) -> nlsubdiv::Result<Vec<Point>> {
-    let m = curve::refined_len(p.len(), closed, levels)?;
-    let s = curve::scratch_len(scheme, p.len(), closed, levels)?;
+    let m = curve::refined_size(p.len(), closed, levels)?;
+    let s = curve::scratch_size(scheme, p.len(), closed, levels)?;
     let mut out = vec![[0.0; 3]; m];
     let mut scratch = vec![[0.0; 3]; s];
     let written = curve::subdivide(scheme, p, closed, levels, &mut out, &mut scratch)?;
@@ -205,36 +205,39 @@ fn apply_all(m: &MobiusMap, p: &[Point]) -> Vec<Point> {
 
 #[test]
 fn refined_and_scratch_sizes() {
-    assert_eq!(curve::refined_len(4, true, 0).unwrap(), 4);
-    assert_eq!(curve::refined_len(4, true, 1).unwrap(), 8);
-    assert_eq!(curve::refined_len(4, true, 3).unwrap(), 32);
-    assert_eq!(curve::refined_len(4, false, 1).unwrap(), 7);
-    assert_eq!(curve::refined_len(4, false, 3).unwrap(), 25);
-    assert_eq!(curve::refined_len(2, false, 5).unwrap(), 33);
+    assert_eq!(curve::refined_size(4, true, 0).unwrap(), 4);
+    assert_eq!(curve::refined_size(4, true, 1).unwrap(), 8);
+    assert_eq!(curve::refined_size(4, true, 3).unwrap(), 32);
+    assert_eq!(curve::refined_size(4, false, 1).unwrap(), 7);
+    assert_eq!(curve::refined_size(4, false, 3).unwrap(), 25);
+    assert_eq!(curve::refined_size(2, false, 5).unwrap(), 33);
     for n in 3..20usize {
         for k in 0..8u32 {
-            assert_eq!(curve::refined_len(n, true, k).unwrap(), n << k);
-            assert_eq!(curve::refined_len(n, false, k).unwrap(), ((n - 1) << k) + 1);
+            assert_eq!(curve::refined_size(n, true, k).unwrap(), n << k);
+            assert_eq!(
+                curve::refined_size(n, false, k).unwrap(),
+                ((n - 1) << k) + 1
+            );
         }
     }
     for (n, closed) in [(0, true), (1, true), (2, true), (0, false), (1, false)] {
         assert_eq!(
-            curve::refined_len(n, closed, 2).unwrap_err().status,
+            curve::refined_size(n, closed, 2).unwrap_err().status,
             Status::TooFewPoints
         );
     }
     assert_eq!(
-        curve::refined_len(3, true, 63).unwrap_err().status,
+        curve::refined_size(3, true, 63).unwrap_err().status,
         Status::SizeOverflow
     );
     assert_eq!(
-        curve::refined_len(usize::MAX / 2 + 1, true, 1)
+        curve::refined_size(usize::MAX / 2 + 1, true, 1)
             .unwrap_err()
             .status,
         Status::SizeOverflow
     );
     assert_eq!(
-        curve::refined_len(3, false, u32::MAX).unwrap_err().status,
+        curve::refined_size(3, false, u32::MAX).unwrap_err().status,
         Status::SizeOverflow
     );
     for s in CurveScheme::ALL {
@@ -242,15 +245,15 @@ fn refined_and_scratch_sizes() {
             s,
             CurveScheme::DifferentialFourPoint | CurveScheme::DifferentialBSpline
         );
-        assert_eq!(curve::scratch_len(s, 5, true, 0).unwrap(), 0);
+        assert_eq!(curve::scratch_size(s, 5, true, 0).unwrap(), 0);
         assert_eq!(
-            curve::scratch_len(s, 5, true, 1).unwrap(),
+            curve::scratch_size(s, 5, true, 1).unwrap(),
             if differential { 5 } else { 0 }
         );
-        assert_eq!(curve::scratch_len(s, 5, true, 2).unwrap(), 10);
-        assert_eq!(curve::scratch_len(s, 5, false, 3).unwrap(), 17);
+        assert_eq!(curve::scratch_size(s, 5, true, 2).unwrap(), 10);
+        assert_eq!(curve::scratch_size(s, 5, false, 3).unwrap(), 17);
         assert_eq!(
-            curve::scratch_len(s, 5, false, 70).unwrap_err().status,
+            curve::scratch_size(s, 5, false, 70).unwrap_err().status,
             Status::SizeOverflow
         );
     }
@@ -493,7 +496,7 @@ fn multi_level_equals_repeated_single_levels() {
                 let mut cur = p.clone();
                 for _ in 0..levels {
                     let mut next =
-                        vec![[0.0; 3]; curve::refined_len(cur.len(), closed, 1).unwrap()];
+                        vec![[0.0; 3]; curve::refined_size(cur.len(), closed, 1).unwrap()];
                     assert_eq!(one(&cur, closed, &mut next).unwrap(), next.len());
                     cur = next;
                 }
@@ -514,8 +517,8 @@ fn larger_buffers_are_fine_and_untouched_beyond_the_output() {
     ];
     for scheme in CurveScheme::ALL {
         for closed in [true, false] {
-            let m = curve::refined_len(4, closed, 3).unwrap();
-            let s = curve::scratch_len(scheme, 4, closed, 3).unwrap();
+            let m = curve::refined_size(4, closed, 3).unwrap();
+            let s = curve::scratch_size(scheme, 4, closed, 3).unwrap();
             let mut out = vec![[7.0; 3]; m + 5];
             let mut scratch = vec![[7.0; 3]; s + 5];
             let w = curve::subdivide(scheme, &p, closed, 3, &mut out, &mut scratch).unwrap();
@@ -1003,8 +1006,8 @@ fn buffer_too_small_for_every_short_size() {
     for scheme in CurveScheme::ALL {
         for closed in [true, false] {
             for levels in 0..=3u32 {
-                let m = curve::refined_len(5, closed, levels).unwrap();
-                let s = curve::scratch_len(scheme, 5, closed, levels).unwrap();
+                let m = curve::refined_size(5, closed, levels).unwrap();
+                let s = curve::scratch_size(scheme, 5, closed, levels).unwrap();
                 let mut scratch = vec![[0.0; 3]; s];
                 for short in 0..m {
                     let mut out = vec![[0.0; 3]; short];
@@ -1039,7 +1042,7 @@ fn buffer_too_small_for_every_short_size() {
     ];
     for f in ones {
         for closed in [true, false] {
-            let m = curve::refined_len(5, closed, 1).unwrap();
+            let m = curve::refined_size(5, closed, 1).unwrap();
             for short in 0..m {
                 let mut out = vec![[0.0; 3]; short];
                 let e = f(&p, closed, &mut out).unwrap_err();

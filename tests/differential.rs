@@ -314,7 +314,7 @@ fn statuses() {
     // Too-small scratch: the needed size is reported.
     use nlsubdiv::differential as d;
     let o = opts(Stencil::Loop, 1);
-    let mut ps = vec![0u32; d::plan_scratch_len(&m.view()).unwrap()];
+    let mut ps = vec![0u32; d::plan_scratch_size(&m.view()).unwrap()];
     let plan = d::plan(m.view(), &o, &mut ps).unwrap();
     let out = plan.output();
     let mut su = vec![0u32; plan.scratch_u32];

@@ -84,7 +84,7 @@ fn an_overflowing_differential_field_is_a_numerical_failure_not_bad_input() {
         };
         // Coordinates of 3e231 are beyond what the normal equations can represent: the plan
         // refuses them as a numerical failure (mesh::check_extent), never as bad input.
-        let mut ps = vec![0u32; nlsubdiv::differential::plan_scratch_len(&m.view()).unwrap()];
+        let mut ps = vec![0u32; nlsubdiv::differential::plan_scratch_size(&m.view()).unwrap()];
         match nlsubdiv::differential::plan(m.view(), &o, &mut ps) {
             Ok(_) => {}
             Err(e) => assert_eq!(e.status, Status::NumericalFailure, "{stencil:?}: {e:?}"),

@@ -150,7 +150,7 @@ pub fn run(
     };
     let mut rep = DifferentialReport::default();
     let err = |e, rep: &DifferentialReport| core_error(e, src, scheme.name(), rep);
-    let need = diff::plan_scratch_len(&view).map_err(|e| err(e, &rep))?;
+    let need = diff::plan_scratch_size(&view).map_err(|e| err(e, &rep))?;
     let mut su = memory::filled(need, 0u32, "the differential plan")?;
     let plan = diff::plan(view, &opts, &mut su).map_err(|e| err(e, &rep))?;
     let s = plan.output();

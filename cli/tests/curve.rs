@@ -26,9 +26,9 @@ fn write_points(path: &std::path::Path, pts: &[[f64; 3]]) {
 }
 
 fn library(s: CurveScheme, pts: &[[f64; 3]], closed: bool, levels: u32) -> Vec<[f64; 3]> {
-    let n = curve::refined_len(pts.len(), closed, levels).unwrap();
+    let n = curve::refined_size(pts.len(), closed, levels).unwrap();
     let mut out = vec![[0.0; 3]; n];
-    let mut scratch = vec![[0.0; 3]; curve::scratch_len(s, pts.len(), closed, levels).unwrap()];
+    let mut scratch = vec![[0.0; 3]; curve::scratch_size(s, pts.len(), closed, levels).unwrap()];
     curve::subdivide(s, pts, closed, levels, &mut out, &mut scratch).unwrap();
     out
 }

@@ -25,7 +25,7 @@ fn library(m: &TMesh, stencil: Stencil, levels: usize, dirmag: usize) -> TMesh {
         dirmag_levels: dirmag,
         ..Default::default()
     };
-    let mut s0 = vec![0u32; diff::plan_scratch_len(&mesh).unwrap()];
+    let mut s0 = vec![0u32; diff::plan_scratch_size(&mesh).unwrap()];
     let plan = diff::plan(mesh, &opts, &mut s0).unwrap();
     let mut su = vec![0u32; plan.scratch_u32];
     let mut sp = vec![[0.0; 3]; plan.scratch_points];

@@ -89,7 +89,7 @@ pub unsafe extern "C" fn nls_curve_refined_size(
     run(|| {
         check_ptr(out_size.cast_const(), 1)?;
         let closed = flag(closed)?;
-        let n = curve::refined_len(count, closed, levels).map_err(|e| e.status)?;
+        let n = curve::refined_size(count, closed, levels).map_err(|e| e.status)?;
         // SAFETY: checked above.
         unsafe { store(out_size, n) };
         Ok(())
@@ -113,7 +113,7 @@ pub unsafe extern "C" fn nls_curve_scratch_size(
         check_ptr(out_size.cast_const(), 1)?;
         let scheme = scheme_of(scheme)?;
         let closed = flag(closed)?;
-        let n = curve::scratch_len(scheme, count, closed, levels).map_err(|e| e.status)?;
+        let n = curve::scratch_size(scheme, count, closed, levels).map_err(|e| e.status)?;
         // SAFETY: checked above.
         unsafe { store(out_size, n) };
         Ok(())
@@ -215,9 +215,9 @@ pub unsafe extern "C" fn nls_curve_subdivide(
         check_ptr(points_xyz.cast::<Point>(), count)?;
         check_ptr(out.cast_const().cast::<Point>(), out_capacity)?;
         check_ptr(scratch.cast_const().cast::<Point>(), scratch_capacity)?;
-        let need = curve::refined_len(count, closed, levels).map_err(|e| e.status)?;
+        let need = curve::refined_size(count, closed, levels).map_err(|e| e.status)?;
         let need_scratch =
-            curve::scratch_len(scheme, count, closed, levels).map_err(|e| e.status)?;
+            curve::scratch_size(scheme, count, closed, levels).map_err(|e| e.status)?;
         for (capacity, needed) in [(out_capacity, need), (scratch_capacity, need_scratch)] {
             if capacity < needed {
                 // SAFETY: checked above.

@@ -351,7 +351,7 @@ pub unsafe extern "C" fn nls_differential_subdivide(
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
         let plan = {
-            let need = diff::plan_scratch_len(&view)?;
+            let need = diff::plan_scratch_size(&view)?;
             let s = su
                 .get_mut(..need)
                 .ok_or(too_small(NLS_MESH_BUFFER_SCRATCH_U32))?;

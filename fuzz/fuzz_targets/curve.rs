@@ -5,7 +5,7 @@
 //!   refusals; a refusal writes no count and no output;
 //! - the output or the scratch shortened by any amount gives `BUFFER_TOO_SMALL` with the exact
 //!   size of that buffer in `*out_count` and nothing written to the output;
-//! - on success: the count is `refined_len`, every point is finite, interpolating schemes keep
+//! - on success: the count is `refined_size`, every point is finite, interpolating schemes keep
 //!   the old points bit for bit at indices `2^levels · i`, and `k` levels equal `k` calls of one
 //!   level bit for bit.
 //!

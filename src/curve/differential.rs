@@ -44,12 +44,12 @@
 //!
 //! `Δ` lives in the same ping-pong buffers as the points: `Δ⁰` goes to `scratch` when `k` is
 //! odd and to `out` when it is even, each level to the other buffer, `Δᵏ` to `out`, where it
-//! is replaced by the curve in place. [`crate::curve::scratch_len`] is therefore the size of
+//! is replaced by the curve in place. [`crate::curve::scratch_size`] is therefore the size of
 //! level `k − 1` already for `k = 1`.
 
 use super::levels::{run_levels, to_input_element, Level0, LevelRule};
 use super::polygon::{at, check_finite, finite};
-use super::{bspline, four_point, refined_len};
+use super::{bspline, four_point, refined_size};
 use crate::error::{Error, Result, Status};
 use crate::point::{add, scale, sub, Point};
 
@@ -89,7 +89,7 @@ fn delta(a: Point, v: Point, b: Point) -> Point {
 /// [`Status::NumericalFailure`] on overflow.
 pub fn differential_polygon(points: &[Point], closed: bool, out: &mut [Point]) -> Result<()> {
     let n = points.len();
-    refined_len(n, closed, 0)?;
+    refined_size(n, closed, 0)?;
     if out.len() < n {
         return Err(Error::too_small(n));
     }
@@ -145,7 +145,7 @@ pub fn reconstruct(
     last: Point,
 ) -> Result<()> {
     let m = buf.len();
-    refined_len(m, closed, 0)?;
+    refined_size(m, closed, 0)?;
     // g_i = c · δ_i with c = −2 · 4^−k, exact (a power of two) until it underflows.
     let mut c = -2.0;
     for _ in 0..levels {
@@ -214,7 +214,7 @@ impl Kahan {
 
 /// Differential-space subdivision of `points`, `levels` levels, into `out` with the
 /// ping-pong `scratch`; returns the number of points written. Sizes as
-/// [`crate::curve::refined_len`] and [`crate::curve::scratch_len`] (with a differential
+/// [`crate::curve::refined_size`] and [`crate::curve::scratch_size`] (with a differential
 /// scheme).
 ///
 /// # Errors
@@ -265,7 +265,7 @@ pub(crate) fn run(
         scratch,
         levels,
     )?;
-    let m = refined_len(n, closed, levels)?;
+    let m = refined_size(n, closed, levels)?;
     let v = out.get_mut(..m).ok_or(Error::too_small(m))?;
     reconstruct(v, closed, levels, first, last).map_err(|e| to_input_element(e, levels))
 }

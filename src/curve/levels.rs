@@ -9,7 +9,7 @@
 use super::differential::{self, DifferentialBase};
 use super::polygon::check_finite;
 use super::{bspline, circle_blend, four_point, mobius};
-use super::{refined_len, refined_len_once, scratch_len, CurveScheme};
+use super::{refined_size, refined_size_once, scratch_size, CurveScheme};
 use crate::error::{Error, Result};
 // The errors the documentation names.
 #[cfg(doc)]
@@ -17,12 +17,12 @@ use crate::error::Status;
 use crate::point::Point;
 
 /// Subdivides the curve `points` `levels` times with `scheme` into `out` and returns the
-/// number of points written (= [`refined_len`]). See the [module documentation](super) for the
+/// number of points written (= [`refined_size`]). See the [module documentation](super) for the
 /// output order, the buffers and the errors.
 ///
 /// # Errors
 /// [`Status::TooFewPoints`], [`Status::SizeOverflow`], [`Status::BufferTooSmall`] (`out`
-/// below [`refined_len`], then `scratch` below [`scratch_len`]), [`Status::NonFiniteInput`]
+/// below [`refined_size`], then `scratch` below [`scratch_size`]), [`Status::NonFiniteInput`]
 /// (element = point index), [`Status::DegenerateGeometry`] and [`Status::NumericalFailure`]
 /// (element = input point starting the segment at fault).
 pub fn subdivide(
@@ -34,8 +34,8 @@ pub fn subdivide(
     scratch: &mut [Point],
 ) -> Result<usize> {
     let n = points.len();
-    let total = refined_len(n, closed, levels)?;
-    let need_scratch = scratch_len(scheme, n, closed, levels)?;
+    let total = refined_size(n, closed, levels)?;
+    let need_scratch = scratch_size(scheme, n, closed, levels)?;
     if out.len() < total {
         return Err(Error::too_small(total));
     }
@@ -111,7 +111,7 @@ pub(crate) fn run_levels(
         Level0::InBuffer(n) => n,
     };
     for level in 1..=levels {
-        let next = refined_len_once(len, closed)?;
+        let next = refined_size_once(len, closed)?;
         let to_out = (levels - level) % 2 == 0;
         let result = match (level, &level0) {
             (1, Level0::Input(points)) => {

@@ -24,16 +24,16 @@
 //! The output is interleaved: the vertex point of `P_i` at index `2i`, the edge point of the
 //! segment `P_i P_{i+1}` at index `2i + 1`. For interpolating schemes the even entries are
 //! the old points, bit for bit; after `k` levels input point `i` is at index `2^k i`.
-//! [`refined_len`] gives the exact size after `k` levels; it is the same for every scheme.
+//! [`refined_size`] gives the exact size after `k` levels; it is the same for every scheme.
 //!
 //! A closed curve needs at least 3 points, an open one at least 2 (two points give the
 //! midpoint, for every scheme). `levels = 0` copies the input.
 //!
 //! # Buffers
 //!
-//! [`subdivide`] writes the final level into `out` (at least [`refined_len`] points) and
+//! [`subdivide`] writes the final level into `out` (at least [`refined_size`] points) and
 //! ping-pongs the intermediate levels between `out` and `scratch` (at least
-//! [`scratch_len`] points), so that the last level lands in `out`. Nothing is allocated.
+//! [`scratch_size`] points), so that the last level lands in `out`. Nothing is allocated.
 //!
 //! # Errors
 //!
@@ -56,8 +56,8 @@
 //! use nlsubdiv::curve::{self, CurveScheme};
 //! // Four points on the unit circle, closed, 3 levels of the circle blend.
 //! let pts = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]];
-//! let n = curve::refined_len(pts.len(), true, 3).unwrap();
-//! let s = curve::scratch_len(CurveScheme::CircleBlend, pts.len(), true, 3).unwrap();
+//! let n = curve::refined_size(pts.len(), true, 3).unwrap();
+//! let s = curve::scratch_size(CurveScheme::CircleBlend, pts.len(), true, 3).unwrap();
 //! let mut out = [[0.0; 3]; 32];
 //! let mut scratch = [[0.0; 3]; 16];
 //! assert_eq!((n, s), (32, 16));
@@ -87,4 +87,4 @@ use crate::error::{Error, Status};
 
 pub use levels::subdivide;
 pub use scheme::CurveScheme;
-pub use sizes::{min_points, refined_len, refined_len_once, scratch_len};
+pub use sizes::{min_points, refined_size, refined_size_once, scratch_size};

@@ -2,7 +2,7 @@
 //! indexing, the checks of a one-level call, and the element index a failure names. Every
 //! access returns a [`Result`] instead of panicking, so the kernel stays panic-free.
 
-use super::refined_len_once;
+use super::refined_size_once;
 use crate::error::{Error, Result, Status};
 use crate::point::{self, dot, Point};
 
@@ -17,7 +17,7 @@ pub(crate) fn check_finite(points: &[Point]) -> Result<()> {
 /// Validation shared by the public one-level functions of the scheme modules: enough
 /// points, an output of at least the refined size, finite input. Returns the refined size.
 pub(crate) fn check_level(points: &[Point], closed: bool, out: &[Point]) -> Result<usize> {
-    let next = refined_len_once(points.len(), closed)?;
+    let next = refined_size_once(points.len(), closed)?;
     if out.len() < next {
         return Err(Error::too_small(next));
     }
@@ -89,13 +89,13 @@ pub(crate) fn norm(a: Point) -> f64 {
     }
 }
 
-/// The first `refined_len_once(p.len())` entries of `out`: the exact output of one level.
+/// The first `refined_size_once(p.len())` entries of `out`: the exact output of one level.
 #[inline]
 pub(crate) fn level_out<'a>(
     p: &[Point],
     closed: bool,
     out: &'a mut [Point],
 ) -> Result<&'a mut [Point]> {
-    let next = refined_len_once(p.len(), closed)?;
+    let next = refined_size_once(p.len(), closed)?;
     out.get_mut(..next).ok_or(Error::too_small(next))
 }

@@ -19,7 +19,7 @@ pub const fn min_points(closed: bool) -> usize {
 ///
 /// # Errors
 /// [`Status::TooFewPoints`] below [`min_points`]; [`Status::SizeOverflow`].
-pub fn refined_len_once(n: usize, closed: bool) -> Result<usize> {
+pub fn refined_size_once(n: usize, closed: bool) -> Result<usize> {
     if n < min_points(closed) {
         return Err(Error::new(Status::TooFewPoints));
     }
@@ -37,13 +37,13 @@ pub fn refined_len_once(n: usize, closed: bool) -> Result<usize> {
 /// # Errors
 /// [`Status::TooFewPoints`] when `n` is below [`min_points`]; [`Status::SizeOverflow`] when
 /// the size does not fit in `usize`.
-pub fn refined_len(n: usize, closed: bool, levels: u32) -> Result<usize> {
+pub fn refined_size(n: usize, closed: bool, levels: u32) -> Result<usize> {
     if n < min_points(closed) {
         return Err(Error::new(Status::TooFewPoints));
     }
     let mut len = n;
     for _ in 0..levels {
-        len = refined_len_once(len, closed)?;
+        len = refined_size_once(len, closed)?;
     }
     Ok(len)
 }
@@ -54,10 +54,10 @@ pub fn refined_len(n: usize, closed: bool, levels: u32) -> Result<usize> {
 /// `k = 0`.
 ///
 /// # Errors
-/// As [`refined_len`].
-pub fn scratch_len(scheme: CurveScheme, n: usize, closed: bool, levels: u32) -> Result<usize> {
+/// As [`refined_size`].
+pub fn scratch_size(scheme: CurveScheme, n: usize, closed: bool, levels: u32) -> Result<usize> {
     // Validate the final size first, so that an overflow is reported for every query.
-    refined_len(n, closed, levels)?;
+    refined_size(n, closed, levels)?;
     let differential = matches!(
         scheme,
         CurveScheme::DifferentialFourPoint | CurveScheme::DifferentialBSpline
@@ -66,5 +66,5 @@ pub fn scratch_len(scheme: CurveScheme, n: usize, closed: bool, levels: u32) -> 
     if levels < first {
         return Ok(0);
     }
-    refined_len(n, closed, levels - 1)
+    refined_size(n, closed, levels - 1)
 }

@@ -12,7 +12,7 @@ use arrayvec::ArrayVec;
 use super::laplacian::{self, Laplacian};
 use super::options::{DifferentialOptions, DifferentialReport};
 use super::placement::{self, Anchors};
-use super::plan::{plan, plan_scratch_len, DifferentialPlan, Layout};
+use super::plan::{plan, plan_scratch_size, DifferentialPlan, Layout};
 use super::solve::{self, SolveLevel, SolveReport, System};
 use super::{dirmag, edit, folds, normal_edit};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
@@ -38,7 +38,7 @@ pub fn subdivide(
     report: &mut DifferentialReport,
 ) -> Result<MeshSizes> {
     let plan = {
-        let need = plan_scratch_len(&mesh)?;
+        let need = plan_scratch_size(&mesh)?;
         let s = scratch_u32.get_mut(..need).ok_or(Error::too_small(need))?;
         plan(mesh, opts, s)?
     };

@@ -61,4 +61,4 @@ mod plan;
 
 pub use driver::subdivide;
 pub use options::{DifferentialOptions, DifferentialReport, Stencil};
-pub use plan::{plan, plan_scratch_len, DifferentialPlan};
+pub use plan::{plan, plan_scratch_size, DifferentialPlan};

@@ -68,7 +68,7 @@ impl DifferentialPlan {
                 .map_err(|_| internal())?;
         }
         let fields = cadd(cmul(nk, 7)?, n0)?;
-        u.work = solve::solve_scratch_len(&counts)?.max(fields);
+        u.work = solve::solve_scratch_size(&counts)?.max(fields);
         u.reference = if self.edited { nk } else { 0 };
         u.points = cadd(cadd(cadd(u.work, nk)?, cmul(n0, 3)?)?, u.reference)?;
         u.u32s = cadd(
@@ -111,8 +111,8 @@ pub(super) struct Layout {
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub fn plan_scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
-    crate::scheme::scratch_len(mesh)
+pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
+    crate::scheme::scratch_size(mesh)
 }
 
 /// Validates `mesh` (triangles only) and `opts` and plans the call.

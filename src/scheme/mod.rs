@@ -177,6 +177,6 @@ impl Scheme {
 
 /// The `u32` scratch of [`plan`] ([`plan_scratch_size`]), under the name differential-space
 /// subdivision calls.
-pub(crate) fn scratch_len(mesh: &Mesh<'_>) -> Result<usize> {
+pub(crate) fn scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
     plan_scratch_size(mesh)
 }

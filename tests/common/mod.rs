@@ -574,7 +574,7 @@ pub fn differential_subdivide(
 > {
     use nlsubdiv::differential as d;
     let mut rep = d::DifferentialReport::default();
-    let mut ps = vec![0u32; d::plan_scratch_len(&m.view()).map_err(|e| (e, rep))?];
+    let mut ps = vec![0u32; d::plan_scratch_size(&m.view()).map_err(|e| (e, rep))?];
     let plan = d::plan(m.view(), opts, &mut ps).map_err(|e| (e, rep))?;
     let o = plan.output();
     let mut su = vec![0u32; plan.scratch_u32];

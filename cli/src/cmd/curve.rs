@@ -165,16 +165,16 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             args.levels
         ))
     };
-    let total = curve::refined_len(n, args.closed, args.levels).map_err(|_| too_many())?;
-    let scratch_len =
-        curve::scratch_len(args.scheme, n, args.closed, args.levels).map_err(|_| too_many())?;
+    let total = curve::refined_size(n, args.closed, args.levels).map_err(|_| too_many())?;
+    let scratch_size =
+        curve::scratch_size(args.scheme, n, args.closed, args.levels).map_err(|_| too_many())?;
     memory::check(
-        (total as u128 + scratch_len as u128) * 24 + total as u128 * 60,
+        (total as u128 + scratch_size as u128) * 24 + total as u128 * 60,
         &format!("{} levels ({total} points)", args.levels),
         "use fewer levels",
     )?;
     let mut out = memory::filled(total, [0.0; 3], "the output points")?;
-    let mut scratch = memory::filled(scratch_len, [0.0; 3], "the intermediate levels")?;
+    let mut scratch = memory::filled(scratch_size, [0.0; 3], "the intermediate levels")?;
     let spinner = ctx.spinner("subdividing");
     let result = curve::subdivide(
         args.scheme,

@@ -160,7 +160,7 @@ pub struct System<'a> {
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub fn solve_scratch_len(counts: &[usize]) -> Result<usize> {
+pub fn solve_scratch_size(counts: &[usize]) -> Result<usize> {
     let mut s = 0usize;
     for &n in counts {
         s = s.checked_add(n.checked_mul(4).ok_or(ovf())?).ok_or(ovf())?;
@@ -227,7 +227,7 @@ impl System<'_> {
 }
 
 /// Solves the [module](self)'s system at its finest level from the warm start in `x`,
-/// overwriting it; `delta` is `4⁻ᵏ Δ_k`. `scratch` holds at least [`solve_scratch_len`]
+/// overwriting it; `delta` is `4⁻ᵏ Δ_k`. `scratch` holds at least [`solve_scratch_size`]
 /// points. The anchors keep their warm-start values (they are the anchor values).
 ///
 /// Returns the report also when the tolerance was not reached (`converged == false`, `x` the
@@ -301,7 +301,7 @@ pub fn solve(
 fn hierarchy_counts(
     sys: &System<'_>,
     opts: &SolveOptions,
-    scratch_len: usize,
+    scratch_size: usize,
 ) -> Result<ArrayVec<usize, MAX_HIERARCHY>> {
     let ok = |t: f64| t.is_finite() && t >= 0.0;
     if !ok(opts.tolerance) || !ok(opts.coarse_tolerance) {
@@ -316,14 +316,14 @@ fn hierarchy_counts(
             .try_push(lv.lap.len())
             .map_err(|_| Error::new(Status::InvalidArgument))?;
     }
-    let need = solve_scratch_len(&counts)?;
-    if scratch_len < need {
+    let need = solve_scratch_size(&counts)?;
+    if scratch_size < need {
         return Err(Error::too_small(need));
     }
     Ok(counts)
 }
 
-/// The scratch of [`solve`], carved in the order of [`solve_scratch_len`].
+/// The scratch of [`solve`], carved in the order of [`solve_scratch_size`].
 struct Buffers<'a> {
     /// The V-cycle's vectors, one set per level, coarsest first.
     work: ArrayVec<Work<'a>, MAX_HIERARCHY>,
