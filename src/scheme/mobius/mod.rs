@@ -166,11 +166,13 @@ pub(crate) fn step(
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }
-    let (scratch, linear_pos) = scratch.split_at_mut(candidates);
+    // `split_at_mut_checked`, not `split_at_mut`: the length is checked above, but the
+    // panicking form would link a panic path into every export (the link proof refuses it).
+    let (scratch, linear_pos) = scratch.split_at_mut_checked(candidates).ok_or(internal())?;
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
-    let (edge_c, rest) = scratch.split_at_mut(nh);
+    let (edge_c, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
     let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
     let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
     let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);

@@ -129,7 +129,13 @@ const NOT_PLANAR: f64 = 1e-4;
 pub(super) fn newell(polygon: &[Point]) -> Point {
     let mut n = [0.0; 3];
     for (i, t) in polygon.iter().enumerate() {
-        let u = polygon.get((i + 1) % polygon.len()).copied().unwrap_or(*t);
+        // The next corner, cyclically (no `%`: a division the compiler cannot prove nonzero
+        // would link a panic path).
+        let u = polygon
+            .get(i + 1)
+            .or(polygon.first())
+            .copied()
+            .unwrap_or(*t);
         n = add(n, cross(*t, u));
     }
     n
