@@ -920,7 +920,9 @@ nls_status nls_mesh_plan_scratch_size(const struct nls_mesh_view *mesh, size_t *
  * naming an interior valence-2 vertex (dual schemes), `NLS_STATUS_VALENCE_TOO_HIGH` (an
  * output vertex or face above the capacity; no element when a later level would exceed
  * it), `NLS_STATUS_SIZE_OVERFLOW` (a level above `UINT32_MAX − 1` vertices, faces or
- * corners).
+ * corners), and for `NLS_SCHEME_SPHERELIKE` `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose
+ * size its squared distances cannot represent (largest bounding-box side below 1e-140, or a
+ * coordinate above 1e140).
  *
  * @param mesh the input mesh.
  * @param options scheme, flags, levels.
@@ -1024,7 +1026,9 @@ nls_status nls_differential_default_options(struct nls_differential_options *out
  * `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `dirmag_levels` not matching the scheme,
  * more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0, `strict` not 0
  * or 1, a bad stride); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite edit
- * value; `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NULL_PARAMETER`,
+ * value; `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose size the normal equations cannot
+ * represent (largest bounding-box side below 1e-140, or a coordinate above 1e140);
+ * `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NULL_PARAMETER`,
  * `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_ALIASING_BUFFERS` (also an out-pointer into a
  * buffer of the call), `NLS_STATUS_FP_ENVIRONMENT`.
  */

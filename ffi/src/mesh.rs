@@ -712,7 +712,9 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 /// naming an interior valence-2 vertex (dual schemes), `NLS_STATUS_VALENCE_TOO_HIGH` (an
 /// output vertex or face above the capacity; no element when a later level would exceed
 /// it), `NLS_STATUS_SIZE_OVERFLOW` (a level above `UINT32_MAX − 1` vertices, faces or
-/// corners).
+/// corners), and for `NLS_SCHEME_SPHERELIKE` `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose
+/// size its squared distances cannot represent (largest bounding-box side below 1e-140, or a
+/// coordinate above 1e140).
 ///
 /// @param mesh the input mesh.
 /// @param options scheme, flags, levels.

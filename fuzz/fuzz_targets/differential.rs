@@ -356,6 +356,8 @@ fn plan_status_documented(s: Status) -> bool {
             | Status::MisalignedPointer
             | Status::AliasingBuffers
             | Status::FpEnvironment
+            // A mesh outside the sizes the normal equations can represent (1e-140 … 1e140).
+            | Status::NumericalFailure
     )
 }
 

@@ -269,8 +269,8 @@ fn tag<'a>(
     let rest: Vec<&[u8]> = toks.collect();
     if rest.len() != ni + nf + ns {
         return Err(format!(
-            "'t {}': {} values after the counts, {ni}/{nf}/{ns} announce {}",
-            String::from_utf8_lossy(name),
+            "tag {}: {} values after the counts, {ni}/{nf}/{ns} announce {}",
+            quote(name),
             rest.len(),
             ni + nf + ns
         ));
