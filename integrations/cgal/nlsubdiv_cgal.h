@@ -11,7 +11,9 @@
 // Three layers (docs/integrations.md):
 // * Mobius_loop_mask_3 and Mobius_butterfly_mask_3 (Star_mask_3): PTQMask_3s that evaluate
 //   the star rules (nls_mobius_loop_star / nls_mobius_butterfly_star, nls_f4_hinted,
-//   nls_f4) with the mesh's own connectivity;
+//   nls_f4) with the mesh's own connectivity. They run the paper's rules, equal to nls_mesh_subdivide with NLS_SUBDIVIDE_LITERAL (the
+//   driver's default fold guard needs a pass over the whole mesh, which a per-star mask cannot
+//   make); Mobius_butterfly_driver_mask_3 gives the guarded default for Butterfly;
 // * Driver_mask_3 (aliases Mobius_catmull_clark_mask_3 and Mobius_kobbelt_mask_3 for PQQ,
 //   Mobius_butterfly_driver_mask_3, Linear_butterfly_mask_3 and Linear_kobbelt_mask_3):
 //   masks whose level is evaluated by the driver (nls_mesh_subdivide) on a flat copy of the

@@ -13,8 +13,11 @@
 //   at each vertex star with OpenMesh's own connectivity (circulators over the half-edges),
 //   through the tier-1 exports nls_mobius_loop_star / nls_mobius_butterfly_star /
 //   nls_mobius_catmull_clark_star, nls_f4_hinted, nls_f4 and nls_face_point_with_ids; the new connectivity is written in the driver's layout, so the result
-//   equals nls_mesh_subdivide on the same mesh (bit for bit where the stars start at the
-//   driver's spokes, which this header arranges);
+//   equals nls_mesh_subdivide with NLS_SUBDIVIDE_LITERAL on the same mesh (bit for bit where
+//   the stars start at the driver's spokes, which this header arranges). These are the
+//   paper's rules: the driver's default fold guard needs a pass over the whole mesh (each
+//   star's trust from its neighbours' candidates), so for the guarded default use the bulk
+//   classes (MobiusLoopBulkT, MobiusButterflyBulkT, MobiusCatmullClarkBulkT);
 // * bulk, every scheme (BulkSubdividerT and the aliases MobiusKobbeltT, MobiusDooSabinT,
 //   LinearLoopT, SpherelikeT, ...): the mesh is copied to flat arrays, subdivided with
 //   nls_mesh_subdivide (any number of levels) and the connectivity rebuilt;

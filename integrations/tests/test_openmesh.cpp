@@ -77,17 +77,21 @@ Plugin<M> make(const std::string& name, uint32_t scheme, uint32_t flags, bool at
 template <class M>
 std::vector<Plugin<M>> plugins(const std::string& tag) {
   const uint32_t MOB = NLS_SUBDIVIDE_MOBIUS;
+  // The subdividers that evaluate the star rules on OpenMesh's own connectivity run the
+  // paper's rules; the fold guard needs a whole-mesh pass, which only the driver (the Bulk
+  // subdividers) makes: their reference is the driver's literal mode.
+  const uint32_t LIT = NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL;
   std::vector<Plugin<M>> p = {
-      make<M, nom::MobiusLoopT<M>>("MobiusLoopT<" + tag + ">", NLS_SCHEME_LOOP, MOB, true),
+      make<M, nom::MobiusLoopT<M>>("MobiusLoopT<" + tag + ">", NLS_SCHEME_LOOP, LIT, true),
       make<M, nom::MobiusLoopBulkT<M>>("MobiusLoopBulkT<" + tag + ">", NLS_SCHEME_LOOP, MOB, false),
-      make<M, nom::MobiusButterflyT<M>>("MobiusButterflyT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, MOB, true),
+      make<M, nom::MobiusButterflyT<M>>("MobiusButterflyT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, LIT, true),
       make<M, nom::MobiusButterflyBulkT<M>>("MobiusButterflyBulkT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, MOB, false),
       make<M, nom::LinearLoopT<M>>("LinearLoopT<" + tag + ">", NLS_SCHEME_LOOP, 0, false),
       make<M, nom::LinearButterflyT<M>>("LinearButterflyT<" + tag + ">", NLS_SCHEME_MODIFIED_BUTTERFLY, 0, true),
   };
   if (!M::is_trimesh()) {
     std::vector<Plugin<M>> q = {
-        make<M, nom::MobiusCatmullClarkT<M>>("MobiusCatmullClarkT<" + tag + ">", NLS_SCHEME_CATMULL_CLARK, MOB, true),
+        make<M, nom::MobiusCatmullClarkT<M>>("MobiusCatmullClarkT<" + tag + ">", NLS_SCHEME_CATMULL_CLARK, LIT, true),
         make<M, nom::MobiusCatmullClarkBulkT<M>>("MobiusCatmullClarkBulkT<" + tag + ">", NLS_SCHEME_CATMULL_CLARK, MOB, false),
         make<M, nom::MobiusKobbeltT<M>>("MobiusKobbeltT<" + tag + ">", NLS_SCHEME_KOBBELT, MOB, true),
         make<M, nom::MobiusDooSabinT<M>>("MobiusDooSabinT<" + tag + ">", NLS_SCHEME_DOO_SABIN, MOB, false),
