@@ -452,6 +452,15 @@ fn plan_sizes(
     }
 }
 
+/// An output mesh of `sizes` (zeroed), its allocations checked.
+fn output_mesh(sizes: MeshSizes) -> CliResult<Mesh> {
+    Ok(Mesh {
+        positions: memory::filled(sizes.vertices, [0.0; 3], "the output positions")?,
+        offsets: memory::filled(sizes.faces + 1, 0u32, "the output faces")?,
+        indices: memory::filled(sizes.indices, 0u32, "the output faces")?,
+    })
+}
+
 /// How `run` treats the Möbius schemes' special elements.
 #[derive(Clone, Copy, Debug)]
 pub struct Mode {
@@ -545,11 +554,7 @@ pub fn run(
     let out_sizes = plan.output();
     let mut u32s = memory::filled(plan.scratch.u32s, 0u32, "the topologies")?;
     let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the intermediate levels")?;
-    let mut next = Mesh {
-        positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
-        offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
-        indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
-    };
+    let mut next = output_mesh(out_sizes)?;
     let spinner = ctx.spinner("subdividing");
     let result = {
         let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
@@ -625,11 +630,7 @@ fn run_by_levels(
             scheme::plan(mesh, &opts, &mut scratch).map_err(|e| call_error(e, ms, mesh, &namer))?;
         let mut scratch = memory::filled(plan.scratch.u32s, 0u32, "the topology")?;
         let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the Möbius candidates")?;
-        let mut next = Mesh {
-            positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
-            offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
-            indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
-        };
+        let mut next = output_mesh(out_sizes)?;
         let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
         let report = scheme::subdivide(
             mesh,
@@ -747,11 +748,7 @@ pub fn run_tagged(
     )?;
     let mut scratch = memory::filled(plan.scratch.u32s, 0u32, "the topology")?;
     let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the levels")?;
-    let mut next = Mesh {
-        positions: memory::filled(out_sizes.vertices, [0.0; 3], "the output positions")?,
-        offsets: memory::filled(out_sizes.faces + 1, 0u32, "the output faces")?,
-        indices: memory::filled(out_sizes.indices, 0u32, "the output faces")?,
-    };
+    let mut next = output_mesh(out_sizes)?;
     let _spinner = ctx.spinner("subdividing");
     let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
     let report = scheme::subdivide_tagged(
