@@ -16,7 +16,8 @@
  * stride), nls_mesh_buffers (output buffers and capacities), nls_scratch (uint32_t and point
  * scratch), nls_subdivide_options / nls_differential_options (start from the
  * nls_*_default_options functions), nls_star_view, nls_curve_view. A mesh call is
- * plan, then subdivide: nls_mesh_plan_scratch_size, nls_mesh_plan, nls_mesh_subdivide.
+ * plan, then subdivide: nls_mesh_plan_scratch_size, nls_mesh_plan, nls_mesh_subdivide (and
+ * the same three with _tagged for a mesh with sharp-feature tags, nls_tags).
  * No buffer of a call may overlap another one, and no out-pointer (out_sizes, out_report,
  * out_plan, out_count, out_element) may point into a buffer of the call or into another
  * out-pointer: NLS_STATUS_ALIASING_BUFFERS.
@@ -251,6 +252,19 @@
  * Star kind: valence-2 "ear" vertex with one face; the ring is the face's other vertices.
  */
 #define NLS_STAR_EAR 2
+
+/**
+ * Crease method: every semi-sharp value decreases by one per level (OpenSubdiv
+ * `Sdc::Options::CREASE_UNIFORM`; the default).
+ */
+#define NLS_CREASE_UNIFORM 0
+
+/**
+ * Crease method: Chaikin's rule, an edge's child takes 3/4 of its value and 1/4 of the mean
+ * of the other semi-sharp edges at the shared vertex, minus one (OpenSubdiv
+ * `Sdc::Options::CREASE_CHAIKIN`).
+ */
+#define NLS_CREASE_CHAIKIN 1
 
 /**
  * Outcome of a call. `Ok` is 0; every other value names one class of failure.
@@ -785,6 +799,48 @@ typedef struct nls_star_view {
      */
     size_t corner_count;
 } nls_star_view;
+
+/**
+ * Sharp-feature tags of a mesh, read only: crease edges as vertex pairs with their
+ * sharpness, corner vertices with theirs, and the crease method. Sharpness follows
+ * OpenSubdiv: 0 smooth, positive semi-sharp (the feature fades over about that many
+ * levels), 10 or more infinitely sharp; finite and non-negative, stored in single precision.
+ * Zero-initialised, the struct holds no tags and the uniform method.
+ *
+ * Errors name a tag by its index: crease `i` is element `i`, corner `j` is element
+ * `crease_count + j`.
+ */
+typedef struct nls_tags {
+    /**
+     * `2 * crease_count` vertex indices: crease `i` joins `crease_vertices[2 i]` and
+     * `crease_vertices[2 i + 1]` (either order), which must be the two ends of an edge.
+     */
+    const uint32_t *crease_vertices;
+    /**
+     * `crease_count` sharpness values.
+     */
+    const double *crease_sharpness;
+    /**
+     * Number of tagged edges.
+     */
+    size_t crease_count;
+    /**
+     * `corner_count` vertex indices.
+     */
+    const uint32_t *corner_vertices;
+    /**
+     * `corner_count` sharpness values.
+     */
+    const double *corner_sharpness;
+    /**
+     * Number of tagged vertices.
+     */
+    size_t corner_count;
+    /**
+     * `NLS_CREASE_UNIFORM` or `NLS_CREASE_CHAIKIN`.
+     */
+    uint32_t method;
+} nls_tags;
 
 
 
@@ -1432,6 +1488,85 @@ nls_status nls_mobius_catmull_clark_star(const struct nls_star_view *star,
  *
  */
 nls_status nls_mobius_butterfly_star(const struct nls_star_view *star, const uint32_t *irregular_neighbours, double *out_edge_candidates);
+
+/**
+ * The `uint32_t` scratch `nls_mesh_plan_tagged` needs for `mesh` with `tags`: that of
+ * `nls_mesh_plan_scratch_size`, plus `vertex_count + index_count` entries when there is a
+ * tag. Depends on the counts only: no array of the mesh or the tags is read.
+ *
+ * @param mesh the input mesh.
+ * @param tags the tags.
+ * @param out_scratch_u32 receives the number of `uint32_t` entries.
+ * @return `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`),
+ * `NLS_STATUS_INVALID_ARGUMENT` (a bad stride or crease method), `NLS_STATUS_NULL_PARAMETER`,
+ * `NLS_STATUS_MISALIGNED_POINTER`, else `NLS_STATUS_OK`.
+ */
+nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, const struct nls_tags *tags, size_t *out_scratch_u32);
+
+/**
+ * `nls_mesh_plan` for a mesh with sharp-feature tags: Loop and Catmull–Clark, linear, with
+ * OpenSubdiv's rules for creases, corners and darts (boundary edges stay infinitely sharp,
+ * `VTX_BOUNDARY_EDGE_ONLY`). `scratch_u32` holds at least what
+ * `nls_mesh_plan_scratch_size_tagged` gives and overlaps neither the mesh nor the tags. With
+ * no tags (both counts 0) this is `nls_mesh_plan`.
+ *
+ * Errors: those of `nls_mesh_plan`, the mesh first; then `NLS_STATUS_INVALID_ARGUMENT` for an
+ * unknown crease method; then, tag by tag, creases first (the element names the tag:
+ * crease `i` is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a
+ * vertex not below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or
+ * infinite), `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
+ * `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice); and
+ * `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop and
+ * Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`. A tag array that overlaps the scratch, or an
+ * out-pointer into a tag array, is `NLS_STATUS_ALIASING_BUFFERS`.
+ *
+ * @param mesh the input mesh.
+ * @param options scheme, flags, levels.
+ * @param tags the tags (read only).
+ * @param scratch_u32 `uint32_t` scratch for the validation.
+ * @param scratch_u32_capacity entries of `scratch_u32`.
+ * @param out_plan receives the plan, on success only.
+ * @param out_element may be NULL; otherwise receives, on failure only, the element named
+ * above or by `nls_mesh_plan`, or `NLS_NO_ELEMENT`.
+ * @return `NLS_STATUS_OK` or an error above.
+ */
+nls_status nls_mesh_plan_tagged(const struct nls_mesh_view *mesh,
+                                const struct nls_subdivide_options *options,
+                                const struct nls_tags *tags,
+                                uint32_t *scratch_u32,
+                                size_t scratch_u32_capacity,
+                                struct nls_plan *out_plan,
+                                uint32_t *out_element);
+
+/**
+ * `nls_mesh_subdivide` for a mesh with sharp-feature tags (see `nls_mesh_plan_tagged`): the
+ * tags are carried to the child edges and vertices level by level inside the call (child
+ * edges of a crease take the decayed sharpness, a corner's vertex its decremented value), so
+ * `k` levels of a tagged mesh are one call of `k` levels. Buffer sizes come from
+ * `nls_mesh_plan_tagged` with the same arguments; no buffer may overlap the mesh, the tags
+ * or another buffer. With no tags this is `nls_mesh_subdivide`, bit for bit.
+ *
+ * @param mesh the input mesh.
+ * @param options scheme, flags, levels.
+ * @param tags the tags (read only).
+ * @param scratch at least the scratch of `nls_mesh_plan_tagged`.
+ * @param out the output buffers, at least the plan's output sizes.
+ * @param out_sizes receives the sizes written (and the sizes needed on
+ * `NLS_STATUS_BUFFER_TOO_SMALL` for an output buffer).
+ * @param out_report may be NULL; receives the report (no fallbacks for the linear rules).
+ * @param out_element may be NULL; otherwise receives, on failure only, the element of the
+ * error (see `nls_mesh_plan_tagged` and `nls_mesh_subdivide`), or `NLS_NO_ELEMENT`.
+ * @return `NLS_STATUS_OK`, the errors of `nls_mesh_plan_tagged` and of
+ * `nls_mesh_subdivide`.
+ */
+nls_status nls_mesh_subdivide_tagged(const struct nls_mesh_view *mesh,
+                                     const struct nls_subdivide_options *options,
+                                     const struct nls_tags *tags,
+                                     const struct nls_scratch *scratch,
+                                     const struct nls_mesh_buffers *out,
+                                     struct nls_mesh_sizes *out_sizes,
+                                     struct nls_subdivide_report *out_report,
+                                     uint32_t *out_element);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -24,6 +24,7 @@ pub mod mesh;
 pub mod mobius;
 pub mod primitives;
 pub mod star;
+pub mod tags;
 
 pub use nlsubdiv::Status;
 

@@ -15,11 +15,12 @@
 use core::mem::size_of;
 
 use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, MAX_COUNT};
-use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch};
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
+use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_spans, tags_of};
 
 /// Mesh scheme: Loop (triangles only; 1→4; approximating).
 pub const NLS_SCHEME_LOOP: u32 = 0;
@@ -212,7 +213,7 @@ fn spectrum_of(u: f64) -> Result<f64, Status> {
 }
 
 /// The options struct as the Rust path's options.
-fn parse_options(o: &nls_subdivide_options) -> Result<Options, Status> {
+pub(crate) fn parse_options(o: &nls_subdivide_options) -> Result<Options, Status> {
     let scheme = Scheme::from_code(o.scheme).ok_or(Status::InvalidArgument)?;
     let flags = o.flags;
     if flags & !(NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_STRICT | NLS_SUBDIVIDE_LITERAL) != 0 {
@@ -256,7 +257,7 @@ impl From<Error> for Fail {
     }
 }
 
-fn too_small(buffer: u32) -> Fail {
+pub(crate) fn too_small(buffer: u32) -> Fail {
     Fail {
         status: Status::BufferTooSmall,
         element: buffer,
@@ -273,7 +274,7 @@ pub(crate) struct ElementSlot {
 /// Runs an export body; on failure writes the element to `out_element` when it is a valid
 /// pointer that points into no buffer of the call (the one exception to "written only on
 /// success").
-fn run_with_element(
+pub(crate) fn run_with_element(
     out_element: *mut u32,
     body: impl FnOnce(&mut ElementSlot) -> Result<(), Fail>,
 ) -> Status {
@@ -296,7 +297,7 @@ fn run_with_element(
 }
 
 /// Checks an optional out-parameter (NULL allowed).
-fn check_optional<T>(p: *mut T) -> Result<(), Status> {
+pub(crate) fn check_optional<T>(p: *mut T) -> Result<(), Status> {
     check_ptr(p.cast_const(), usize::from(!p.is_null()))
 }
 
@@ -304,7 +305,7 @@ fn check_optional<T>(p: *mut T) -> Result<(), Status> {
 ///
 /// # Safety
 /// `p` is NULL or points to a readable `T`.
-unsafe fn read_arg<T: Copy>(p: *const T) -> Result<T, Status> {
+pub(crate) unsafe fn read_arg<T: Copy>(p: *const T) -> Result<T, Status> {
     check_ptr(p, 1)?;
     // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
     Ok(unsafe { p.read() })
@@ -312,7 +313,7 @@ unsafe fn read_arg<T: Copy>(p: *const T) -> Result<T, Status> {
 
 /// # Safety
 /// `p` passed `check_ptr(p, 1)` (non-NULL, aligned) and points to a writable `T`.
-unsafe fn store<T>(p: *mut T, v: T) {
+pub(crate) unsafe fn store<T>(p: *mut T, v: T) {
     // SAFETY: by the caller's contract.
     unsafe { p.write(v) };
 }
@@ -343,7 +344,7 @@ impl Span {
     }
 
     /// One `T` at `p` when `p` is not NULL, else nothing.
-    fn of_one<T>(p: *mut T) -> Span {
+    pub(crate) fn of_one<T>(p: *mut T) -> Span {
         Span::of(p.cast_const(), usize::from(!p.is_null()))
     }
 
@@ -359,7 +360,7 @@ impl Span {
 /// one value) must not point into any buffer of the call nor into each other: a write
 /// through one would corrupt an input, an output or scratch (`NLS_STATUS_ALIASING_BUFFERS`).
 /// `out_element` is then not written either.
-fn check_out_pointers(
+pub(crate) fn check_out_pointers(
     outs: &[Span],
     element: &mut ElementSlot,
     buffers: &[Span],
@@ -437,6 +438,10 @@ impl RawMesh {
 
     pub(crate) fn vertex_count(&self) -> usize {
         self.view.vertex_count
+    }
+
+    pub(crate) fn index_count(&self) -> usize {
+        self.view.index_count
     }
 
     /// The `uint32_t` scratch of the input's topology (the validation), from the counts.
@@ -610,19 +615,21 @@ fn report_of(r: &Report) -> nls_subdivide_report {
 /// `NLS_STATUS_BUFFER_TOO_SMALL` the plan (computed again, on the error path only) names the
 /// first short buffer in the order `scratch_u32`, `scratch_points`, positions, offsets,
 /// indices, and `needed` receives the output sizes when the short buffer is an output buffer.
+#[allow(clippy::too_many_arguments)] // internal: the buffers of the call, split
 fn subdivide_call(
     view: Mesh<'_>,
     opts: &Options,
+    tags: &Tags<'_>,
     su: &mut [u32],
     sp: &mut [Point],
     out: &mut MeshOut<'_>,
     raw: &RawOut,
     needed: &mut Option<MeshSizes>,
 ) -> Result<Report, Fail> {
-    match scheme::subdivide(view, opts, Scratch::new(&mut *su, &mut *sp), out) {
+    match scheme::subdivide_tagged(view, opts, tags, Scratch::new(&mut *su, &mut *sp), out) {
         Ok(report) => Ok(report),
         Err(e) if e.status == Status::BufferTooSmall => {
-            let plan = scheme::plan(view, opts, su)?;
+            let plan = scheme::plan_tagged(view, opts, tags, su)?;
             if su.len() < plan.scratch.u32s {
                 return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
             }
@@ -739,28 +746,67 @@ pub unsafe extern "C" fn nls_mesh_plan(
     out_plan: *mut nls_plan,
     out_element: *mut u32,
 ) -> Status {
+    // SAFETY: forwarded contract (no tags).
+    unsafe {
+        plan_body(
+            mesh,
+            options,
+            None,
+            scratch_u32,
+            scratch_u32_capacity,
+            out_plan,
+            out_element,
+        )
+    }
+}
+
+/// The body of `nls_mesh_plan` and `nls_mesh_plan_tagged`.
+///
+/// # Safety
+/// The contract of `nls_mesh_plan`; `tags` (the tagged export's) is NULL or points to a
+/// readable `nls_tags`.
+pub(crate) unsafe fn plan_body(
+    mesh: *const nls_mesh_view,
+    options: *const nls_subdivide_options,
+    tags: Option<*const nls_tags>,
+    scratch_u32: *mut u32,
+    scratch_u32_capacity: usize,
+    out_plan: *mut nls_plan,
+    out_element: *mut u32,
+) -> Status {
     run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
         let (mesh, opts) = unsafe { (RawMesh::read(mesh)?, read_arg(options)?) };
+        // SAFETY: the caller passes NULL or a readable struct.
+        let tags = unsafe { read_tags(tags) }?;
+        let tags = tags.as_ref();
         check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
         let [a, b, c] = mesh.spans();
+        let [d, e, f, g] = tag_spans(tags);
         let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
-        check_out_pointers(&[Span::of_one(out_plan)], element, &[a, b, c, su])?;
+        check_out_pointers(
+            &[Span::of_one(out_plan)],
+            element,
+            &[a, b, c, d, e, f, g, su],
+        )?;
         let opts = parse_options(&opts)?;
         mesh.check()?;
+        check_tags(tags)?;
         check_ptr(scratch_u32.cast_const(), scratch_u32_capacity)?;
-        if [a, b, c].iter().any(|i| su.overlaps(*i)) {
+        if [a, b, c, d, e, f, g].iter().any(|i| su.overlaps(*i)) {
             return Err(Status::AliasingBuffers.into());
         }
-        if scratch_u32_capacity < mesh.topology_need()? {
+        if scratch_u32_capacity < plan_need(&mesh, tags)? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) =
             unsafe { (mesh.mesh()?, slice_mut(scratch_u32, scratch_u32_capacity)) };
-        let plan = scheme::plan(view, &opts, scratch)?;
+        // SAFETY: the tags were checked (NULL, alignment, size).
+        let tags = unsafe { tags_of(tags) }?;
+        let plan = scheme::plan_tagged(view, &opts, &tags, scratch)?;
         let plan = nls_plan {
             output: sizes_of(&plan.output()),
             scratch_u32: plan.scratch.u32s,
@@ -824,6 +870,37 @@ pub unsafe extern "C" fn nls_mesh_subdivide(
     out_report: *mut nls_subdivide_report,
     out_element: *mut u32,
 ) -> Status {
+    // SAFETY: forwarded contract (no tags).
+    unsafe {
+        subdivide_body(
+            mesh,
+            options,
+            None,
+            scratch,
+            out,
+            out_sizes,
+            out_report,
+            out_element,
+        )
+    }
+}
+
+/// The body of `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged`.
+///
+/// # Safety
+/// The contract of `nls_mesh_subdivide`; `tags` (the tagged export's) is NULL or points to a
+/// readable `nls_tags`.
+#[allow(clippy::too_many_arguments)] // the two exports' parameters, plus the tags
+pub(crate) unsafe fn subdivide_body(
+    mesh: *const nls_mesh_view,
+    options: *const nls_subdivide_options,
+    tags: Option<*const nls_tags>,
+    scratch: *const nls_scratch,
+    out: *const nls_mesh_buffers,
+    out_sizes: *mut nls_mesh_sizes,
+    out_report: *mut nls_subdivide_report,
+    out_element: *mut u32,
+) -> Status {
     let mut needed: Option<MeshSizes> = None;
     let mut sizes_ok = false;
     let status = run_with_element(out_element, |element| {
@@ -835,29 +912,36 @@ pub unsafe extern "C" fn nls_mesh_subdivide(
                 RawOut::read(scratch, out)?,
             )
         };
+        // SAFETY: the caller passes NULL or a readable struct.
+        let tags = unsafe { read_tags(tags) }?;
+        let tags = tags.as_ref();
         check_ptr(out_sizes.cast_const(), 1)?;
         check_optional(out_report)?;
         check_optional(out_element)?;
         let inputs = mesh.spans();
         let [s0, s1, s2, s3, s4] = raw.spans();
         let [i0, i1, i2] = inputs;
+        let [t0, t1, t2, t3] = tag_spans(tags);
         check_out_pointers(
             &[Span::of_one(out_sizes), Span::of_one(out_report)],
             element,
-            &[i0, i1, i2, s0, s1, s2, s3, s4],
+            &[i0, i1, i2, t0, t1, t2, t3, s0, s1, s2, s3, s4],
         )?;
         sizes_ok = true;
         let opts = parse_options(&opts)?;
         mesh.check()?;
-        raw.check(&inputs)?;
-        if raw.scratch.u32_capacity < mesh.topology_need()? {
+        check_tags(tags)?;
+        raw.check(&[i0, i1, i2, t0, t1, t2, t3])?;
+        if raw.scratch.u32_capacity < plan_need(&mesh, tags)? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
         check_fp_env()?;
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
-        let report = subdivide_call(view, &opts, su, sp, &mut out, &raw, &mut needed)?;
+        // SAFETY: the tags were checked (NULL, alignment, size).
+        let tags = unsafe { tags_of(tags) }?;
+        let report = subdivide_call(view, &opts, &tags, su, sp, &mut out, &raw, &mut needed)?;
         // SAFETY: checked above.
         unsafe {
             store(out_sizes, sizes_of(&report.sizes));
