@@ -10,6 +10,7 @@ use nlsubdiv::mesh::{topology_scratch_size, Mesh as CoreMesh, MeshOut, Topology}
 use nlsubdiv::{Status, NO_ELEMENT};
 
 use crate::cmd::Ctx;
+use crate::edits::Edits;
 use crate::error::{CliError, CliResult};
 use crate::memory;
 use crate::mesh::{Mesh, Source};
@@ -65,13 +66,17 @@ pub struct Outcome {
 
 /// Options of [`run`] beyond the scheme and levels.
 #[derive(Clone, Copy, Debug)]
-pub struct RunOptions {
+pub struct RunOptions<'a> {
     /// DirMag levels (`differential-dirmag` only).
     pub dirmag_levels: usize,
     /// Solver tolerance.
     pub tolerance: f64,
     /// Solver iteration cap.
     pub max_iterations: u32,
+    /// §4.4 edits (`--edit FILE`), or none.
+    pub edits: Option<&'a Edits>,
+    /// With edits: a fold of the output is an error naming the face (`--strict`).
+    pub strict: bool,
 }
 
 fn core_error(e: nlsubdiv::Error, src: &Source, name: &str, rep: &DifferentialReport) -> CliError {
@@ -98,6 +103,14 @@ fn core_error(e: nlsubdiv::Error, src: &Source, name: &str, rep: &DifferentialRe
         Status::SizeOverflow => CliError::usage(format!(
             "{}: {name} would exceed the kernel's 32-bit indices: use fewer levels",
             src.path.display()
+        )),
+        Status::FoldedSurface => CliError::bad_input(format!(
+            "{}: {name}: the edits fold the surface ({} faces turned by more than 90° from the \
+             unedited result, the first output face {el}; {} folded edges) and --strict refuses \
+             it: edit less, or drop --strict to write it with a count",
+            src.path.display(),
+            rep.folded_faces,
+            rep.folded_edges
         )),
         Status::BufferTooSmall | Status::InvalidArgument => CliError::internal(format!(
             "{}: {name}: the kernel reported '{e}' (a bug: please report it with the input)",
@@ -142,11 +155,11 @@ pub fn run(
             max_iterations: o.max_iterations,
             ..Default::default()
         },
-        curvature_scale: None,
-        normals: None,
-        // The command makes no edits, and the fold census compares an edited result with
-        // the unedited one: nothing to refuse.
-        strict: false,
+        curvature_scale: o.edits.and_then(|e| e.curvature_scale.as_deref()),
+        normals: o.edits.and_then(|e| e.normals.as_deref()),
+        // The fold census compares an edited result with the unedited one: without edits
+        // there is nothing to refuse.
+        strict: o.strict,
     };
     let mut rep = DifferentialReport::default();
     let err = |e, rep: &DifferentialReport| core_error(e, src, scheme.name(), rep);

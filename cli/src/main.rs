@@ -8,6 +8,7 @@
 mod cmd;
 mod differential;
 mod dome;
+mod edits;
 mod exit;
 mod fields;
 mod folds;

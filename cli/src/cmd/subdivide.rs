@@ -91,6 +91,12 @@ pub struct Args {
     /// differential-*: iteration cap of the reconstruction.
     #[arg(long, value_name = "N", default_value_t = 100)]
     pub max_iterations: u32,
+    /// differential-*: edits of seed 001 §4.4 from FILE, one per line: `curvature V S`
+    /// (scale the mean curvature of control vertex V by S) or `normal V NX NY NZ` (the
+    /// surface normal V should have in the output); `#` starts a comment. The summary counts
+    /// faces the edits fold; with --strict a fold is an error.
+    #[arg(long, value_name = "FILE")]
+    pub edit: Option<PathBuf>,
     /// How semi-sharp creases decay from level to level: uniform (sharpness − 1 per level)
     /// or chaikin (Chaikin's rule along the crease), as OpenSubdiv.
     #[arg(long, value_name = "METHOD", default_value = "uniform", value_parser = parse_method)]
@@ -128,11 +134,18 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         }
         add_angle_creases(&l.mesh, deg, &mut tags);
     }
+    if let (Some(path), SchemeArg::Mesh(_)) = (&args.edit, args.scheme) {
+        return Err(crate::error::CliError::usage(format!(
+            "--edit {}: edits (seed 001 §4.4) apply to the differential-* schemes",
+            path.display()
+        )));
+    }
     let scheme = match args.scheme {
         SchemeArg::Mesh(m) => m,
         SchemeArg::Differential(_) if !tags.is_empty() => {
             return Err(crate::error::CliError::bad_input(format!(
-                "{}: sharp-feature tags (t crease / t corner, --crease-angle) apply to loop and                  catmull-clark, not to differential-space subdivision",
+                "{}: sharp-feature tags (t crease / t corner, --crease-angle) apply to loop and \
+                 catmull-clark, not to differential-space subdivision",
                 args.input.display()
             )))
         }
@@ -280,10 +293,16 @@ fn run_differential(
         )));
     }
     let levels = args.levels as usize;
+    let edits = match &args.edit {
+        Some(path) => Some(crate::edits::read(path, l.mesh.num_vertices())?),
+        None => None,
+    };
     let o = differential::RunOptions {
         dirmag_levels: args.dirmag_levels as usize,
         tolerance: args.tolerance,
         max_iterations: args.max_iterations,
+        edits: edits.as_ref(),
+        strict: args.strict,
     };
     let r = differential::run(&l.mesh, &l.source, d, levels, o, ctx)?;
     {
@@ -311,5 +330,23 @@ fn run_differential(
         r.report.anchors,
         if r.report.anchors == 1 { "" } else { "s" },
     ));
+    if let Some(e) = &edits {
+        ctx.note(&format!(
+            "edits: {} from {}; {} folded face{}, {} folded edge{}{}",
+            e.count,
+            args.edit
+                .as_deref()
+                .map_or(String::new(), |p| p.display().to_string()),
+            r.report.folded_faces,
+            if r.report.folded_faces == 1 { "" } else { "s" },
+            r.report.folded_edges,
+            if r.report.folded_edges == 1 { "" } else { "s" },
+            if r.report.folded_faces > 0 || r.report.folded_edges > 0 {
+                " (turned by more than 90° from the unedited result; --strict refuses them)"
+            } else {
+                ""
+            },
+        ));
+    }
     Ok(Exit::Ok)
 }
