@@ -147,6 +147,11 @@ else
     step "fuzz: mesh, curve, primitives, differential, parsers under ASan (nightly), 3 × ${NLS_FUZZ_SECONDS:-60} s shared" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
 fi
 
+# --- the papers' figures that are cheap enough for every run ----------------------------------
+# Seed 001 Fig. 9: Gaussian curvature near a convex valence-12 vertex (spatial Butterfly ripples,
+# differential Butterfly stays positive); the example exits 1 when that is not reproduced.
+step "paper figure: seed 001 Fig. 9 (Gaussian curvature at a valence-12 vertex, 4 levels)" cargo run -q --release --locked --example differential_fig9 -- 4
+
 # --- peers: OpenMesh, CGAL, OpenSubdiv (Debian packages) ------------------------------------
 if [ -f /usr/include/OpenMesh/Core/Mesh/PolyMeshT.hh ] && [ -d /usr/include/CGAL ] && [ -d /usr/include/opensubdiv ]; then
     peers_selftest() { python3 peers/test_compare_off.py; }
