@@ -62,6 +62,13 @@ struct Options {
   /// Fallbacks become NLS_STATUS_FALLBACK_IN_STRICT_MODE, and the input is refused for what
   /// the kernel accepts by policy but is most likely a mistake (nlsubdiv::flat::strict_check).
   bool strict = false;
+  /// Sharp features: the sharpness given to the edges of the named parameter
+  /// `edge_is_constrained_map` (OpenSubdiv's scale: 10 or more infinitely sharp) and to the
+  /// vertices of `vertex_is_constrained_map` (corners).
+  double crease_sharpness = 10.0;
+  double corner_sharpness = 10.0;
+  /// NLS_CREASE_UNIFORM or NLS_CREASE_CHAIKIN.
+  uint32_t crease_method = NLS_CREASE_UNIFORM;
 };
 
 /// Options of the differential functions (nls_differential_options; seed 001 §3): the
@@ -694,8 +701,39 @@ bool rebuild(PM& pm, const FlatMesh& out) {
   return true;
 }
 
+/// Sharp-feature tags from the named parameters `edge_is_constrained_map` (edges -> bool:
+/// creases, e.g. the output of CGAL::Polygon_mesh_processing::detect_sharp_edges) and
+/// `vertex_is_constrained_map` (vertices -> bool: corners), numbered as `lv` numbers the
+/// vertices. Without either parameter, no tags.
+template <class PM, class NP>
+nlsubdiv::flat::FlatTags tags_of(const PM& pm, const NP& np, const Level<PM>& lv, const Options& opts) {
+  nlsubdiv::flat::FlatTags t;
+  t.method = opts.crease_method;
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::edge_is_constrained_t>::value) {
+    auto ecm = CGAL::parameters::get_parameter(np, CGAL::internal_np::edge_is_constrained);
+    for (auto e : CGAL::edges(pm))
+      if (get(ecm, e)) {
+        auto h = halfedge(e, pm);
+        t.crease_vertices.push_back(lv.vid.at(source(h, pm)));
+        t.crease_vertices.push_back(lv.vid.at(target(h, pm)));
+        t.crease_sharpness.push_back(opts.crease_sharpness);
+      }
+  }
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::vertex_is_constrained_t>::value) {
+    auto vcm = CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_is_constrained);
+    for (auto v : CGAL::vertices(pm))
+      if (get(vcm, v)) {
+        t.corner_vertices.push_back(lv.vid.at(v));
+        t.corner_sharpness.push_back(opts.corner_sharpness);
+      }
+  }
+  return t;
+}
+
 /// The bulk path: flat copy -> nls_mesh_subdivide -> the mesh rebuilt (old vertices
-/// first, in order; the mesh's internal point map receives the positions).
+/// first, in order; the mesh's internal point map receives the positions). With sharp
+/// features ([`tags_of`]) the tagged calls (linear Loop and Catmull–Clark; any other scheme
+/// is NLS_STATUS_TAGS_NOT_SUPPORTED, mesh unchanged).
 template <class PM, class NP>
 Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts) {
   typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
@@ -713,7 +751,10 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
     if (s == NLS_STATUS_OK) s = nlsubdiv::flat::strict_check(lv.flat, el);
   }
   FlatMesh out;
-  if (s == NLS_STATUS_OK) s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks);
+  const nlsubdiv::flat::FlatTags tags = tags_of(pm, np, lv, opts);
+  const nls_tags tv = tags.view();
+  if (s == NLS_STATUS_OK)
+    s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks, tags.empty() ? nullptr : &tv);
   if (s != NLS_STATUS_OK) {
     r.status = s;
     r.element = el;
@@ -739,6 +780,12 @@ Report differential(PM& pm, uint32_t stencil, const NP& np, const DifferentialOp
   r.path = "differential";
   Level<PM> lv;
   lv.build(pm, vpm, SIZE_MAX);
+  if (!tags_of(pm, np, lv, Options()).empty()) {
+    // Differential-space subdivision takes no sharp features.
+    r.status = NLS_STATUS_TAGS_NOT_SUPPORTED;
+    r.level = 1;
+    return r;
+  }
   nls_differential_options o{};
   nls_differential_default_options(&o);
   o.scheme = stencil;
@@ -779,6 +826,16 @@ Report with_mask(PM& pm, const NP& np, Options opts) {
                                                get_property_map(CGAL::vertex_point, pm));
   const unsigned int levels = iterations<PM>(np);
   Report total;
+  {
+    // The star rules have no sharp features (the Möbius schemes take no tags).
+    Level<PM> lv;
+    lv.build(pm, vpm, SIZE_MAX);
+    if (!tags_of(pm, np, lv, opts).empty()) {
+      total.status = NLS_STATUS_TAGS_NOT_SUPPORTED;
+      total.level = 1;
+      return total;
+    }
+  }
   // CGAL's hosts assert CGAL::is_valid_polygon_mesh after each step (it refuses isolated
   // vertices, which the kernel carries through): such meshes take the bulk path, which
   // gives the driver's result, so the answer does not depend on the path.

@@ -125,18 +125,21 @@ inline nls_status strict_check(const FlatMesh& flat, uint32_t& element) {
 
 /// `levels` levels of `scheme` with `flags` on `in` through nls_mesh_plan and
 /// nls_mesh_subdivide (exact sizes first, then one call); `out` receives the result.
-/// `element` the element of a failure, `fallbacks` the report's count.
+/// `element` the element of a failure, `fallbacks` the report's count. With `tags` (sharp
+/// features: crease edges as vertex pairs, corners) the _tagged calls, which carry the tags
+/// level by level inside the one call.
 inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in, uint32_t levels, FlatMesh& out, uint32_t& element,
-                             uint32_t& fallbacks) {
+                             uint32_t& fallbacks, const nls_tags* tags = nullptr) {
   const nls_mesh_view v = view_of(in);
   const nls_subdivide_options o = options_of(scheme, flags, levels);
   std::size_t su0 = 0;
   element = NLS_NO_ELEMENT;
-  nls_status s = nls_mesh_plan_scratch_size(&v, &su0);
+  nls_status s = tags ? nls_mesh_plan_scratch_size_tagged(&v, tags, &su0) : nls_mesh_plan_scratch_size(&v, &su0);
   if (s != NLS_STATUS_OK) return s;
   std::vector<uint32_t> scratch(su0 + 1);
   nls_plan plan{};
-  s = nls_mesh_plan(&v, &o, scratch.data(), scratch.size(), &plan, &element);
+  s = tags ? nls_mesh_plan_tagged(&v, &o, tags, scratch.data(), scratch.size(), &plan, &element)
+           : nls_mesh_plan(&v, &o, scratch.data(), scratch.size(), &plan, &element);
   if (s != NLS_STATUS_OK) return s;
   const std::size_t nv = plan.output.vertex_count, nf = plan.output.face_count, ni = plan.output.index_count;
   scratch.assign(std::max(plan.scratch_u32, su0) + 1, 0);
@@ -148,7 +151,8 @@ inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in
   const nls_mesh_buffers b{out.positions.data(), nv, out.offsets.data(), nf, out.indices.data(), ni};
   nls_mesh_sizes written{};
   nls_subdivide_report rep{};
-  s = nls_mesh_subdivide(&v, &o, &sc, &b, &written, &rep, &element);
+  s = tags ? nls_mesh_subdivide_tagged(&v, &o, tags, &sc, &b, &written, &rep, &element)
+           : nls_mesh_subdivide(&v, &o, &sc, &b, &written, &rep, &element);
   if (s != NLS_STATUS_OK) return s;
   out.positions.resize(3 * written.vertex_count);
   out.offsets.resize(written.face_count + 1);
@@ -193,6 +197,29 @@ inline nls_status run_differential(const nls_differential_options& opt, const Fl
   out.indices = std::move(idx);
   return NLS_STATUS_OK;
 }
+
+/// Sharp-feature tags built by a host from its own feature flags: crease edges as vertex
+/// pairs with one sharpness each, corner vertices with theirs. `view()` is the C struct over
+/// these arrays (valid while this object lives and is not changed).
+struct FlatTags {
+  std::vector<uint32_t> crease_vertices;  ///< 2 per crease
+  std::vector<double> crease_sharpness;   ///< 1 per crease
+  std::vector<uint32_t> corner_vertices;
+  std::vector<double> corner_sharpness;
+  uint32_t method = NLS_CREASE_UNIFORM;
+  bool empty() const { return crease_sharpness.empty() && corner_sharpness.empty(); }
+  nls_tags view() const {
+    nls_tags t{};
+    t.crease_vertices = crease_vertices.data();
+    t.crease_sharpness = crease_sharpness.data();
+    t.crease_count = crease_sharpness.size();
+    t.corner_vertices = corner_vertices.data();
+    t.corner_sharpness = corner_sharpness.data();
+    t.corner_count = corner_sharpness.size();
+    t.method = method;
+    return t;
+  }
+};
 
 }  // namespace flat
 }  // namespace nlsubdiv

@@ -249,6 +249,14 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
 /// nls_mesh_subdivide call on a flat copy of the mesh, then the connectivity is
 /// rebuilt in the driver's layout: the result is the driver's, bit for bit (modulo the point
 /// type). With update_points = false the old vertices keep their positions at every level.
+///
+/// Sharp features: with set_feature_creases(true), the mesh's feature edges
+/// (`status(eh).feature()`, OpenMesh's own flag for sharp edges) are crease tags of the given
+/// sharpness and its feature vertices corners (OpenSubdiv's rules: linear Loop and
+/// Catmull–Clark; any other scheme, or the Möbius flag, fails with
+/// NLS_STATUS_TAGS_NOT_SUPPORTED when the mesh has a feature). The tags are carried level by
+/// level inside the one call, so update_points = false (one call per level) is refused with
+/// NLS_STATUS_INVALID_ARGUMENT when there is a feature. The output carries no feature flags.
 template <typename MeshType, uint32_t Scheme, uint32_t Flags, typename RealType = double>
 class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
  public:
@@ -256,6 +264,16 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   typedef MeshType mesh_t;
   BulkSubdividerT() = default;
   ~BulkSubdividerT() override { this->detach(); }
+
+  /// Feature edges as creases of `sharpness` (OpenSubdiv's scale: 10 or more is infinitely
+  /// sharp, below it semi-sharp) and feature vertices as corners of `corner_sharpness`.
+  void set_feature_creases(bool on, double sharpness = 10.0, double corner_sharpness = 10.0) {
+    features_ = on;
+    crease_sharpness_ = sharpness;
+    corner_sharpness_ = corner_sharpness;
+  }
+  /// NLS_CREASE_UNIFORM (the default) or NLS_CREASE_CHAIKIN.
+  void set_crease_method(uint32_t method) { crease_method_ = method; }
 
   const char* name() const override {
     static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
@@ -281,6 +299,10 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
       if (s == NLS_STATUS_OK) s = detail::strict_check(in, el);
       if (s != NLS_STATUS_OK) return this->fail(s, el, 1);
     }
+    tags_ = nlsubdiv::flat::FlatTags();
+    tags_.method = crease_method_;
+    if (features_) feature_tags(m, tags_);
+    if (!tags_.empty() && !update_points) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
     FlatMesh cur = in, next;
     // update_points = false: one level at a time, old vertices put back after each.
     const uint32_t per_call = update_points ? static_cast<uint32_t>(n) : 1u;
@@ -305,11 +327,36 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
  private:
   bool run(const FlatMesh& in, uint32_t levels, uint32_t flags, FlatMesh& out, uint32_t done) {
     uint32_t element = NLS_NO_ELEMENT, fallbacks = 0;
-    nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks);
+    const nls_tags t = tags_.view();
+    nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks, tags_.empty() ? nullptr : &t);
     if (s != NLS_STATUS_OK) return this->fail(s, element, done + 1);
     this->out_.fallbacks += fallbacks;
     return true;
   }
+
+  /// The feature edges and vertices of `m` as tags (vertex indices are export_flat's).
+  void feature_tags(const mesh_t& m, nlsubdiv::flat::FlatTags& t) const {
+    if (m.has_edge_status())
+      for (auto e : m.edges())
+        if (m.status(e).feature()) {
+          auto h = m.halfedge_handle(e, 0);
+          t.crease_vertices.push_back(static_cast<uint32_t>(m.from_vertex_handle(h).idx()));
+          t.crease_vertices.push_back(static_cast<uint32_t>(m.to_vertex_handle(h).idx()));
+          t.crease_sharpness.push_back(crease_sharpness_);
+        }
+    if (m.has_vertex_status())
+      for (auto v : m.vertices())
+        if (m.status(v).feature()) {
+          t.corner_vertices.push_back(static_cast<uint32_t>(v.idx()));
+          t.corner_sharpness.push_back(corner_sharpness_);
+        }
+  }
+
+  bool features_ = false;
+  double crease_sharpness_ = 10.0;
+  double corner_sharpness_ = 10.0;
+  uint32_t crease_method_ = NLS_CREASE_UNIFORM;
+  nlsubdiv::flat::FlatTags tags_;
 };
 
 /// Möbius Modified Butterfly through the driver (the tier-1 class MobiusButterflyT is below).

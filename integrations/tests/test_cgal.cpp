@@ -302,6 +302,88 @@ static int bad_child(const std::string& path, int fd, bool valid) {
   return bad ? 1 : 0;
 }
 
+/// Sharp features through the named parameters edge_is_constrained_map (creases) and
+/// vertex_is_constrained_map (corners): a unit cube with all twelve edges constrained equals
+/// the C driver's tagged call with the same edges given as vertex pairs, keeps its corners
+/// and has 12 (2^k - 1) + 8 vertices on its edge lines after k = 2 levels of Catmull-Clark;
+/// one constrained corner stays put under Loop on an octahedron; a Möbius function with a
+/// constrained edge is refused (NLS_STATUS_TAGS_NOT_SUPPORTED), mesh unchanged.
+static void sharp_features(itest::Tally& t) {
+  static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  SM cube;
+  std::vector<SM::Vertex_index> vh;
+  for (auto& p : P) vh.push_back(cube.add_vertex(K::Point_3(p[0], p[1], p[2])));
+  for (auto& f : F) cube.add_face(vh[f[0]], vh[f[1]], vh[f[2]], vh[f[3]]);
+  const Flat in = flat_of(cube);
+  // The driver, with the twelve edges typed as vertex pairs (the cube's vertex indices).
+  static const uint32_t E[24] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+  static const double S[12] = {10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10};
+  nls_tags tags{};
+  tags.crease_vertices = E;
+  tags.crease_sharpness = S;
+  tags.crease_count = 12;
+  nlsubdiv::flat::FlatMesh fin, want;
+  fin.positions = in.pos;
+  fin.offsets = in.off;
+  fin.indices = in.idx;
+  uint32_t el = 0, fb = 0;
+  const nls_status ds = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, 0, fin, 2, want, el, fb, &tags);
+  SM a = cube;
+  auto ecm = a.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
+  nc::Report r = nc::catmull_clark_subdivision(a, CGAL::parameters::number_of_iterations(2).edge_is_constrained_map(ecm));
+  Flat got = flat_of(a), ref;
+  ref.pos = want.positions;
+  ref.off = want.offsets;
+  ref.idx = want.indices;
+  itest::Cmp c = itest::compare(got, ref);
+  std::size_t on_edges = 0;
+  bool corners_kept = got.nv() >= 8;
+  for (std::size_t v = 0; v < got.nv(); ++v) {
+    int n = 0;
+    for (int k = 0; k < 3; ++k) n += (std::fabs(got.pos[3 * v + k]) <= 1e-15 || std::fabs(got.pos[3 * v + k] - 1.0) <= 1e-15);
+    on_edges += n >= 2;
+    if (v < 8)
+      for (int k = 0; k < 3; ++k) corners_kept = corners_kept && got.pos[3 * v + k] == P[v][k];
+  }
+  if (ds == NLS_STATUS_OK && r.ok() && c.ok(0.0) && on_edges == 12 * 3 + 8 && corners_kept)
+    t.pass("CGAL edge_is_constrained_map = driver tags (sharp cube keeps its edges and corners)", c.max_rel);
+  else
+    t.fail(std::string("CGAL sharp features: ") + r.message() + "; " + c.summary() + " on_edges=" + std::to_string(on_edges) +
+           (corners_kept ? "" : " corners moved"));
+  // A constrained corner under Loop: octahedron, vertex 4 kept bit for bit.
+  auto make_oct = [] {
+    static const double Q[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const int T[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    SM m;
+    std::vector<SM::Vertex_index> oh;
+    for (auto& q : Q) oh.push_back(m.add_vertex(K::Point_3(q[0], q[1], q[2])));
+    for (auto& f : T) m.add_face(oh[f[0]], oh[f[1]], oh[f[2]]);
+    return m;
+  };
+  SM oct = make_oct();
+  auto vcm = oct.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
+  put(vcm, SM::Vertex_index(4), true);
+  nc::Report r2 = nc::loop_subdivision(oct, CGAL::parameters::number_of_iterations(3).vertex_is_constrained_map(vcm));
+  const auto p4 = oct.point(SM::Vertex_index(4)), p5 = oct.point(SM::Vertex_index(5));
+  if (r2.ok() && p4.x() == 0 && p4.y() == 0 && p4.z() == 1 && p5.z() != -1)
+    t.pass("CGAL vertex_is_constrained_map corner kept, the free apex moves", 0);
+  else
+    t.fail(std::string("CGAL corner: ") + r2.message());
+  // A scheme without tag rules refuses, mesh unchanged.
+  SM b = cube;
+  auto ecm2 = b.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
+  nc::Report r3 = nc::mobius_catmull_clark_subdivision(b, CGAL::parameters::number_of_iterations(1).edge_is_constrained_map(ecm2));
+  SM d = make_oct();
+  auto vcm2 = d.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
+  put(vcm2, SM::Vertex_index(4), true);
+  nc::Report r4 = nc::mobius_loop_subdivision(d, CGAL::parameters::number_of_iterations(1).vertex_is_constrained_map(vcm2));
+  if (r3.status == NLS_STATUS_TAGS_NOT_SUPPORTED && flat_of(b) == in && r4.status == NLS_STATUS_TAGS_NOT_SUPPORTED)
+    t.pass("CGAL Möbius functions refuse constrained edges and vertices, mesh unchanged", 0);
+  else
+    t.fail(std::string("CGAL Möbius with features: ") + r3.message() + " / " + r4.message());
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
@@ -370,6 +452,7 @@ int main(int argc, char** argv) {
   std::printf("bad meshes: %zu files, %d loaded as they are by CGAL (format_* included), %d broken ones refused by every function with the mesh unchanged\n",
               bad.size(), loaded, refused);
   differential_refuses_non_triangles(t);
+  sharp_features(t);
   for (const auto& w : t.worst) std::printf("  %-70s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_cgal: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);

@@ -392,6 +392,77 @@ static void synthetic(itest::Tally& t) {
   }
 }
 
+/// Sharp features: OpenMesh feature edges and vertices through set_feature_creases equal the
+/// C driver's tagged call with the same tags given directly, bit for bit; a unit cube with all
+/// twelve edges feature keeps its corners and has 12 (2^k - 1) + 8 vertices on its edge lines
+/// after k = 2 levels of Catmull-Clark (the rules' consequence, not a recorded output); no
+/// feature is the untagged result; a Möbius or Butterfly subdivider with features is refused
+/// (NLS_STATUS_TAGS_NOT_SUPPORTED) with the mesh unchanged.
+static void feature_creases(itest::Tally& t) {
+  static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  Poly cube;
+  std::vector<Poly::VertexHandle> vh;
+  for (auto& p : P) vh.push_back(cube.add_vertex(Poly::Point(p[0], p[1], p[2])));
+  for (auto& f : F) cube.add_face(std::vector<Poly::VertexHandle>{vh[f[0]], vh[f[1]], vh[f[2]], vh[f[3]]});
+  Poly plain = cube;
+  cube.request_edge_status();
+  cube.request_vertex_status();
+  for (auto e : cube.edges()) cube.status(e).set_feature(true);
+  // The driver with the twelve edges typed as vertex pairs.
+  nls_tags tags{};
+  static const uint32_t E[24] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+  static const double S[12] = {10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10};
+  tags.crease_vertices = E;
+  tags.crease_sharpness = S;
+  tags.crease_count = 12;
+  nlsubdiv::flat::FlatMesh in, want;
+  nom::detail::export_flat(plain, in);
+  uint32_t el = 0, fb = 0;
+  nls_status ds = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, 0, in, 2, want, el, fb, &tags);
+  Poly a = cube;
+  nom::LinearCatmullClarkT<Poly> sd;
+  sd.set_feature_creases(true);
+  const bool ok = sd(a, 2);
+  Flat got = flat_of(a);
+  const bool same = ds == NLS_STATUS_OK && ok && got.pos == want.positions && got.off == want.offsets && got.idx == want.indices;
+  std::size_t on_edges = 0;
+  bool corners_kept = got.nv() >= 8;
+  for (std::size_t v = 0; v < got.nv(); ++v) {
+    int n = 0;
+    for (int k = 0; k < 3; ++k) n += (std::fabs(got.pos[3 * v + k]) <= 1e-15 || std::fabs(got.pos[3 * v + k] - 1.0) <= 1e-15);
+    on_edges += n >= 2;
+    if (v < 8)
+      for (int k = 0; k < 3; ++k) corners_kept = corners_kept && got.pos[3 * v + k] == P[v][k];
+  }
+  if (same && on_edges == 12 * 3 + 8 && corners_kept)
+    t.pass("OpenMesh feature edges = driver tags (sharp cube keeps its edges and corners)", 0);
+  else
+    t.fail(std::string("feature creases: ") + (ok ? "" : sd.message()) + (same ? "" : " differs from the tagged driver") +
+           (corners_kept ? "" : " corners moved") + " on_edges=" + std::to_string(on_edges));
+  // No feature flag set: the untagged result.
+  Poly b = plain, c = plain;
+  nom::LinearCatmullClarkT<Poly> sd2, sd3;
+  sd2.set_feature_creases(true);
+  if (sd2(b, 2) && sd3(c, 2) && flat_of(b) == flat_of(c))
+    t.pass("OpenMesh feature creases without features = untagged", 0);
+  else
+    t.fail("feature creases without features differ from the untagged subdivider");
+  // Schemes without tag rules refuse a mesh with features, unchanged.
+  Poly d = cube;
+  nom::MobiusCatmullClarkBulkT<Poly> mob;
+  mob.set_feature_creases(true);
+  const bool refused = !mob(d, 1) && mob.status() == NLS_STATUS_TAGS_NOT_SUPPORTED && flat_of(d) == flat_of(cube);
+  Poly e = cube;
+  nom::LinearCatmullClarkT<Poly> per_level;
+  per_level.set_feature_creases(true);
+  const bool refused2 = !per_level(e, 1, false) && per_level.status() == NLS_STATUS_INVALID_ARGUMENT;
+  if (refused && refused2)
+    t.pass("features refused by Möbius subdividers and by per-level calls, mesh unchanged", 0);
+  else
+    t.fail(std::string("features not refused: ") + mob.message() + " / " + per_level.message());
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
@@ -478,6 +549,7 @@ int main(int argc, char** argv) {
               bad.size(), loaded, refused);
   synthetic(t);
   differential_refuses_non_triangles(t);
+  feature_creases(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_openmesh: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);
