@@ -14,6 +14,9 @@ Seeds, encoded exactly in the input layouts documented at the top of fuzz_target
   bad/, each under the names t.off and t.txt, and written as OBJ (with a byte-order mark,
   CR LF, relative indices) and PLY (ASCII, binary little- and big-endian), plus the OFF
   variants of Geomview's keyword (COFF, NOFF, STOFF, 4OFF, nOFF, ...);
+- tags: a 16-face crop of every shared mesh with creases along its first faces' edges
+  (infinitely sharp and semi-sharp, uniform and Chaikin) and a corner, under linear Loop or
+  Catmull–Clark, the Möbius flag, a scheme without tag rules, and a pair that is no edge;
 - differential: the all-triangle shared meshes with at most 200 vertices and a 16-face crop of
   every all-triangle mesh, each with Loop, Modified Butterfly and DirMag (1 and 2 levels), a
   few with curvature-scale and normal edits; every mesh of bad/ once (Loop).
@@ -130,6 +133,21 @@ def mesh_input(scheme, flags, levels, pos, faces):
 
 
 DIFF_MAX_VERTICES = 200
+
+
+def tags_input(scheme, flags, levels, method, creases, corners, pos, faces):
+    """The tags target's layout: scheme, flags, levels (1, 2, 3, 0 by b % 4), method byte,
+    crease count, corner count, creases (a u16, b u16, sharpness code u8), corners (v u16,
+    code u8), then the mesh as in mesh_input (vertex_count u16, face_count u16, ...)."""
+    level_byte = {1: 0, 2: 1, 3: 2, 0: 3}[levels]
+    b = struct.pack("<6B", scheme, flags, level_byte, method, len(creases), len(corners))
+    b += b"".join(struct.pack("<HHB", a, c, code) for a, c, code in creases)
+    b += b"".join(struct.pack("<HB", v, code) for v, code in corners)
+    b += struct.pack("<HH", len(pos), len(faces))
+    b += bytes(min(len(f), 255) for f in faces)
+    b += b"".join(struct.pack("<H", v & 0xFFFF) for f in faces for v in f[:255])
+    b += b"".join(struct.pack("<3d", *p) for p in pos)
+    return b
 
 
 def differential_input(scheme, levels, dirmag, pos, faces, edits=0):
@@ -255,6 +273,26 @@ def main():
             cpos, cfaces = crop(pos, faces)
             for s in SCHEMES:
                 write("mesh", f"{name}-crop-s{s}", mesh_input(s, s % 2, 1 + s % 3, cpos, cfaces), counts)
+        # Tags: creases along the crop's first two faces (codes: 6 = 10, 3 = 1.3, 5 = 2.75).
+        if faces and path not in bad_files:
+            cpos, cfaces = crop(pos, faces)
+            edges = []
+            for f in cfaces[:2]:
+                for i in range(len(f)):
+                    e = (f[i], f[(i + 1) % len(f)])
+                    if (e[1], e[0]) not in edges and e not in edges:
+                        edges.append(e)
+            scheme = 0 if all(len(f) == 3 for f in cfaces) else 1
+            sharp = [(a, c, 6) for a, c in edges[:3]]
+            semi = [(a, c, [3, 5, 6][i % 3]) for i, (a, c) in enumerate(edges[:5])]
+            corner = [(cfaces[0][0], 6)]
+            write("tags", f"{name}-sharp", tags_input(scheme, 0, 2, 0, sharp, corner, cpos, cfaces), counts)
+            write("tags", f"{name}-chaikin", tags_input(scheme, 0, 3, 1, semi, [], cpos, cfaces), counts)
+            write("tags", f"{name}-mobius", tags_input(scheme, 1, 1, 0, sharp, [], cpos, cfaces), counts)
+            write("tags", f"{name}-other", tags_input(2 if scheme == 0 else 4, 0, 1, 0, sharp, [], cpos, cfaces), counts)
+            write("tags", f"{name}-none", tags_input(scheme, 0, 2, 0, [], [], cpos, cfaces), counts)
+            if len(cpos) > 2:
+                write("tags", f"{name}-notedge", tags_input(scheme, 0, 1, 0, [(0, 0, 6)] + sharp, [], cpos, cfaces), counts)
         # Curves: the first face as a closed polygon, a row of vertices as an open one.
         if faces and all(0 <= v < len(pos) for v in faces[0]):
             poly = [pos[v] for v in faces[0]]

@@ -144,7 +144,7 @@ if ! rustup toolchain list 2>/dev/null | grep -q nightly; then
 elif ! cargo fuzz --version >/dev/null 2>&1; then
     skip "fuzz (mesh, curve, primitives, differential, parsers)" "cargo-fuzz not installed (scripts/setup.sh installs it)"
 else
-    step "fuzz: mesh, curve, primitives, differential, parsers under ASan (nightly), 3 × ${NLS_FUZZ_SECONDS:-60} s shared" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
+    step "fuzz: mesh, curve, primitives, differential, parsers, tags under ASan (nightly), 3 × ${NLS_FUZZ_SECONDS:-60} s shared" scripts/fuzz.sh "${NLS_FUZZ_SECONDS:-60}"
 fi
 
 # --- the papers' figures that are cheap enough for every run ----------------------------------
