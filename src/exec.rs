@@ -147,12 +147,7 @@ type RangeFn<'f> = dyn Fn(usize, &mut [Point], &mut Tally) -> Result<()> + Sync 
 
 /// [`pass`] in `k ≥ 2` chunks (out of line: the serial path keeps a small stack frame).
 #[inline(never)]
-fn split_pass(
-    exec: &dyn Executor,
-    out: &mut [Point],
-    k: usize,
-    f: &RangeFn<'_>,
-) -> Result<Tally> {
+fn split_pass(exec: &dyn Executor, out: &mut [Point], k: usize, f: &RangeFn<'_>) -> Result<Tally> {
     let size = out.len().div_ceil(k).max(1);
     let mut chunks = ArrayVec::<Chunk<'_>, MAX_CHUNKS>::new();
     let mut start = 0;

@@ -177,7 +177,7 @@ pub(crate) fn step(
     let (edge_c, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
     let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
     let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
-    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);
+    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts, exec);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
