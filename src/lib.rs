@@ -73,6 +73,7 @@ pub mod blend;
 pub mod curve;
 pub mod differential;
 pub mod error;
+pub mod exec;
 pub mod mesh;
 pub mod metrics;
 pub mod mobius;
@@ -87,7 +88,8 @@ pub use point::Point;
 pub use quat::Quat;
 pub use scheme::{
     plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, subdivide, subdivide_tagged,
-    CreaseMethod, Options, Plan, Report, Scheme, Scratch, ScratchSizes, Tags, MAX_LEVELS,
+    subdivide_with, CreaseMethod, Options, Plan, Report, Scheme, Scratch, ScratchSizes, Tags,
+    MAX_LEVELS,
 };
 
 /// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held

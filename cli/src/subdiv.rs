@@ -113,6 +113,11 @@ pub struct Outcome {
     pub first_guarded: Option<String>,
     /// Time spent in the core (planning and every level).
     pub elapsed: Duration,
+    /// Time of the kernel's subdivision call alone (every level; no planning, allocation or
+    /// file I/O).
+    pub kernel: Duration,
+    /// The threads that call ran on.
+    pub threads: usize,
 }
 
 /// Names the elements of the input of one step: the file's (level 0, with lines) or an
@@ -470,14 +475,18 @@ pub struct Mode {
     pub literal: bool,
     /// The weight of the Möbius result in the Möbius–linear spectrum (`Options::spectrum`).
     pub spectrum: f64,
+    /// Threads of the kernel's passes (`nlsubdiv_threads`; the output is the same bits for
+    /// every count).
+    pub threads: usize,
 }
 
 impl Mode {
-    /// Not strict, the fold guard on, the Möbius result.
+    /// Not strict, the fold guard on, the Möbius result, one thread.
     pub const DEFAULT: Mode = Mode {
         strict: false,
         literal: false,
         spectrum: 1.0,
+        threads: 1,
     };
 }
 
@@ -502,6 +511,7 @@ pub fn run(
         strict,
         literal,
         spectrum,
+        threads,
     } = mode;
     let started = Instant::now();
     if levels > MAX_LEVELS {
@@ -556,10 +566,13 @@ pub fn run(
     let mut points = memory::filled(plan.scratch.points, [0.0; 3], "the intermediate levels")?;
     let mut next = output_mesh(out_sizes)?;
     let spinner = ctx.spinner("subdividing");
+    let kernel_started = Instant::now();
     let result = {
         let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
-        scheme::subdivide(mesh0, &all, Scratch::new(&mut u32s, &mut points), &mut out)
+        let scratch = Scratch::new(&mut u32s, &mut points);
+        nlsubdiv_threads::subdivide(mesh0, &all, scratch, &mut out, threads)
     };
+    let kernel = kernel_started.elapsed();
     drop(spinner);
     drop((u32s, points));
     let report = match result {
@@ -601,6 +614,8 @@ pub fn run(
         first_guarded: (report.guarded > 0)
             .then(|| describe(report.first_guarded_level, report.first_guarded)),
         elapsed: started.elapsed(),
+        kernel,
+        threads: threads.max(1),
     })
 }
 
@@ -751,6 +766,7 @@ pub fn run_tagged(
     let mut next = output_mesh(out_sizes)?;
     let _spinner = ctx.spinner("subdividing");
     let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
+    let kernel_started = Instant::now();
     let report = scheme::subdivide_tagged(
         mesh0,
         &opts,
@@ -768,6 +784,7 @@ pub fn run_tagged(
             ))
         })
     })?;
+    let kernel = kernel_started.elapsed();
     if report.sizes != out_sizes {
         return Err(CliError::internal(
             "tagged subdivision wrote other sizes than planned",
@@ -781,5 +798,9 @@ pub fn run_tagged(
         guarded: 0,
         first_guarded: None,
         elapsed: started.elapsed(),
+        kernel,
+        // The tagged rules run on the calling thread (tests/parallel.rs covers the untagged
+        // passes).
+        threads: 1,
     })
 }

@@ -671,3 +671,45 @@ fn spectrum_runs_from_the_linear_to_the_mobius_result() {
     assert!(stderr(&o).contains("--spectrum"), "{}", stderr(&o));
     assert!(!dir.path("bad.off").exists());
 }
+
+/// `--threads N`: the same output file, byte for byte, for 1, 2, 3 and 7 threads, linear and
+/// Möbius; the summary names the thread count and the kernel's time in milliseconds.
+#[test]
+fn threads_give_the_same_bytes() {
+    let dir = TempDir::new("subdivide-threads");
+    torus(24, 16, 2.0, 0.6).write_off(&dir.path("t.off"));
+    for scheme in [
+        "catmull-clark",
+        "mobius-catmull-clark",
+        "doo-sabin",
+        "spherelike",
+    ] {
+        let mut first: Option<Vec<u8>> = None;
+        for t in [1, 2, 3, 7] {
+            let out = format!("out{t}.off");
+            let o = run(&[
+                "subdivide",
+                "--scheme",
+                scheme,
+                "--levels",
+                "3",
+                "--threads",
+                &t.to_string(),
+                dir.path("t.off").to_str().unwrap(),
+                dir.path(&out).to_str().unwrap(),
+            ]);
+            assert_eq!(code(&o), 0, "{scheme} {t}: {}", stderr(&o));
+            let plural = if t == 1 { "thread" } else { "threads" };
+            assert!(
+                stderr(&o).contains(&format!(" ms, {t} {plural})")),
+                "{scheme} {t}: {}",
+                stderr(&o)
+            );
+            let bytes = std::fs::read(dir.path(&out)).unwrap();
+            match &first {
+                None => first = Some(bytes),
+                Some(b) => assert!(*b == bytes, "{scheme}: {t} threads differ from 1"),
+            }
+        }
+    }
+}

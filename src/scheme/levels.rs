@@ -16,6 +16,7 @@ use super::{Options, Report, Scratch};
 #[cfg(doc)]
 use crate::error::Status;
 use crate::error::{Error, Result};
+use crate::exec::Executor;
 use crate::mesh::refine::{child_topology, derivable, Pattern};
 use crate::mesh::{cadd, internal, topology_scratch_size, Mesh, MeshOut, Topology};
 use crate::point::Point;
@@ -86,6 +87,7 @@ pub(super) fn run(
     tags: &Tags<'_>,
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
+    exec: &dyn Executor,
 ) -> Result<Report> {
     let Scratch {
         u32s: scratch_u32,
@@ -197,12 +199,20 @@ pub(super) fn run(
         };
         let sharp = tagged.then_some(&sharp);
         let (written, r) = if k + 1 == levels {
-            step(scheme, mobius, sharp, &topo, out, step_scratch)?
+            step(scheme, mobius, sharp, &topo, out, step_scratch, exec)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(&mut *out_p, o, rest);
-            step(scheme, mobius, sharp, &topo, &mut step_out, step_scratch)?
+            step(
+                scheme,
+                mobius,
+                sharp,
+                &topo,
+                &mut step_out,
+                step_scratch,
+                exec,
+            )?
         };
         report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
         if report.first_fallback_level == 0 && r.fallbacks > 0 {

@@ -5,13 +5,16 @@
 //! ([`crate::mesh::refine`]), written by the step ([`super::subdivide`]) before the
 //! positions.
 //!
-//! Order of evaluation, fixed for determinism: face points (face order), edge points
-//! (edge-id order), vertex points (vertex order); a rule that needs face or edge points reads
-//! them back from the output buffer.
+//! Order of evaluation, fixed for determinism: passes over the output in the order their
+//! rules read each other (Catmull–Clark: face points, then vertex and edge points; Kobbelt:
+//! vertex and edge points, then face points), each pass split into disjoint output ranges
+//! ([`crate::exec`]); a rule that needs face or edge points reads them back from the output
+//! buffer of an earlier pass. Within a pass the output order is the error order.
 
-use super::carry::{append_isolated, boundary_vertices, copy_old};
+use super::carry::{append_isolated, boundary_vertices};
 use super::Scheme;
 use crate::error::{Error, Result, Status};
+use crate::exec::{pass, Executor};
 use crate::mesh::gather::{
     apex, boundary_beyond, face_points_into, ring_points_into, FacePts, Ring,
 };
@@ -23,36 +26,62 @@ use crate::stencil::{
 
 /// Writes the positions of one step of the linear `scheme` on `topo` into `pos` (the sizes of
 /// the scheme's pattern); an internal error for [`Scheme::Spherelike`], which is not linear
-/// ([`super::spherelike`]).
-pub(crate) fn positions(scheme: Scheme, topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+/// ([`super::spherelike`]). The passes are split into chunks run by `exec` ([`crate::exec`]): the same bits for
+/// every executor and chunking.
+pub(crate) fn positions(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
     match scheme {
-        Scheme::Loop => loop_positions(topo, pos),
-        Scheme::CatmullClark => catmull_clark_positions(topo, pos),
-        Scheme::ModifiedButterfly => butterfly_positions(topo, pos),
-        Scheme::Kobbelt => kobbelt_positions(topo, pos),
-        Scheme::DooSabin => doo_sabin_positions(topo, pos),
+        Scheme::Loop => loop_positions(topo, pos, exec),
+        Scheme::CatmullClark => catmull_clark_positions(topo, pos, exec),
+        Scheme::ModifiedButterfly => butterfly_positions(topo, pos, exec),
+        Scheme::Kobbelt => kobbelt_positions(topo, pos, exec),
+        Scheme::DooSabin => doo_sabin_positions(topo, pos, exec),
         Scheme::Simplest => simplest_positions(topo, pos),
         Scheme::Dual => dual_positions(topo, pos),
-        Scheme::VertexInsertion => vertex_insertion_positions(topo, pos),
-        Scheme::DualTruncation => dual_truncation_positions(topo, pos),
+        Scheme::VertexInsertion => vertex_insertion_positions(topo, pos, exec),
+        Scheme::DualTruncation => dual_truncation_positions(topo, pos, exec),
         Scheme::Spherelike => Err(internal()),
     }
+}
+
+/// Splits the chunk `out` (output indices `start..start + out.len()`) at output index
+/// `at`: the part below `at` and the part from it.
+pub(crate) fn split_chunk(
+    start: usize,
+    out: &mut [Point],
+    at: usize,
+) -> Result<(&mut [Point], &mut [Point])> {
+    let k = at.saturating_sub(start).min(out.len());
+    out.split_at_mut_checked(k).ok_or(internal())
 }
 
 // ---- Loop ----
 
 /// Loop: vertex points (vertex order), then edge points (edge order), each rule of
-/// [`loop_scheme`] on its neighbourhood; the loops read the topology's arrays directly
-/// ([`Topology::raw`]) and hand the rules the points of the queries (`star`, `apex`), in
-/// their order.
-fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+/// [`loop_scheme`] on its neighbourhood, in one pass over the output (each point reads only
+/// the input). The loops read the topology's arrays directly ([`Topology::raw`]) and hand
+/// the rules the points of the queries (`star`, `apex`), in their order.
+fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point], exec: &dyn Executor) -> Result<()> {
+    let nv = topo.num_vertices();
+    pass(exec, pos, |start, out, _| {
+        let (vpos, epos) = split_chunk(start, out, nv)?;
+        loop_vertices(topo, start, vpos)?;
+        loop_edges(topo, start.saturating_sub(nv), epos)
+    })
+    .map(|_| ())
+}
+
+/// The Loop vertex points of vertices `first..first + out.len()`.
+fn loop_vertices(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
     let r = topo.raw();
     let mesh = topo.mesh();
     let position = |v: u32| mesh.position(v).ok_or(internal());
-    let nv = topo.num_vertices();
-    let (vpos, epos) = pos.split_at_mut_checked(nv).ok_or(internal())?;
     let mut ring = Ring::new();
-    for (v, out) in (0u32..).zip(vpos.iter_mut()) {
+    for (v, out) in (first as u32..).zip(out.iter_mut()) {
         let p = position(v)?;
         let start = get(r.vert_he, v as usize)?;
         *out = if start == NONE {
@@ -76,7 +105,19 @@ fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
             loop_scheme::vertex_interior(p, &ring)?
         };
     }
-    for (&h, out) in r.edge_he.iter().zip(epos.iter_mut()) {
+    Ok(())
+}
+
+/// The Loop edge points of edges `first..first + out.len()`.
+fn loop_edges(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
+    let r = topo.raw();
+    let mesh = topo.mesh();
+    let position = |v: u32| mesh.position(v).ok_or(internal());
+    let edge_he = r.edge_he.get(first..).unwrap_or(&[]);
+    if edge_he.len() < out.len() {
+        return Err(internal());
+    }
+    for (&h, out) in edge_he.iter().zip(out.iter_mut()) {
         // Triangles: the apex of h (`apex`, the end of next(h)) is the origin of prev(h).
         let (next, prev, _) = r.next_prev_face(h)?;
         let a = position(get(r.indices, h as usize)?)?;
@@ -96,22 +137,47 @@ fn loop_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
 
 // ---- Catmull–Clark ----
 
-/// Catmull–Clark: face points (face order), edge points (edge order), vertex points (vertex
-/// order), each rule of [`catmull_clark`] on its neighbourhood gathered in the star's order.
+/// Catmull–Clark: face points (face order), then vertex points (vertex order) and edge
+/// points (edge order) in one pass over the output (they read the input and the face
+/// points), each rule of [`catmull_clark`] on its neighbourhood gathered in the star's order.
 /// The loops read the topology's arrays directly ([`Topology::raw`]); the points handed to
 /// the rules, and their order, are those of the queries (`face_vertices`, `star`).
-fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+fn catmull_clark_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let nv = topo.num_vertices();
+    let ne = topo.num_edges();
+    let (ve, fpos) = pos.split_at_mut_checked(nv + ne).ok_or(internal())?;
+    pass(exec, fpos, |start, out, _| {
+        catmull_clark_faces(topo, start, out)
+    })?;
+    let fpos: &[Point] = fpos;
+    pass(exec, ve, |start, out, _| {
+        let (vpos, epos) = split_chunk(start, out, nv)?;
+        catmull_clark_vertices(topo, fpos, start, vpos)?;
+        catmull_clark_edges(topo, fpos, start.saturating_sub(nv), epos)
+    })
+    .map(|_| ())
+}
+
+/// The Catmull–Clark face points of faces `first..first + out.len()`.
+fn catmull_clark_faces(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
     let r = topo.raw();
     let mesh = topo.mesh();
     let position = |v: u32| mesh.position(v).ok_or(internal());
-    let nv = topo.num_vertices();
-    let ne = topo.num_edges();
-    let (vpos, rest) = pos.split_at_mut_checked(nv).ok_or(internal())?;
-    let (epos, fpos) = rest.split_at_mut_checked(ne).ok_or(internal())?;
     if r.quads {
         // Every face a quad: corners 4f..4f + 4, gathered without a growing buffer.
-        let quads = r.indices.chunks_exact(4);
-        for (q, out) in quads.zip(fpos.iter_mut()) {
+        let quads = r
+            .indices
+            .get(4 * first..)
+            .ok_or(internal())?
+            .chunks_exact(4);
+        if quads.len() < out.len() {
+            return Err(internal());
+        }
+        for (q, out) in quads.zip(out.iter_mut()) {
             let &[a, b, c, d] = q else {
                 return Err(internal());
             };
@@ -120,7 +186,11 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
         }
     } else {
         let mut pts = FacePts::new();
-        for (w, out) in r.offsets.windows(2).zip(fpos.iter_mut()) {
+        let offsets = r.offsets.get(first..).ok_or(internal())?;
+        if offsets.len() <= out.len() {
+            return Err(internal());
+        }
+        for (w, out) in offsets.windows(2).zip(out.iter_mut()) {
             let &[a, b] = w else {
                 return Err(internal());
             };
@@ -131,8 +201,24 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
             *out = catmull_clark::face_point(&pts)?;
         }
     }
-    let fpos: &[Point] = fpos;
-    for (&h, out) in r.edge_he.iter().zip(epos.iter_mut()) {
+    Ok(())
+}
+
+/// The Catmull–Clark edge points of edges `first..first + out.len()`.
+fn catmull_clark_edges(
+    topo: &Topology<'_, '_>,
+    fpos: &[Point],
+    first: usize,
+    out: &mut [Point],
+) -> Result<()> {
+    let r = topo.raw();
+    let mesh = topo.mesh();
+    let position = |v: u32| mesh.position(v).ok_or(internal());
+    let edge_he = r.edge_he.get(first..).unwrap_or(&[]);
+    if edge_he.len() < out.len() {
+        return Err(internal());
+    }
+    for (&h, out) in edge_he.iter().zip(out.iter_mut()) {
         let (next, _, f) = r.next_prev_face(h)?;
         let a = position(get(r.indices, h as usize)?)?;
         let b = position(get(r.indices, next as usize)?)?;
@@ -145,9 +231,22 @@ fn catmull_clark_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result
             catmull_clark::edge_interior(a, b, f0, f1)
         };
     }
+    Ok(())
+}
+
+/// The Catmull–Clark vertex points of vertices `first..first + out.len()`.
+fn catmull_clark_vertices(
+    topo: &Topology<'_, '_>,
+    fpos: &[Point],
+    first: usize,
+    out: &mut [Point],
+) -> Result<()> {
+    let r = topo.raw();
+    let mesh = topo.mesh();
+    let position = |v: u32| mesh.position(v).ok_or(internal());
     let mut ring = Ring::new();
     let mut faces = Ring::new();
-    for (v, out) in (0u32..).zip(vpos.iter_mut()) {
+    for (v, out) in (first as u32..).zip(out.iter_mut()) {
         let p = position(v)?;
         let start = get(r.vert_he, v as usize)?;
         *out = if start == NONE {
@@ -212,11 +311,28 @@ fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point>
     butterfly::zorin_stencil(topo.position(v)?, &ring).map_err(|e| e.with_element(v))
 }
 
-fn butterfly_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    copy_old(topo, pos)?;
+/// The old vertices, then the edge points, in one pass over the output.
+fn butterfly_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
     let nv = topo.num_vertices();
-    for e in 0..topo.num_edges() as u32 {
-        set(pos, nv + e as usize, butterfly_edge(topo, e)?)?;
+    pass(exec, pos, |start, out, _| {
+        let (vpos, epos) = split_chunk(start, out, nv)?;
+        copy_range(topo, start, vpos)?;
+        for (e, out) in (start.saturating_sub(nv) as u32..).zip(epos.iter_mut()) {
+            *out = butterfly_edge(topo, e)?;
+        }
+        Ok(())
+    })
+    .map(|_| ())
+}
+
+/// The old vertices `first..first + out.len()` (primal patterns keep them at their index).
+fn copy_range(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
+    for (v, out) in (first as u32..).zip(out.iter_mut()) {
+        *out = topo.position(v)?;
     }
     Ok(())
 }
@@ -303,58 +419,83 @@ pub(crate) fn kobbelt_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
     Ok(kobbelt::four_point(r0, a0, a1, r1))
 }
 
-fn kobbelt_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    copy_old(topo, pos)?;
+/// The old vertices and the edge points in one pass, then the face points (which read the
+/// edge points back).
+fn kobbelt_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
     let nv = topo.num_vertices();
     let ne = topo.num_edges();
-    for e in 0..ne as u32 {
-        set(pos, nv + e as usize, kobbelt_edge(topo, e)?)?;
-    }
-    let ep = |pos: &[Point], h: u32| -> Result<Point> { get(pos, nv + topo.edge(h)? as usize) };
+    let (ve, fpos) = pos.split_at_mut_checked(nv + ne).ok_or(internal())?;
+    pass(exec, ve, |start, out, _| {
+        let (vpos, epos) = split_chunk(start, out, nv)?;
+        copy_range(topo, start, vpos)?;
+        for (e, out) in (start.saturating_sub(nv) as u32..).zip(epos.iter_mut()) {
+            *out = kobbelt_edge(topo, e)?;
+        }
+        Ok(())
+    })?;
+    let pos: &[Point] = ve;
+    let ep = |h: u32| -> Result<Point> { get(pos, nv + topo.edge(h)? as usize) };
     // The edge point beyond edge `hx` of a quad, away from its opposite edge `hy`.
-    let outer = |pos: &[Point], hx: u32, hy: u32| -> Result<Point> {
+    let outer = |hx: u32, hy: u32| -> Result<Point> {
         let t = topo.twin(hx)?;
         if t == NONE {
-            Ok(kobbelt::extrapolate(ep(pos, hx)?, ep(pos, hy)?))
+            Ok(kobbelt::extrapolate(ep(hx)?, ep(hy)?))
         } else {
-            ep(pos, topo.next(topo.next(t)?)?)
+            ep(topo.next(topo.next(t)?)?)
         }
     };
-    for f in 0..topo.num_faces() as u32 {
-        let r = topo.face_half_edges(f)?;
-        let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
-        let fa = kobbelt::four_point(
-            outer(pos, h0, h2)?,
-            ep(pos, h0)?,
-            ep(pos, h2)?,
-            outer(pos, h2, h0)?,
-        );
-        let fb = kobbelt::four_point(
-            outer(pos, h1, h3)?,
-            ep(pos, h1)?,
-            ep(pos, h3)?,
-            outer(pos, h3, h1)?,
-        );
-        set(pos, nv + ne + f as usize, crate::point::midpoint(fa, fb))?;
-    }
-    Ok(())
+    pass(exec, fpos, |start, out, _| {
+        for (f, out) in (start as u32..).zip(out.iter_mut()) {
+            let r = topo.face_half_edges(f)?;
+            let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
+            let fa = kobbelt::four_point(outer(h0, h2)?, ep(h0)?, ep(h2)?, outer(h2, h0)?);
+            let fb = kobbelt::four_point(outer(h1, h3)?, ep(h1)?, ep(h3)?, outer(h3, h1)?);
+            *out = crate::point::midpoint(fa, fb);
+        }
+        Ok(())
+    })
+    .map(|_| ())
 }
 
 // ---- Doo–Sabin, Simplest, Akleman ----
 
-/// Doo–Sabin: every corner point by the rule of [`doo_sabin`] on its face, then the isolated
-/// vertices. Kept out of line: inlined into the step it compiled to 0.5 % more instructions
-/// (callgrind, `benches/icount.sh`).
+/// Doo–Sabin: every corner point by the rule of [`doo_sabin`] on its face (one pass over the
+/// corners; a chunk that starts or ends inside a face gathers that face for its own corners),
+/// then the isolated vertices. Kept out of line: inlined into the step it compiled to 0.5 %
+/// more instructions (callgrind, `benches/icount.sh`).
 #[inline(never)]
-fn doo_sabin_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    let mut pts = FacePts::new();
-    for f in 0..topo.num_faces() as u32 {
-        face_points_into(topo, f, &mut pts)?;
-        for (i, h) in topo.face_half_edges(f)?.enumerate() {
-            set(pos, h as usize, doo_sabin::corner_point(&pts, i)?)?;
+fn doo_sabin_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let nh = topo.num_half_edges();
+    let (corners, _) = pos.split_at_mut_checked(nh).ok_or(internal())?;
+    pass(exec, corners, |start, out, _| {
+        let mut pts = FacePts::new();
+        let end = start + out.len();
+        let mut h = start;
+        while h < end {
+            let f = topo.face(h as u32)?;
+            face_points_into(topo, f, &mut pts)?;
+            let r = topo.face_half_edges(f)?;
+            let first = r.start as usize;
+            let stop = (r.end as usize).min(end);
+            if stop <= h {
+                return Err(internal());
+            }
+            for k in h..stop {
+                set(out, k - start, doo_sabin::corner_point(&pts, k - first)?)?;
+            }
+            h = stop;
         }
-    }
-    append_isolated(topo, pos, topo.num_half_edges())
+        Ok(())
+    })?;
+    append_isolated(topo, pos, nh)
 }
 
 fn simplest_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
@@ -394,22 +535,51 @@ fn dual_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
     append_isolated(topo, pos, nf + 2 * vb)
 }
 
-fn vertex_insertion_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    copy_old(topo, pos)?;
-    face_centroids(topo, pos, topo.num_vertices())
+/// The old vertices, then the face centroids, in one pass.
+fn vertex_insertion_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let nv = topo.num_vertices();
+    pass(exec, pos, |start, out, _| {
+        let (vpos, fpos) = split_chunk(start, out, nv)?;
+        copy_range(topo, start, vpos)?;
+        centroid_range(topo, start.saturating_sub(nv), fpos)
+    })
+    .map(|_| ())
 }
 
-fn dual_truncation_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
-    let mut ring = Ring::new();
-    for v in 0..topo.num_vertices() as u32 {
-        let p = topo.position(v)?;
-        let q = if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
-            p
-        } else {
-            ring_points_into(topo, v, &mut ring)?;
-            akleman::truncated_vertex(p, &ring)?
-        };
-        set(pos, v as usize, q)?;
+/// The centroids of faces `first..first + out.len()`.
+fn centroid_range(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
+    let mut pts = FacePts::new();
+    for (f, out) in (first as u32..).zip(out.iter_mut()) {
+        face_points_into(topo, f, &mut pts)?;
+        *out = akleman::face_point(&pts)?;
     }
-    face_centroids(topo, pos, topo.num_vertices())
+    Ok(())
+}
+
+/// The truncated vertices, then the face centroids, in one pass.
+fn dual_truncation_positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let nv = topo.num_vertices();
+    pass(exec, pos, |start, out, _| {
+        let (vpos, fpos) = split_chunk(start, out, nv)?;
+        let mut ring = Ring::new();
+        for (v, out) in (start as u32..).zip(vpos.iter_mut()) {
+            let p = topo.position(v)?;
+            *out = if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+                p
+            } else {
+                ring_points_into(topo, v, &mut ring)?;
+                akleman::truncated_vertex(p, &ring)?
+            };
+        }
+        centroid_range(topo, start.saturating_sub(nv), fpos)
+    })
+    .map(|_| ())
 }

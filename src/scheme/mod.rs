@@ -56,7 +56,7 @@ pub use options::Options;
 pub use plan::{
     plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes,
 };
-pub use subdivide::{subdivide, subdivide_tagged, Report, Scratch};
+pub use subdivide::{subdivide, subdivide_tagged, subdivide_with, Report, Scratch};
 pub use tags::Tags;
 
 pub(crate) use plan::plan_levels;

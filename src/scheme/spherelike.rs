@@ -66,8 +66,9 @@
 
 use crate::curve::circle_blend;
 use crate::error::{Error, Result, Status};
+use crate::exec::{pass, Executor};
 use crate::mesh::gather::{boundary_beyond, face_points};
-use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::mesh::{get, internal, Topology, NONE};
 use crate::point::Point;
 use crate::MAX_FACE_SIZE;
 
@@ -83,23 +84,35 @@ pub const TIE_TOLERANCE: f64 = 1e-12;
 /// # Errors
 /// [`Status::DegenerateGeometry`] and [`Status::NumericalFailure`] naming the output vertex
 /// (module docs); internal errors never expected on a built topology.
-pub(crate) fn positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> {
+pub(crate) fn positions(
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
     let nv = topo.num_vertices();
     let ne = topo.num_edges();
-    for (v, p) in topo.mesh().positions().enumerate() {
-        set(pos, v, p)?;
-    }
-    for e in 0..ne as u32 {
-        let out = nv + e as usize;
-        let p = edge_point(topo, e).map_err(|err| err.with_element(out as u32))?;
-        set(pos, out, p)?;
-    }
-    for f in 0..topo.num_faces() as u32 {
-        let out = nv + ne + f as usize;
-        let p = face_point(topo, pos, f).map_err(|err| err.with_element(out as u32))?;
-        set(pos, out, p)?;
-    }
-    Ok(())
+    let (ve, fpos) = pos.split_at_mut_checked(nv + ne).ok_or(internal())?;
+    // Old vertices and edge points (they read the input only), then the face points (they
+    // read the edge points back).
+    pass(exec, ve, |start, out, _| {
+        for (i, o) in (start..).zip(out.iter_mut()) {
+            *o = if i < nv {
+                topo.position(i as u32)?
+            } else {
+                edge_point(topo, (i - nv) as u32).map_err(|err| err.with_element(i as u32))?
+            };
+        }
+        Ok(())
+    })?;
+    let ve: &[Point] = ve;
+    pass(exec, fpos, |start, out, _| {
+        for (f, o) in (start..).zip(out.iter_mut()) {
+            let i = nv + ne + f;
+            *o = face_point(topo, ve, f as u32).map_err(|err| err.with_element(i as u32))?;
+        }
+        Ok(())
+    })
+    .map(|_| ())
 }
 
 /// The circle-blend point of the segment `p1 p2` of a curve whose neighbours `p0` (before

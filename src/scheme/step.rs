@@ -8,6 +8,7 @@ use super::size::step_size;
 use super::tags::Sharpness;
 use super::{linear, linear_tagged, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
+use crate::exec::{self, Executor, Serial};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
@@ -27,11 +28,12 @@ pub(crate) fn step(
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     candidates: &mut [Point],
+    exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     match (mobius, sharp) {
-        (None, None) => linear(scheme, topo, out).map(|s| (s, MobiusReport::default())),
+        (None, None) => linear_with(scheme, topo, out, exec).map(|s| (s, MobiusReport::default())),
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
-        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts),
+        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts, exec),
         (Some(_), Some(_)) => Err(Error::new(Status::TagsNotSupported)),
     }
 }
@@ -69,15 +71,25 @@ pub(crate) fn linear(
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
 ) -> Result<MeshSizes> {
+    linear_with(scheme, topo, out, &Serial)
+}
+
+/// [`linear`] with its passes run by `exec` ([`crate::exec`]).
+pub(crate) fn linear_with(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    exec: &dyn Executor,
+) -> Result<MeshSizes> {
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     match scheme {
-        Scheme::Spherelike => spherelike::positions(topo, pos)?,
-        _ => linear::positions(scheme, topo, pos)?,
+        Scheme::Spherelike => spherelike::positions(topo, pos, exec)?,
+        _ => linear::positions(scheme, topo, pos, exec)?,
     }
-    if let Some(i) = first_non_finite(pos) {
+    if let Some(i) = exec::first_non_finite(exec, pos)? {
         return Err(Error::at(Status::NumericalFailure, i as u32));
     }
     Ok(sizes)

@@ -7,6 +7,7 @@ use super::Options;
 #[cfg(doc)]
 use crate::error::Status;
 use crate::error::{Result, NO_ELEMENT};
+use crate::exec::{Executor, Serial};
 use crate::mesh::{Mesh, MeshOut, MeshSizes};
 use crate::point::Point;
 
@@ -96,7 +97,24 @@ pub fn subdivide(
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
-    run(mesh, opts, &Tags::new(), scratch, out)
+    run(mesh, opts, &Tags::new(), scratch, out, &Serial)
+}
+
+/// [`subdivide`] with the passes of every step split into disjoint output ranges run by
+/// `exec` ([`crate::exec`]): the std layer's threads, or a host's own pool. The output, the
+/// report and the errors are those of [`subdivide`], bit for bit, for every executor and
+/// every chunking; the core stays single-threaded (it only hands `exec` the chunks).
+///
+/// # Errors
+/// Those of [`subdivide`].
+pub fn subdivide_with(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+    exec: &dyn Executor,
+) -> Result<Report> {
+    run(mesh, opts, &Tags::new(), scratch, out, exec)
 }
 
 /// [`subdivide`] for a mesh with sharp-feature tags ([`Tags`]): Loop and Catmull–Clark,
@@ -116,5 +134,5 @@ pub fn subdivide_tagged(
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
-    run(mesh, opts, tags, scratch, out)
+    run(mesh, opts, tags, scratch, out, &Serial)
 }

@@ -82,6 +82,15 @@ pub fn validate(m: &OwnedMesh) -> Result<()> {
 /// entries), then `subdivide` with buffers of exactly the planned sizes. The output starts as
 /// NaN/`u32::MAX` so that an unwritten entry cannot pass unnoticed.
 pub fn run(m: &OwnedMesh, opts: &Options) -> Result<(OwnedMesh, Report)> {
+    run_with(m, opts, &nlsubdiv::exec::Serial)
+}
+
+/// [`run`] through [`scheme::subdivide_with`] with the executor `exec`.
+pub fn run_with(
+    m: &OwnedMesh,
+    opts: &Options,
+    exec: &dyn nlsubdiv::exec::Executor,
+) -> Result<(OwnedMesh, Report)> {
     let mut su = vec![0u32; scheme::plan_scratch_size(&m.view())?];
     let p = scheme::plan(m.view(), opts, &mut su)?;
     assert!(
@@ -96,11 +105,12 @@ pub fn run(m: &OwnedMesh, opts: &Options) -> Result<(OwnedMesh, Report)> {
         offsets: vec![u32::MAX; o.faces + 1],
         indices: vec![u32::MAX; o.indices],
     };
-    let report = scheme::subdivide(
+    let report = scheme::subdivide_with(
         m.view(),
         opts,
         Scratch::new(&mut su, &mut sp),
         &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+        exec,
     )?;
     assert_eq!(report.sizes, o, "sizes written differ from the plan");
     Ok((out, report))

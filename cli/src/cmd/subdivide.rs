@@ -106,6 +106,11 @@ pub struct Args {
     /// own `t crease` / `t corner` tags.
     #[arg(long, value_name = "DEG")]
     pub crease_angle: Option<f64>,
+    /// Threads of the kernel's passes (default: every core the machine offers). The output
+    /// is the same bits for every count; the summary line reports the count and the
+    /// kernel's subdivision time.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
     /// Write PLY as ASCII instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -169,6 +174,9 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
                 strict: args.strict,
                 literal: args.literal,
                 spectrum: args.spectrum,
+                threads: args
+                    .threads
+                    .map_or_else(nlsubdiv_threads::Threads::available, |n| n as usize),
             },
             ctx,
         )?
@@ -217,7 +225,8 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     };
     let folds = crate::folds::measure(&r.mesh).describe();
     ctx.note(&format!(
-        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s{fallbacks}{guarded}; {folds}",
+        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s \
+         (subdivision {:.1} ms, {} thread{}){fallbacks}{guarded}; {folds}",
         args.output.display(),
         scheme.name(),
         levels,
@@ -227,6 +236,9 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         l.mesh.num_faces(),
         r.mesh.num_faces(),
         r.elapsed.as_secs_f64(),
+        r.kernel.as_secs_f64() * 1e3,
+        r.threads,
+        if r.threads == 1 { "" } else { "s" },
     ));
     Ok(Exit::Ok)
 }

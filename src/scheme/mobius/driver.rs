@@ -9,6 +9,7 @@
 use super::form::MISSING;
 use super::{MobiusOptions, MobiusReport};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
+use crate::exec::{Executor, Tally};
 use crate::mesh::Topology;
 use crate::point::Point;
 
@@ -28,6 +29,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     pub(super) strict: bool,
     /// Whether the fold guard runs (`guard.rs`).
     pub(super) guard: bool,
+    /// Runs the passes that write disjoint output ranges (the blends, the vertex points'
+    /// completion; [`crate::exec`]).
+    pub(super) exec: &'o dyn Executor,
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -39,6 +43,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
         face_c: &'o mut [Point],
         trust: &'o mut [f64],
         opts: MobiusOptions,
+        exec: &'o dyn Executor,
     ) -> Self {
         for c in edge_c.iter_mut().chain(face_c.iter_mut()) {
             *c = MISSING;
@@ -55,7 +60,20 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             report: MobiusReport::default(),
             strict: opts.strict,
             guard: opts.guard,
+            exec,
         }
+    }
+
+    /// Adds the fallbacks a pass counted ([`crate::exec::pass`]) to the report.
+    pub(super) fn add_fallbacks(&mut self, t: Tally) {
+        let r = &mut self.report;
+        let merged = Tally {
+            count: r.fallbacks,
+            first: r.first_fallback,
+        }
+        .merge(t);
+        r.fallbacks = merged.count;
+        r.first_fallback = merged.first;
     }
 
     /// Counts a fallback at output vertex `element`, or fails in strict mode.
@@ -84,4 +102,15 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
         }
         Ok(())
     }
+}
+
+/// Counts a fallback at output vertex `element` in the tally of one chunk of a pass, or fails
+/// in strict mode ([`Driver::fallback`] for a pass split into chunks).
+pub(super) fn chunk_fallback(strict: bool, t: &mut Tally, element: usize) -> Result<()> {
+    let e = element as u32;
+    if strict {
+        return Err(Error::at(Status::FallbackInStrictMode, e));
+    }
+    t.add(e);
+    Ok(())
 }

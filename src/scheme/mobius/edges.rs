@@ -6,11 +6,12 @@
 
 use arrayvec::ArrayVec;
 
-use super::driver::Driver;
+use super::driver::{chunk_fallback, Driver};
 use super::form::present;
 use crate::blend::f4_hinted;
 use crate::error::Result;
-use crate::mesh::{get, internal, set, NONE};
+use crate::exec::pass;
+use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{self, Point};
 
 /// Edges gathered per batch by [`Driver::blend_interior_edges`].
@@ -28,78 +29,104 @@ struct EdgeInputs {
     hint: Point,
 }
 
+/// The linear rule of an interior edge, the fallback of its blend.
+pub(super) type LinearEdge<'f> = dyn Fn(&Topology<'_, '_>, u32) -> Result<Point> + Sync + 'f;
+
 impl Driver<'_, '_, '_, '_> {
     /// Blends the interior edges' candidates with `F4(v_j, e_j, e_k, v_k)` into `start + e`;
     /// an edge with a single candidate takes it; `linear(e)` is the fallback when neither star
-    /// gives one.
+    /// gives one. One pass over the edges, split into edge ranges ([`crate::exec`]).
     pub(super) fn blend_interior_edges(
         &mut self,
         start: usize,
-        linear: &dyn Fn(&Self, u32) -> Result<Point>,
+        linear: &LinearEdge<'_>,
     ) -> Result<()> {
         let topo = self.topo;
-        let ne = topo.num_edges() as u32;
-        // Gather, then blend, `EDGE_CHUNK` edges at a time: the gathering reads the twin and
-        // the two candidates of each edge at scattered addresses, and in one loop of short
-        // independent iterations those cache misses overlap; between two F4 evaluations
-        // (hundreds of instructions each) they would not. The same blends in the same order,
-        // the same fallbacks; only a failing topology lookup (an internal error, never a
-        // fallback) is reported before a strict-mode fallback earlier in its batch.
-        let mut chunk = ArrayVec::<EdgeInputs, EDGE_CHUNK>::new();
-        let mut first = 0;
-        while first < ne {
-            let last = ne.min(first.saturating_add(EDGE_CHUNK as u32));
-            chunk.clear();
-            for e in first..last {
-                let h = topo.edge_half_edge(e)?;
-                let t = topo.twin(h)?;
-                if t == NONE {
-                    continue;
-                }
-                chunk
-                    .try_push(EdgeInputs {
-                        e,
-                        a: topo.position(topo.origin(h)?)?,
-                        b: topo.position(topo.dest(h)?)?,
-                        ca: get(self.edge_c, h as usize)?,
-                        cb: get(self.edge_c, t as usize)?,
-                        hint: topo.position(topo.dest(topo.next(h)?)?)?,
-                    })
-                    .map_err(|_| internal())?;
-            }
-            for x in &chunk {
-                let EdgeInputs {
-                    e,
-                    a,
-                    b,
-                    ca,
-                    cb,
-                    hint,
-                } = *x;
-                let k = start + e as usize;
-                let p = if present(&ca) && present(&cb) {
-                    f4_hinted(a, ca, cb, b, hint).ok()
-                } else if present(&ca) {
-                    // One star gave no candidate (Butterfly next to an irregular vertex, §4.3;
-                    // or a star whose form sends a needed vertex to infinity, like a square
-                    // corner): the other star's candidate, Möbius-invariant like the ear rule.
-                    Some(ca)
-                } else if present(&cb) {
-                    Some(cb)
-                } else {
-                    None
-                };
-                let p = match p {
-                    Some(p) if point::is_finite(&p) => p,
-                    _ => {
-                        self.fallback(k)?;
-                        linear(self, e)?
-                    }
-                };
-                set(self.pos, k, p)?;
-            }
-            first = last;
-        }
+        let ne = topo.num_edges();
+        let edge_c: &[Point] = self.edge_c;
+        let strict = self.strict;
+        let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
+        let t = pass(self.exec, out, |first, out, tally| {
+            let mut f = |k: usize| chunk_fallback(strict, tally, start + k);
+            blend_edge_range(topo, edge_c, first, out, &mut f, linear)
+        })?;
+        self.add_fallbacks(t);
         Ok(())
     }
+}
+
+/// The interior edge points of edges `first..first + out.len()` (boundary edges untouched),
+/// `fallback(e)` counting an edge that takes `linear(e)`.
+fn blend_edge_range(
+    topo: &Topology<'_, '_>,
+    edge_c: &[Point],
+    first: usize,
+    out: &mut [Point],
+    fallback: &mut dyn FnMut(usize) -> Result<()>,
+    linear: &LinearEdge<'_>,
+) -> Result<()> {
+    // Gather, then blend, `EDGE_CHUNK` edges at a time: the gathering reads the twin and the
+    // two candidates of each edge at scattered addresses, and in one loop of short
+    // independent iterations those cache misses overlap; between two F4 evaluations
+    // (hundreds of instructions each) they would not. The same blends in the same order,
+    // the same fallbacks; only a failing topology lookup (an internal error, never a
+    // fallback) is reported before a strict-mode fallback earlier in its batch. Batches end
+    // at multiples of `EDGE_CHUNK` edge ids whatever the range, so that order does not depend
+    // on the chunking either.
+    let mut batch = ArrayVec::<EdgeInputs, EDGE_CHUNK>::new();
+    let end = first + out.len();
+    let mut lo = first;
+    while lo < end {
+        let hi = end.min((lo / EDGE_CHUNK + 1) * EDGE_CHUNK);
+        batch.clear();
+        for e in lo as u32..hi as u32 {
+            let h = topo.edge_half_edge(e)?;
+            let t = topo.twin(h)?;
+            if t == NONE {
+                continue;
+            }
+            batch
+                .try_push(EdgeInputs {
+                    e,
+                    a: topo.position(topo.origin(h)?)?,
+                    b: topo.position(topo.dest(h)?)?,
+                    ca: get(edge_c, h as usize)?,
+                    cb: get(edge_c, t as usize)?,
+                    hint: topo.position(topo.dest(topo.next(h)?)?)?,
+                })
+                .map_err(|_| internal())?;
+        }
+        for x in &batch {
+            let EdgeInputs {
+                e,
+                a,
+                b,
+                ca,
+                cb,
+                hint,
+            } = *x;
+            let p = if present(&ca) && present(&cb) {
+                f4_hinted(a, ca, cb, b, hint).ok()
+            } else if present(&ca) {
+                // One star gave no candidate (Butterfly next to an irregular vertex, §4.3;
+                // or a star whose form sends a needed vertex to infinity, like a square
+                // corner): the other star's candidate, Möbius-invariant like the ear rule.
+                Some(ca)
+            } else if present(&cb) {
+                Some(cb)
+            } else {
+                None
+            };
+            let p = match p {
+                Some(p) if point::is_finite(&p) => p,
+                _ => {
+                    fallback(e as usize)?;
+                    linear(topo, e)?
+                }
+            };
+            set(out, e as usize - first, p)?;
+        }
+        lo = hi;
+    }
+    Ok(())
 }

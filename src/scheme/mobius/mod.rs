@@ -73,6 +73,7 @@ pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star
 
 use super::Scheme;
 use crate::error::{Error, Result, Status, NO_ELEMENT};
+use crate::exec::{self, Executor};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
@@ -146,6 +147,7 @@ pub(crate) fn step(
     out: &mut MeshOut<'_>,
     scratch: &mut [Point],
     opts: MobiusOptions,
+    exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     if !scheme.has_mobius_form() {
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
@@ -175,7 +177,7 @@ pub(crate) fn step(
     let (edge_c, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
     let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
     let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
-    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts);
+    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts, exec);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
@@ -197,12 +199,11 @@ pub(crate) fn step(
             pos_of(out, sizes.vertices)?,
             linear_pos,
             opts.spectrum,
+            exec,
         )?;
     }
-    for (i, p) in pos_of(out, sizes.vertices)?.iter().enumerate() {
-        if !point::is_finite(p) {
-            return Err(Error::at(Status::NumericalFailure, i as u32));
-        }
+    if let Some(i) = exec::first_non_finite(exec, pos_of(out, sizes.vertices)?)? {
+        return Err(Error::at(Status::NumericalFailure, i as u32));
     }
     Ok((sizes, report))
 }
@@ -222,9 +223,10 @@ fn spectrum_blend(
     pos: &mut [Point],
     scratch: &mut [Point],
     w: f64,
+    exec: &dyn Executor,
 ) -> Result<()> {
     let lin = scratch.get_mut(..pos.len()).ok_or(internal())?;
-    super::linear::positions(scheme, topo, lin)?;
+    super::linear::positions(scheme, topo, lin, exec)?;
     for (p, l) in pos.iter_mut().zip(lin.iter()) {
         *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
     }

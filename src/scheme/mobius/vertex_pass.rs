@@ -8,11 +8,12 @@
 //! [`super::ears`]) and stars without a canonical form are skipped; what they would have
 //! given takes its linear rule later, counted as a fallback.
 
-use super::driver::Driver;
+use super::driver::{chunk_fallback, Driver};
 use super::form::{present, FacePts, Frame, Ring, Spokes, MISSING};
 use super::memo::StarForm;
 use crate::error::Result;
-use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::exec::pass;
+use crate::mesh::{internal, set, Topology, NONE};
 use crate::point::Point;
 
 /// One vertex star with the frame its rules are evaluated in (its canonical form, or the
@@ -161,29 +162,37 @@ impl Driver<'_, '_, '_, '_> {
     /// boundary vertices keep theirs when `keep_boundary` (otherwise the boundary curve rule
     /// writes them later); an interior vertex whose point the pass left [`MISSING`] takes
     /// `linear(v, position)`, counted as a fallback.
+    /// One pass over the vertices, split into vertex ranges ([`crate::exec`]).
     pub(super) fn finish_vertex_points(
         &mut self,
         keep_boundary: bool,
-        linear: impl Fn(&Topology<'_, '_>, u32, Point) -> Result<Point>,
+        linear: impl Fn(&Topology<'_, '_>, u32, Point) -> Result<Point> + Sync,
     ) -> Result<()> {
         let topo = self.topo;
-        for v in 0..topo.num_vertices() as u32 {
-            let p = topo.position(v)?;
-            if topo.is_isolated(v)? {
-                set(self.pos, v as usize, p)?;
-                continue;
-            }
-            if topo.is_boundary_vertex(v)? {
-                if keep_boundary {
-                    set(self.pos, v as usize, p)?;
+        let strict = self.strict;
+        let nv = topo.num_vertices();
+        let out = self.pos.get_mut(..nv).ok_or(internal())?;
+        let t = pass(self.exec, out, |first, out, tally| {
+            for (v, o) in (first as u32..).zip(out.iter_mut()) {
+                let p = topo.position(v)?;
+                if topo.is_isolated(v)? {
+                    *o = p;
+                    continue;
                 }
-                continue;
+                if topo.is_boundary_vertex(v)? {
+                    if keep_boundary {
+                        *o = p;
+                    }
+                    continue;
+                }
+                if !present(o) {
+                    chunk_fallback(strict, tally, v as usize)?;
+                    *o = linear(topo, v, p)?;
+                }
             }
-            if !present(&get(self.pos, v as usize)?) {
-                self.fallback(v as usize)?;
-                set(self.pos, v as usize, linear(topo, v, p)?)?;
-            }
-        }
+            Ok(())
+        })?;
+        self.add_fallbacks(t);
         Ok(())
     }
 }

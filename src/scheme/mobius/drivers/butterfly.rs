@@ -10,7 +10,7 @@ use super::super::guard::Outputs;
 use super::super::rules::butterfly_star_in_form;
 use super::super::vertex_pass::Star;
 use crate::error::Result;
-use crate::mesh::{internal, NONE};
+use crate::mesh::{internal, Topology, NONE};
 use crate::point::Point;
 use crate::scheme::carry::copy_old;
 use crate::scheme::linear::butterfly_edge;
@@ -33,8 +33,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         };
         d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))?;
     }
-    let linear =
-        |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> { butterfly_edge(d.topo, e) };
+    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
     d.blend_interior_edges(nv, &linear)?;
     d.boundary_edges(nv, butterfly::edge_boundary)
 }

@@ -11,7 +11,7 @@ use super::super::rules::catmull_clark_star_in_form;
 use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::face_points;
-use crate::mesh::internal;
+use crate::mesh::{internal, Topology};
 use crate::point::Point;
 use crate::stencil::{catmull_clark, centroid};
 use crate::MAX_VALENCE;
@@ -53,8 +53,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         catmull_clark::vertex_interior(p, &ring, &faces)
     })?;
     d.blend_faces(fp0)?;
-    let linear = |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> {
-        let t = d.topo;
+    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(catmull_clark::edge_interior(
             t.position(t.origin(h)?)?,

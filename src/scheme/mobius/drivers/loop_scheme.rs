@@ -9,7 +9,7 @@ use super::super::rules::loop_star_in_form;
 use super::super::vertex_pass::Star;
 use crate::error::Result;
 use crate::mesh::gather::{apex, ring_points};
-use crate::mesh::internal;
+use crate::mesh::{internal, Topology};
 use crate::point::Point;
 use crate::stencil::loop_scheme;
 use crate::MAX_VALENCE;
@@ -33,8 +33,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.finish_vertex_points(false, |t, v, p| {
         loop_scheme::vertex_interior(p, &ring_points(t, v)?)
     })?;
-    let linear = |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> {
-        let t = d.topo;
+    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(loop_scheme::edge_interior(
             t.position(t.origin(h)?)?,

@@ -6,7 +6,7 @@
 use super::super::driver::Driver;
 use super::super::form::{MapBack, ORIGIN};
 use crate::error::Result;
-use crate::mesh::{set, NONE};
+use crate::mesh::{set, Topology, NONE};
 use crate::point::{midpoint, Point};
 use crate::scheme::carry::{append_isolated, boundary_vertices};
 use crate::stencil::simplest;
@@ -28,12 +28,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         }
         Ok(())
     })?;
-    let linear = |d: &Driver<'_, '_, '_, '_>, e: u32| -> Result<Point> {
-        let (a, b) = d.topo.edge_vertices(e)?;
-        Ok(simplest::edge_point(
-            d.topo.position(a)?,
-            d.topo.position(b)?,
-        ))
+    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
+        let (a, b) = t.edge_vertices(e)?;
+        Ok(simplest::edge_point(t.position(a)?, d.topo.position(b)?))
     };
     d.blend_interior_edges(0, &linear)?;
     d.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;

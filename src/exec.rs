@@ -1,0 +1,194 @@
+//! Deterministic parallel evaluation without threads in the core: a pass over an output
+//! range is split into at most [`MAX_CHUNKS`] disjoint, contiguous chunks ([`Chunk`]), and an
+//! [`Executor`] supplied by the caller runs one task per chunk, in any order, on any thread.
+//! The core itself stays single-threaded ([`Serial`] runs the chunks one after the other);
+//! the std layers (`threads/`, the command, the C ABI) bring the threads.
+//!
+//! Every value a task writes depends only on its output index and on what earlier passes
+//! wrote, never on the chunk boundaries, so the output is bit-identical for every thread
+//! count and every chunking. Counts are summed over the chunks, "first element" fields take
+//! the minimum, and when several chunks fail the error of the lowest chunk is returned: a
+//! chunk stops at its first error, so that is the error the serial run reports first in the
+//! same pass. Passes follow each other (a barrier between them) in the serial order.
+//!
+//! ```
+//! use nlsubdiv::exec::{Chunk, Executor, Serial};
+//! // An executor that runs the chunks in reverse order: the same output bits.
+//! struct Reverse(usize);
+//! impl Executor for Reverse {
+//!     fn chunks(&self, len: usize) -> usize {
+//!         self.0.min(len)
+//!     }
+//!     fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+//!         for c in chunks.iter_mut().rev() {
+//!             task(c);
+//!         }
+//!     }
+//! }
+//! # let _ = Serial;
+//! ```
+
+use arrayvec::ArrayVec;
+
+use crate::error::{Result, NO_ELEMENT};
+use crate::mesh::internal;
+use crate::point::Point;
+
+/// The largest number of chunks one pass is split into.
+pub const MAX_CHUNKS: usize = 64;
+
+/// One chunk of a pass: a contiguous range of the pass's output and the task's result.
+/// Opaque: an [`Executor`] only hands it to the task.
+#[derive(Debug)]
+pub struct Chunk<'a> {
+    /// The index of `out[0]` in the pass's output.
+    start: usize,
+    out: &'a mut [Point],
+    /// What the task returned; an internal error until the task has run (an executor that
+    /// skips a chunk gives an error, never a silently unwritten range).
+    result: Result<Tally>,
+}
+
+impl Chunk<'_> {
+    /// The number of output elements of this chunk (for an executor that balances work).
+    pub fn len(&self) -> usize {
+        self.out.len()
+    }
+
+    /// Whether the chunk has no output element.
+    pub fn is_empty(&self) -> bool {
+        self.out.is_empty()
+    }
+}
+
+/// Runs the chunks of a pass. An implementation must call `task` exactly once on every
+/// chunk before returning; the order and the threads are free. [`Executor::chunks`] says
+/// how many chunks a pass of `len` output elements should be split into (1 runs the pass
+/// inline, without [`Executor::run`]); the core clamps it to `1..=`[`MAX_CHUNKS`].
+pub trait Executor: Sync {
+    /// The number of chunks wanted for a pass of `len` output elements.
+    fn chunks(&self, len: usize) -> usize;
+    /// Calls `task` once on every chunk.
+    fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync));
+}
+
+/// The single-threaded executor of the core: every pass in one chunk.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Serial;
+
+impl Executor for Serial {
+    fn chunks(&self, _len: usize) -> usize {
+        1
+    }
+
+    fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+        for c in chunks {
+            task(c);
+        }
+    }
+}
+
+/// What a pass counts (fallbacks, guarded elements): a number and the smallest element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Tally {
+    pub(crate) count: u32,
+    pub(crate) first: u32,
+}
+
+impl Tally {
+    pub(crate) const fn new() -> Tally {
+        Tally {
+            count: 0,
+            first: NO_ELEMENT,
+        }
+    }
+
+    /// Counts element `e`.
+    pub(crate) fn add(&mut self, e: u32) {
+        self.count = self.count.saturating_add(1);
+        if self.first == NO_ELEMENT || e < self.first {
+            self.first = e;
+        }
+    }
+
+    /// The tally of two ranges.
+    pub(crate) fn merge(self, o: Tally) -> Tally {
+        Tally {
+            count: self.count.saturating_add(o.count),
+            first: if self.first == NO_ELEMENT {
+                o.first
+            } else if o.first == NO_ELEMENT {
+                self.first
+            } else {
+                self.first.min(o.first)
+            },
+        }
+    }
+}
+
+/// Runs `f(start, out_range, tally)` over disjoint chunks of `out` through `exec` and
+/// combines the results (module docs): the tallies merged, or the error of the lowest chunk.
+pub(crate) fn pass<F>(exec: &dyn Executor, out: &mut [Point], f: F) -> Result<Tally>
+where
+    F: Fn(usize, &mut [Point], &mut Tally) -> Result<()> + Sync,
+{
+    let n = out.len();
+    let k = exec.chunks(n).clamp(1, MAX_CHUNKS).min(n.max(1));
+    if k <= 1 {
+        let mut t = Tally::new();
+        f(0, out, &mut t)?;
+        return Ok(t);
+    }
+    split_pass(exec, out, k, &f)
+}
+
+/// The work of one chunk of a [`pass`]: its first output index, its output range, its tally.
+type RangeFn<'f> = dyn Fn(usize, &mut [Point], &mut Tally) -> Result<()> + Sync + 'f;
+
+/// [`pass`] in `k ≥ 2` chunks (out of line: the serial path keeps a small stack frame).
+#[inline(never)]
+fn split_pass(exec: &dyn Executor, out: &mut [Point], k: usize, f: &RangeFn<'_>) -> Result<Tally> {
+    let size = out.len().div_ceil(k).max(1);
+    let mut chunks = ArrayVec::<Chunk<'_>, MAX_CHUNKS>::new();
+    let mut start = 0;
+    for c in out.chunks_mut(size) {
+        let len = c.len();
+        chunks
+            .try_push(Chunk {
+                start,
+                out: c,
+                result: Err(internal()),
+            })
+            .map_err(|_| internal())?;
+        start += len;
+    }
+    let task = |c: &mut Chunk<'_>| {
+        let mut t = Tally::new();
+        c.result = f(c.start, c.out, &mut t).map(|()| t);
+    };
+    exec.run(&mut chunks, &task);
+    let mut total = Tally::new();
+    for c in &chunks {
+        total = total.merge(c.result?);
+    }
+    Ok(total)
+}
+
+/// The index of the first point of `pos` with a NaN or infinite coordinate, found chunk by
+/// chunk. A branch-free test per chunk first (`|x| ≤ f64::MAX` is false exactly for NaN and
+/// ±∞), the search only in a chunk where it fails.
+pub(crate) fn first_non_finite(exec: &dyn Executor, pos: &mut [Point]) -> Result<Option<usize>> {
+    let t = pass(exec, pos, |start, out, t| {
+        let finite = out
+            .as_flattened()
+            .iter()
+            .fold(true, |ok, x| ok & (x.abs() <= f64::MAX));
+        if !finite {
+            if let Some(i) = out.iter().position(|p| !crate::point::is_finite(p)) {
+                t.add((start + i) as u32);
+            }
+        }
+        Ok(())
+    })?;
+    Ok((t.count > 0).then_some(t.first as usize))
+}

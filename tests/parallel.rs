@@ -1,0 +1,189 @@
+//! Deterministic parallel evaluation ([`nlsubdiv::exec`]): for every scheme, linear and
+//! Möbius (the guarded default, the literal rules, strict mode, the spectrum), the output
+//! bits, the report and the errors of [`nlsubdiv::subdivide_with`] equal the serial
+//! [`nlsubdiv::subdivide`]'s for 1, 2, 3, 7 and 16 threads, odd chunkings (more chunks than
+//! threads, one chunk per output element on small levels) and chunks run in reverse order.
+#![allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic
+)]
+
+mod common;
+
+use common::*;
+use nlsubdiv::exec::{Chunk, Executor, Serial, MAX_CHUNKS};
+use nlsubdiv::scheme::{Options, Scheme};
+use nlsubdiv::{Report, Result, Status};
+
+/// `threads` scoped std threads over `chunks` chunks per pass (every pass split, however
+/// small), optionally each group in reverse order.
+struct Pool {
+    threads: usize,
+    chunks: usize,
+    reverse: bool,
+}
+
+impl Executor for Pool {
+    fn chunks(&self, _len: usize) -> usize {
+        self.chunks
+    }
+
+    fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+        let per = chunks.len().div_ceil(self.threads).max(1);
+        let rev = self.reverse;
+        std::thread::scope(|s| {
+            for g in chunks.chunks_mut(per) {
+                s.spawn(move || {
+                    if rev {
+                        g.iter_mut().rev().for_each(task);
+                    } else {
+                        g.iter_mut().for_each(task);
+                    }
+                });
+            }
+        });
+    }
+}
+
+/// The executors every case runs with: (threads, chunks per pass, reverse).
+const POOLS: [(usize, usize, bool); 9] = [
+    (1, 1, false),
+    (2, 2, false),
+    (3, 3, false),
+    (7, 7, false),
+    (16, 16, false),
+    (2, 5, false),
+    (3, 13, true),
+    (16, MAX_CHUNKS, false),
+    (4, 1000, true),
+];
+
+fn outcome(m: &OwnedMesh, opts: &Options, exec: &dyn Executor) -> Result<(u64, Report)> {
+    run_with(m, opts, exec).map(|(o, r)| (hash(&o), r))
+}
+
+/// Every executor gives the serial run's outcome; returns whether it succeeded.
+fn same_everywhere(m: &OwnedMesh, opts: &Options, what: &str) -> bool {
+    let serial = outcome(m, opts, &Serial);
+    let public = run(m, opts).map(|(o, r)| (hash(&o), r));
+    assert_eq!(serial, public, "{what}: Serial differs from subdivide");
+    for (threads, chunks, reverse) in POOLS {
+        let pool = Pool {
+            threads,
+            chunks,
+            reverse,
+        };
+        assert_eq!(
+            outcome(m, opts, &pool),
+            serial,
+            "{what}: {threads} threads, {chunks} chunks, reverse {reverse}"
+        );
+    }
+    serial.is_ok()
+}
+
+fn meshes() -> Vec<(&'static str, OwnedMesh)> {
+    vec![
+        ("cube", cube()),
+        ("quad grid", jitter(&quad_grid(5, 4), 0.05, 1)),
+        ("quad torus", quad_torus(6, 5, 2.0, 0.7)),
+        ("tri grid", jitter(&tri_grid(4, 5), 0.05, 2)),
+        ("tri torus", tri_torus(6, 5)),
+        ("icosahedron", icosahedron()),
+        ("prism", prism(5)),
+        ("fan", fan(7)),
+        ("renumbered torus", renumbered(&tri_torus(5, 4), 3)),
+    ]
+}
+
+#[test]
+fn linear_every_scheme_every_chunking() {
+    let mut ok = 0;
+    for (name, m) in meshes() {
+        for s in Scheme::ALL {
+            for levels in [1, 3] {
+                let opts = Options::new(s).levels(levels);
+                ok += same_everywhere(&m, &opts, &format!("{name} {s:?} linear {levels}")) as u32;
+            }
+        }
+    }
+    assert!(ok > 60, "only {ok} cases succeeded");
+}
+
+#[test]
+fn mobius_every_scheme_every_chunking() {
+    let mut ok = 0;
+    for (name, m) in meshes() {
+        for s in Scheme::ALL {
+            let base = Options::new(s).mobius(true).levels(2);
+            let cases = [
+                ("guarded", base),
+                ("literal", base.literal(true)),
+                ("strict", base.strict(true)),
+                ("spectrum", base.spectrum(0.5)),
+            ];
+            for (mode, opts) in cases {
+                ok += same_everywhere(&m, &opts, &format!("{name} {s:?} Möbius {mode}")) as u32;
+            }
+        }
+    }
+    assert!(ok > 60, "only {ok} cases succeeded");
+}
+
+/// Errors raised inside a pass: the serial run's error (status and element) for every
+/// chunking. Huge coordinates overflow (NumericalFailure at the first non-finite output
+/// vertex); coincident points make the spherelike circles degenerate; strict Möbius mode
+/// refuses the first fallback.
+#[test]
+fn errors_equal_the_serial_ones() {
+    let huge = quad_grid(6, 6).map_positions(|p| [p[0] * 1e307, p[1] * 1e307, p[2]]);
+    for s in [Scheme::CatmullClark, Scheme::Kobbelt, Scheme::DooSabin] {
+        let opts = Options::new(s).levels(1);
+        same_everywhere(&huge, &opts, &format!("huge {s:?}"));
+    }
+    let e = run(&huge, &Options::new(Scheme::CatmullClark)).unwrap_err();
+    assert_eq!(e.status, Status::NumericalFailure);
+    // Two coincident neighbours of a grid.
+    let mut flat = quad_grid(6, 6);
+    flat.positions[30] = flat.positions[31];
+    let opts = Options::new(Scheme::Spherelike).levels(1);
+    assert!(!same_everywhere(&flat, &opts, "spherelike coincident"));
+    for s in [Scheme::CatmullClark, Scheme::Loop, Scheme::DooSabin] {
+        let m = if s == Scheme::Loop {
+            let mut t = tri_grid(5, 5);
+            t.positions[14] = t.positions[8];
+            t
+        } else {
+            flat.clone()
+        };
+        let opts = Options::new(s).mobius(true).strict(true).levels(1);
+        same_everywhere(&m, &opts, &format!("strict {s:?} coincident"));
+        let opts = Options::new(s).mobius(true).levels(2);
+        same_everywhere(&m, &opts, &format!("fallbacks {s:?} coincident"));
+    }
+}
+
+/// A larger mesh, so the std layer's default split (chunks of at least 2048 points, one
+/// per thread) is exercised.
+#[test]
+fn large_levels_every_chunking() {
+    let m = jitter(&quad_torus(24, 20, 2.0, 0.7), 0.02, 5);
+    for s in [
+        Scheme::CatmullClark,
+        Scheme::DooSabin,
+        Scheme::Kobbelt,
+        Scheme::Spherelike,
+    ] {
+        assert!(same_everywhere(
+            &m,
+            &Options::new(s).levels(3),
+            &format!("{s:?}")
+        ));
+    }
+    for s in [Scheme::CatmullClark, Scheme::DooSabin] {
+        let opts = Options::new(s).mobius(true).levels(2);
+        assert!(same_everywhere(&m, &opts, &format!("Möbius {s:?}")));
+    }
+}

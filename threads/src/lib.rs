@@ -1,0 +1,113 @@
+//! # nlsubdiv-threads
+//!
+//! The std layer of nlsubdiv's deterministic parallel evaluation: [`Threads`], an
+//! [`Executor`] that runs the chunks of every pass on `n` scoped std threads
+//! ([`std::thread::scope`]), and [`subdivide`], the core's
+//! [`nlsubdiv::subdivide_with`] with a thread count. The core stays `no_std` and
+//! single-threaded; it only splits each pass into disjoint output ranges. The output, the
+//! report and the errors are bit-identical for every thread count.
+//!
+//! ```
+//! use nlsubdiv::{plan, Mesh, MeshOut, Options, Scheme, Scratch};
+//! let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+//! let mesh = Mesh::new(&p, &[0, 4], &[0, 1, 2, 3]);
+//! let opts = Options::new(Scheme::CatmullClark).levels(3);
+//! let mut u32s = vec![0u32; 4096];
+//! let pl = plan(mesh, &opts, &mut u32s).unwrap();
+//! let o = pl.output();
+//! let mut points = vec![[0.0; 3]; pl.scratch.points];
+//! let (mut pos, mut offs, mut idx) =
+//!     (vec![[0.0; 3]; o.vertices], vec![0u32; o.faces + 1], vec![0u32; o.indices]);
+//! let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
+//! let scratch = Scratch::new(&mut u32s, &mut points);
+//! nlsubdiv_threads::subdivide(mesh, &opts, scratch, &mut out, 2).unwrap();
+//! ```
+
+use nlsubdiv::exec::{Chunk, Executor};
+use nlsubdiv::{Mesh, MeshOut, Options, Report, Result, Scratch};
+
+/// The smallest number of output elements per chunk worth a thread (a spawn costs tens of
+/// microseconds; a point between a fraction of a microsecond and a few).
+pub const MIN_CHUNK: usize = 2048;
+
+/// Runs every pass on up to `n` scoped std threads, one contiguous group of chunks each (the
+/// calling thread takes the first group).
+#[derive(Clone, Copy, Debug)]
+pub struct Threads {
+    n: usize,
+    /// A fixed number of chunks per pass (tests of odd chunkings), or `None`: one chunk per
+    /// thread, each of at least [`MIN_CHUNK`] elements.
+    fixed: Option<usize>,
+}
+
+impl Threads {
+    /// `n` threads (0 is taken as 1), chunks of at least [`MIN_CHUNK`] elements.
+    pub fn new(n: usize) -> Threads {
+        Threads {
+            n: n.max(1),
+            fixed: None,
+        }
+    }
+
+    /// `n` threads and `k` chunks per pass whatever its size (down to one element a chunk):
+    /// for tests of odd chunkings.
+    pub fn with_chunks(n: usize, k: usize) -> Threads {
+        Threads {
+            n: n.max(1),
+            fixed: Some(k.max(1)),
+        }
+    }
+
+    /// The number of threads.
+    pub fn threads(&self) -> usize {
+        self.n
+    }
+
+    /// The number of threads the machine offers ([`std::thread::available_parallelism`]),
+    /// 1 when unknown.
+    pub fn available() -> usize {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    }
+}
+
+impl Executor for Threads {
+    fn chunks(&self, len: usize) -> usize {
+        match self.fixed {
+            Some(k) => k,
+            None => (len / MIN_CHUNK).clamp(1, self.n),
+        }
+    }
+
+    fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+        let per = chunks.len().div_ceil(self.n).max(1);
+        if per >= chunks.len() {
+            chunks.iter_mut().for_each(task);
+            return;
+        }
+        std::thread::scope(|s| {
+            let mut groups = chunks.chunks_mut(per);
+            let mine = groups.next();
+            for g in groups {
+                s.spawn(move || g.iter_mut().for_each(task));
+            }
+            if let Some(g) = mine {
+                g.iter_mut().for_each(task);
+            }
+        });
+    }
+}
+
+/// [`nlsubdiv::subdivide`] on `threads` std threads (0 or 1: the calling thread only): the
+/// same output, report and errors, bit for bit, for every thread count.
+///
+/// # Errors
+/// Those of [`nlsubdiv::subdivide`].
+pub fn subdivide(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+    threads: usize,
+) -> Result<Report> {
+    nlsubdiv::subdivide_with(mesh, opts, scratch, out, &Threads::new(threads))
+}
