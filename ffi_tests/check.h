@@ -68,7 +68,7 @@ static int nls_summary(const char *suite) {
     return nls_failed == 0 ? 0 : 1;
 }
 
-static double nls_dist3(const double a[3], const double b[3]) {
+static inline double nls_dist3(const double a[3], const double b[3]) {
     double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
     return sqrt(dx * dx + dy * dy + dz * dz);
 }

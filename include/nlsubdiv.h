@@ -112,6 +112,12 @@
 #define NLS_NO_ELEMENT 4294967295
 
 /**
+ * The largest number of tasks one pass is split into (`nls_executor.max_tasks` above it acts
+ * as this).
+ */
+#define NLS_MAX_TASKS (uint32_t)MAX_CHUNKS
+
+/**
  * Mesh scheme: Loop (triangles only; 1→4; approximating).
  */
 #define NLS_SCHEME_LOOP 0
@@ -427,6 +433,40 @@ typedef struct nls_curve_view {
 } nls_curve_view;
 
 /**
+ * One task of a pass: the library's function the host calls with the `task_context` it was
+ * given and a task index below `task_count`.
+ */
+typedef void (*nls_task_fn)(void *task_context, uint32_t task_index);
+
+/**
+ * A host's thread pool. `run(host_context, task_count, task, task_context)` must call
+ * `task(task_context, i)` once for every `i` in `[0, task_count)` — in any order, on any
+ * threads, concurrently or not — and return only after every call has returned (its join is
+ * what makes the tasks' writes visible to the library). The library calls `run` once per
+ * pass of each level, from the thread that called `nls_mesh_subdivide`, never from inside a
+ * task. A task never blocks, allocates or calls back into the host. Contract breaches are
+ * contained: a task index out of range or called a second time is ignored (on targets with
+ * atomic swap; other targets refuse an executor), and a task never called makes the call
+ * fail with `NLS_STATUS_INVALID_ARGUMENT`.
+ */
+typedef struct nls_executor {
+    /**
+     * Runs the tasks of one pass (never NULL in a used executor).
+     */
+    void (*run)(void *host_context, uint32_t task_count, nls_task_fn task, void *task_context);
+    /**
+     * Passed to `run` as is.
+     */
+    void *host_context;
+    /**
+     * How many tasks a pass should be split into, at most `NLS_MAX_TASKS` (usually the pool's
+     * thread count, or a few times it for balance); 0 or 1 runs every pass on the calling
+     * thread without calling `run`.
+     */
+    uint32_t max_tasks;
+} nls_executor;
+
+/**
  * What `nls_mesh_plan` and `nls_mesh_subdivide` are asked to do. Start from
  * `nls_subdivide_default_options`; later versions append fields whose defaults keep the
  * behaviour of this one.
@@ -453,6 +493,17 @@ typedef struct nls_subdivide_options {
      * [0, 1] is `NLS_STATUS_INVALID_ARGUMENT`.
      */
     double linear_weight;
+    /**
+     * NULL (the default): every pass on the calling thread. Otherwise the host's thread pool
+     * (`nls_executor`): each pass of a level is split into at most `max_tasks` disjoint
+     * output ranges that `run` executes on the host's threads. The output, the report and the
+     * errors are bit for bit those of a NULL executor, for every task count and order. Read by
+     * `nls_mesh_subdivide` only (planning and the tagged calls run on the calling thread).
+     * What is split: the positions of the linear and spherelike rules, the Möbius blends and
+     * vertex points, the finiteness checks; the rest of a level is serial
+     * (`docs/architecture.md`).
+     */
+    const struct nls_executor *executor;
 } nls_subdivide_options;
 
 /**

@@ -19,6 +19,7 @@
 #![allow(clippy::missing_safety_doc)] // every export documents its safety contract in prose
 
 pub mod curve;
+pub mod executor;
 mod guard;
 pub mod mesh;
 pub mod mobius;

@@ -18,6 +18,7 @@ use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, MAX_COUNT};
 use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
+use crate::executor::{nls_executor, HostExecutor};
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
 use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_spans, tags_of};
@@ -165,6 +166,15 @@ pub struct nls_subdivide_options {
     /// struct holds) is the Möbius result and 1 the linear one, bit for bit. NaN or outside
     /// [0, 1] is `NLS_STATUS_INVALID_ARGUMENT`.
     pub linear_weight: f64,
+    /// NULL (the default): every pass on the calling thread. Otherwise the host's thread pool
+    /// (`nls_executor`): each pass of a level is split into at most `max_tasks` disjoint
+    /// output ranges that `run` executes on the host's threads. The output, the report and the
+    /// errors are bit for bit those of a NULL executor, for every task count and order. Read by
+    /// `nls_mesh_subdivide` only (planning and the tagged calls run on the calling thread).
+    /// What is split: the positions of the linear and spherelike rules, the Möbius blends and
+    /// vertex points, the finiteness checks; the rest of a level is serial
+    /// (`docs/architecture.md`).
+    pub executor: *const nls_executor,
 }
 
 /// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
@@ -620,13 +630,20 @@ fn subdivide_call(
     view: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
+    exec: Option<&HostExecutor>,
     su: &mut [u32],
     sp: &mut [Point],
     out: &mut MeshOut<'_>,
     raw: &RawOut,
     needed: &mut Option<MeshSizes>,
 ) -> Result<Report, Fail> {
-    match scheme::subdivide_tagged(view, opts, tags, Scratch::new(&mut *su, &mut *sp), out) {
+    let scratch = Scratch::new(&mut *su, &mut *sp);
+    // The tagged rules run on the calling thread (their passes are not split).
+    let result = match exec {
+        Some(x) if tags.is_empty() => scheme::subdivide_with(view, opts, scratch, out, x),
+        _ => scheme::subdivide_tagged(view, opts, tags, scratch, out),
+    };
+    match result {
         Ok(report) => Ok(report),
         Err(e) if e.status == Status::BufferTooSmall => {
             let plan = scheme::plan_tagged(view, opts, tags, su)?;
@@ -666,6 +683,7 @@ pub unsafe extern "C" fn nls_subdivide_default_options(
                     flags: 0,
                     levels: 1,
                     linear_weight: 0.0,
+                    executor: core::ptr::null(),
                 },
             )
         };
@@ -928,6 +946,8 @@ pub(crate) unsafe fn subdivide_body(
             &[i0, i1, i2, t0, t1, t2, t3, s0, s1, s2, s3, s4],
         )?;
         sizes_ok = true;
+        // SAFETY: the caller passes NULL or a readable executor in the options.
+        let exec = unsafe { HostExecutor::read(opts.executor) }?;
         let opts = parse_options(&opts)?;
         mesh.check()?;
         check_tags(tags)?;
@@ -941,7 +961,17 @@ pub(crate) unsafe fn subdivide_body(
         let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
         // SAFETY: the tags were checked (NULL, alignment, size).
         let tags = unsafe { tags_of(tags) }?;
-        let report = subdivide_call(view, &opts, &tags, su, sp, &mut out, &raw, &mut needed)?;
+        let report = subdivide_call(
+            view,
+            &opts,
+            &tags,
+            exec.as_ref(),
+            su,
+            sp,
+            &mut out,
+            &raw,
+            &mut needed,
+        )?;
         // SAFETY: checked above.
         unsafe {
             store(out_sizes, sizes_of(&report.sizes));
@@ -1012,6 +1042,7 @@ mod tests {
             flags: NLS_SUBDIVIDE_MOBIUS,
             levels: 1,
             linear_weight: 0.0,
+            executor: core::ptr::null(),
         };
         let mut su0 = 0usize;
         assert_eq!(
@@ -1107,6 +1138,7 @@ mod tests {
                 flags: NLS_SUBDIVIDE_MOBIUS,
                 levels: 2,
                 linear_weight: 0.0,
+                executor: core::ptr::null(),
             };
             let mut su = vec![0u32; 4096];
             let mut sp = vec![0.0; 3 * 512];
