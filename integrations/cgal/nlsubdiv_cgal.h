@@ -101,7 +101,7 @@ struct Report {
     std::snprintf(buf, sizeof buf, "level %u: ", level);
     std::string m = std::string(buf) + nls_status_str(status);
     if (element != NLS_NO_ELEMENT) {
-      std::snprintf(buf, sizeof buf, " (element %u)", element);
+      std::snprintf(buf, sizeof buf, " (%s %u)", nlsubdiv::flat::element_kind(status), element);
       m += buf;
     }
     return m;

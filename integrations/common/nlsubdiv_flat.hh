@@ -16,6 +16,35 @@
 namespace nlsubdiv {
 namespace flat {
 
+/// What kind of element a status names, for messages ("face 3", "vertex 7"): the statuses of
+/// validation name a face or a vertex, those of the computation an output vertex of the
+/// level, the tag statuses a tag; "element" where the status can name either.
+inline const char* element_kind(nls_status s) {
+  switch (s) {
+    case NLS_STATUS_BAD_OFFSETS:
+    case NLS_STATUS_FACE_TOO_SMALL:
+    case NLS_STATUS_INDEX_OUT_OF_RANGE:
+    case NLS_STATUS_REPEATED_VERTEX:
+    case NLS_STATUS_NON_MANIFOLD_EDGE:
+    case NLS_STATUS_INCONSISTENT_ORIENTATION:
+    case NLS_STATUS_DUPLICATE_FACE:
+    case NLS_STATUS_UNSUPPORTED_FACE_TYPE:
+      return "face";
+    case NLS_STATUS_NON_MANIFOLD_VERTEX:
+    case NLS_STATUS_NON_FINITE_INPUT:
+      return "vertex";
+    case NLS_STATUS_FALLBACK_IN_STRICT_MODE:
+    case NLS_STATUS_NUMERICAL_FAILURE:
+      return "output vertex";
+    case NLS_STATUS_TAG_NOT_AN_EDGE:
+    case NLS_STATUS_REPEATED_TAG:
+    case NLS_STATUS_INVALID_SHARPNESS:
+      return "tag";
+    default:
+      return "element";
+  }
+}
+
 /// A polygon mesh as the C ABI takes it (positions, CSR offsets and indices).
 struct FlatMesh {
   std::vector<double> positions;   ///< 3 per vertex

@@ -35,9 +35,11 @@
 // garbage_collection() first). Use a mesh with double points (OpenMesh::DefaultTraitsDouble):
 // float points round every level.
 //
-// OpenMesh 9 pitfalls avoided: there is no (mesh&) constructor
-// (the base one calls the pure prepare() before the derived object exists), and the
-// destructor detaches first (the base destructor would call the pure cleanup()).
+// OpenMesh's two interfaces both work: `Sd sd; sd(mesh, n)`, and `Sd sd(mesh); sd(n)` (the
+// (mesh&) constructor attaches in the derived class, once the object exists: the base one
+// would call the pure prepare() too early), and the destructor detaches first (the base
+// destructor would call the pure cleanup()). A mesh with float points is refused at compile
+// time (a static_assert): float points would round every level.
 //
 // Licence: this header is part of nlsubdiv (MIT OR Apache-2.0); it contains no OpenMesh code.
 #ifndef NLSUBDIV_OPENMESH_HH
@@ -52,6 +54,7 @@
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
 #include "nlsubdiv.h"
@@ -195,7 +198,12 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
   typedef MeshType mesh_t;
   typedef RealType real_t;
 
-  // No (mesh_t&) constructor: the base one would call prepare() before this object exists.
+  static_assert(std::is_same<typename std::remove_cv<typename MeshType::Point::value_type>::type, double>::value,
+                "nlsubdiv subdividers need double points (OpenMesh::DefaultTraitsDouble, or a Point of Vec3d): "
+                "float points would round every level");
+
+  // No (mesh_t&) constructor here: the base one would call prepare() before this object
+  // exists. The derived classes have one that attaches once they are built.
   SubdividerBaseT() = default;
 
   /// Strict mode: fallbacks become NLS_STATUS_FALLBACK_IN_STRICT_MODE, and the input is also
@@ -226,7 +234,7 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
     std::snprintf(buf, sizeof buf, "level %u: ", level);
     msg_ = std::string(buf) + nls_status_str(s);
     if (element != NLS_NO_ELEMENT) {
-      std::snprintf(buf, sizeof buf, " (element %u)", element);
+      std::snprintf(buf, sizeof buf, " (%s %u)", nlsubdiv::flat::element_kind(s), element);
       msg_ += buf;
     }
     return false;
@@ -263,6 +271,8 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   typedef SubdividerBaseT<MeshType, RealType> base_t;
   typedef MeshType mesh_t;
   BulkSubdividerT() = default;
+  /// OpenMesh's interface 1: attached to `m`, then `sd(n)`.
+  explicit BulkSubdividerT(mesh_t& m) { this->attach(m); }
   ~BulkSubdividerT() override { this->detach(); }
 
   /// Feature edges as creases of `sharpness` (OpenSubdiv's scale: 10 or more is infinitely
@@ -405,6 +415,8 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
   typedef MeshType mesh_t;
   DifferentialT() { nls_differential_default_options(&opt_); }
   explicit DifferentialT(uint32_t stencil) : DifferentialT() { set_stencil(stencil); }
+  /// OpenMesh's interface 1: attached to `m`, then `sd(n)`.
+  explicit DifferentialT(mesh_t& m) : DifferentialT() { this->attach(m); }
   ~DifferentialT() override { this->detach(); }
 
   /// NLS_DIFFERENTIAL_LOOP (default), NLS_DIFFERENTIAL_BUTTERFLY or NLS_DIFFERENTIAL_DIRMAG
@@ -474,12 +486,15 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
 /// The three stencils as their own types (same options and report as DifferentialT).
 template <typename M> struct DifferentialLoopT : DifferentialT<M> {
   DifferentialLoopT() : DifferentialT<M>(NLS_DIFFERENTIAL_LOOP) {}
+  explicit DifferentialLoopT(M& m) : DifferentialT<M>(NLS_DIFFERENTIAL_LOOP) { this->attach(m); }
 };
 template <typename M> struct DifferentialButterflyT : DifferentialT<M> {
   DifferentialButterflyT() : DifferentialT<M>(NLS_DIFFERENTIAL_BUTTERFLY) {}
+  explicit DifferentialButterflyT(M& m) : DifferentialT<M>(NLS_DIFFERENTIAL_BUTTERFLY) { this->attach(m); }
 };
 template <typename M> struct DifferentialDirMagT : DifferentialT<M> {
   DifferentialDirMagT() : DifferentialT<M>(NLS_DIFFERENTIAL_DIRMAG) {}
+  explicit DifferentialDirMagT(M& m) : DifferentialT<M>(NLS_DIFFERENTIAL_DIRMAG) { this->attach(m); }
 };
 
 // ---------------------------------------------------------------------------------------
@@ -499,6 +514,8 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   using P3 = detail::P3;
 
   StarSubdividerT() = default;
+  /// OpenMesh's interface 1: attached to `m`, then `sd(n)`.
+  explicit StarSubdividerT(mesh_t& m) { this->attach(m); }
   ~StarSubdividerT() override { this->detach(); }
 
   const char* name() const override {

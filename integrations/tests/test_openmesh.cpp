@@ -463,6 +463,55 @@ static void feature_creases(itest::Tally& t) {
     t.fail(std::string("features not refused: ") + mob.message() + " / " + per_level.message());
 }
 
+/// OpenMesh's interface 1 (`Sd sd(mesh); sd(n)`) gives interface 2's result bit for bit, for
+/// a driver class, a star-rule class and a differential class; messages name the element's
+/// kind ("face 0" for a quad under Loop).
+static void openmesh_interfaces_and_messages(itest::Tally& t) {
+  Tri a;
+  std::vector<Tri::VertexHandle> v;
+  static const double Q[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1.3}};
+  static const int T[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (auto& q : Q) v.push_back(a.add_vertex(Tri::Point(q[0], q[1], q[2])));
+  for (auto& f : T) a.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  bool same = true;
+  {
+    Tri m1 = a, m2 = a;
+    nom::LinearLoopT<Tri> s1(m1);
+    same = same && s1(2);
+    nom::LinearLoopT<Tri> s2;
+    same = same && s2(m2, 2) && flat_of(m1) == flat_of(m2);
+  }
+  {
+    Tri m1 = a, m2 = a;
+    nom::MobiusLoopT<Tri> s1(m1);
+    same = same && s1(1);
+    nom::MobiusLoopT<Tri> s2;
+    same = same && s2(m2, 1) && flat_of(m1) == flat_of(m2);
+  }
+  {
+    Tri m1 = a, m2 = a;
+    nom::DifferentialLoopT<Tri> s1(m1);
+    same = same && s1(1);
+    nom::DifferentialLoopT<Tri> s2;
+    same = same && s2(m2, 1) && flat_of(m1) == flat_of(m2);
+  }
+  if (same)
+    t.pass("OpenMesh interface 1 (constructor with the mesh) = interface 2", 0);
+  else
+    t.fail("OpenMesh interface 1 differs from interface 2");
+  Poly q;
+  auto a0 = q.add_vertex(Poly::Point(0, 0, 0)), a1 = q.add_vertex(Poly::Point(1, 0, 0)), a2 = q.add_vertex(Poly::Point(1, 1, 0)),
+       a3 = q.add_vertex(Poly::Point(0, 1, 0));
+  q.add_face(std::vector<Poly::VertexHandle>{a0, a1, a2, a3});
+  nom::LinearLoopT<Poly> loop;
+  const bool refused = !loop(q, 1);
+  const std::string msg = loop.message();
+  if (refused && msg.find("(face 0)") != std::string::npos)
+    t.pass("messages name the element's kind (face 0)", 0);
+  else
+    t.fail("message for a quad under Loop: " + msg);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
@@ -550,6 +599,7 @@ int main(int argc, char** argv) {
   synthetic(t);
   differential_refuses_non_triangles(t);
   feature_creases(t);
+  openmesh_interfaces_and_messages(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_openmesh: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);
