@@ -223,7 +223,13 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     } else {
         "; 0 elements changed by the fold guard".to_string()
     };
-    let folds = crate::folds::measure(&r.mesh).describe();
+    let measured = crate::folds::measure(&r.mesh);
+    let mut folds = measured.describe();
+    if !tags.is_empty() && measured.folded > 0 {
+        // The fold measure compares face normals and knows nothing of the tags: the child
+        // edges of a crease sharper than 90° count (fandisk's right-angled edges do).
+        folds.push_str(" — edges along creases sharper than 90° count here");
+    }
     ctx.note(&format!(
         "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s \
          (subdivision {:.1} ms, {} thread{}){fallbacks}{guarded}; {folds}",
