@@ -6,9 +6,12 @@
  *  - a pthread pool of 1, 2, 3 and 7 threads (tasks dealt round-robin, run concurrently),
  *  - a serial executor that runs the tasks in reverse order, with max_tasks 2, 5, 64 and 1000,
  *  - a host that calls one task twice or an index out of range (ignored: same bits);
- * and a host that skips a task gets NLS_STATUS_INVALID_ARGUMENT, as does max_tasks > 1 with a
- * NULL run. Run under ASan+UBSan and valgrind like every C suite (helgrind is not run). */
+ * a host that skips a task gets NLS_STATUS_INVALID_ARGUMENT, as does max_tasks > 1 with a
+ * NULL run; a pool whose threads round upward gets NLS_STATUS_FP_ENVIRONMENT (the tasks check
+ * their own thread's modes). Run under ASan+UBSan and valgrind like every C suite (helgrind
+ * is not run). */
 #define _POSIX_C_SOURCE 200809L
+#include <fenv.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -93,16 +96,22 @@ static mesh triangulate(const mesh *q) {
 /* A pthread pool: `threads` workers, worker w runs tasks w, w + threads, ... */
 typedef struct {
     unsigned threads;
+    int round_upward; /* the worker threads (not the caller) run with FE_UPWARD */
+    unsigned long calls;
 } pool;
 typedef struct {
     nls_task_fn task;
     void *ctx;
     uint32_t count, first, step;
+    int round_upward;
 } work;
 static void *worker(void *arg) {
     work *w = (work *)arg;
     uint32_t i;
+    int saved = fegetround();
+    if (w->round_upward) fesetround(FE_UPWARD);
     for (i = w->first; i < w->count; i += w->step) w->task(w->ctx, i);
+    fesetround(saved);
     return NULL;
 }
 static void pool_run(void *host, uint32_t count, nls_task_fn task, void *ctx) {
@@ -110,7 +119,9 @@ static void pool_run(void *host, uint32_t count, nls_task_fn task, void *ctx) {
     pthread_t tid[16];
     work w[16];
     unsigned k, n = p->threads < 16 ? p->threads : 16;
+    p->calls++;
     for (k = 0; k < n; k++) {
+        w[k].round_upward = k > 0 && p->round_upward;
         w[k].task = task;
         w[k].ctx = ctx;
         w[k].count = count;
@@ -214,9 +225,10 @@ static int same(const mesh *a, const mesh *b, const nls_subdivide_report *ra, co
 
 static void test_same_bits(void) {
     mesh quads = torus(13, 9), tris = triangulate(&quads);
-    static const uint32_t schemes[] = {NLS_SCHEME_LOOP,    NLS_SCHEME_CATMULL_CLARK, NLS_SCHEME_MODIFIED_BUTTERFLY,
-                                       NLS_SCHEME_KOBBELT, NLS_SCHEME_DOO_SABIN,     NLS_SCHEME_SIMPLEST,
-                                       NLS_SCHEME_DUAL,    NLS_SCHEME_SPHERELIKE};
+    static const uint32_t schemes[] = {NLS_SCHEME_LOOP,       NLS_SCHEME_CATMULL_CLARK,   NLS_SCHEME_MODIFIED_BUTTERFLY,
+                                       NLS_SCHEME_KOBBELT,    NLS_SCHEME_DOO_SABIN,       NLS_SCHEME_SIMPLEST,
+                                       NLS_SCHEME_DUAL,       NLS_SCHEME_VERTEX_INSERTION, NLS_SCHEME_DUAL_TRUNCATION,
+                                       NLS_SCHEME_SPHERELIKE};
     static const unsigned threads[] = {1, 2, 3, 7};
     static const uint32_t tasks[] = {2, 5, 64, 1000};
     size_t s, k;
@@ -236,11 +248,14 @@ static void test_same_bits(void) {
                     pool p;
                     nls_executor ex;
                     p.threads = threads[k];
+                    p.round_upward = 0;
+                    p.calls = 0;
                     ex.run = pool_run;
                     ex.host_context = &p;
                     ex.max_tasks = 2 * threads[k] + 1;
                     CHECK_STATUS(run(m, sch, flags, levels, &ex, &got, &rgot), NLS_STATUS_OK);
                     ok &= same(&ref, &got, &rref, &rgot);
+                    ok &= p.calls > 0; /* this scheme's passes went to the pool */
                     mesh_free(&got);
                 }
                 for (k = 0; k < sizeof tasks / sizeof tasks[0]; k++) {
@@ -281,6 +296,20 @@ static void test_contract_breaches(void) {
     ex.run = NULL; /* no run with max_tasks > 1 */
     CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, 0, 1, &ex, &got, &rgot), NLS_STATUS_INVALID_ARGUMENT);
     mesh_free(&got);
+    {
+        /* The pool's worker threads round upward: the tasks refuse, the call says why. */
+        pool p;
+        nls_executor px;
+        p.threads = 3;
+        p.round_upward = 1;
+        p.calls = 0;
+        px.run = pool_run;
+        px.host_context = &p;
+        px.max_tasks = 6;
+        CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2, &px, &got, &rgot), NLS_STATUS_FP_ENVIRONMENT);
+        mesh_free(&got);
+        CHECK(fegetround() == FE_TONEAREST);
+    }
     ex.max_tasks = 1; /* one task: the calling thread, run never called */
     CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2, &ex, &got, &rgot), NLS_STATUS_OK);
     CHECK(same(&ref, &got, &rref, &rgot));

@@ -274,34 +274,43 @@ static void test_statuses(void) {
     t.crease_vertices = diagonal;
     t.crease_sharpness = ok2;
     t.crease_count = 2;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_TAG_NOT_AN_EDGE);
     CHECK(e == 1);
     mesh_free(&r);
     t.crease_vertices = repeated;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_REPEATED_TAG);
     CHECK(e == 1);
     mesh_free(&r);
     t.crease_vertices = out_of_range;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_INDEX_OUT_OF_RANGE);
     CHECK(e == 1);
     mesh_free(&r);
     t.crease_vertices = CUBE_EDGES;
     t.crease_sharpness = bad;
     bad[1] = NAN;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_INVALID_SHARPNESS);
     CHECK(e == 1);
     mesh_free(&r);
     bad[1] = -1.0;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_INVALID_SHARPNESS);
+    CHECK(e == 1);
     mesh_free(&r);
     bad[1] = INFINITY;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_INVALID_SHARPNESS);
+    CHECK(e == 1);
     mesh_free(&r);
     /* A repeated corner is named after the creases. */
     t.crease_sharpness = ok2;
     t.corner_vertices = corners;
     t.corner_sharpness = corner_s;
     t.corner_count = 2;
+    e = 0;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_REPEATED_TAG);
     CHECK(e == 3);
     mesh_free(&r);
@@ -315,6 +324,8 @@ static void test_statuses(void) {
     /* An unknown method; NULL arrays with a count. */
     t.method = 7;
     CHECK_STATUS(nls_mesh_plan_scratch_size_tagged(&v, &t, &need), NLS_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_INVALID_ARGUMENT);
+    mesh_free(&r);
     t.method = NLS_CREASE_CHAIKIN;
     CHECK_STATUS(run(&c, cc, &t, &r, &e), NLS_STATUS_OK);
     mesh_free(&r);
@@ -342,6 +353,11 @@ static void test_statuses(void) {
     CHECK_STATUS(nls_mesh_plan_tagged(&v, &cc, &t, su, need, &plan, (uint32_t *)(su + need)),
                  NLS_STATUS_ALIASING_BUFFERS);
     CHECK(su[need] == 0); /* out_element pointed into a tag array: not written */
+    t.method = 7;          /* an unknown method is found after the out-pointer check */
+    CHECK_STATUS(nls_mesh_plan_tagged(&v, &cc, &t, su, need, &plan, (uint32_t *)(su + need)),
+                 NLS_STATUS_ALIASING_BUFFERS);
+    CHECK(su[need] == 0);
+    t.method = NLS_CREASE_UNIFORM;
     free(su);
     mesh_free(&c);
     mesh_free(&o);

@@ -115,7 +115,7 @@
  * The largest number of tasks one pass is split into (`nls_executor.max_tasks` above it acts
  * as this).
  */
-#define NLS_MAX_TASKS (uint32_t)MAX_CHUNKS
+#define NLS_MAX_TASKS 64
 
 /**
  * Mesh scheme: Loop (triangles only; 1→4; approximating).
@@ -441,13 +441,24 @@ typedef void (*nls_task_fn)(void *task_context, uint32_t task_index);
 /**
  * A host's thread pool. `run(host_context, task_count, task, task_context)` must call
  * `task(task_context, i)` once for every `i` in `[0, task_count)` — in any order, on any
- * threads, concurrently or not — and return only after every call has returned (its join is
- * what makes the tasks' writes visible to the library). The library calls `run` once per
- * pass of each level, from the thread that called `nls_mesh_subdivide`, never from inside a
- * task. A task never blocks, allocates or calls back into the host. Contract breaches are
- * contained: a task index out of range or called a second time is ignored (on targets with
- * atomic swap; other targets refuse an executor), and a task never called makes the call
- * fail with `NLS_STATUS_INVALID_ARGUMENT`.
+ * threads, concurrently or not — starting them after `run` was called and returning only
+ * after every call has returned (the pool's submit and join are what make the library's
+ * data visible to the tasks and the tasks' writes visible to the library). `run` must not
+ * throw (a C++ exception through the library is undefined behaviour) and must not touch the
+ * buffers of the call. The library calls `run` once per pass of each level, from the thread
+ * that called `nls_mesh_subdivide`, never from inside a task. A task never blocks, allocates
+ * or calls back into the host.
+ *
+ * Each task checks its thread's floating-point environment as the call checks the calling
+ * thread's: a pool thread with flush-to-zero, denormals-are-zero or a non-default rounding
+ * mode makes the call fail with `NLS_STATUS_FP_ENVIRONMENT`, and its unmasked exception
+ * traps are masked for the task and restored after it.
+ *
+ * Contained breaches: a task index out of range or called a second time is ignored (on
+ * targets with atomic swap; other targets refuse an executor with
+ * `NLS_STATUS_INVALID_ARGUMENT`), and a task never called makes the call fail with
+ * `NLS_STATUS_INVALID_ARGUMENT`. Undefined behaviour, as for any callback: calling a task
+ * after `run` has returned, returning from `run` while a task still runs, throwing.
  */
 typedef struct nls_executor {
     /**
@@ -498,7 +509,9 @@ typedef struct nls_subdivide_options {
      * (`nls_executor`): each pass of a level is split into at most `max_tasks` disjoint
      * output ranges that `run` executes on the host's threads. The output, the report and the
      * errors are bit for bit those of a NULL executor, for every task count and order. Read by
-     * `nls_mesh_subdivide` only (planning and the tagged calls run on the calling thread).
+     * `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged` (planning runs on the calling
+     * thread; with tags the executor is checked but the tagged rules run on the calling
+     * thread).
      * What is split: the positions of the linear and spherelike rules, the Möbius blends and
      * vertex points, the finiteness checks; the rest of a level is serial
      * (`docs/architecture.md`).
@@ -1561,15 +1574,19 @@ nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, c
  * `nls_mesh_plan_scratch_size_tagged` gives and overlaps neither the mesh nor the tags. With
  * no tags (both counts 0) this is `nls_mesh_plan`.
  *
- * Errors: those of `nls_mesh_plan`, the mesh first; then `NLS_STATUS_INVALID_ARGUMENT` for an
- * unknown crease method; then, tag by tag, creases first (the element names the tag:
- * crease `i` is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a
- * vertex not below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or
- * infinite), `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
- * `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice); and
+ * Errors, in this order: `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for
+ * the structs; `NLS_STATUS_ALIASING_BUFFERS` for an out-pointer into a buffer of the call
+ * (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`); the mesh's
+ * pointers; `NLS_STATUS_INVALID_ARGUMENT` for an unknown crease method,
+ * `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
+ * pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then
  * `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop and
- * Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`. A tag array that overlaps the scratch, or an
- * out-pointer into a tag array, is `NLS_STATUS_ALIASING_BUFFERS`.
+ * Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`; then the validation of the mesh (as
+ * `nls_mesh_plan`); then, tag by tag, creases first (the element names the tag: crease `i`
+ * is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a vertex not
+ * below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or infinite),
+ * `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
+ * `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice).
  *
  * @param mesh the input mesh.
  * @param options scheme, flags, levels.

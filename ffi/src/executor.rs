@@ -12,7 +12,9 @@ use nlsubdiv::exec::{Chunk, Executor, MAX_CHUNKS};
 
 /// The largest number of tasks one pass is split into (`nls_executor.max_tasks` above it acts
 /// as this).
-pub const NLS_MAX_TASKS: u32 = MAX_CHUNKS as u32;
+pub const NLS_MAX_TASKS: u32 = 64;
+// The C value is a literal (cbindgen cannot write the core's constant into the header).
+const _: () = assert!(NLS_MAX_TASKS as usize == MAX_CHUNKS);
 
 /// One task of a pass: the library's function the host calls with the `task_context` it was
 /// given and a task index below `task_count`.
@@ -21,13 +23,24 @@ pub type nls_task_fn = Option<unsafe extern "C" fn(task_context: *mut c_void, ta
 
 /// A host's thread pool. `run(host_context, task_count, task, task_context)` must call
 /// `task(task_context, i)` once for every `i` in `[0, task_count)` — in any order, on any
-/// threads, concurrently or not — and return only after every call has returned (its join is
-/// what makes the tasks' writes visible to the library). The library calls `run` once per
-/// pass of each level, from the thread that called `nls_mesh_subdivide`, never from inside a
-/// task. A task never blocks, allocates or calls back into the host. Contract breaches are
-/// contained: a task index out of range or called a second time is ignored (on targets with
-/// atomic swap; other targets refuse an executor), and a task never called makes the call
-/// fail with `NLS_STATUS_INVALID_ARGUMENT`.
+/// threads, concurrently or not — starting them after `run` was called and returning only
+/// after every call has returned (the pool's submit and join are what make the library's
+/// data visible to the tasks and the tasks' writes visible to the library). `run` must not
+/// throw (a C++ exception through the library is undefined behaviour) and must not touch the
+/// buffers of the call. The library calls `run` once per pass of each level, from the thread
+/// that called `nls_mesh_subdivide`, never from inside a task. A task never blocks, allocates
+/// or calls back into the host.
+///
+/// Each task checks its thread's floating-point environment as the call checks the calling
+/// thread's: a pool thread with flush-to-zero, denormals-are-zero or a non-default rounding
+/// mode makes the call fail with `NLS_STATUS_FP_ENVIRONMENT`, and its unmasked exception
+/// traps are masked for the task and restored after it.
+///
+/// Contained breaches: a task index out of range or called a second time is ignored (on
+/// targets with atomic swap; other targets refuse an executor with
+/// `NLS_STATUS_INVALID_ARGUMENT`), and a task never called makes the call fail with
+/// `NLS_STATUS_INVALID_ARGUMENT`. Undefined behaviour, as for any callback: calling a task
+/// after `run` has returned, returning from `run` while a task still runs, throwing.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct nls_executor {
@@ -51,11 +64,16 @@ pub struct nls_executor {
 /// The host's executor as the core's [`Executor`].
 pub(crate) struct HostExecutor {
     e: nls_executor,
+    /// Set by a task that found its thread's floating-point environment changed: the call
+    /// fails with `FpEnvironment` (the task did not run, so the core fails the pass).
+    #[cfg(target_has_atomic = "8")]
+    fp_refused: AtomicBool,
 }
 
-// SAFETY: the host's contract (`nls_executor`): `run` and `host_context` may be used from the
-// calling thread, and the tasks from any thread of the host's pool. The executor itself holds
-// no state the tasks share.
+// SAFETY: `Sync` lets the core share `&HostExecutor` with the tasks (the `Executor` bound).
+// The tasks only touch `fp_refused`, an atomic; `run` and `host_context` are used only by
+// `Executor::run`, which the core calls from the calling thread, never from a task (the core
+// runs no pass inside a pass).
 unsafe impl Sync for HostExecutor {}
 
 impl HostExecutor {
@@ -76,18 +94,35 @@ impl HostExecutor {
         if e.max_tasks > 1 && (e.run.is_none() || !cfg!(target_has_atomic = "8")) {
             return Err(nlsubdiv::Status::InvalidArgument);
         }
-        Ok(Some(HostExecutor { e }))
+        Ok(Some(HostExecutor {
+            e,
+            #[cfg(target_has_atomic = "8")]
+            fp_refused: AtomicBool::new(false),
+        }))
+    }
+
+    /// Whether a task refused to run in a non-default floating-point environment.
+    pub(crate) fn fp_refused(&self) -> bool {
+        #[cfg(target_has_atomic = "8")]
+        {
+            self.fp_refused.load(Ordering::Acquire)
+        }
+        #[cfg(not(target_has_atomic = "8"))]
+        {
+            false
+        }
     }
 }
 
 /// What `run` hands the trampoline: the chunks of the pass, the task, and one claim flag per
 /// chunk so that a chunk runs at most once whatever the host does.
+#[cfg(target_has_atomic = "8")]
 struct Tasks<'a, 'c> {
     chunks: *mut Chunk<'c>,
     count: usize,
     task: &'a (dyn Fn(&mut Chunk<'c>) + Sync),
-    #[cfg(target_has_atomic = "8")]
     claimed: [AtomicBool; MAX_CHUNKS],
+    fp_refused: &'a AtomicBool,
 }
 
 impl Executor for HostExecutor {
@@ -108,6 +143,7 @@ impl Executor for HostExecutor {
                 count: chunks.len().min(MAX_CHUNKS),
                 task,
                 claimed: [const { AtomicBool::new(false) }; MAX_CHUNKS],
+                fp_refused: &self.fp_refused,
             };
             // SAFETY: the host's contract; `tasks` outlives the call (the host returns after
             // every task has returned), and the trampoline is the only user of the pointer.
@@ -142,6 +178,13 @@ unsafe extern "C" fn trampoline(task_context: *mut c_void, task_index: u32) {
         return;
     };
     if i >= tasks.count || flag.swap(true, Ordering::AcqRel) {
+        return;
+    }
+    // The calling thread's checks, on this thread: the default modes (else the call fails
+    // with FP_ENVIRONMENT), the host's unmasked traps masked for the task and restored.
+    let _traps = crate::guard::FpTrapGuard::mask_traps();
+    if !crate::guard::fp_env_is_default() {
+        tasks.fp_refused.store(true, Ordering::Release);
         return;
     }
     // SAFETY: `i < count` chunks live at `chunks`; the claim flag gives this call the only

@@ -170,7 +170,9 @@ pub struct nls_subdivide_options {
     /// (`nls_executor`): each pass of a level is split into at most `max_tasks` disjoint
     /// output ranges that `run` executes on the host's threads. The output, the report and the
     /// errors are bit for bit those of a NULL executor, for every task count and order. Read by
-    /// `nls_mesh_subdivide` only (planning and the tagged calls run on the calling thread).
+    /// `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged` (planning runs on the calling
+    /// thread; with tags the executor is checked but the tagged rules run on the calling
+    /// thread).
     /// What is split: the positions of the linear and spherelike rules, the Möbius blends and
     /// vertex points, the finiteness checks; the rest of a level is serial
     /// (`docs/architecture.md`).
@@ -643,6 +645,10 @@ fn subdivide_call(
         Some(x) if tags.is_empty() => scheme::subdivide_with(view, opts, scratch, out, x),
         _ => scheme::subdivide_tagged(view, opts, tags, scratch, out),
     };
+    if exec.is_some_and(HostExecutor::fp_refused) {
+        // A task found its pool thread's floating-point modes changed and did not run.
+        return Err(Status::FpEnvironment.into());
+    }
     match result {
         Ok(report) => Ok(report),
         Err(e) if e.status == Status::BufferTooSmall => {

@@ -69,15 +69,26 @@ impl RawTags {
     unsafe fn read(p: *const nls_tags) -> Result<RawTags, Status> {
         // SAFETY: by the caller's contract.
         let tags = unsafe { read_arg(p) }?;
+        // The method and the counts are checked by `check_tags`, after the out-pointers: a
+        // refusal here would write `out_element` before it is known to point outside the
+        // call's buffers.
         let method = match tags.method {
-            NLS_CREASE_UNIFORM => CreaseMethod::Uniform,
             NLS_CREASE_CHAIKIN => CreaseMethod::Chaikin,
-            _ => return Err(Status::InvalidArgument),
+            _ => CreaseMethod::Uniform,
         };
-        if tags.crease_count > MAX_COUNT || tags.corner_count > MAX_COUNT {
+        Ok(RawTags { tags, method })
+    }
+
+    /// The method and the counts: `InvalidArgument` for an unknown method, `SizeOverflow`
+    /// for a count above `MAX_COUNT`.
+    fn check_values(&self) -> Result<(), Status> {
+        if !matches!(self.tags.method, NLS_CREASE_UNIFORM | NLS_CREASE_CHAIKIN) {
+            return Err(Status::InvalidArgument);
+        }
+        if self.tags.crease_count > MAX_COUNT || self.tags.corner_count > MAX_COUNT {
             return Err(Status::SizeOverflow);
         }
-        Ok(RawTags { tags, method })
+        Ok(())
     }
 
     fn is_empty(&self) -> bool {
@@ -105,11 +116,13 @@ pub(crate) fn tag_spans(tags: Option<&RawTags>) -> [Span; 4] {
     ]
 }
 
-/// Checks the four tag pointers (NULL with a non-zero count, alignment, size).
+/// Checks the method, the counts and the four tag pointers (NULL with a non-zero count,
+/// alignment, size).
 pub(crate) fn check_tags(tags: Option<&RawTags>) -> Result<(), Status> {
     let Some(r) = tags else {
         return Ok(());
     };
+    r.check_values()?;
     let t = &r.tags;
     check_ptr(t.crease_vertices, r.pair_entries())?;
     check_ptr(t.crease_sharpness, t.crease_count)?;
@@ -177,6 +190,7 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size_tagged(
         check_ptr(out_scratch_u32.cast_const(), 1)?;
         // SAFETY: the caller passes NULL or readable structs.
         let (mesh, tags) = unsafe { (RawMesh::read(mesh)?, RawTags::read(tags)?) };
+        tags.check_values()?;
         let need = plan_need(&mesh, Some(&tags))?;
         // SAFETY: checked above.
         unsafe { store(out_scratch_u32, need) };
@@ -190,15 +204,19 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size_tagged(
 /// `nls_mesh_plan_scratch_size_tagged` gives and overlaps neither the mesh nor the tags. With
 /// no tags (both counts 0) this is `nls_mesh_plan`.
 ///
-/// Errors: those of `nls_mesh_plan`, the mesh first; then `NLS_STATUS_INVALID_ARGUMENT` for an
-/// unknown crease method; then, tag by tag, creases first (the element names the tag:
-/// crease `i` is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a
-/// vertex not below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or
-/// infinite), `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
-/// `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice); and
+/// Errors, in this order: `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for
+/// the structs; `NLS_STATUS_ALIASING_BUFFERS` for an out-pointer into a buffer of the call
+/// (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`); the mesh's
+/// pointers; `NLS_STATUS_INVALID_ARGUMENT` for an unknown crease method,
+/// `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
+/// pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then
 /// `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop and
-/// Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`. A tag array that overlaps the scratch, or an
-/// out-pointer into a tag array, is `NLS_STATUS_ALIASING_BUFFERS`.
+/// Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`; then the validation of the mesh (as
+/// `nls_mesh_plan`); then, tag by tag, creases first (the element names the tag: crease `i`
+/// is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a vertex not
+/// below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or infinite),
+/// `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
+/// `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice).
 ///
 /// @param mesh the input mesh.
 /// @param options scheme, flags, levels.
