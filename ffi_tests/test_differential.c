@@ -123,6 +123,24 @@ static void test_bad_input(void) {
     CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &o, 0, &r), NLS_STATUS_OK);
     CHECK(r.rep.folded_faces == 0 && r.rep.first_folded_face == NLS_NO_ELEMENT && r.rep.folded_edges == 0);
     result_free(&r);
+    {
+        /* A strongly negative curvature turns vertex 0's neighbourhood inside out: counted
+         * without strict, NLS_STATUS_FOLDED_SURFACE naming the first folded face with it. */
+        static const double fold_scale[6] = {-20, 1, 1, 1, 1, 1};
+        nls_differential_options f = defaults(NLS_DIFFERENTIAL_LOOP, 2);
+        uint32_t counted = 0, first = 0;
+        f.curvature_scale = fold_scale;
+        CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &f, 0, &r), NLS_STATUS_OK);
+        counted = r.rep.folded_faces;
+        first = r.rep.first_folded_face;
+        CHECK(counted > 0 && first != NLS_NO_ELEMENT);
+        result_free(&r);
+        f.strict = 1;
+        r.element = 0;
+        CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, &f, 0, &r), NLS_STATUS_FOLDED_SURFACE);
+        CHECK(r.element == first && r.rep.folded_faces == counted);
+        result_free(&r);
+    }
     o.strict = 0;
     CHECK_STATUS(run(m.p, m.nv, m.off, m.nf, m.idx, m.ni, NULL, 0, &r), NLS_STATUS_NULL_PARAMETER);
     CHECK_STATUS(run(NULL, m.nv, m.off, m.nf, m.idx, m.ni, &o, 0, &r), NLS_STATUS_NULL_PARAMETER);
