@@ -126,3 +126,16 @@ pub fn decode_mesh(r: &mut Reader<'_>, tweak: u8, tweak_at: u16, limits: Limits)
     }
     Mesh { pos, off, idx }
 }
+
+/// The C ABI's view of a packed mesh (shared by the mesh-taking targets).
+pub fn view(m: &Mesh) -> nlsubdiv_ffi::mesh::nls_mesh_view {
+    nlsubdiv_ffi::mesh::nls_mesh_view {
+        positions: m.pos.as_ptr(),
+        vertex_count: m.nv(),
+        positions_stride: 0,
+        offsets: m.off.as_ptr(),
+        face_count: m.nf(),
+        indices: m.idx.as_ptr(),
+        index_count: m.idx.len(),
+    }
+}

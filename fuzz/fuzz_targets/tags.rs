@@ -51,18 +51,6 @@ const SHARPNESS: [f64; 12] = [
     -0.0,
 ];
 
-fn view(m: &Mesh) -> nls_mesh_view {
-    nls_mesh_view {
-        positions: m.pos.as_ptr(),
-        vertex_count: m.nv(),
-        positions_stride: 0,
-        offsets: m.off.as_ptr(),
-        face_count: m.nf(),
-        indices: m.idx.as_ptr(),
-        index_count: m.idx.len(),
-    }
-}
-
 fn options(scheme: u32, flags: u32, levels: u32) -> nls_subdivide_options {
     let mut o = nls_subdivide_options {
         scheme: 0,
