@@ -747,6 +747,140 @@ static void test_bad_arguments(void) {
     mesh_free(&x.m);
 }
 
+/* out_element on failures found before the out-pointer check (a NULL or misaligned argument
+ * struct, a bad stride). It is written (NLS_NO_ELEMENT) only when the call can name every
+ * caller buffer and out_element lies in none of them; otherwise it keeps the caller's value,
+ * and no caller buffer is ever written. */
+static void test_early_failure_element(void) {
+    static fixture x;
+    union {
+        double d[16];
+        unsigned char c[sizeof(double) * 16];
+    } raw;
+    nls_mesh_view v, *misview = (nls_mesh_view *)(void *)(raw.c + 1);
+    nls_subdivide_options o = flat_options(NLS_SCHEME_CATMULL_CLARK, 0, 1);
+    nls_scratch s;
+    nls_mesh_buffers b;
+    nls_plan plan;
+    uint32_t *into_out = (uint32_t *)(void *)(x.op + 6); /* inside the output positions */
+    size_t q;
+    x.m = pyramid();
+    v = flat_view(x.m.p, x.m.nv, x.m.off, x.m.nf, x.m.idx, x.m.ni);
+    s = flat_scratch(x.su, 512, x.sp, 128);
+    b = flat_buffers(x.op, 128, x.oo, 127, x.oi, 512);
+#define RESET()                                                \
+    do {                                                       \
+        for (q = 0; q < 3 * 128; q++) x.op[q] = 0.25;          \
+        x.element = 12345;                                     \
+    } while (0)
+#define UNTOUCHED() CHECK(x.op[6] == 0.25 && x.op[7] == 0.25 && x.element == 12345)
+    /* NULL view: no input buffer, so the call knows every buffer and a separate out_element
+     * receives NLS_NO_ELEMENT; one inside the output positions is not written */
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(NULL, &o, &s, &b, &x.sz, &x.rep, &x.element), NLS_STATUS_NULL_PARAMETER);
+    CHECK(x.element == NLS_NO_ELEMENT);
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(NULL, &o, &s, &b, &x.sz, &x.rep, into_out), NLS_STATUS_NULL_PARAMETER);
+    UNTOUCHED();
+    /* NULL options, NULL scratch struct, NULL output struct: out_element into the input
+     * indices, the output indices, the u32 scratch */
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(&v, NULL, &s, &b, &x.sz, &x.rep, into_out), NLS_STATUS_NULL_PARAMETER);
+    UNTOUCHED();
+    {
+        uint32_t saved = x.m.idx[3];
+        RESET();
+        CHECK_STATUS(nls_mesh_subdivide(&v, &o, NULL, &b, &x.sz, &x.rep, (uint32_t *)&x.m.idx[3]),
+                     NLS_STATUS_NULL_PARAMETER);
+        CHECK(x.m.idx[3] == saved);
+    }
+    x.su[7] = 4242;
+    CHECK_STATUS(nls_mesh_subdivide(&v, &o, &s, NULL, &x.sz, &x.rep, &x.su[7]), NLS_STATUS_NULL_PARAMETER);
+    CHECK(x.su[7] == 4242);
+    /* a misaligned view: its buffers cannot be named, so out_element keeps its value */
+    memcpy(raw.c + 1, &v, sizeof v);
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(misview, &o, &s, &b, &x.sz, &x.rep, &x.element), NLS_STATUS_MISALIGNED_POINTER);
+    UNTOUCHED();
+    /* a bad stride: the extent of the positions is unknown, so the same */
+    v.positions_stride = 7;
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(&v, &o, &s, &b, &x.sz, &x.rep, &x.element), NLS_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED();
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(&v, &o, &s, &b, &x.sz, &x.rep, into_out), NLS_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED();
+    v.positions_stride = 0;
+    /* a misaligned out_sizes: every buffer is known, NLS_NO_ELEMENT is written */
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(&v, &o, &s, &b, (nls_mesh_sizes *)(void *)(raw.c + 1), &x.rep, &x.element),
+                 NLS_STATUS_MISALIGNED_POINTER);
+    CHECK(x.element == NLS_NO_ELEMENT);
+    RESET();
+    CHECK_STATUS(nls_mesh_subdivide(&v, &o, &s, &b, (nls_mesh_sizes *)(void *)(raw.c + 1), &x.rep, into_out),
+                 NLS_STATUS_MISALIGNED_POINTER);
+    UNTOUCHED();
+    /* the plan: NULL view with out_element into the scratch; misaligned view */
+    x.su[9] = 4242;
+    CHECK_STATUS(nls_mesh_plan(NULL, &o, x.su, 512, &plan, &x.su[9]), NLS_STATUS_NULL_PARAMETER);
+    CHECK(x.su[9] == 4242);
+    x.element = 12345;
+    CHECK_STATUS(nls_mesh_plan(misview, &o, x.su, 512, &plan, &x.element), NLS_STATUS_MISALIGNED_POINTER);
+    CHECK(x.element == 12345);
+    x.element = 12345;
+    CHECK_STATUS(nls_mesh_plan(NULL, &o, x.su, 512, &plan, &x.element), NLS_STATUS_NULL_PARAMETER);
+    CHECK(x.element == NLS_NO_ELEMENT);
+    /* the differential calls */
+    {
+        nls_differential_options d;
+        nls_differential_report dr;
+        CHECK_STATUS(nls_differential_default_options(&d), NLS_STATUS_OK);
+        RESET();
+        CHECK_STATUS(nls_differential_subdivide(NULL, &d, &s, &b, &x.sz, &dr, into_out), NLS_STATUS_NULL_PARAMETER);
+        UNTOUCHED();
+        RESET();
+        CHECK_STATUS(nls_differential_subdivide(misview, &d, &s, &b, &x.sz, &dr, &x.element),
+                     NLS_STATUS_MISALIGNED_POINTER);
+        UNTOUCHED();
+        /* an edit array cannot be named without the view (its length is the vertex count) */
+        d.curvature_scale = x.sp;
+        RESET();
+        CHECK_STATUS(nls_differential_subdivide(misview, &d, &s, &b, &x.sz, &dr, &x.element),
+                     NLS_STATUS_MISALIGNED_POINTER);
+        UNTOUCHED();
+        d.curvature_scale = NULL;
+        RESET();
+        CHECK_STATUS(nls_differential_subdivide(NULL, &d, &s, &b, &x.sz, &dr, &x.element), NLS_STATUS_NULL_PARAMETER);
+        CHECK(x.element == NLS_NO_ELEMENT);
+        x.su[9] = 4242;
+        CHECK_STATUS(nls_differential_plan(NULL, &d, x.su, 512, &plan, &x.su[9]), NLS_STATUS_NULL_PARAMETER);
+        CHECK(x.su[9] == 4242);
+    }
+    /* the curve call: NULL view with out_element into the output; misaligned view */
+    {
+        nls_curve_view *miscurve = (nls_curve_view *)(void *)(raw.c + 1);
+        size_t cnt = 0;
+        RESET();
+        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, NULL, 1, x.op, 128, x.sp, 128, &cnt,
+                                         into_out),
+                     NLS_STATUS_NULL_PARAMETER);
+        UNTOUCHED();
+        RESET();
+        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, miscurve, 1, x.op, 128, x.sp, 128,
+                                         &cnt, &x.element),
+                     NLS_STATUS_MISALIGNED_POINTER);
+        UNTOUCHED();
+        RESET();
+        CHECK_STATUS(nls_curve_subdivide(NLS_CURVE_FOUR_POINT, NULL, 1, x.op, 128, x.sp, 128, &cnt,
+                                         &x.element),
+                     NLS_STATUS_NULL_PARAMETER);
+        CHECK(x.element == NLS_NO_ELEMENT);
+    }
+#undef RESET
+#undef UNTOUCHED
+    mesh_free(&x.m);
+}
+
 static void test_strict(void) {
     mesh c = cube(), o;
     nls_subdivide_report rep = {777, 777, 777, 777, 777, 777};
@@ -1348,6 +1482,7 @@ int main(void) {
     test_levels_linear();
     test_bad_meshes();
     test_bad_arguments();
+    test_early_failure_element();
     test_strict();
     test_spectrum_and_literal();
     test_stride();

@@ -363,7 +363,40 @@ static void test_statuses(void) {
     mesh_free(&o);
 }
 
+/* An early failure (a NULL or misaligned argument struct) never writes out_element into a tag
+ * array, and keeps the caller's value when the tags' arrays cannot be named. */
+static void test_early_failure_element(void) {
+    mesh c = cube();
+    nls_mesh_view v = view_of(&c);
+    nls_subdivide_options cc = options(NLS_SCHEME_CATMULL_CLARK, 0, 1);
+    double sharp[12];
+    union {
+        double d[8];
+        unsigned char b[sizeof(double) * 8];
+    } raw;
+    nls_tags t, *mis = (nls_tags *)(void *)(raw.b + 1);
+    nls_plan plan;
+    uint32_t su[4096], e = 12345;
+    uint32_t *into = (uint32_t *)(void *)&sharp[3];
+    size_t k;
+    for (k = 0; k < 12; k++) sharp[k] = 10.0;
+    t = cube_creases(sharp);
+    /* NULL view: out_element inside the crease sharpness array is not written */
+    CHECK_STATUS(nls_mesh_plan_tagged(NULL, &cc, &t, su, 4096, &plan, into), NLS_STATUS_NULL_PARAMETER);
+    CHECK(sharp[3] == 10.0);
+    /* NULL view, separate out_element: NLS_NO_ELEMENT */
+    CHECK_STATUS(nls_mesh_plan_tagged(NULL, &cc, &t, su, 4096, &plan, &e), NLS_STATUS_NULL_PARAMETER);
+    CHECK(e == NLS_NO_ELEMENT);
+    /* a misaligned tags struct: its arrays cannot be named, out_element keeps its value */
+    memcpy(raw.b + 1, &t, sizeof t);
+    e = 12345;
+    CHECK_STATUS(nls_mesh_plan_tagged(&v, &cc, mis, su, 4096, &plan, &e), NLS_STATUS_MISALIGNED_POINTER);
+    CHECK(e == 12345);
+    mesh_free(&c);
+}
+
 int main(void) {
+    test_early_failure_element();
     test_empty_tags_are_untagged();
     test_sharp_cube_keeps_its_edges();
     test_semi_sharp_decays();

@@ -26,7 +26,9 @@
  * they size (points of 3 doubles, uint32_t entries).
  *
  * What out_element receives (it may be NULL; it is written on failure only, and not at all
- * when it points into a buffer of the call):
+ * when it points into a buffer of the call; when the call cannot tell where its buffers are,
+ * namely a misaligned argument struct or a mesh view with an invalid stride or size, it
+ * keeps the caller's value):
  *
  * | status                               | out_element                                       |
  * |--------------------------------------|---------------------------------------------------|

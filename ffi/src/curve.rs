@@ -10,6 +10,7 @@ use nlsubdiv::curve::{self, CurveScheme};
 use nlsubdiv::{Point, Status, NO_ELEMENT};
 
 use crate::guard::{check_fp_env, check_ptr, flag, overlaps, points};
+use crate::mesh::{is_clear, named, read_arg, Span};
 use crate::primitives::run;
 
 /// Curve scheme: the linear interpolating 4-point scheme (Dyn–Levin–Gregory, `w = 1/16`).
@@ -169,11 +170,29 @@ pub unsafe extern "C" fn nls_curve_subdivide(
     out_element: *mut u32,
 ) -> Status {
     let mut element = NO_ELEMENT;
-    let mut element_ok = !out_element.is_null() && out_element.is_aligned();
+    // SAFETY: the caller passes NULL or a readable view.
+    let view_r = unsafe { read_arg(curve) };
+    // Decided before any check can fail: an early failure never writes `out_element` into a
+    // buffer of the call (see `ElementSlot::close_unless_clear`).
+    let [input] = named(curve, &view_r, |v| {
+        [Span::raw(v.points.cast::<Point>(), v.count)]
+    });
+    let mut element_ok = !out_element.is_null()
+        && out_element.is_aligned()
+        && is_clear(
+            Span::of_one(out_element),
+            &[Span::of_one(out_count)],
+            &[
+                input,
+                Some(Span::raw(out.cast_const().cast::<Point>(), out_capacity)),
+                Some(Span::raw(
+                    scratch.cast_const().cast::<Point>(),
+                    scratch_capacity,
+                )),
+            ],
+        );
     let status = run(|| {
-        check_ptr(curve, 1)?;
-        // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
-        let view = unsafe { curve.read() };
+        let view = view_r?;
         let (points_xyz, count) = (view.points, view.count);
         check_ptr(out_count.cast_const(), 1)?;
         check_ptr(

@@ -12,9 +12,10 @@ use nlsubdiv::mesh::MeshSizes;
 use nlsubdiv::{Point, Status};
 
 use super::{
-    check_optional, check_out_pointers, nls_mesh_buffers, nls_mesh_sizes, nls_mesh_view, nls_plan,
-    nls_scratch, run_with_element, sizes_of, slice, store, too_small, Fail, RawMesh, RawOut, Span,
-    NLS_MESH_BUFFER_SCRATCH_POINTS, NLS_MESH_BUFFER_SCRATCH_U32,
+    check_optional, check_out_pointers, named, nls_mesh_buffers, nls_mesh_sizes, nls_mesh_view,
+    nls_plan, nls_scratch, out_raw_spans, read_arg, run_with_element, scratch_raw_spans, sizes_of,
+    slice, store, too_small, Fail, RawMesh, RawOut, Span, NLS_MESH_BUFFER_SCRATCH_POINTS,
+    NLS_MESH_BUFFER_SCRATCH_U32,
 };
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
@@ -145,12 +146,10 @@ struct Parsed<'a> {
 /// `p` is NULL or points to a readable `nls_differential_options` whose edit pointers, when
 /// not NULL, are readable for `vertex_count` (`3*vertex_count`) doubles during `'a`.
 unsafe fn parse<'a>(
-    p: *const nls_differential_options,
+    o: Result<nls_differential_options, Status>,
     vertex_count: usize,
 ) -> Result<Parsed<'a>, Status> {
-    check_ptr(p, 1)?;
-    // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
-    let o = unsafe { p.read() };
+    let o = o?;
     let (stencil, dirmag) = match o.scheme {
         NLS_DIFFERENTIAL_LOOP => (Stencil::Loop, false),
         NLS_DIFFERENTIAL_BUTTERFLY => (Stencil::ModifiedButterfly, false),
@@ -201,6 +200,30 @@ unsafe fn parse<'a>(
     })
 }
 
+/// The byte ranges of the two edit arrays as given, for the out-element decision: their
+/// length is the vertex count of the view at `mesh`, so an edit array cannot be named when
+/// the view cannot be read (see [`named`]).
+///
+/// # Safety
+/// `mesh` is NULL or points to a readable `nls_mesh_view`.
+unsafe fn edit_raw_spans(
+    p: *const nls_differential_options,
+    opts: &Result<nls_differential_options, Status>,
+    mesh: *const nls_mesh_view,
+) -> [Option<Span>; 2] {
+    let Ok(o) = opts else {
+        return named(p, opts, |_| [Span::EMPTY; 2]);
+    };
+    // SAFETY: by the caller's contract.
+    let view = unsafe { read_arg(mesh) };
+    let array = |q: *const f64, per_vertex: usize| match (q.is_null(), &view) {
+        (true, _) => Some(Span::EMPTY),
+        (false, Ok(v)) => Some(Span::raw(q, v.vertex_count.saturating_mul(per_vertex))),
+        (false, Err(_)) => None,
+    };
+    [array(o.curvature_scale, 1), array(o.normals, 3)]
+}
+
 /// Validates the mesh (triangles only) and the options and plans `nls_differential_subdivide`:
 /// the exact output sizes (those of the spatial Loop or Modified Butterfly subdivision) and
 /// the exact scratch it needs.
@@ -236,12 +259,19 @@ pub unsafe extern "C" fn nls_differential_plan(
     out_element: *mut u32,
 ) -> Status {
     run_with_element(out_element, |element| {
+        // SAFETY: the caller passes NULL or readable structs.
+        let (mesh_r, opts_r) = unsafe { (RawMesh::read(mesh), read_arg(options)) };
         // SAFETY: the caller passes NULL or a readable view.
-        let mesh = unsafe { RawMesh::read(mesh) }?;
+        let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
+        // SAFETY: the caller passes NULL or a readable view.
+        let [d, e] = unsafe { edit_raw_spans(options, &opts_r, mesh) };
+        let su = Some(Span::raw(scratch_u32.cast_const(), scratch_u32_capacity));
+        element.close_unless_clear(&[Span::of_one(out_plan)], &[a, b, c, d, e, su]);
+        let mesh = mesh_r?;
         check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
-        // SAFETY: `options` and its arrays are readable by the caller's contract.
-        let parsed = unsafe { parse(options, mesh.vertex_count()) }?;
+        // SAFETY: the option's arrays are readable by the caller's contract.
+        let parsed = unsafe { parse(opts_r, mesh.vertex_count()) }?;
         let [a, b, c] = mesh.spans();
         let [e0, e1] = parsed.edits;
         let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
@@ -325,12 +355,34 @@ pub unsafe extern "C" fn nls_differential_subdivide(
     let mut outs_ok = false;
     let status = run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
-        let (mesh, raw) = unsafe { (RawMesh::read(mesh)?, RawOut::read(scratch, out)?) };
+        let (mesh_r, opts_r, scratch_r, out_r) = unsafe {
+            (
+                RawMesh::read(mesh),
+                read_arg(options),
+                read_arg(scratch),
+                read_arg(out),
+            )
+        };
+        // SAFETY: the caller passes NULL or a readable view.
+        let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
+        // SAFETY: the caller passes NULL or a readable view.
+        let [d, e] = unsafe { edit_raw_spans(options, &opts_r, mesh) };
+        let [f, g] = named(scratch, &scratch_r, scratch_raw_spans);
+        let [h, i, j] = named(out, &out_r, out_raw_spans);
+        element.close_unless_clear(
+            &[Span::of_one(out_sizes), Span::of_one(out_report)],
+            &[a, b, c, d, e, f, g, h, i, j],
+        );
+        let mesh = mesh_r?;
+        let raw = RawOut {
+            scratch: scratch_r?,
+            out: out_r?,
+        };
         check_ptr(out_sizes.cast_const(), 1)?;
         check_optional(out_report)?;
         check_optional(out_element)?;
-        // SAFETY: `options` and its arrays are readable by the caller's contract.
-        let parsed = unsafe { parse(options, mesh.vertex_count()) }?;
+        // SAFETY: the option's arrays are readable by the caller's contract.
+        let parsed = unsafe { parse(opts_r, mesh.vertex_count()) }?;
         let [a, b, c] = mesh.spans();
         let [e0, e1] = parsed.edits;
         let [s0, s1, s2, s3, s4] = raw.spans();

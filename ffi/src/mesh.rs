@@ -13,6 +13,7 @@
 //! parameters and the same description of a mesh serves every call.
 
 use core::mem::size_of;
+use core::ptr::null;
 
 use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, MAX_COUNT};
 use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
@@ -21,7 +22,7 @@ use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 use crate::executor::{nls_executor, HostExecutor};
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
-use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_spans, tags_of};
+use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_raw_spans, tag_spans, tags_of};
 
 /// Mesh scheme: Loop (triangles only; 1→4; approximating).
 pub const NLS_SCHEME_LOOP: u32 = 0;
@@ -308,6 +309,42 @@ pub(crate) fn run_with_element(
     }
 }
 
+impl ElementSlot {
+    /// Closes the slot unless the call can name every caller buffer and `out_element` lies in
+    /// none of them nor in another out-pointer. Runs before any check can fail, so an early
+    /// failure (a NULL or misaligned struct, a bad stride, a misaligned out-pointer) never
+    /// writes into a caller's buffer. `named` holds one entry per argument that describes
+    /// buffers: `None` when they cannot be named (see [`named`]). Where the slot is closed,
+    /// `out_element` keeps the caller's value.
+    pub(crate) fn close_unless_clear(&mut self, outs: &[Span], named: &[Option<Span>]) {
+        if !is_clear(Span::of_one(self.ptr), outs, named) {
+            self.writable = false;
+        }
+    }
+}
+
+/// Whether the out-element range `e` lies in no out-pointer of `outs` and in no buffer of
+/// `named`, every one of which could be named (see [`ElementSlot::close_unless_clear`]).
+pub(crate) fn is_clear(e: Span, outs: &[Span], named: &[Option<Span>]) -> bool {
+    named.iter().all(|n| n.is_some_and(|b| !e.overlaps(b))) && !outs.iter().any(|o| e.overlaps(*o))
+}
+
+/// The buffers described by a struct argument `p`, read (or refused) as `r`: their byte
+/// ranges as given (not yet checked) when it was read; none when `p` is NULL (a NULL struct
+/// describes no buffer); `None` each when they cannot be named (a misaligned struct, or a
+/// mesh view whose stride or size is invalid).
+pub(crate) fn named<P, T, const N: usize>(
+    p: *const P,
+    r: &Result<T, Status>,
+    spans: impl Fn(&T) -> [Span; N],
+) -> [Option<Span>; N] {
+    match r {
+        Ok(v) => spans(v).map(Some),
+        Err(_) if p.is_null() => [Some(Span::EMPTY); N],
+        Err(_) => [None; N],
+    }
+}
+
 /// Checks an optional out-parameter (NULL allowed).
 pub(crate) fn check_optional<T>(p: *mut T) -> Result<(), Status> {
     check_ptr(p.cast_const(), usize::from(!p.is_null()))
@@ -338,6 +375,19 @@ pub(crate) struct Span {
 }
 
 impl Span {
+    /// No bytes.
+    pub(crate) const EMPTY: Span = Span { start: 0, bytes: 0 };
+
+    /// `count` elements of `T` at `p` as given, for the out-element decision, which must
+    /// count a misaligned buffer too: empty when `p` is NULL or the size exceeds `isize::MAX`
+    /// bytes (no object is that large; the buffer's own check refuses it).
+    pub(crate) fn raw<T>(p: *const T, count: usize) -> Span {
+        match count.checked_mul(size_of::<T>()) {
+            Some(bytes) if !p.is_null() && bytes <= isize::MAX as usize => Span::of(p, count),
+            _ => Span::EMPTY,
+        }
+    }
+
     /// `count` elements of `T` at `p` (saturating: the pointer checks bound real sizes).
     pub(crate) fn of<T>(p: *const T, count: usize) -> Span {
         Span {
@@ -351,7 +401,7 @@ impl Span {
     pub(crate) fn checked<T>(p: *const T, count: usize) -> Span {
         match check_ptr(p, count) {
             Ok(()) => Span::of(p, count),
-            Err(_) => Span { start: 0, bytes: 0 },
+            Err(_) => Span::EMPTY,
         }
     }
 
@@ -427,6 +477,44 @@ impl RawMesh {
             stride,
             coords,
         })
+    }
+
+    /// The byte ranges of the three input arrays as given (see [`Span::raw`]).
+    pub(crate) fn raw_spans(&self) -> [Span; 3] {
+        let v = &self.view;
+        [
+            Span::raw(v.positions, self.coords),
+            Span::raw(v.offsets, v.face_count.saturating_add(1)),
+            Span::raw(v.indices, v.index_count),
+        ]
+    }
+
+    /// The three input arrays of the view at `p`, read as `r`, for the out-element decision
+    /// (see [`named`]). A view refused for its stride names its positions `None` (their
+    /// extent is unknown); one refused because the extent overflows names them as no memory
+    /// (no object is that large); its offsets and indices are named either way.
+    ///
+    /// # Safety
+    /// `p` is NULL or points to a readable `nls_mesh_view`.
+    pub(crate) unsafe fn named(
+        p: *const nls_mesh_view,
+        r: &Result<RawMesh, Status>,
+    ) -> [Option<Span>; 3] {
+        // SAFETY: by the caller's contract.
+        let view = match (r, unsafe { read_arg(p) }) {
+            (Ok(m), _) => return m.raw_spans().map(Some),
+            (Err(_), Ok(view)) => view,
+            (Err(_), Err(_)) => return named(p, r, |_| [Span::EMPTY; 3]),
+        };
+        let positions = match r {
+            Err(Status::SizeOverflow) => Some(Span::EMPTY),
+            _ => None,
+        };
+        [
+            positions,
+            Some(Span::raw(view.offsets, view.face_count.saturating_add(1))),
+            Some(Span::raw(view.indices, view.index_count)),
+        ]
     }
 
     /// The byte ranges of the three input arrays (empty for an array that fails its check).
@@ -514,24 +602,24 @@ pub(crate) struct RawOut {
     pub(crate) out: nls_mesh_buffers,
 }
 
-impl RawOut {
-    /// Reads the two structs.
-    ///
-    /// # Safety
-    /// Each pointer is NULL or points to a readable struct.
-    pub(crate) unsafe fn read(
-        scratch: *const nls_scratch,
-        out: *const nls_mesh_buffers,
-    ) -> Result<RawOut, Status> {
-        // SAFETY: by the caller's contract.
-        unsafe {
-            Ok(RawOut {
-                scratch: read_arg(scratch)?,
-                out: read_arg(out)?,
-            })
-        }
-    }
+/// The byte ranges of the scratch struct's two buffers as given (see [`Span::raw`]).
+pub(crate) fn scratch_raw_spans(s: &nls_scratch) -> [Span; 2] {
+    [
+        Span::raw(s.u32s.cast_const(), s.u32_capacity),
+        Span::raw(s.points.cast_const().cast::<Point>(), s.point_capacity),
+    ]
+}
 
+/// The byte ranges of the output struct's three buffers as given (see [`Span::raw`]).
+pub(crate) fn out_raw_spans(o: &nls_mesh_buffers) -> [Span; 3] {
+    [
+        Span::raw(o.positions.cast_const().cast::<Point>(), o.vertex_capacity),
+        Span::raw(o.offsets.cast_const(), o.face_capacity.saturating_add(1)),
+        Span::raw(o.indices.cast_const(), o.index_capacity),
+    ]
+}
+
+impl RawOut {
     /// The byte ranges of the five buffers (empty for a buffer that fails its check).
     pub(crate) fn spans(&self) -> [Span; 5] {
         let (s, o) = (&self.scratch, &self.out);
@@ -800,9 +888,15 @@ pub(crate) unsafe fn plan_body(
 ) -> Status {
     run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
-        let (mesh, opts) = unsafe { (RawMesh::read(mesh)?, read_arg(options)?) };
+        let (mesh_r, tags_r) = unsafe { (RawMesh::read(mesh), read_tags(tags)) };
+        // SAFETY: the caller passes NULL or a readable view.
+        let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
+        let [d, e, f, g] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
+        let su = Some(Span::raw(scratch_u32.cast_const(), scratch_u32_capacity));
+        element.close_unless_clear(&[Span::of_one(out_plan)], &[a, b, c, d, e, f, g, su]);
         // SAFETY: the caller passes NULL or a readable struct.
-        let tags = unsafe { read_tags(tags) }?;
+        let (mesh, opts) = (mesh_r?, unsafe { read_arg(options) }?);
+        let tags = tags_r?;
         let tags = tags.as_ref();
         check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
@@ -929,15 +1023,30 @@ pub(crate) unsafe fn subdivide_body(
     let mut sizes_ok = false;
     let status = run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
-        let (mesh, opts, raw) = unsafe {
+        let (mesh_r, scratch_r, out_r, tags_r) = unsafe {
             (
-                RawMesh::read(mesh)?,
-                read_arg(options)?,
-                RawOut::read(scratch, out)?,
+                RawMesh::read(mesh),
+                read_arg(scratch),
+                read_arg(out),
+                read_tags(tags),
             )
         };
+        // SAFETY: the caller passes NULL or a readable view.
+        let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
+        let [d, e] = named(scratch, &scratch_r, scratch_raw_spans);
+        let [f, g, h] = named(out, &out_r, out_raw_spans);
+        let [i, j, k, l] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
+        element.close_unless_clear(
+            &[Span::of_one(out_sizes), Span::of_one(out_report)],
+            &[a, b, c, d, e, f, g, h, i, j, k, l],
+        );
         // SAFETY: the caller passes NULL or a readable struct.
-        let tags = unsafe { read_tags(tags) }?;
+        let (mesh, opts) = (mesh_r?, unsafe { read_arg(options) }?);
+        let raw = RawOut {
+            scratch: scratch_r?,
+            out: out_r?,
+        };
+        let tags = tags_r?;
         let tags = tags.as_ref();
         check_ptr(out_sizes.cast_const(), 1)?;
         check_optional(out_report)?;

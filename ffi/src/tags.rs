@@ -116,6 +116,21 @@ pub(crate) fn tag_spans(tags: Option<&RawTags>) -> [Span; 4] {
     ]
 }
 
+/// The byte ranges of the four tag arrays as given (see [`Span::raw`]), for the out-element
+/// decision; none without tags.
+pub(crate) fn tag_raw_spans(tags: &Option<RawTags>) -> [Span; 4] {
+    let Some(r) = tags else {
+        return [Span::EMPTY; 4];
+    };
+    let t = &r.tags;
+    [
+        Span::raw(t.crease_vertices, r.pair_entries()),
+        Span::raw(t.crease_sharpness, t.crease_count),
+        Span::raw(t.corner_vertices, t.corner_count),
+        Span::raw(t.corner_sharpness, t.corner_count),
+    ]
+}
+
 /// Checks the method, the counts and the four tag pointers (NULL with a non-zero count,
 /// alignment, size).
 pub(crate) fn check_tags(tags: Option<&RawTags>) -> Result<(), Status> {
