@@ -4,9 +4,20 @@
 // Header-only, C++17, over include/nlsubdiv.h (link libnlsubdiv; CGAL 5.5 is header-only).
 //
 //   #include <nlsubdiv/cgal/nlsubdiv_cgal.h>
-//   nlsubdiv::cgal::Report r =
-//       nlsubdiv::cgal::mobius_loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
-//   if (!r.ok()) std::cerr << r.message() << "\n";
+//   namespace SM3 = nlsubdiv::Subdivision_method_3;
+//   try {
+//     SM3::Mobius_Loop_subdivision(mesh, nlsubdiv::parameters::number_of_iterations(3).strict(true));
+//   } catch (const SM3::Subdivision_error& e) {  // the mesh is unchanged
+//     std::cerr << e.what() << "\n";
+//   }
+//
+// The entry points are nlsubdiv::Subdivision_method_3::*_subdivision (one per scheme, linear
+// and Mobius_*, and Differential_*), in the style of CGAL::Subdivision_method_3: a polygon
+// mesh, CGAL named parameters (CGAL's own and nlsubdiv::parameters::strict, literal,
+// linear_weight, crease_sharpness, corner_sharpness, crease_method, report,
+// vertex_curvature_scale_map, solver_max_iterations, solver_tolerance, dirmag_levels), no
+// return value, nlsubdiv::cgal::Subdivision_error on failure. The lowercase functions of
+// nlsubdiv::cgal (mobius_loop_subdivision, ...) are deprecated, kept for one version.
 //
 // Three layers (docs/integrations.md):
 // * Mobius_loop_mask_3 and Mobius_butterfly_mask_3 (Star_mask_3): PTQMask_3s that evaluate
@@ -21,14 +32,13 @@
 //   virtual points) or whose face points depend on which corner a face starts at
 //   (Catmull–Clark, Kobbelt: the mask starts every face of a refined level at its old-vertex
 //   corner, as the driver's quad pattern does, so levels chain like the driver's);
-// * free functions for every scheme, in CGAL's named-parameter style
-//   (number_of_iterations, vertex_point_map): mask + host where a mask fits, otherwise the
-//   bulk path (flat copy -> nls_mesh_subdivide -> mesh rebuilt); spherelike_subdivision
-//   (bulk) and differential_{loop,butterfly,dirmag}_subdivision (flat copy -> one
-//   nls_differential_subdivide call for all levels -> mesh rebuilt).
+// * free functions for every scheme, in CGAL's named-parameter style: mask + host where a
+//   mask fits, otherwise the bulk path (flat copy -> nls_mesh_subdivide -> mesh rebuilt);
+//   Spherelike_subdivision (bulk) and Differential_{Loop,Butterfly,DirMag}_subdivision (flat
+//   copy -> one nls_differential_subdivide call for all levels -> mesh rebuilt).
 //
 // Masks compute the whole level when it is first touched and record any error in their
-// Report (CGAL's callbacks return void; nothing throws or aborts). The free functions
+// Report (CGAL's callbacks return void; masks never throw). The free functions
 // evaluate each level *before* the host changes the mesh, so a refused level leaves the mesh
 // untouched; when a later level of a multi-level call fails, the mesh is restored from a copy
 // made before the first level (copy-assignment of the PolygonMesh: the vertex point map must
