@@ -4,9 +4,20 @@
 // Header-only, C++17, over include/nlsubdiv.h (link libnlsubdiv; CGAL 5.5 is header-only).
 //
 //   #include <nlsubdiv/cgal/nlsubdiv_cgal.h>
-//   nlsubdiv::cgal::Report r =
-//       nlsubdiv::cgal::mobius_loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
-//   if (!r.ok()) std::cerr << r.message() << "\n";
+//   namespace SM3 = nlsubdiv::Subdivision_method_3;
+//   try {
+//     SM3::Mobius_Loop_subdivision(mesh, nlsubdiv::parameters::number_of_iterations(3).strict(true));
+//   } catch (const SM3::Subdivision_error& e) {  // the mesh is unchanged
+//     std::cerr << e.what() << "\n";
+//   }
+//
+// The entry points are nlsubdiv::Subdivision_method_3::*_subdivision (one per scheme, linear
+// and Mobius_*, and Differential_*), in the style of CGAL::Subdivision_method_3: a polygon
+// mesh, CGAL named parameters (CGAL's own and nlsubdiv::parameters::strict, literal,
+// linear_weight, crease_sharpness, corner_sharpness, crease_method, report,
+// vertex_curvature_scale_map, solver_max_iterations, solver_tolerance, dirmag_levels), no
+// return value, nlsubdiv::cgal::Subdivision_error on failure. The lowercase functions of
+// nlsubdiv::cgal (mobius_loop_subdivision, ...) are deprecated, kept for one version.
 //
 // Three layers (docs/integrations.md):
 // * Mobius_loop_mask_3 and Mobius_butterfly_mask_3 (Star_mask_3): PTQMask_3s that evaluate
@@ -21,14 +32,13 @@
 //   virtual points) or whose face points depend on which corner a face starts at
 //   (Catmull–Clark, Kobbelt: the mask starts every face of a refined level at its old-vertex
 //   corner, as the driver's quad pattern does, so levels chain like the driver's);
-// * free functions for every scheme, in CGAL's named-parameter style
-//   (number_of_iterations, vertex_point_map): mask + host where a mask fits, otherwise the
-//   bulk path (flat copy -> nls_mesh_subdivide -> mesh rebuilt); spherelike_subdivision
-//   (bulk) and differential_{loop,butterfly,dirmag}_subdivision (flat copy -> one
-//   nls_differential_subdivide call for all levels -> mesh rebuilt).
+// * free functions for every scheme, in CGAL's named-parameter style: mask + host where a
+//   mask fits, otherwise the bulk path (flat copy -> nls_mesh_subdivide -> mesh rebuilt);
+//   Spherelike_subdivision (bulk) and Differential_{Loop,Butterfly,DirMag}_subdivision (flat
+//   copy -> one nls_differential_subdivide call for all levels -> mesh rebuilt).
 //
 // Masks compute the whole level when it is first touched and record any error in their
-// Report (CGAL's callbacks return void; nothing throws or aborts). The free functions
+// Report (CGAL's callbacks return void; masks never throw). The free functions
 // evaluate each level *before* the host changes the mesh, so a refused level leaves the mesh
 // untouched; when a later level of a multi-level call fails, the mesh is restored from a copy
 // made before the first level (copy-assignment of the PolygonMesh: the vertex point map must
@@ -46,7 +56,9 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <cstdio>
+#include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -55,6 +67,24 @@
 #include "nlsubdiv.h"
 
 namespace nlsubdiv {
+
+/// nlsubdiv's own named-parameter tags (CGAL 5.5's scheme: one enum type per parameter, its
+/// one value the query tag for CGAL::parameters::get_parameter). The functions that set them
+/// are in nlsubdiv::parameters (below).
+namespace internal_np {
+enum strict_t { strict };
+enum literal_t { literal };
+enum linear_weight_t { linear_weight };
+enum crease_sharpness_t { crease_sharpness };
+enum corner_sharpness_t { corner_sharpness };
+enum crease_method_t { crease_method };
+enum report_t { report };
+enum vertex_curvature_scale_map_t { vertex_curvature_scale_map };
+enum solver_max_iterations_t { solver_max_iterations };
+enum solver_tolerance_t { solver_tolerance };
+enum dirmag_levels_t { dirmag_levels };
+}  // namespace internal_np
+
 namespace cgal {
 
 /// Options of the masks and functions.
@@ -69,6 +99,13 @@ struct Options {
   double corner_sharpness = 10.0;
   /// NLS_CREASE_UNIFORM or NLS_CREASE_CHAIKIN.
   uint32_t crease_method = NLS_CREASE_UNIFORM;
+  /// Möbius schemes: NLS_SUBDIVIDE_LITERAL (the paper's rules without the driver's fold
+  /// guard). The star-rule masks are always literal.
+  bool literal = false;
+  /// Möbius schemes: nls_subdivide_options::linear_weight, the weight of the linear result in
+  /// the Möbius–linear spectrum (seed 000 §7.2): 0 Möbius, 1 linear, bit for bit. The star-rule
+  /// masks evaluate weight 0 only.
+  double linear_weight = 0.0;
 };
 
 /// Options of the differential functions (nls_differential_options; seed 001 §3): the
@@ -218,7 +255,7 @@ bool fill_from_driver(MaskState<PM>& st, uint32_t scheme, uint32_t flags) {
   const FlatMesh& in = st.level.flat;
   uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
   FlatMesh out;
-  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks);
+  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks, nullptr, st.opts.linear_weight);
   if (s != NLS_STATUS_OK) return st.fail(s, el);
   st.report.fallbacks += fallbacks;
   const std::size_t n = in.vertex_count();
@@ -334,7 +371,8 @@ class Driver_mask_3 {
     st.face_pt.clear();
     st.level.build(*pmesh_, vpm_, st.nv_prev);
     const FlatMesh& in = st.level.flat;
-    const uint32_t fl = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+    const uint32_t fl = Flags | (st.opts.strict ? NLS_SUBDIVIDE_STRICT : 0u) |
+                        ((Flags & NLS_SUBDIVIDE_MOBIUS) && st.opts.literal ? NLS_SUBDIVIDE_LITERAL : 0u);
     uint32_t el = NLS_NO_ELEMENT;
     nls_status s = NLS_STATUS_OK;
     if (st.opts.strict && st.level_no == 1) {
@@ -743,7 +781,8 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
   r.path = "bulk";
   Level<PM> lv;
   lv.build(pm, vpm, SIZE_MAX);
-  const uint32_t f = flags | (opts.strict ? NLS_SUBDIVIDE_STRICT : 0u);
+  const uint32_t f = flags | (opts.strict ? NLS_SUBDIVIDE_STRICT : 0u) |
+                     ((flags & NLS_SUBDIVIDE_MOBIUS) && opts.literal ? NLS_SUBDIVIDE_LITERAL : 0u);
   uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
   nls_status s = NLS_STATUS_OK;
   if (opts.strict) {
@@ -754,7 +793,8 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
   const nlsubdiv::flat::FlatTags tags = tags_of(pm, np, lv, opts);
   const nls_tags tv = tags.view();
   if (s == NLS_STATUS_OK)
-    s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks, tags.empty() ? nullptr : &tv);
+    s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks, tags.empty() ? nullptr : &tv,
+                                   (flags & NLS_SUBDIVIDE_MOBIUS) ? opts.linear_weight : 0.0);
   if (s != NLS_STATUS_OK) {
     r.status = s;
     r.element = el;
@@ -772,7 +812,7 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
 /// The differential path: flat copy -> one nls_differential_subdivide call with levels =
 /// number_of_iterations (the reconstruction is global: k levels are one solve) -> rebuilt.
 template <class PM, class NP>
-Report differential(PM& pm, uint32_t stencil, const NP& np, const DifferentialOptions& dopts) {
+Report differential(PM& pm, uint32_t stencil, const NP& np, const DifferentialOptions& dopts, bool strict_folds = false) {
   typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
   Vpm vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
                                                get_property_map(CGAL::vertex_point, pm));
@@ -793,6 +833,26 @@ Report differential(PM& pm, uint32_t stencil, const NP& np, const DifferentialOp
   o.dirmag_levels = stencil == NLS_DIFFERENTIAL_DIRMAG ? dopts.dirmag_levels : 0u;
   o.max_iterations = dopts.max_iterations;
   o.tolerance = dopts.tolerance;
+  o.strict = strict_folds ? 1u : 0u;
+  // §4.4 editing: the named parameters vertex_curvature_scale_map (vertex -> double) and
+  // CGAL's vertex_normal_map (vertex -> vector with x(), y(), z()), read in the flat copy's
+  // vertex order.
+  std::vector<double> curvature, normals;
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::vertex_curvature_scale_map_t>::value) {
+    auto cm = CGAL::parameters::get_parameter(np, nlsubdiv::internal_np::vertex_curvature_scale_map);
+    for (auto v : lv.verts) curvature.push_back(static_cast<double>(get(cm, v)));
+    o.curvature_scale = curvature.data();
+  }
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::vertex_normal_map_t>::value) {
+    auto nm = CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_normal_map);
+    for (auto v : lv.verts) {
+      const auto n = get(nm, v);
+      normals.push_back(CGAL::to_double(n.x()));
+      normals.push_back(CGAL::to_double(n.y()));
+      normals.push_back(CGAL::to_double(n.z()));
+    }
+    o.normals = normals.data();
+  }
   uint32_t el = NLS_NO_ELEMENT;
   nls_status s = NLS_STATUS_OK;
   if (dopts.strict) {
@@ -875,60 +935,164 @@ Report with_mask(PM& pm, const NP& np, Options opts) {
 
 }  // namespace detail
 
-#define NLSUBDIV_CGAL_FN(name, body)                                                                            \
-  template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>              \
-  Report name(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) { \
-    return body;                                                                                                \
-  }
+namespace detail {
 
-/// Möbius Loop: PTQ host + Mobius_loop_mask_3 (star rules).
-NLSUBDIV_CGAL_FN(mobius_loop_subdivision, (detail::with_mask<Mobius_loop_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
-/// Möbius Modified Butterfly: PTQ host + Mobius_butterfly_mask_3 (star rules).
-NLSUBDIV_CGAL_FN(mobius_butterfly_subdivision, (detail::with_mask<Mobius_butterfly_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, false>(pm, np, opts)))
-/// Möbius Catmull–Clark: bulk path, all levels in one driver call. (Mobius_catmull_clark_mask_3
-/// in CGAL's PQQ host gives the driver's level for the host's mesh as CGAL numbers it; in
-/// exact ties of the §4.4.3 face-point sort the kernel breaks ties by vertex id, and CGAL
-/// numbers refined levels differently from the driver, so only the bulk path gives the
-/// driver's multi-level result bit for bit. docs/integrations.md §5.)
-NLSUBDIV_CGAL_FN(mobius_catmull_clark_subdivision, (detail::bulk(pm, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-/// Möbius Kobbelt: PQQ host + Mobius_kobbelt_mask_3 (driver mask).
-NLSUBDIV_CGAL_FN(mobius_kobbelt_subdivision, (detail::with_mask<Mobius_kobbelt_mask_3<PolygonMesh, typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type>, true>(pm, np, opts)))
-/// The other Möbius schemes: bulk path (their connectivity is not a CGAL host's).
-NLSUBDIV_CGAL_FN(mobius_doo_sabin_subdivision, (detail::bulk(pm, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-NLSUBDIV_CGAL_FN(mobius_simplest_subdivision, (detail::bulk(pm, NLS_SCHEME_SIMPLEST, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-NLSUBDIV_CGAL_FN(mobius_dual_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-NLSUBDIV_CGAL_FN(mobius_vertex_insertion_subdivision, (detail::bulk(pm, NLS_SCHEME_VERTEX_INSERTION, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-NLSUBDIV_CGAL_FN(mobius_dual_truncation_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL_TRUNCATION, NLS_SUBDIVIDE_MOBIUS, np, opts)))
-/// The linear schemes (bulk path; the driver's boundary rules, peer-rules.md).
-NLSUBDIV_CGAL_FN(loop_subdivision, (detail::bulk(pm, NLS_SCHEME_LOOP, 0, np, opts)))
-NLSUBDIV_CGAL_FN(catmull_clark_subdivision, (detail::bulk(pm, NLS_SCHEME_CATMULL_CLARK, 0, np, opts)))
-NLSUBDIV_CGAL_FN(butterfly_subdivision, (detail::bulk(pm, NLS_SCHEME_MODIFIED_BUTTERFLY, 0, np, opts)))
-NLSUBDIV_CGAL_FN(kobbelt_subdivision, (detail::bulk(pm, NLS_SCHEME_KOBBELT, 0, np, opts)))
-NLSUBDIV_CGAL_FN(doo_sabin_subdivision, (detail::bulk(pm, NLS_SCHEME_DOO_SABIN, 0, np, opts)))
-NLSUBDIV_CGAL_FN(simplest_subdivision, (detail::bulk(pm, NLS_SCHEME_SIMPLEST, 0, np, opts)))
-NLSUBDIV_CGAL_FN(dual_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL, 0, np, opts)))
-NLSUBDIV_CGAL_FN(vertex_insertion_subdivision, (detail::bulk(pm, NLS_SCHEME_VERTEX_INSERTION, 0, np, opts)))
-NLSUBDIV_CGAL_FN(dual_truncation_subdivision, (detail::bulk(pm, NLS_SCHEME_DUAL_TRUNCATION, 0, np, opts)))
-/// Spherelike interpolating subdivision (seed 003 §3; any polygons -> quads; no Möbius form;
-/// bulk path). Coincident points or a spike: NLS_STATUS_DEGENERATE_GEOMETRY, mesh unchanged.
-NLSUBDIV_CGAL_FN(spherelike_subdivision, (detail::bulk(pm, NLS_SCHEME_SPHERELIKE, 0, np, opts)))
-#undef NLSUBDIV_CGAL_FN
+template <class PM, class NP>
+using Vpm_t = typename CGAL::GetVertexPointMap<PM, NP>::type;
 
-/// Differential-space subdivision (seed 001 §3; triangle meshes; number_of_iterations =
-/// levels, reconstructed ONCE for all levels: not the same as repeated 1-level calls). The
-/// Report carries the solver's iterations and residual. Non-triangles:
-/// NLS_STATUS_UNSUPPORTED_FACE_TYPE; max_iterations reached: NLS_STATUS_NOT_CONVERGED; the
-/// mesh is unchanged on every error.
-#define NLSUBDIV_CGAL_DIFF_FN(name, stencil)                                                                                       \
-  template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>                                 \
-  Report name(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), DifferentialOptions dopts = {}) { \
-    return detail::differential(pm, stencil, np, dopts);                                                                          \
+/// The path of a scheme: the star-rule masks in CGAL's PTQ host for literal Möbius Loop and
+/// Modified Butterfly at weight 0, the driver mask in CGAL's PQQ host for Möbius Kobbelt,
+/// the bulk path otherwise.
+template <class PM, class NP>
+Report run_scheme(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, const Options& opts) {
+  const bool mobius = (flags & NLS_SUBDIVIDE_MOBIUS) != 0;
+  if (mobius && opts.literal && opts.linear_weight == 0.0) {
+    if (scheme == NLS_SCHEME_LOOP) return with_mask<Mobius_loop_mask_3<PM, Vpm_t<PM, NP>>, false>(pm, np, opts);
+    if (scheme == NLS_SCHEME_MODIFIED_BUTTERFLY)
+      return with_mask<Mobius_butterfly_mask_3<PM, Vpm_t<PM, NP>>, false>(pm, np, opts);
   }
-NLSUBDIV_CGAL_DIFF_FN(differential_loop_subdivision, NLS_DIFFERENTIAL_LOOP)
-NLSUBDIV_CGAL_DIFF_FN(differential_butterfly_subdivision, NLS_DIFFERENTIAL_BUTTERFLY)
-/// DirMag (seed 001 §3.4): DifferentialOptions::dirmag_levels levels of DirMag, then Butterfly.
-NLSUBDIV_CGAL_DIFF_FN(differential_dirmag_subdivision, NLS_DIFFERENTIAL_DIRMAG)
-#undef NLSUBDIV_CGAL_DIFF_FN
+  if (mobius && scheme == NLS_SCHEME_KOBBELT) return with_mask<Mobius_kobbelt_mask_3<PM, Vpm_t<PM, NP>>, true>(pm, np, opts);
+  return bulk(pm, scheme, flags, np, opts);
+}
+
+/// The deprecated Möbius Loop and Butterfly functions evaluated the star rules (literal).
+inline Options literal_of(Options o) {
+  o.literal = true;
+  return o;
+}
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------------------
+// Deprecated names (kept for one version): nlsubdiv::Subdivision_method_3 (below) has the
+// CGAL-style entry points. Each of these equals its new name bit for bit (the Möbius Loop
+// and Butterfly ones: the new name with nlsubdiv::parameters::literal(true)) and returns the
+// Report instead of throwing.
+// ---------------------------------------------------------------------------------------
+
+/// Deprecated: Subdivision_method_3::Mobius_Loop_subdivision with literal(true).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_loop_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, np, detail::literal_of(opts));
+}
+/// Deprecated: Subdivision_method_3::Mobius_Butterfly_subdivision with literal(true).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_butterfly_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, np, detail::literal_of(opts));
+}
+/// Deprecated: Subdivision_method_3::Mobius_CatmullClark_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_catmull_clark_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_Kobbelt_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_kobbelt_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_DooSabin_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_doo_sabin_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_Simplest_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_simplest_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_SIMPLEST, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_Dual_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_dual_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DUAL, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_VertexInsertion_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_vertex_insertion_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(),
+                                           Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_VERTEX_INSERTION, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Mobius_DualTruncation_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report mobius_dual_truncation_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(),
+                                          Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DUAL_TRUNCATION, NLS_SUBDIVIDE_MOBIUS, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Loop_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report loop_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_LOOP, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::CatmullClark_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report catmull_clark_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_CATMULL_CLARK, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Butterfly_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report butterfly_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_MODIFIED_BUTTERFLY, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Kobbelt_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report kobbelt_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_KOBBELT, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::DooSabin_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report doo_sabin_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DOO_SABIN, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Simplest_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report simplest_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_SIMPLEST, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Dual_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report dual_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DUAL, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::VertexInsertion_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report vertex_insertion_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_VERTEX_INSERTION, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::DualTruncation_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report dual_truncation_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_DUAL_TRUNCATION, 0, np, opts);
+}
+/// Deprecated: Subdivision_method_3::Spherelike_subdivision. Spherelike interpolating
+/// subdivision (seed 003 §3; any polygons -> quads; no Möbius form; bulk path). Coincident
+/// points or a spike: NLS_STATUS_DEGENERATE_GEOMETRY, mesh unchanged.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report spherelike_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(), Options opts = {}) {
+  return detail::run_scheme(pm, NLS_SCHEME_SPHERELIKE, 0, np, opts);
+}
+
+/// Deprecated: Subdivision_method_3::Differential_Loop_subdivision. Differential-space
+/// subdivision (seed 001 §3; triangle meshes; number_of_iterations = levels, reconstructed
+/// ONCE for all levels: not the same as repeated 1-level calls). The Report carries the
+/// solver's iterations and residual. Non-triangles: NLS_STATUS_UNSUPPORTED_FACE_TYPE;
+/// max_iterations reached: NLS_STATUS_NOT_CONVERGED; the mesh is unchanged on every error.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report differential_loop_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(),
+                                     DifferentialOptions dopts = {}) {
+  return detail::differential(pm, NLS_DIFFERENTIAL_LOOP, np, dopts);
+}
+/// Deprecated: Subdivision_method_3::Differential_Butterfly_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report differential_butterfly_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(),
+                                          DifferentialOptions dopts = {}) {
+  return detail::differential(pm, NLS_DIFFERENTIAL_BUTTERFLY, np, dopts);
+}
+/// Deprecated: Subdivision_method_3::Differential_DirMag_subdivision (DirMag, seed 001 §3.4:
+/// DifferentialOptions::dirmag_levels levels of DirMag, then Butterfly).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Report differential_dirmag_subdivision(PolygonMesh& pm, const NamedParameters& np = CGAL::parameters::default_values(),
+                                       DifferentialOptions dopts = {}) {
+  return detail::differential(pm, NLS_DIFFERENTIAL_DIRMAG, np, dopts);
+}
 
 /// Any scheme (NLS_SCHEME_*) with flags (NLS_SUBDIVIDE_MOBIUS or 0) through the bulk path.
 template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
@@ -937,7 +1101,322 @@ Report subdivide(PolygonMesh& pm, uint32_t scheme, uint32_t flags, const NamedPa
   return detail::bulk(pm, scheme, flags, np, opts);
 }
 
+/// The error of the CGAL-style functions (nlsubdiv::Subdivision_method_3): thrown after the
+/// mesh has been left exactly as it was (strong guarantee), carrying the whole Report.
+/// what() is Report::message(), e.g. "level 1: the scheme does not accept this face type
+/// (face 3)".
+class Subdivision_error : public std::runtime_error {
+ public:
+  explicit Subdivision_error(const Report& r) : std::runtime_error(r.message()), report_(r) {}
+  nls_status status() const { return report_.status; }
+  uint32_t element() const { return report_.element; }
+  uint32_t level() const { return report_.level; }
+  const Report& report() const { return report_; }
+
+ private:
+  Report report_;
+};
+
 }  // namespace cgal
+
+// ---------------------------------------------------------------------------------------
+// Named parameters: CGAL's, chainable with nlsubdiv's own.
+// ---------------------------------------------------------------------------------------
+
+/// A CGAL named-parameter pack (it is a CGAL::Named_function_parameters, so CGAL and the
+/// functions below read it with CGAL::parameters::get_parameter) whose chaining functions
+/// also offer nlsubdiv's parameters: nlsubdiv::parameters::number_of_iterations(2).strict(true)
+/// or nlsubdiv::parameters::strict(true).vertex_point_map(vpm). CGAL 5.5's own packs
+/// (CGAL::parameters::...) are accepted too; they chain CGAL's parameters only.
+template <typename T, typename Tag, typename Base = CGAL::internal_np::No_property>
+struct Named_function_parameters : CGAL::Named_function_parameters<T, Tag, Base> {
+  typedef CGAL::Named_function_parameters<T, Tag, Base> cgal_np;
+  typedef Named_function_parameters<T, Tag, Base> self;
+  Named_function_parameters() : cgal_np() {}
+  Named_function_parameters(const T& v) : cgal_np(v) {}
+  Named_function_parameters(const T& v, const Base& b) : cgal_np(v, b) {}
+
+  // CGAL's parameters, each returning this class so that nlsubdiv's can follow.
+#define CGAL_add_named_parameter(X, Y, Z)                                   \
+  template <typename K>                                                     \
+  Named_function_parameters<K, CGAL::internal_np::X, self> Z(const K& k) const { \
+    return Named_function_parameters<K, CGAL::internal_np::X, self>(k, *this);   \
+  }
+#include <CGAL/STL_Extension/internal/parameters_interface.h>
+#undef CGAL_add_named_parameter
+
+  /// See nlsubdiv::parameters::strict.
+  Named_function_parameters<bool, internal_np::strict_t, self> strict(bool on) const { return {on, *this}; }
+  /// See nlsubdiv::parameters::literal.
+  Named_function_parameters<bool, internal_np::literal_t, self> literal(bool on) const { return {on, *this}; }
+  /// See nlsubdiv::parameters::linear_weight.
+  Named_function_parameters<double, internal_np::linear_weight_t, self> linear_weight(double u) const { return {u, *this}; }
+  /// See nlsubdiv::parameters::crease_sharpness.
+  Named_function_parameters<double, internal_np::crease_sharpness_t, self> crease_sharpness(double s) const { return {s, *this}; }
+  /// See nlsubdiv::parameters::corner_sharpness.
+  Named_function_parameters<double, internal_np::corner_sharpness_t, self> corner_sharpness(double s) const { return {s, *this}; }
+  /// See nlsubdiv::parameters::crease_method.
+  Named_function_parameters<uint32_t, internal_np::crease_method_t, self> crease_method(uint32_t m) const { return {m, *this}; }
+  /// See nlsubdiv::parameters::report.
+  Named_function_parameters<std::reference_wrapper<cgal::Report>, internal_np::report_t, self> report(cgal::Report& r) const {
+    return {std::ref(r), *this};
+  }
+  /// See nlsubdiv::parameters::vertex_curvature_scale_map.
+  template <typename Map>
+  Named_function_parameters<Map, internal_np::vertex_curvature_scale_map_t, self> vertex_curvature_scale_map(const Map& m) const {
+    return {m, *this};
+  }
+  /// See nlsubdiv::parameters::solver_max_iterations.
+  Named_function_parameters<uint32_t, internal_np::solver_max_iterations_t, self> solver_max_iterations(uint32_t n) const {
+    return {n, *this};
+  }
+  /// See nlsubdiv::parameters::solver_tolerance.
+  Named_function_parameters<double, internal_np::solver_tolerance_t, self> solver_tolerance(double t) const { return {t, *this}; }
+  /// See nlsubdiv::parameters::dirmag_levels.
+  Named_function_parameters<uint32_t, internal_np::dirmag_levels_t, self> dirmag_levels(uint32_t n) const { return {n, *this}; }
+};
+
+namespace parameters {
+
+/// No parameter (the defaults), chainable with nlsubdiv's parameters.
+inline Named_function_parameters<bool, CGAL::internal_np::all_default_t> default_values() { return {}; }
+
+// CGAL's parameters as free functions starting an nlsubdiv pack.
+#define CGAL_add_named_parameter(X, Y, Z)                       \
+  template <typename K>                                         \
+  Named_function_parameters<K, CGAL::internal_np::X> Z(const K& p) { \
+    return Named_function_parameters<K, CGAL::internal_np::X>(p);    \
+  }
+#include <CGAL/STL_Extension/internal/parameters_interface.h>
+#undef CGAL_add_named_parameter
+
+/// Strict mode (default false): a fallback (an element that would take the documented linear
+/// rule) is NLS_STATUS_FALLBACK_IN_STRICT_MODE, and the input is refused for what the kernel
+/// accepts by policy but is most likely a mistake (nlsubdiv::flat::strict_check). Differential
+/// schemes: the strict input checks, and with edits a folded output is
+/// NLS_STATUS_FOLDED_SURFACE (nls_differential_options::strict).
+inline Named_function_parameters<bool, internal_np::strict_t> strict(bool on) { return {on}; }
+/// Möbius schemes (default false): the paper's rules without the driver's fold guard
+/// (NLS_SUBDIVIDE_LITERAL).
+inline Named_function_parameters<bool, internal_np::literal_t> literal(bool on) { return {on}; }
+/// Möbius schemes (default 0): the weight u of the linear result in the Möbius–linear spectrum
+/// (seed 000 §7.2), each level (1 − u) · Möbius + u · linear; 0 is the Möbius result and 1
+/// the linear one, bit for bit. NaN or outside [0, 1]: NLS_STATUS_INVALID_ARGUMENT.
+inline Named_function_parameters<double, internal_np::linear_weight_t> linear_weight(double u) { return {u}; }
+/// Sharpness (default 10, OpenSubdiv's scale: 10 or more infinitely sharp) of the edges of
+/// CGAL's edge_is_constrained_map.
+inline Named_function_parameters<double, internal_np::crease_sharpness_t> crease_sharpness(double s) { return {s}; }
+/// Sharpness (default 10) of the corners of CGAL's vertex_is_constrained_map.
+inline Named_function_parameters<double, internal_np::corner_sharpness_t> corner_sharpness(double s) { return {s}; }
+/// NLS_CREASE_UNIFORM (default) or NLS_CREASE_CHAIKIN.
+inline Named_function_parameters<uint32_t, internal_np::crease_method_t> crease_method(uint32_t m) { return {m}; }
+/// Output: receives the call's Report (status, element, level, fallbacks, path, solver
+/// iterations and residual) on success and, before the exception, on failure.
+inline Named_function_parameters<std::reference_wrapper<cgal::Report>, internal_np::report_t> report(cgal::Report& r) {
+  return {std::ref(r)};
+}
+/// Differential schemes (§4.4 editing): a readable property map vertex -> double, the factor
+/// on each control vertex's mean curvature (1 keeps it). Target normals: CGAL's
+/// vertex_normal_map (vertex -> vector with x(), y(), z(); a zero vector keeps the vertex's
+/// own normal).
+template <typename Map>
+Named_function_parameters<Map, internal_np::vertex_curvature_scale_map_t> vertex_curvature_scale_map(const Map& m) {
+  return {m};
+}
+/// Differential schemes: the reconstruction's iteration cap (default 100; reaching it is
+/// NLS_STATUS_NOT_CONVERGED).
+inline Named_function_parameters<uint32_t, internal_np::solver_max_iterations_t> solver_max_iterations(uint32_t n) { return {n}; }
+/// Differential schemes: the relative residual to reach (default 1e-10).
+inline Named_function_parameters<double, internal_np::solver_tolerance_t> solver_tolerance(double t) { return {t}; }
+/// DirMag: the first this many levels use DirMag (default 1).
+inline Named_function_parameters<uint32_t, internal_np::dirmag_levels_t> dirmag_levels(uint32_t n) { return {n}; }
+
+}  // namespace parameters
+
+namespace cgal {
+namespace detail {
+
+template <class NP, class Tag, class D>
+D param_or(const NP& np, Tag tag, D dflt) {
+  return static_cast<D>(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tag), dflt));
+}
+
+/// Options from the named parameters.
+template <class NP>
+Options options_of(const NP& np) {
+  Options o;
+  o.strict = param_or(np, nlsubdiv::internal_np::strict, o.strict);
+  o.literal = param_or(np, nlsubdiv::internal_np::literal, o.literal);
+  o.linear_weight = param_or(np, nlsubdiv::internal_np::linear_weight, o.linear_weight);
+  o.crease_sharpness = param_or(np, nlsubdiv::internal_np::crease_sharpness, o.crease_sharpness);
+  o.corner_sharpness = param_or(np, nlsubdiv::internal_np::corner_sharpness, o.corner_sharpness);
+  o.crease_method = param_or(np, nlsubdiv::internal_np::crease_method, o.crease_method);
+  return o;
+}
+
+template <class NP>
+DifferentialOptions differential_options_of(const NP& np) {
+  DifferentialOptions d;
+  d.strict = param_or(np, nlsubdiv::internal_np::strict, d.strict);
+  d.max_iterations = param_or(np, nlsubdiv::internal_np::solver_max_iterations, d.max_iterations);
+  d.tolerance = param_or(np, nlsubdiv::internal_np::solver_tolerance, d.tolerance);
+  d.dirmag_levels = param_or(np, nlsubdiv::internal_np::dirmag_levels, d.dirmag_levels);
+  return d;
+}
+
+/// The report to the named parameter `report`, then the exception on failure.
+template <class NP>
+void finish(const Report& r, const NP& np) {
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::report_t>::value)
+    CGAL::parameters::get_parameter_reference(np, nlsubdiv::internal_np::report) = r;
+  if (!r.ok()) throw Subdivision_error(r);
+}
+
+template <class PM, class NP>
+void scheme(PM& pm, uint32_t scheme, uint32_t flags, const NP& np) {
+  finish(run_scheme(pm, scheme, flags, np, options_of(np)), np);
+}
+
+template <class PM, class NP>
+void differential_scheme(PM& pm, uint32_t stencil, const NP& np) {
+  const DifferentialOptions d = differential_options_of(np);
+  finish(differential(pm, stencil, np, d, d.strict), np);
+}
+
+}  // namespace detail
+}  // namespace cgal
+
+/// CGAL-style entry points, like CGAL::Subdivision_method_3::Loop_subdivision: a polygon
+/// mesh (Surface_mesh, Polyhedron_3, any MutableFaceGraph), CGAL named parameters (CGAL's
+/// number_of_iterations, default 1, vertex_point_map, edge_is_constrained_map,
+/// vertex_is_constrained_map, vertex_normal_map; nlsubdiv's from nlsubdiv::parameters), no
+/// return value. An error throws nlsubdiv::Subdivision_method_3::Subdivision_error (status,
+/// element, level, the Report; what() the message) with the mesh exactly as it was; the
+/// named parameter report(r) receives the Report in every case.
+namespace Subdivision_method_3 {
+
+using Subdivision_error = cgal::Subdivision_error;
+using Report = cgal::Report;
+
+/// Möbius Loop (seed 000 §4; triangles). The driver's fold guard by default (bulk path);
+/// with literal(true) and linear_weight 0 the star rules in CGAL's PTQ host (Mobius_loop_mask_3).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_Loop_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius Modified Butterfly (triangles, interpolating); paths as Mobius_Loop_subdivision.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_Butterfly_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius Catmull–Clark (any polygons -> quads; bulk path, all levels in one driver call).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_CatmullClark_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius Kobbelt (quads, interpolating; CGAL's PQQ host with Mobius_kobbelt_mask_3).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_Kobbelt_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius Doo–Sabin (dual; bulk path).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_DooSabin_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius simplest (Peters–Reif; bulk path).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_Simplest_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_SIMPLEST, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius dual scheme (bulk path).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_Dual_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DUAL, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius vertex insertion (bulk path).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_VertexInsertion_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_VERTEX_INSERTION, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Möbius dual truncation (bulk path).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Mobius_DualTruncation_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DUAL_TRUNCATION, NLS_SUBDIVIDE_MOBIUS, np);
+}
+/// Linear Loop (the driver's boundary rules; sharp features through edge_is_constrained_map
+/// and vertex_is_constrained_map).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Loop_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_LOOP, 0, np);
+}
+/// Linear Catmull–Clark (sharp features as Loop_subdivision).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void CatmullClark_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_CATMULL_CLARK, 0, np);
+}
+/// Linear Modified Butterfly.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Butterfly_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_MODIFIED_BUTTERFLY, 0, np);
+}
+/// Linear Kobbelt.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Kobbelt_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_KOBBELT, 0, np);
+}
+/// Linear Doo–Sabin.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void DooSabin_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DOO_SABIN, 0, np);
+}
+/// Linear simplest scheme.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Simplest_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_SIMPLEST, 0, np);
+}
+/// Linear dual scheme.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Dual_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DUAL, 0, np);
+}
+/// Linear vertex insertion.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void VertexInsertion_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_VERTEX_INSERTION, 0, np);
+}
+/// Linear dual truncation.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void DualTruncation_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_DUAL_TRUNCATION, 0, np);
+}
+/// Spherelike interpolating subdivision (seed 003 §3; any polygons -> quads; no Möbius form).
+/// Coincident points or a spike: NLS_STATUS_DEGENERATE_GEOMETRY.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Spherelike_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::scheme(pmesh, NLS_SCHEME_SPHERELIKE, 0, np);
+}
+/// Differential-space subdivision with the Loop stencil (seed 001 §3; triangles):
+/// number_of_iterations levels reconstructed once (one solve, not k solves of one level);
+/// solver_max_iterations, solver_tolerance; §4.4 edits through vertex_curvature_scale_map and
+/// vertex_normal_map; strict(true) adds the strict input checks and makes a folded edited
+/// output NLS_STATUS_FOLDED_SURFACE. The Report has the solver's iterations and residual.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Differential_Loop_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::differential_scheme(pmesh, NLS_DIFFERENTIAL_LOOP, np);
+}
+/// Differential-space subdivision with the Butterfly stencil (as Differential_Loop_subdivision).
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Differential_Butterfly_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::differential_scheme(pmesh, NLS_DIFFERENTIAL_BUTTERFLY, np);
+}
+/// DirMag (seed 001 §3.4): dirmag_levels levels of DirMag (default 1), then Butterfly.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void Differential_DirMag_subdivision(PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values()) {
+  cgal::detail::differential_scheme(pmesh, NLS_DIFFERENTIAL_DIRMAG, np);
+}
+
+}  // namespace Subdivision_method_3
 }  // namespace nlsubdiv
 
 #endif  // NLSUBDIV_CGAL_H

@@ -30,8 +30,15 @@
 // aborts the host and nothing throws (except std::bad_alloc from the host's own containers).
 //
 // Connectivity: the old vertices keep their handles (and their properties); edges and faces
-// are rebuilt (OpenMesh's own subdividers split them instead), so edge, half-edge and face
-// properties do not survive a level. Vertices of the mesh must not be marked deleted (call
+// are rebuilt in the driver's order (OpenMesh's own subdividers split them instead). The
+// properties of your own (not OpenMesh's built-in "f:", "e:" ones) are carried over where
+// the subdivision keeps an element (detail::inherit_properties): a child face of face f
+// takes f's face properties, a child edge of edge e (a half of it) e's edge properties,
+// other new faces and edges hold the type's default value; half-edge properties and the
+// built-in ones (normals, colours, status, feature flags) start from the default. The dual
+// schemes (Doo–Sabin, Simplest, Dual) reset vertex properties to the default (their
+// vertices are new points). docs/integrations.md lists it per scheme. Vertices of the mesh
+// must not be marked deleted (call
 // garbage_collection() first). Use a mesh with double points (OpenMesh::DefaultTraitsDouble):
 // float points round every level.
 //
@@ -55,6 +62,7 @@
 #include <string>
 #include <utility>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "nlsubdiv.h"
@@ -174,6 +182,183 @@ bool rebuild(Mesh& m, const FlatMesh& flat) {
   return ok;
 }
 
+/// Whether `m` has properties of its own (not OpenMesh's built-in "v:", "e:", "f:" ones) on
+/// elements of kind `prefix`.
+template <class It>
+bool has_user_props(It b, It e, const char* prefix) {
+  for (; b != e; ++b)
+    if (*b && (*b)->name().compare(0, 2, prefix) != 0) return true;
+  return false;
+}
+
+inline uint64_t edge_key(uint32_t a, uint32_t b) { return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b); }
+
+/// The sorted (min, max) keys of the edges of `f` (the driver's edge order).
+inline std::vector<uint64_t> edge_keys(const FlatMesh& f) {
+  std::vector<uint64_t> keys;
+  keys.reserve(f.indices.size());
+  for (std::size_t i = 0; i + 1 < f.offsets.size(); ++i)
+    for (uint32_t c = f.offsets[i]; c < f.offsets[i + 1]; ++c)
+      keys.push_back(edge_key(f.indices[c], f.indices[c + 1 < f.offsets[i + 1] ? c + 1 : f.offsets[i]]));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+/// The face containing corner `h` of `f` (-1 if none).
+inline long face_of_corner(const FlatMesh& f, uint64_t h) {
+  auto it = std::upper_bound(f.offsets.begin(), f.offsets.end(), h);
+  if (it == f.offsets.begin() || it == f.offsets.end()) return -1;
+  return static_cast<long>(it - f.offsets.begin()) - 1;
+}
+
+/// The input face of each output face after `levels` levels of `scheme` on `in` (the driver's
+/// output order, docs/mesh-and-linear-schemes.md), -1 where an output face lies in no one input
+/// face: Loop and Modified Butterfly: face g of level k comes from face g / 4 of level k − 1;
+/// the quad schemes (Catmull–Clark, Kobbelt, Spherelike) and vertex insertion: output face h
+/// is corner h of the level before (corners of a refined level: 4 or 3 per face); Doo–Sabin
+/// and Simplest: the first faces are the input faces shrunk (face g < F is face g's); Dual and
+/// dual truncation: none.
+inline std::vector<long> face_parents(uint32_t scheme, const FlatMesh& in, uint32_t levels, std::size_t nf_out) {
+  std::vector<long> parent(nf_out, -1);
+  const std::size_t nf_in = in.face_count();
+  for (std::size_t g = 0; g < nf_out; ++g) {
+    if (levels == 0) {
+      parent[g] = g < nf_in ? static_cast<long>(g) : -1;
+      continue;
+    }
+    uint64_t h = g;
+    switch (scheme) {
+      case NLS_SCHEME_LOOP:
+      case NLS_SCHEME_MODIFIED_BUTTERFLY:
+        for (uint32_t k = 0; k < levels; ++k) h /= 4;
+        parent[g] = h < nf_in ? static_cast<long>(h) : -1;
+        break;
+      case NLS_SCHEME_CATMULL_CLARK:
+      case NLS_SCHEME_KOBBELT:
+      case NLS_SCHEME_SPHERELIKE:
+        for (uint32_t k = 1; k < levels; ++k) h /= 4;
+        parent[g] = face_of_corner(in, h);
+        break;
+      case NLS_SCHEME_VERTEX_INSERTION:
+        for (uint32_t k = 1; k < levels; ++k) h /= 3;
+        parent[g] = face_of_corner(in, h);
+        break;
+      case NLS_SCHEME_DOO_SABIN:
+      case NLS_SCHEME_SIMPLEST:
+        parent[g] = g < nf_in ? static_cast<long>(g) : -1;
+        break;
+      default:
+        break;
+    }
+  }
+  return parent;
+}
+
+/// The input edge (its index in `m_old`) of each edge of the output, by the output's (min, max)
+/// vertex pair: Loop, Modified Butterfly and the quad schemes split every edge (a, b) of a
+/// level at its edge point (vertex count of the level + the edge's rank in (min, max) order)
+/// into (a, e) and (e, b), level by level (the connectivity of the intermediate levels from
+/// the linear driver, one level per call); vertex insertion keeps the input edges whole; the
+/// other schemes have no edge that lies on one input edge.
+template <class Mesh>
+std::unordered_map<uint64_t, int> edge_origins(const Mesh& m_old, uint32_t scheme, const FlatMesh& in, uint32_t levels) {
+  std::unordered_map<uint64_t, int> origin;
+  for (auto e : m_old.edges()) {
+    auto h = m_old.halfedge_handle(e, 0);
+    origin[edge_key(static_cast<uint32_t>(m_old.from_vertex_handle(h).idx()), static_cast<uint32_t>(m_old.to_vertex_handle(h).idx()))] =
+        e.idx();
+  }
+  const bool splits = scheme == NLS_SCHEME_LOOP || scheme == NLS_SCHEME_MODIFIED_BUTTERFLY || scheme == NLS_SCHEME_CATMULL_CLARK ||
+                      scheme == NLS_SCHEME_KOBBELT || scheme == NLS_SCHEME_SPHERELIKE;
+  if (levels == 0 || scheme == NLS_SCHEME_VERTEX_INSERTION) return origin;
+  if (!splits) return {};
+  FlatMesh cur = in, next;
+  for (uint32_t k = 0; k < levels; ++k) {
+    const std::vector<uint64_t> keys = edge_keys(cur);
+    const uint64_t nv = cur.vertex_count();
+    std::unordered_map<uint64_t, int> child;
+    for (std::size_t r = 0; r < keys.size(); ++r) {
+      auto it = origin.find(keys[r]);
+      if (it == origin.end()) continue;
+      const uint32_t a = static_cast<uint32_t>(keys[r] >> 32), b = static_cast<uint32_t>(keys[r] & 0xffffffffu);
+      const uint32_t ep = static_cast<uint32_t>(nv + r);
+      child[edge_key(a, ep)] = it->second;
+      child[edge_key(ep, b)] = it->second;
+    }
+    origin.swap(child);
+    if (k + 1 < levels) {
+      uint32_t el = 0, fb = 0;
+      if (nlsubdiv::flat::run_levels(scheme, 0, cur, 1, next, el, fb) != NLS_STATUS_OK) return {};
+      std::swap(cur, next);
+    }
+  }
+  return origin;
+}
+
+/// Rearranges the property `old_p` (of the old elements) into the new elements: new element j
+/// takes old element parent[j]'s value, or the type's default where parent[j] < 0; returns
+/// the new property object (same type, name and persistence), or null.
+inline OpenMesh::BaseProperty* inherited(const OpenMesh::BaseProperty& old_p, const std::vector<long>& parent) {
+  OpenMesh::BaseProperty* c = old_p.clone();
+  const std::size_t n_old = c->n_elements(), n_new = parent.size();
+  c->resize(n_old + n_new);
+  for (std::size_t j = 0; j < n_new; ++j)
+    if (parent[j] >= 0 && static_cast<std::size_t>(parent[j]) < n_old) c->copy(static_cast<std::size_t>(parent[j]), n_old + j);
+  for (std::size_t j = 0; j < n_new; ++j) c->swap(j, n_old + j);
+  c->resize(n_new);
+  return c;
+}
+
+/// Puts into `m` (new connectivity) the face and edge properties of `m_old` (the mesh before
+/// `levels` levels of `scheme` on `in`, its flat copy) that the children inherit: a child face
+/// of face f takes f's values, a child edge of edge e takes e's values (face_parents,
+/// edge_origins); the other faces and edges hold the property type's default value.
+/// OpenMesh's built-in properties ("f:", "e:" names: normals, colours, status, ...) are not
+/// inherited. Dual schemes (Doo–Sabin, Simplest, Dual), whose output vertices are not the
+/// input vertices, reset the vertex properties of their own to the default value.
+template <class Mesh>
+void inherit_properties(Mesh& m, const Mesh& m_old, uint32_t scheme, const FlatMesh& in, uint32_t levels) {
+  if (has_user_props(m.fprops_begin(), m.fprops_end(), "f:")) {
+    const std::vector<long> parent = face_parents(scheme, in, levels, m.n_faces());
+    auto it = m.fprops_begin();
+    auto old = m_old.fprops_begin();
+    // Same positions: the properties of `m` are those of `m_old` (rebuild may append and
+    // release a status property after them).
+    for (; it != m.fprops_end() && old != m_old.fprops_end(); ++it, ++old) {
+      if (!*it || !*old || (*it)->name().compare(0, 2, "f:") == 0 || (*it)->name() != (*old)->name()) continue;
+      OpenMesh::BaseProperty* c = inherited(**old, parent);
+      delete *it;
+      *it = c;
+    }
+  }
+  if (has_user_props(m.eprops_begin(), m.eprops_end(), "e:")) {
+    const std::unordered_map<uint64_t, int> origin = edge_origins(m_old, scheme, in, levels);
+    std::vector<long> parent(m.n_edges(), -1);
+    for (auto e : m.edges()) {
+      auto h = m.halfedge_handle(e, 0);
+      auto f = origin.find(edge_key(static_cast<uint32_t>(m.from_vertex_handle(h).idx()), static_cast<uint32_t>(m.to_vertex_handle(h).idx())));
+      if (f != origin.end()) parent[static_cast<std::size_t>(e.idx())] = f->second;
+    }
+    auto it = m.eprops_begin();
+    auto old = m_old.eprops_begin();
+    // Same positions: the properties of `m` are those of `m_old` (rebuild may append and
+    // release a status property after them).
+    for (; it != m.eprops_end() && old != m_old.eprops_end(); ++it, ++old) {
+      if (!*it || !*old || (*it)->name().compare(0, 2, "e:") == 0 || (*it)->name() != (*old)->name()) continue;
+      OpenMesh::BaseProperty* c = inherited(**old, parent);
+      delete *it;
+      *it = c;
+    }
+  }
+  if (levels > 0 && (scheme == NLS_SCHEME_DOO_SABIN || scheme == NLS_SCHEME_SIMPLEST || scheme == NLS_SCHEME_DUAL))
+    for (auto it = m.vprops_begin(); it != m.vprops_end(); ++it)
+      if (*it && (*it)->name().compare(0, 2, "v:") != 0) {
+        (*it)->clear();
+        (*it)->resize(m.n_vertices());
+      }
+}
+
 }  // namespace detail
 
 /// What the last call did: status (NLS_STATUS_OK on success), the element the status names
@@ -284,6 +469,13 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   }
   /// NLS_CREASE_UNIFORM (the default) or NLS_CREASE_CHAIKIN.
   void set_crease_method(uint32_t method) { crease_method_ = method; }
+  /// Möbius classes (Flags with NLS_SUBDIVIDE_MOBIUS): the weight u of the linear result in
+  /// the Möbius–linear spectrum (seed 000 §7.2, nls_subdivide_options::linear_weight): each
+  /// level is (1 − u) · Möbius + u · linear; 0 (the default) is the Möbius result and 1 the
+  /// linear one, bit for bit. NaN or outside [0, 1]: NLS_STATUS_INVALID_ARGUMENT, mesh
+  /// unchanged. The linear classes ignore it.
+  void set_linear_weight(double u) { linear_weight_ = u; }
+  double linear_weight() const { return linear_weight_; }
 
   const char* name() const override {
     static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
@@ -331,6 +523,7 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
       m = backup;
       return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, static_cast<uint32_t>(n));
     }
+    detail::inherit_properties(m, backup, Scheme, in, static_cast<uint32_t>(n));
     return true;
   }
 
@@ -338,7 +531,8 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   bool run(const FlatMesh& in, uint32_t levels, uint32_t flags, FlatMesh& out, uint32_t done) {
     uint32_t element = NLS_NO_ELEMENT, fallbacks = 0;
     const nls_tags t = tags_.view();
-    nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks, tags_.empty() ? nullptr : &t);
+    nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks, tags_.empty() ? nullptr : &t,
+                                              (Flags & NLS_SUBDIVIDE_MOBIUS) ? linear_weight_ : 0.0);
     if (s != NLS_STATUS_OK) return this->fail(s, element, done + 1);
     this->out_.fallbacks += fallbacks;
     return true;
@@ -366,6 +560,7 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   double crease_sharpness_ = 10.0;
   double corner_sharpness_ = 10.0;
   uint32_t crease_method_ = NLS_CREASE_UNIFORM;
+  double linear_weight_ = 0.0;
   nlsubdiv::flat::FlatTags tags_;
 };
 
@@ -407,7 +602,9 @@ template <typename M> using SpherelikeT = BulkSubdividerT<M, NLS_SCHEME_SPHERELI
 /// (the solver reached max_iterations; iterations() and residual() then say how far it got),
 /// the mesh is unchanged, operator() returns false and status() / message() say why. Faces
 /// that are not triangles are NLS_STATUS_UNSUPPORTED_FACE_TYPE naming the face. set_strict(true)
-/// adds the strict input checks (detail::strict_check); the kernel has no fallbacks here.
+/// adds the strict input checks (detail::strict_check) and, with §4.4 edits
+/// (set_curvature_scale_property, set_normal_property), makes a folded output
+/// NLS_STATUS_FOLDED_SURFACE naming the first folded face; the kernel has no fallbacks here.
 template <typename MeshType, typename RealType = double>
 class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
  public:
@@ -433,6 +630,16 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
   void set_max_iterations(uint32_t n) { opt_.max_iterations = n; }
   uint32_t max_iterations() const { return opt_.max_iterations; }
 
+  /// §4.4 editing (nls_differential_options::curvature_scale): a vertex property of the
+  /// attached mesh with one factor per control vertex on its mean curvature (1 keeps it, 2
+  /// doubles it). The property is read at each call; an invalid handle (the default) means
+  /// no curvature edit. A non-finite factor is refused with the kernel's status naming the
+  /// vertex, mesh unchanged.
+  void set_curvature_scale_property(OpenMesh::VPropHandleT<double> h) { curvature_ = h; }
+  /// §4.4 editing (nls_differential_options::normals): a vertex property with the target
+  /// normal direction of each control vertex (normalised by the library; a zero vector keeps
+  /// the vertex's own normal). An invalid handle (the default) means no normal edit.
+  void set_normal_property(OpenMesh::VPropHandleT<OpenMesh::Vec3d> h) { normals_ = h; }
   /// The solver report of the last call (success or NLS_STATUS_NOT_CONVERGED; zero otherwise).
   const nls_differential_report& report() const { return rep_; }
   uint32_t iterations() const { return rep_.iterations; }
@@ -457,8 +664,25 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
     o.scheme = stencil_;
     o.levels = static_cast<uint32_t>(n);
     o.dirmag_levels = stencil_ == NLS_DIFFERENTIAL_DIRMAG ? dirmag_levels_ : 0u;
-    o.curvature_scale = nullptr;
-    o.normals = nullptr;
+    // §4.4 edits from the vertex properties, in vertex index order (export_flat's); with
+    // strict mode a folded edited output is NLS_STATUS_FOLDED_SURFACE.
+    std::vector<double> curvature, normals;
+    if (curvature_.is_valid()) {
+      for (auto v : m.all_vertices()) curvature.push_back(m.property(curvature_, v));
+      o.curvature_scale = curvature.data();
+    } else {
+      o.curvature_scale = nullptr;
+    }
+    if (normals_.is_valid()) {
+      for (auto v : m.all_vertices()) {
+        const OpenMesh::Vec3d& n = m.property(normals_, v);
+        normals.insert(normals.end(), {n[0], n[1], n[2]});
+      }
+      o.normals = normals.data();
+    } else {
+      o.normals = nullptr;
+    }
+    o.strict = this->strict_ ? 1u : 0u;
     if (this->strict_) {
       // The kernel's validation first (its statuses win: plan), then the strict checks.
       s = nlsubdiv::flat::validate(NLS_SCHEME_LOOP, 0, in, el);
@@ -473,6 +697,8 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
       m = backup;
       return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, static_cast<uint32_t>(n));
     }
+    // The output has the faces of spatial Loop (both stencils split 1-to-4).
+    detail::inherit_properties(m, backup, NLS_SCHEME_LOOP, in, static_cast<uint32_t>(n));
     return true;
   }
 
@@ -481,6 +707,8 @@ class DifferentialT : public SubdividerBaseT<MeshType, RealType> {
   uint32_t stencil_ = NLS_DIFFERENTIAL_LOOP;
   uint32_t dirmag_levels_ = 1;
   nls_differential_report rep_{};
+  OpenMesh::VPropHandleT<double> curvature_;
+  OpenMesh::VPropHandleT<OpenMesh::Vec3d> normals_;
 };
 
 /// The three stencils as their own types (same options and report as DifferentialT).
@@ -733,6 +961,7 @@ class StarSubdividerT : public SubdividerBaseT<MeshType, RealType> {
       m = backup;
       return this->fail(NLS_STATUS_NON_MANIFOLD_EDGE, NLS_NO_ELEMENT, lvl);
     }
+    detail::inherit_properties(m, backup, Scheme, flat_, 1);
     return true;
   }
 

@@ -384,6 +384,338 @@ static void sharp_features(itest::Tally& t) {
     t.fail(std::string("CGAL Möbius with features: ") + r3.message() + " / " + r4.message());
 }
 
+// ---- CGAL-style entry points (nlsubdiv::Subdivision_method_3) ----
+namespace SM3 = nlsubdiv::Subdivision_method_3;
+namespace NP = nlsubdiv::parameters;
+
+/// Runs a new-style call: its Report through the named parameter report(r); a thrown
+/// Subdivision_error must carry the same Report and only when it is not ok.
+template <class F>
+nc::Report call_new(F f, bool* consistent = nullptr) {
+  nc::Report r;
+  bool ok = true;
+  try {
+    f(r);
+    ok = r.ok();
+  } catch (const SM3::Subdivision_error& e) {
+    ok = !r.ok() && e.status() == r.status && e.element() == r.element && e.level() == r.level && std::string(e.what()) == r.message();
+  }
+  if (consistent) *consistent = ok;
+  return r;
+}
+
+template <class PM>
+struct NewFn {
+  std::string name;
+  std::function<nc::Report(PM&, unsigned)> old_fn;
+  std::function<void(PM&, unsigned, nc::Report&)> new_fn;
+};
+
+#define NEWFN(oldf, newf, extra)                                                                                   \
+  NewFn<PM> {                                                                                                      \
+    #newf, [](PM& m, unsigned n) { return nc::oldf(m, CGAL::parameters::number_of_iterations(n)); },               \
+        [](PM& m, unsigned n, nc::Report& r) { SM3::newf(m, NP::number_of_iterations(n) extra.report(r)); } \
+  }
+
+template <class PM>
+std::vector<NewFn<PM>> new_functions() {
+  return {NEWFN(mobius_loop_subdivision, Mobius_Loop_subdivision, .literal(true)),
+          NEWFN(mobius_butterfly_subdivision, Mobius_Butterfly_subdivision, .literal(true)),
+          NEWFN(mobius_catmull_clark_subdivision, Mobius_CatmullClark_subdivision, ),
+          NEWFN(mobius_kobbelt_subdivision, Mobius_Kobbelt_subdivision, ),
+          NEWFN(mobius_doo_sabin_subdivision, Mobius_DooSabin_subdivision, ),
+          NEWFN(mobius_simplest_subdivision, Mobius_Simplest_subdivision, ),
+          NEWFN(mobius_dual_subdivision, Mobius_Dual_subdivision, ),
+          NEWFN(mobius_vertex_insertion_subdivision, Mobius_VertexInsertion_subdivision, ),
+          NEWFN(mobius_dual_truncation_subdivision, Mobius_DualTruncation_subdivision, ),
+          NEWFN(loop_subdivision, Loop_subdivision, ),
+          NEWFN(catmull_clark_subdivision, CatmullClark_subdivision, ),
+          NEWFN(butterfly_subdivision, Butterfly_subdivision, ),
+          NEWFN(kobbelt_subdivision, Kobbelt_subdivision, ),
+          NEWFN(doo_sabin_subdivision, DooSabin_subdivision, ),
+          NEWFN(simplest_subdivision, Simplest_subdivision, ),
+          NEWFN(dual_subdivision, Dual_subdivision, ),
+          NEWFN(vertex_insertion_subdivision, VertexInsertion_subdivision, ),
+          NEWFN(dual_truncation_subdivision, DualTruncation_subdivision, ),
+          NEWFN(spherelike_subdivision, Spherelike_subdivision, ),
+          NEWFN(differential_loop_subdivision, Differential_Loop_subdivision, ),
+          NEWFN(differential_butterfly_subdivision, Differential_Butterfly_subdivision, ),
+          NEWFN(differential_dirmag_subdivision, Differential_DirMag_subdivision, )};
+}
+
+/// Every new name equals its deprecated name bit for bit (same positions, same faces in the
+/// same order), or both refuse with the same status, element and level, mesh unchanged.
+template <class PM>
+void new_names_equal_old(itest::Tally& t, const std::string& mesh, const PM& pm0, unsigned levels) {
+  const Flat in = flat_of(pm0);
+  for (auto& fn : new_functions<PM>()) {
+    PM a = pm0, b = pm0;
+    nc::Report ra = fn.old_fn(a, levels);
+    bool consistent = false;
+    nc::Report rb = call_new([&](nc::Report& r) { fn.new_fn(b, levels, r); }, &consistent);
+    const std::string where = "SM3::" + fn.name + " on " + mesh;
+    const bool same_report = ra.status == rb.status && ra.element == rb.element && ra.level == rb.level && ra.fallbacks == rb.fallbacks;
+    if (consistent && same_report && flat_of(a) == flat_of(b) && (ra.ok() || flat_of(b) == in))
+      t.pass("SM3::*_subdivision = deprecated name bit for bit (or the same refusal)", 0);
+    else
+      t.fail(where + ": old " + ra.message() + ", new " + rb.message() + (consistent ? "" : " (exception inconsistent)") +
+             (flat_of(a) == flat_of(b) ? "" : " (meshes differ)"));
+  }
+}
+
+static SM make_octahedron() {
+  static const double Q[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const int T[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  SM m;
+  std::vector<SM::Vertex_index> oh;
+  for (auto& q : Q) oh.push_back(m.add_vertex(K::Point_3(q[0], q[1], q[2])));
+  for (auto& f : T) m.add_face(oh[f[0]], oh[f[1]], oh[f[2]]);
+  return m;
+}
+
+static SM make_cube() {
+  static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  SM cube;
+  std::vector<SM::Vertex_index> vh;
+  for (auto& p : P) vh.push_back(cube.add_vertex(K::Point_3(p[0], p[1], p[2])));
+  for (auto& f : F) cube.add_face(vh[f[0]], vh[f[1]], vh[f[2]], vh[f[3]]);
+  return cube;
+}
+
+static nlsubdiv::flat::FlatMesh to_fm(const Flat& f) {
+  nlsubdiv::flat::FlatMesh m;
+  m.positions = f.pos;
+  m.offsets = f.off;
+  m.indices = f.idx;
+  return m;
+}
+static Flat of_fm(const nlsubdiv::flat::FlatMesh& m) {
+  Flat f;
+  f.pos = m.positions;
+  f.off = m.offsets;
+  f.idx = m.indices;
+  return f;
+}
+
+/// The C ABI (nls_mesh_subdivide, or _tagged) with a spectrum weight.
+static nls_status c_abi(uint32_t scheme, uint32_t flags, const Flat& in, uint32_t levels, Flat& out, double weight = 0.0,
+                        const nls_tags* tags = nullptr) {
+  nlsubdiv::flat::FlatMesh o;
+  uint32_t el = 0, fb = 0;
+  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, to_fm(in), levels, o, el, fb, tags, weight);
+  out = of_fm(o);
+  return s;
+}
+
+/// Each named parameter has its effect, against the C ABI with the same options.
+static void named_parameters(itest::Tally& t) {
+  const SM oct = make_octahedron(), cube = make_cube();
+  const Flat oin = flat_of(oct), cin = flat_of(cube);
+  const uint32_t M = NLS_SUBDIVIDE_MOBIUS;
+  auto exact = [](const SM& m, const Flat& ref) { return itest::compare(flat_of(m), ref).ok(0.0); };
+  // number_of_iterations.
+  {
+    Flat r1, r3;
+    c_abi(NLS_SCHEME_LOOP, 0, oin, 1, r1);
+    c_abi(NLS_SCHEME_LOOP, 0, oin, 3, r3);
+    SM a = oct, b = oct;
+    SM3::Loop_subdivision(a);
+    SM3::Loop_subdivision(b, NP::number_of_iterations(3));
+    if (exact(a, r1) && exact(b, r3) && r1.nv() != r3.nv())
+      t.pass("SM3 number_of_iterations: default 1 level, 3 levels = C ABI levels 3", 0);
+    else
+      t.fail("SM3 number_of_iterations");
+  }
+  // literal and the default fold guard (the bulk path; literal(true) alone: the star rules).
+  {
+    Flat g, l, lw;
+    c_abi(NLS_SCHEME_LOOP, M, oin, 2, g);
+    c_abi(NLS_SCHEME_LOOP, M | NLS_SUBDIVIDE_LITERAL, oin, 2, l);
+    c_abi(NLS_SCHEME_LOOP, M | NLS_SUBDIVIDE_LITERAL, oin, 2, lw, 0.25);
+    SM a = oct, b = oct, c = oct;
+    nc::Report ra, rb, rc;
+    SM3::Mobius_Loop_subdivision(a, NP::number_of_iterations(2).report(ra));
+    SM3::Mobius_Loop_subdivision(b, NP::number_of_iterations(2).literal(true).report(rb));
+    SM3::Mobius_Loop_subdivision(c, NP::literal(true).linear_weight(0.25).number_of_iterations(2).report(rc));
+    if (exact(a, g) && std::string(ra.path) == "bulk" && itest::compare(flat_of(b), l).ok(TOL) && std::string(rb.path) == "star rules" &&
+        exact(c, lw) && std::string(rc.path) == "bulk")
+      t.pass("SM3 literal: default = C ABI guarded, literal(true) = C ABI NLS_SUBDIVIDE_LITERAL (star rules), with a weight = C ABI", 0);
+    else
+      t.fail(std::string("SM3 literal: paths ") + ra.path + "/" + rb.path + "/" + rc.path);
+  }
+  // linear_weight: 0 = Möbius, 1 = linear, bit for bit; 0.5 = the C ABI, strictly between;
+  // 2 = NLS_STATUS_INVALID_ARGUMENT, mesh unchanged.
+  {
+    Flat half;
+    c_abi(NLS_SCHEME_LOOP, M, oin, 2, half, 0.5);
+    SM mob = oct, lin = oct, w0 = oct, w1 = oct, wh = oct, bad = oct;
+    SM3::Mobius_Loop_subdivision(mob, NP::number_of_iterations(2));
+    SM3::Loop_subdivision(lin, NP::number_of_iterations(2));
+    SM3::Mobius_Loop_subdivision(w0, NP::number_of_iterations(2).linear_weight(0.0));
+    SM3::Mobius_Loop_subdivision(w1, NP::number_of_iterations(2).linear_weight(1.0));
+    SM3::Mobius_Loop_subdivision(wh, NP::number_of_iterations(2).linear_weight(0.5));
+    bool consistent = false;
+    nc::Report rb = call_new([&](nc::Report& r) { SM3::Mobius_Loop_subdivision(bad, NP::linear_weight(2.0).report(r)); }, &consistent);
+    if (flat_of(w0) == flat_of(mob) && flat_of(w1) == flat_of(lin) && exact(wh, half) && !(flat_of(mob) == flat_of(lin)) &&
+        !(flat_of(wh) == flat_of(mob)) && !(flat_of(wh) == flat_of(lin)) && consistent && rb.status == NLS_STATUS_INVALID_ARGUMENT &&
+        flat_of(bad) == oin)
+      t.pass("SM3 linear_weight: 0 = Möbius, 1 = linear bit for bit, 0.5 = C ABI, 2 refused", 0);
+    else
+      t.fail("SM3 linear_weight: " + rb.message());
+    // Butterfly and Catmull-Clark too.
+    SM bm = oct, bl = oct, cm = cube, cl = cube;
+    SM3::Mobius_Butterfly_subdivision(bm, NP::number_of_iterations(2).linear_weight(1.0));
+    SM3::Butterfly_subdivision(bl, NP::number_of_iterations(2));
+    SM3::Mobius_CatmullClark_subdivision(cm, NP::number_of_iterations(2).linear_weight(1.0));
+    SM3::CatmullClark_subdivision(cl, NP::number_of_iterations(2));
+    if (flat_of(bm) == flat_of(bl) && flat_of(cm) == flat_of(cl))
+      t.pass("SM3 linear_weight(1): Möbius Butterfly = Butterfly, Möbius Catmull-Clark = Catmull-Clark, bit for bit", 0);
+    else
+      t.fail("SM3 linear_weight(1) Butterfly / Catmull-Clark");
+  }
+  // strict: an unreferenced vertex is accepted by default and refused in strict mode
+  // (NLS_STATUS_INVALID_ARGUMENT naming it), mesh unchanged.
+  {
+    SM a = oct;
+    a.add_vertex(K::Point_3(5, 5, 5));
+    const Flat before = flat_of(a);
+    SM b = a;
+    bool c1 = false, c2 = false;
+    nc::Report r1 = call_new([&](nc::Report& r) { SM3::Loop_subdivision(a, NP::report(r)); }, &c1);
+    nc::Report r2 = call_new([&](nc::Report& r) { SM3::Loop_subdivision(b, NP::strict(true).report(r)); }, &c2);
+    if (c1 && c2 && r1.ok() && r2.status == NLS_STATUS_INVALID_ARGUMENT && r2.element == 6 && flat_of(b) == before)
+      t.pass("SM3 strict(true): unreferenced vertex refused (vertex 6), mesh unchanged; accepted without", 0);
+    else
+      t.fail("SM3 strict: " + r1.message() + " / " + r2.message());
+  }
+  // creases: sharpness and method against the C ABI's tagged call; sharpness has effect.
+  {
+    static const uint32_t E[24] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+    std::vector<double> s2(12, 1.5);
+    nls_tags tags{};
+    tags.crease_vertices = E;
+    tags.crease_sharpness = s2.data();
+    tags.crease_count = 12;
+    tags.method = NLS_CREASE_CHAIKIN;
+    Flat want2c, want10;
+    nls_status d1 = c_abi(NLS_SCHEME_CATMULL_CLARK, 0, cin, 2, want2c, 0.0, &tags);
+    std::vector<double> s10(12, 10.0);
+    tags.crease_sharpness = s10.data();
+    tags.method = NLS_CREASE_UNIFORM;
+    nls_status d2 = c_abi(NLS_SCHEME_CATMULL_CLARK, 0, cin, 2, want10, 0.0, &tags);
+    SM a = cube, b = cube;
+    auto ea = a.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
+    auto eb = b.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
+    SM3::CatmullClark_subdivision(a, NP::number_of_iterations(2).edge_is_constrained_map(ea).crease_sharpness(1.5).crease_method(NLS_CREASE_CHAIKIN));
+    SM3::CatmullClark_subdivision(b, NP::number_of_iterations(2).edge_is_constrained_map(eb));
+    if (d1 == NLS_STATUS_OK && d2 == NLS_STATUS_OK && exact(a, want2c) && exact(b, want10) && !(flat_of(a) == flat_of(b)))
+      t.pass("SM3 crease_sharpness(1.5) + crease_method(Chaikin) and the default 10 = C ABI tags, and differ", 0);
+    else
+      t.fail(std::string("SM3 creases: C ABI ") + nls_status_str(d1) + "/" + nls_status_str(d2) + ", sharpness 2 Chaikin " +
+             itest::compare(flat_of(a), want2c).summary() + ", default " + itest::compare(flat_of(b), want10).summary());
+    // corner_sharpness: a corner of sharpness 0 is no corner (= untagged Loop); 10 keeps it.
+    SM c = oct, d = oct, e = oct;
+    auto vc = c.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
+    auto vd = d.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
+    put(vc, SM::Vertex_index(4), true);
+    put(vd, SM::Vertex_index(4), true);
+    SM3::Loop_subdivision(c, NP::number_of_iterations(2).vertex_is_constrained_map(vc).corner_sharpness(0.0));
+    SM3::Loop_subdivision(d, NP::number_of_iterations(2).vertex_is_constrained_map(vd));
+    SM3::Loop_subdivision(e, NP::number_of_iterations(2));
+    const auto p4 = d.point(SM::Vertex_index(4));
+    if (flat_of(c) == flat_of(e) && p4.x() == 0 && p4.y() == 0 && p4.z() == 1 && !(flat_of(d) == flat_of(e)))
+      t.pass("SM3 corner_sharpness: 0 = no corner, default keeps the corner", 0);
+    else
+      t.fail("SM3 corner_sharpness");
+  }
+  // Error path: a quad for Loop throws Subdivision_error naming the face, mesh unchanged.
+  {
+    SM a = cube;
+    bool caught = false;
+    nls_status st = NLS_STATUS_OK;
+    uint32_t el = 0;
+    std::string what;
+    try {
+      SM3::Loop_subdivision(a, NP::number_of_iterations(2));
+    } catch (const SM3::Subdivision_error& e) {
+      caught = true;
+      st = e.status();
+      el = e.element();
+      what = e.what();
+    }
+    Flat ref;
+    nls_status ds = c_abi(NLS_SCHEME_LOOP, 0, cin, 2, ref);
+    if (caught && st == ds && st == NLS_STATUS_UNSUPPORTED_FACE_TYPE && el == 0 && what.find("(face 0)") != std::string::npos &&
+        flat_of(a) == cin)
+      t.pass("SM3 error: Subdivision_error with the C ABI's status and face, what() names it, mesh unchanged", 0);
+    else
+      t.fail("SM3 error path: " + what);
+  }
+}
+
+/// Differential editing through vertex_curvature_scale_map and vertex_normal_map = the C ABI
+/// with the same arrays; a doubled curvature moves the vertex outward; a NaN scale is refused
+/// naming the vertex.
+static void differential_edits(itest::Tally& t) {
+  const SM oct = make_octahedron();
+  const Flat in = flat_of(oct);
+  auto c_diff = [&](const std::vector<double>* cs, const std::vector<double>* ns, Flat& out, uint32_t& el) {
+    nls_differential_options o{};
+    nls_differential_default_options(&o);
+    o.scheme = NLS_DIFFERENTIAL_LOOP;
+    o.levels = 2;
+    o.curvature_scale = cs ? cs->data() : nullptr;
+    o.normals = ns ? ns->data() : nullptr;
+    nlsubdiv::flat::FlatMesh fo;
+    nls_differential_report rep{};
+    nls_status s = nlsubdiv::flat::run_differential(o, to_fm(in), fo, el, rep);
+    out = of_fm(fo);
+    return s;
+  };
+  std::vector<double> scale(6, 1.0);
+  scale[4] = 2.0;
+  std::vector<double> normals(18, 0.0);
+  normals[3 * 4 + 0] = 0.3;
+  normals[3 * 4 + 2] = 1.0;
+  Flat want_c, want_n, plain;
+  uint32_t el = 0;
+  nls_status s1 = c_diff(&scale, nullptr, want_c, el), s2 = c_diff(nullptr, &normals, want_n, el), s3 = c_diff(nullptr, nullptr, plain, el);
+  SM a = oct, b = oct;
+  auto cm = a.add_property_map<SM::Vertex_index, double>("v:curv", 1.0).first;
+  put(cm, SM::Vertex_index(4), 2.0);
+  auto nm = b.add_property_map<SM::Vertex_index, K::Vector_3>("v:n", K::Vector_3(0, 0, 0)).first;
+  put(nm, SM::Vertex_index(4), K::Vector_3(0.3, 0, 1.0));
+  SM3::Differential_Loop_subdivision(a, NP::number_of_iterations(2).vertex_curvature_scale_map(cm));
+  SM3::Differential_Loop_subdivision(b, NP::vertex_normal_map(nm).number_of_iterations(2));
+  const Flat fa = flat_of(a), fb = flat_of(b);
+  if (s1 == NLS_STATUS_OK && s2 == NLS_STATUS_OK && s3 == NLS_STATUS_OK && fa == want_c && fb == want_n && !(fa == plain) && !(fb == plain))
+    t.pass("SM3 differential edits (curvature map, vertex_normal_map) = C ABI arrays bit for bit", 0);
+  else
+    t.fail("SM3 differential edits differ from the C ABI");
+  // Vertex 4 is the apex (0, 0, 1); a doubled mean curvature moves it outward.
+  if (s3 == NLS_STATUS_OK && fa.pos[3 * 4 + 2] > plain.pos[3 * 4 + 2])
+    t.pass("SM3 doubled curvature on the apex moves it outward", 0);
+  else
+    t.fail("SM3 doubled curvature: z " + std::to_string(fa.pos[3 * 4 + 2]) + " vs " + std::to_string(plain.pos[3 * 4 + 2]));
+  // NaN scale: the C ABI's status naming vertex 4, mesh unchanged.
+  scale[4] = NAN;
+  Flat dummy;
+  uint32_t cel = 0;
+  nls_status cs = c_diff(&scale, nullptr, dummy, cel);
+  SM c = oct;
+  auto cn = c.add_property_map<SM::Vertex_index, double>("v:curv", 1.0).first;
+  put(cn, SM::Vertex_index(4), NAN);
+  bool consistent = false;
+  nc::Report r = call_new(
+      [&](nc::Report& rr) { SM3::Differential_Loop_subdivision(c, NP::number_of_iterations(2).vertex_curvature_scale_map(cn).report(rr)); },
+      &consistent);
+  if (consistent && cs != NLS_STATUS_OK && r.status == cs && r.element == 4 && cel == 4 && flat_of(c) == in)
+    t.pass(std::string("SM3 NaN curvature scale refused: ") + r.message(), 0);
+  else
+    t.fail("SM3 NaN curvature scale: " + r.message() + " (C ABI " + nls_status_str(cs) + " element " + std::to_string(cel) + ")");
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
@@ -405,6 +737,7 @@ int main(int argc, char** argv) {
       continue;
     }
     check_functions(t, f, pm, "Surface_mesh");
+    if (num_faces(pm) <= 400) new_names_equal_old(t, f, pm, 2);
     if (itest::all_faces(flat_of(pm), 3) && num_faces(pm) <= 3000) check_differential(t, f, pm);
     if (num_faces(pm) <= 3000 && CGAL::is_valid_polygon_mesh(pm)) check_masks_with_cgal_hosts(t, f, pm);
     if (num_faces(pm) <= 400) {
@@ -453,6 +786,14 @@ int main(int argc, char** argv) {
               bad.size(), loaded, refused);
   differential_refuses_non_triangles(t);
   sharp_features(t);
+  new_names_equal_old(t, "octahedron", make_octahedron(), 2);
+  new_names_equal_old(t, "cube", make_cube(), 2);
+  try {
+    named_parameters(t);
+    differential_edits(t);
+  } catch (const std::exception& e) {
+    t.fail(std::string("SM3 named parameters: unexpected exception: ") + e.what());
+  }
   for (const auto& w : t.worst) std::printf("  %-70s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_cgal: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);

@@ -512,6 +512,332 @@ static void openmesh_interfaces_and_messages(itest::Tally& t) {
     t.fail("message for a quad under Loop: " + msg);
 }
 
+// ---- spectrum weight, differential edits, properties ----
+
+static nlsubdiv::flat::FlatMesh to_fm(const Flat& f) {
+  nlsubdiv::flat::FlatMesh m;
+  m.positions = f.pos;
+  m.offsets = f.off;
+  m.indices = f.idx;
+  return m;
+}
+static Flat of_fm(const nlsubdiv::flat::FlatMesh& m) {
+  Flat f;
+  f.pos = m.positions;
+  f.off = m.offsets;
+  f.idx = m.indices;
+  return f;
+}
+
+template <class M>
+static M octahedron() {
+  static const double Q[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const int T[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  M m;
+  std::vector<typename M::VertexHandle> v;
+  for (auto& q : Q) v.push_back(m.add_vertex(typename M::Point(q[0], q[1], q[2])));
+  for (auto& f : T) m.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  return m;
+}
+
+/// set_linear_weight: 0 = Möbius, 1 = linear bit for bit, 0.5 = the C ABI, 2 refused.
+static void spectrum_weight(itest::Tally& t) {
+  const Tri oct = octahedron<Tri>();
+  const Flat in = flat_of(oct);
+  Tri mob = oct, lin = oct, w0 = oct, w1 = oct, wh = oct, bad = oct;
+  nom::MobiusLoopBulkT<Tri> a, b, c, d, e;
+  nom::LinearLoopT<Tri> l;
+  b.set_linear_weight(0.0);
+  c.set_linear_weight(1.0);
+  d.set_linear_weight(0.5);
+  e.set_linear_weight(2.0);
+  const bool ok = a(mob, 2) && l(lin, 2) && b(w0, 2) && c(w1, 2) && d(wh, 2);
+  const bool refused = !e(bad, 2) && e.status() == NLS_STATUS_INVALID_ARGUMENT && flat_of(bad) == in;
+  nlsubdiv::flat::FlatMesh half;
+  uint32_t el = 0, fb = 0;
+  const nls_status hs = nlsubdiv::flat::run_levels(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, to_fm(in), 2, half, el, fb, nullptr, 0.5);
+  if (ok && refused && hs == NLS_STATUS_OK && flat_of(w0) == flat_of(mob) && flat_of(w1) == flat_of(lin) && flat_of(wh) == of_fm(half) &&
+      !(flat_of(mob) == flat_of(lin)) && !(flat_of(wh) == flat_of(mob)) && !(flat_of(wh) == flat_of(lin)))
+    t.pass("OpenMesh set_linear_weight: 0 = Möbius, 1 = linear bit for bit, 0.5 = C ABI, 2 refused", 0);
+  else
+    t.fail(std::string("OpenMesh set_linear_weight: ") + e.message());
+  // Catmull-Clark: weight 1 = linear.
+  Poly cube;
+  {
+    static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    std::vector<Poly::VertexHandle> v;
+    for (auto& p : P) v.push_back(cube.add_vertex(Poly::Point(p[0], p[1], p[2])));
+    for (auto& f : F) cube.add_face(std::vector<Poly::VertexHandle>{v[f[0]], v[f[1]], v[f[2]], v[f[3]]});
+  }
+  Poly cm = cube, cl = cube;
+  nom::MobiusCatmullClarkBulkT<Poly> sc;
+  sc.set_linear_weight(1.0);
+  nom::LinearCatmullClarkT<Poly> lc;
+  if (sc(cm, 2) && lc(cl, 2) && flat_of(cm) == flat_of(cl))
+    t.pass("OpenMesh set_linear_weight(1): Möbius Catmull-Clark = Catmull-Clark bit for bit", 0);
+  else
+    t.fail("OpenMesh set_linear_weight(1) Catmull-Clark");
+}
+
+/// Differential edits through vertex properties = the C ABI with the same arrays.
+static void differential_edits(itest::Tally& t) {
+  const Tri oct = octahedron<Tri>();
+  const Flat in = flat_of(oct);
+  auto c_diff = [&](const std::vector<double>* cs, const std::vector<double>* ns, Flat& out, uint32_t& el) {
+    nls_differential_options o{};
+    nls_differential_default_options(&o);
+    o.scheme = NLS_DIFFERENTIAL_LOOP;
+    o.levels = 2;
+    o.curvature_scale = cs ? cs->data() : nullptr;
+    o.normals = ns ? ns->data() : nullptr;
+    nlsubdiv::flat::FlatMesh fo;
+    nls_differential_report rep{};
+    nls_status s = nlsubdiv::flat::run_differential(o, to_fm(in), fo, el, rep);
+    out = of_fm(fo);
+    return s;
+  };
+  std::vector<double> scale(6, 1.0), normals(18, 0.0);
+  scale[4] = 2.0;
+  normals[3 * 4 + 0] = 0.3;
+  normals[3 * 4 + 2] = 1.0;
+  Flat want_c, want_n, plain;
+  uint32_t el = 0;
+  const nls_status s1 = c_diff(&scale, nullptr, want_c, el), s2 = c_diff(nullptr, &normals, want_n, el), s3 = c_diff(nullptr, nullptr, plain, el);
+  Tri a = oct, b = oct;
+  OpenMesh::VPropHandleT<double> cp;
+  a.add_property(cp, "curvature scale");
+  for (auto v : a.vertices()) a.property(cp, v) = v.idx() == 4 ? 2.0 : 1.0;
+  OpenMesh::VPropHandleT<OpenMesh::Vec3d> np;
+  b.add_property(np, "target normal");
+  for (auto v : b.vertices()) b.property(np, v) = v.idx() == 4 ? OpenMesh::Vec3d(0.3, 0, 1.0) : OpenMesh::Vec3d(0, 0, 0);
+  nom::DifferentialLoopT<Tri> sa, sb;
+  sa.set_curvature_scale_property(cp);
+  sb.set_normal_property(np);
+  const bool ok = sa(a, 2) && sb(b, 2);
+  const Flat fa = flat_of(a), fb = flat_of(b);
+  if (ok && s1 == NLS_STATUS_OK && s2 == NLS_STATUS_OK && s3 == NLS_STATUS_OK && fa == want_c && fb == want_n && !(fa == plain) && !(fb == plain))
+    t.pass("OpenMesh differential edits (curvature and normal properties) = C ABI arrays bit for bit", 0);
+  else
+    t.fail(std::string("OpenMesh differential edits: ") + sa.message() + " / " + sb.message());
+  if (ok && fa.pos[3 * 4 + 2] > plain.pos[3 * 4 + 2])
+    t.pass("OpenMesh doubled curvature on the apex moves it outward", 0);
+  else
+    t.fail("OpenMesh doubled curvature does not move the apex outward");
+  scale[4] = NAN;
+  Flat dummy;
+  uint32_t cel = 0;
+  const nls_status cs = c_diff(&scale, nullptr, dummy, cel);
+  Tri c = oct;
+  OpenMesh::VPropHandleT<double> cp2;
+  c.add_property(cp2, "curvature scale");
+  for (auto v : c.vertices()) c.property(cp2, v) = v.idx() == 4 ? NAN : 1.0;
+  nom::DifferentialLoopT<Tri> sc;
+  sc.set_curvature_scale_property(cp2);
+  const bool okc = sc(c, 2);
+  if (!okc && cs != NLS_STATUS_OK && sc.status() == cs && sc.element() == 4 && cel == 4 && flat_of(c) == in)
+    t.pass(std::string("OpenMesh NaN curvature scale refused: ") + sc.message(), 0);
+  else
+    t.fail(std::string("OpenMesh NaN curvature scale: ") + (okc ? "accepted" : sc.message()));
+}
+
+/// A planar regular grid (n x n unit squares; triangles: each square split by its diagonal).
+template <class M>
+static M planar_grid(int n, bool triangles) {
+  M m;
+  std::vector<typename M::VertexHandle> v;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) v.push_back(m.add_vertex(typename M::Point(i, j, 0)));
+  auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * (n + 1) + i)]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (triangles) {
+        m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      } else {
+        m.add_face(std::vector<typename M::VertexHandle>{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+    }
+  return m;
+}
+
+/// Whether point (x, y) lies strictly inside face f of m (its polygon is convex, counter-clockwise).
+template <class M>
+static bool inside(const M& m, typename M::FaceHandle f, double x, double y) {
+  std::vector<typename M::Point> p;
+  for (auto v : m.fv_range(f)) p.push_back(m.point(v));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto& a = p[i];
+    const auto& b = p[(i + 1) % p.size()];
+    if ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]) <= 1e-12) return false;
+  }
+  return true;
+}
+
+/// Properties through one level of `SD` on the planar grid, checked from the geometry: linear
+/// Loop and Catmull-Clark keep a regular planar grid in place (edge points are the edge
+/// midpoints, face points the centroids), so the input face of a child face is the one input
+/// face containing its centroid, and the input edge of a child edge (a, e) with a an input
+/// vertex is (a, 2e - a). Old vertices keep their vertex property, new ones hold the default.
+template <class M, class SD>
+static bool properties_one_level(const M& m0, std::string& why) {
+  M m = m0;
+  OpenMesh::VPropHandleT<int> vp;
+  OpenMesh::EPropHandleT<int> ep;
+  OpenMesh::FPropHandleT<int> fp;
+  m.add_property(vp, "vp");
+  m.add_property(ep, "ep");
+  m.add_property(fp, "fp");
+  for (auto v : m.vertices()) m.property(vp, v) = 1000 + v.idx();
+  for (auto e : m.edges()) m.property(ep, e) = 2000 + e.idx();
+  for (auto f : m.faces()) m.property(fp, f) = 3000 + f.idx();
+  const std::size_t nv0 = m.n_vertices();
+  SD sd;
+  if (!sd(m, 1)) {
+    why = sd.message();
+    return false;
+  }
+  for (auto v : m.vertices()) {
+    const int want = static_cast<std::size_t>(v.idx()) < nv0 ? 1000 + v.idx() : 0;
+    if (m.property(vp, v) != want) {
+      why = "vertex " + std::to_string(v.idx());
+      return false;
+    }
+  }
+  for (auto f : m.faces()) {
+    double cx = 0, cy = 0, k = 0;
+    for (auto v : m.fv_range(f)) cx += m.point(v)[0], cy += m.point(v)[1], k += 1;
+    cx /= k, cy /= k;
+    int want = -1;
+    for (auto g : m0.faces())
+      if (inside(m0, g, cx, cy)) want = want == -1 ? 3000 + g.idx() : -2;
+    if (want < 0 || m.property(fp, f) != want) {
+      why = "face " + std::to_string(f.idx()) + " has " + std::to_string(m.property(fp, f)) + ", its centroid's face " + std::to_string(want);
+      return false;
+    }
+  }
+  std::size_t inherited = 0;
+  for (auto e : m.edges()) {
+    auto h = m.halfedge_handle(e, 0);
+    auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+    if (static_cast<std::size_t>(a.idx()) >= nv0) std::swap(a, b);
+    int want = 0;
+    if (static_cast<std::size_t>(a.idx()) < nv0 && static_cast<std::size_t>(b.idx()) >= nv0) {
+      const auto pa = m0.point(a), pe = m.point(b);
+      const typename M::Point q(2 * pe[0] - pa[0], 2 * pe[1] - pa[1], 2 * pe[2] - pa[2]);
+      for (auto v : m0.vertices())
+        if (m0.point(v) == q) {
+          auto hh = m0.find_halfedge(a, v);
+          if (hh.is_valid()) want = 2000 + m0.edge_handle(hh).idx();
+        }
+    }
+    if (m.property(ep, e) != want) {
+      why = "edge " + std::to_string(e.idx()) + " has " + std::to_string(m.property(ep, e)) + ", wanted " + std::to_string(want);
+      return false;
+    }
+    inherited += want != 0;
+  }
+  if (inherited != 2 * m0.n_edges()) {
+    why = std::to_string(inherited) + " inheriting edges, not 2 per input edge";
+    return false;
+  }
+  return true;
+}
+
+/// The face and edge properties of `m` as arrays.
+template <class M>
+static std::pair<std::vector<int>, std::vector<int>> fe_props(const M& m, OpenMesh::FPropHandleT<int> fp, OpenMesh::EPropHandleT<int> ep) {
+  std::pair<std::vector<int>, std::vector<int>> r;
+  for (auto f : m.faces()) r.first.push_back(m.property(fp, f));
+  for (auto e : m.edges()) r.second.push_back(m.property(ep, e));
+  return r;
+}
+
+/// `levels` levels of SD on m0 with face and edge properties set; their arrays after.
+template <class M, class SD>
+static std::pair<std::vector<int>, std::vector<int>> props_after(const M& m0, unsigned levels, bool one_by_one, Flat* out = nullptr) {
+  M m = m0;
+  OpenMesh::EPropHandleT<int> ep;
+  OpenMesh::FPropHandleT<int> fp;
+  m.add_property(ep, "ep");
+  m.add_property(fp, "fp");
+  for (auto e : m.edges()) m.property(ep, e) = 2000 + e.idx();
+  for (auto f : m.faces()) m.property(fp, f) = 3000 + f.idx();
+  SD sd;
+  bool ok = true;
+  if (one_by_one)
+    for (unsigned k = 0; k < levels; ++k) ok = ok && sd(m, 1);
+  else
+    ok = sd(m, levels);
+  if (out) *out = flat_of(m);
+  if (!ok) return {};
+  return fe_props(m, fp, ep);
+}
+
+static void properties(itest::Tally& t) {
+  const Tri tg = planar_grid<Tri>(3, true);
+  const Poly qg = planar_grid<Poly>(3, false);
+  std::string why;
+  if (properties_one_level<Tri, nom::LinearLoopT<Tri>>(tg, why))
+    t.pass("OpenMesh properties: LinearLoopT children inherit face and edge properties (from the geometry), old vertices keep theirs", 0);
+  else
+    t.fail("OpenMesh properties LinearLoopT: " + why);
+  if (properties_one_level<Poly, nom::LinearCatmullClarkT<Poly>>(qg, why))
+    t.pass("OpenMesh properties: LinearCatmullClarkT children inherit face and edge properties (from the geometry)", 0);
+  else
+    t.fail("OpenMesh properties LinearCatmullClarkT: " + why);
+  // k levels at once = k calls of one level (the one-level rule verified above).
+  const auto loop3 = props_after<Tri, nom::LinearLoopT<Tri>>(tg, 3, false), loop111 = props_after<Tri, nom::LinearLoopT<Tri>>(tg, 3, true);
+  const auto cc2 = props_after<Poly, nom::LinearCatmullClarkT<Poly>>(qg, 2, false), cc11 = props_after<Poly, nom::LinearCatmullClarkT<Poly>>(qg, 2, true);
+  auto inherits = [](const std::pair<std::vector<int>, std::vector<int>>& p) {
+    return std::count(p.first.begin(), p.first.end(), 0) == 0 &&
+           std::count_if(p.second.begin(), p.second.end(), [](int v) { return v != 0; }) > 0;
+  };
+  if (inherits(loop3) && loop3 == loop111 && inherits(cc2) && cc2 == cc11)
+    t.pass("OpenMesh properties: k levels in one call = k calls of one level (Loop 3, Catmull-Clark 2)", 0);
+  else
+    t.fail("OpenMesh properties: multi-level inheritance differs from level-by-level");
+  // The tier-1 classes and the differential classes (same connectivity and order as linear
+  // Loop / Catmull-Clark, include/nlsubdiv.h) inherit as the linear bulk classes do.
+  const Tri oct = octahedron<Tri>();
+  const auto lin = props_after<Tri, nom::LinearLoopT<Tri>>(oct, 2, false);
+  const auto star = props_after<Tri, nom::MobiusLoopT<Tri>>(oct, 2, false);
+  const auto bulk = props_after<Tri, nom::MobiusLoopBulkT<Tri>>(oct, 2, false);
+  const auto diff = props_after<Tri, nom::DifferentialLoopT<Tri>>(oct, 2, false);
+  const auto ccl = props_after<Poly, nom::LinearCatmullClarkT<Poly>>(qg, 2, false);
+  const auto ccs = props_after<Poly, nom::MobiusCatmullClarkT<Poly>>(qg, 2, false);
+  if (inherits(lin) && star == lin && bulk == lin && diff == lin && inherits(ccl) && ccs == ccl)
+    t.pass("OpenMesh properties: MobiusLoopT, MobiusLoopBulkT, DifferentialLoopT, MobiusCatmullClarkT inherit as the linear classes", 0);
+  else
+    t.fail("OpenMesh properties: tier-1 / bulk / differential inheritance differs from linear");
+  // Doo-Sabin (dual): vertex properties reset to the default; the first faces are the input
+  // faces shrunk (centroid inside the input face), the others hold the default.
+  {
+    Poly m = qg;
+    OpenMesh::VPropHandleT<int> vp;
+    OpenMesh::FPropHandleT<int> fp;
+    m.add_property(vp, "vp");
+    m.add_property(fp, "fp");
+    for (auto v : m.vertices()) m.property(vp, v) = 7;
+    for (auto f : m.faces()) m.property(fp, f) = 3000 + f.idx();
+    nom::LinearDooSabinT<Poly> sd;
+    bool ok = sd(m, 1), good = ok;
+    for (auto v : m.vertices()) good = good && m.property(vp, v) == 0;
+    for (auto f : m.faces()) {
+      double cx = 0, cy = 0, k = 0;
+      for (auto v : m.fv_range(f)) cx += m.point(v)[0], cy += m.point(v)[1], k += 1;
+      int want = 0;
+      for (auto g : qg.faces())
+        if (static_cast<std::size_t>(f.idx()) < qg.n_faces() && inside(qg, g, cx / k, cy / k)) want = 3000 + g.idx();
+      good = good && m.property(fp, f) == want;
+    }
+    if (good)
+      t.pass("OpenMesh properties: Doo-Sabin resets vertex properties, its face-faces inherit", 0);
+    else
+      t.fail(std::string("OpenMesh properties Doo-Sabin: ") + (ok ? "wrong values" : sd.message()));
+  }
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s MESH_DIR\n", argv[0]);
@@ -600,6 +926,9 @@ int main(int argc, char** argv) {
   differential_refuses_non_triangles(t);
   feature_creases(t);
   openmesh_interfaces_and_messages(t);
+  spectrum_weight(t);
+  differential_edits(t);
+  properties(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("test_openmesh: %d passed, %d failed, %d skipped (%.1f s)\n", t.passed, t.failed, t.skipped, secs);
