@@ -55,8 +55,9 @@ pub struct Plan {
     ///   [`plan_scratch_size_tagged`].
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
-    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and
-    ///   the fold guard's trust of every vertex (one `f64` each, three to a point); with a
+    ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and,
+    ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
+    ///   and the form's radius (two `f64`, three to a point); with a
     ///   spectrum weight below 1 ([`Options::spectrum`]), the linear positions of the
     ///   largest level written.
     pub scratch: ScratchSizes,
@@ -83,8 +84,8 @@ impl Plan {
     }
 
     /// The candidate points of the largest Möbius step: two per corner of the largest level
-    /// stepped from, and the fold guard's trust per vertex, three to a point (0 for zero
-    /// levels).
+    /// stepped from, and per vertex a point and two `f64` for the fold guard
+    /// ([`super::mobius::candidate_points`]; 0 for zero levels).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {
         let (mut vertices, mut corners) = (0usize, 0usize);
         for k in 0..self.levels {

@@ -25,6 +25,11 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// Per vertex: the fold guard's trust in its star (`trust.rs`), 1 where the paper's
     /// rules are kept.
     pub(super) trust: &'o mut [f64],
+    /// Per vertex: the centre `c` and radius `r` of an interior star's canonical form, kept
+    /// by the vertex pass for the fold guard's output audit (`audit.rs`); `r = 0` where
+    /// there is none.
+    pub(super) centre: &'o mut [Point],
+    pub(super) radius: &'o mut [f64],
     pub(super) report: MobiusReport,
     pub(super) strict: bool,
     /// Whether the fold guard runs (`guard.rs`).
@@ -35,21 +40,26 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
-    /// A driver with every candidate [`MISSING`].
+    /// A driver with every candidate [`MISSING`]; `form` holds the per-vertex trust, centres
+    /// and radii of the fold guard.
     pub(super) fn new(
         topo: &'t Topology<'m, 's>,
         pos: &'o mut [Point],
         edge_c: &'o mut [Point],
         face_c: &'o mut [Point],
-        trust: &'o mut [f64],
+        form: (&'o mut [f64], &'o mut [Point], &'o mut [f64]),
         opts: MobiusOptions,
         exec: &'o dyn Executor,
     ) -> Self {
+        let (trust, centre, radius) = form;
         for c in edge_c.iter_mut().chain(face_c.iter_mut()) {
             *c = MISSING;
         }
         for t in trust.iter_mut() {
             *t = 1.0;
+        }
+        for r in radius.iter_mut() {
+            *r = 0.0;
         }
         Driver {
             topo,
@@ -57,6 +67,8 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             edge_c,
             face_c,
             trust,
+            centre,
+            radius,
             report: MobiusReport::default(),
             strict: opts.strict,
             guard: opts.guard,

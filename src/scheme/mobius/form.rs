@@ -50,6 +50,10 @@ pub(super) trait Frame: MapBack {
     /// trust, `guard.rs`).
     const CANONICAL: bool;
 
+    /// The star's canonical form when this frame is it (the fold guard keeps it for its
+    /// output audit, `audit.rs`); `None` for the interpolated form.
+    fn canonical(&self) -> Option<&CanonicalForm>;
+
     /// The image of vertex `u` (the centre goes to [`ORIGIN`]).
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point>;
 

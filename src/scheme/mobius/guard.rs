@@ -7,30 +7,39 @@
 //! One step runs, in order:
 //! 1. the vertex pass of the paper (`vertex_pass.rs`), each star's rules left in the
 //!    normalised frame (`form::Normalised`) long enough to read the spread and candidate
-//!    terms of its trust ([`Driver::trust_star`]), then mapped back as the paper does;
-//! 2. the F4-angle term over the interior edges between two interior stars, from the
-//!    candidates of step 1 ([`Driver::trust_edges`]);
-//! 3. spherical stars of valence 4 or more have their trust raised toward 1 by their
+//!    terms of its trust ([`Driver::trust_star`]) and to keep its form's centre and radius,
+//!    then mapped back as the paper does;
+//! 2. the paper's blends (F4, the face chain): the paper's output of the step;
+//! 3. the F4-angle term over the interior edges between two interior stars, from the
+//!    candidates of step 1 ([`Driver::trust_edges`]), and the output audit (`audit.rs`): the
+//!    paper's output seen from each interior star's frame, where child faces that fold or
+//!    collapse lower the trust of the star and its neighbours;
+//! 4. spherical stars of valence 4 or more have their trust raised toward 1 by their
 //!    sphericity (`trust::sphericity`: on a sphere the paper's rules keep the sphere and
 //!    commute with every Möbius map);
-//! 4. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
+//! 5. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
 //!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]); the
 //!    output vertices this changes are counted (or refused in strict mode);
-//! 5. the paper's blends (F4, the face chain, the boundary curves), unchanged.
+//! 6. when step 5 evaluated any star, the blends again, on the guarded candidates, and the
+//!    boundary curves.
 //!
-//! The trust is decided on the paper's candidates only (steps 1–3), never on re-evaluated
-//! ones, so it does not depend on the order of the stars. A mesh without a distrusted star
-//! gets the paper's output bit for bit (step 3 does nothing).
+//! The trust is decided on the paper's candidates and output only (steps 1–3), never on
+//! re-evaluated ones, so it does not depend on the order of the stars and stays
+//! Möbius-invariant. A mesh without a distrusted star gets the paper's output bit for bit
+//! (steps 4–6 do nothing).
 
 use super::driver::Driver;
+use super::edges::LinearEdge;
 use super::form::{present, FacePts, Frame, Spokes};
 use super::memo::StarForm;
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::Star;
+use super::MobiusReport;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::point::Point;
+use crate::mobius::CanonicalForm;
+use crate::point::{lin2, Point};
 use crate::stencil::centroid;
 
 /// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
@@ -40,6 +49,10 @@ const EXEMPT: f64 = 2.0;
 
 impl Frame for Spectrum {
     const CANONICAL: bool = false;
+
+    fn canonical(&self) -> Option<&CanonicalForm> {
+        None
+    }
 
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         self.to(topo.position(u)?)
@@ -86,6 +99,10 @@ impl Driver<'_, '_, '_, '_> {
         if star.boundary {
             return set(self.trust, star.v as usize, EXEMPT);
         }
+        if let Some(cf) = star.form.canonical() {
+            set(self.centre, star.v as usize, cf.c)?;
+            set(self.radius, star.v as usize, cf.r)?;
+        }
         let mut tau = spread_trust(ring);
         for (c, e) in ring.iter().zip(normalised.iter()) {
             if present(e) {
@@ -95,7 +112,7 @@ impl Driver<'_, '_, '_, '_> {
         set(self.trust, star.v as usize, tau)
     }
 
-    /// Step 2 (module docs): lowers the trust of both end stars of every interior edge
+    /// Step 3 (module docs): lowers the trust of both end stars of every interior edge
     /// between two interior stars to the F4-angle term of the blend of their candidates
     /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
@@ -126,17 +143,19 @@ impl Driver<'_, '_, '_, '_> {
         Ok(())
     }
 
-    /// Steps 3 and 4 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
+    /// Steps 4 and 5 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
     /// form `m_τ`, in vertex order, after counting the output vertices `out` says the star
-    /// changes (or refusing the first in strict mode). Without the guard, nothing.
+    /// changes (or refusing the first in strict mode). Whether any star was evaluated (the
+    /// drivers then blend again). Without the guard, nothing.
     pub(super) fn guarded_pass(
         &mut self,
         out: Outputs,
         mut rule: impl FnMut(&mut Self, &mut Star<'_, Spectrum>) -> Result<()>,
-    ) -> Result<()> {
+    ) -> Result<bool> {
         if !self.guard {
-            return Ok(());
+            return Ok(false);
         }
+        let mut any = false;
         let topo = self.topo;
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
@@ -171,8 +190,17 @@ impl Driver<'_, '_, '_, '_> {
                 form: &mut frame,
             };
             rule(self, &mut star)?;
+            any = true;
         }
-        Ok(())
+        Ok(any)
+    }
+
+    /// Keeps the fallbacks the blends of the paper's candidates counted out of the report
+    /// before they run again on the guarded candidates: `before` is the report from before
+    /// the first blends, and the guard's own counts stay.
+    pub(super) fn rewind_fallbacks(&mut self, before: MobiusReport) {
+        self.report.fallbacks = before.fallbacks;
+        self.report.first_fallback = before.first_fallback;
     }
 
     /// Counts the output vertices a distrusted star `v` changes: its vertex point, the points
@@ -239,6 +267,40 @@ impl Driver<'_, '_, '_, '_> {
     ) -> Result<()> {
         if let Some(q) = normalised.and_then(|p| star.form.back(p).ok()) {
             set(self.pos, star.v as usize, q)?;
+        }
+        Ok(())
+    }
+}
+
+impl Driver<'_, '_, '_, '_> {
+    /// Modified Butterfly's second fallback, after the guarded blends: every interior edge
+    /// point whose end stars are distrusted moves toward the linear rule's point,
+    /// `τ² p + (1 − τ²) p_lin` with `τ` the lesser trust of the two ends. The interpolated
+    /// form alone cannot reach the linear scheme's fold count on Butterfly (`docs/folds.md`):
+    /// an edge next to an irregular vertex takes that vertex's single partial candidate
+    /// (seed 000 §4.3), which no blend corrects. The weight `τ²` rather than `τ` is measured
+    /// (fertility, 2 levels: 60 folded edges with `τ`, 58 with `τ²`, linear 59). The edges
+    /// changed are those the guarded pass counted (`Outputs::edges`); nothing changes where
+    /// every star is trusted.
+    pub(super) fn blend_edges_toward_linear(
+        &mut self,
+        start: usize,
+        linear: &LinearEdge<'_>,
+    ) -> Result<()> {
+        let topo = self.topo;
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e)?;
+            if topo.twin(h)? == NONE {
+                continue;
+            }
+            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+            let tau = get(self.trust, a as usize)?.min(get(self.trust, b as usize)?);
+            if tau < 1.0 {
+                let w = tau * tau;
+                let k = start + e as usize;
+                let p = lin2(w, get(self.pos, k)?, 1.0 - w, linear(topo, e)?);
+                set(self.pos, k, p)?;
+            }
         }
         Ok(())
     }

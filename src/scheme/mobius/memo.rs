@@ -247,6 +247,10 @@ impl MapBack for StarForm {
 impl Frame for StarForm {
     const CANONICAL: bool = true;
 
+    fn canonical(&self) -> Option<&CanonicalForm> {
+        Some(&self.cf)
+    }
+
     #[inline(always)]
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         self.canon(topo, u)

@@ -55,6 +55,7 @@
 //!   one step and the fallback report. `step` below dispatches; the public entry is
 //!   [`super::subdivide`] with [`Options::mobius`](super::Options::mobius).
 
+mod audit;
 mod boundary;
 mod driver;
 mod drivers;
@@ -120,14 +121,18 @@ impl Default for MobiusReport {
 
 /// The candidate points one step needs on a level of `num_vertices` vertices and
 /// `num_corners` corners (= half-edges): an edge candidate and a face candidate per
-/// half-edge, then the fold guard's trust per vertex, three `f64` to a point.
+/// half-edge, then per vertex the centre of its canonical form (a point) and the fold
+/// guard's trust and the form's radius (two `f64`, three to a point).
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
 pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Result<usize> {
-    num_corners
+    num_vertices
         .checked_mul(2)
-        .and_then(|c| c.checked_add(num_vertices.div_ceil(3)))
+        .and_then(|f| f.checked_add(2))
+        .map(|f| f / 3)
+        .and_then(|f| f.checked_add(num_vertices))
+        .and_then(|v| num_corners.checked_mul(2).and_then(|c| c.checked_add(v)))
         .ok_or(Error::new(Status::SizeOverflow))
 }
 
@@ -176,8 +181,14 @@ pub(crate) fn step(
     let nh = topo.num_half_edges();
     let (edge_c, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
     let (face_c, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
-    let trust = rest.as_flattened_mut().get_mut(..nv).ok_or(internal())?;
-    let mut d = Driver::new(topo, pos, edge_c, face_c, trust, opts, exec);
+    let (centre, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+    let (trust, rest) = rest
+        .as_flattened_mut()
+        .split_at_mut_checked(nv)
+        .ok_or(internal())?;
+    let radius = rest.get_mut(..nv).ok_or(internal())?;
+    let form = (trust, centre, radius);
+    let mut d = Driver::new(topo, pos, edge_c, face_c, form, opts, exec);
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,

@@ -50,7 +50,7 @@ const RHO_DISTRUSTED: f64 = 2.792_526_803_190_927;
 
 /// `(x − zero_at) / (one_at − zero_at)` clamped to `[0, 1]`: 0 at `zero_at`, 1 at `one_at`
 /// (either order); a NaN `x` gives 0 (distrusted).
-fn ramp(x: f64, zero_at: f64, one_at: f64) -> f64 {
+pub(super) fn ramp(x: f64, zero_at: f64, one_at: f64) -> f64 {
     let r = (x - zero_at) / (one_at - zero_at);
     if r >= 1.0 {
         1.0

@@ -4,6 +4,7 @@
 //! end points (or take the single one next to an irregular vertex), boundary loops follow the
 //! Möbius interpolating curve rule.
 
+use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Ring, MISSING};
 use super::super::guard::Outputs;
@@ -24,18 +25,29 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let mut ring = Ring::new();
     let mut cands = [MISSING; MAX_VALENCE];
     d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
+    // The boundary curves before the blends: the audit reads every output point of the
+    // step, and the blends may run twice (their fallbacks are rewound, these stay).
+    d.boundary_edges(nv, butterfly::edge_boundary)?;
+    let before = d.report;
+    d.blend_interior_edges(nv, &linear)?;
     if d.guard {
+        // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
+        // stars, blend again.
         d.trust_edges()?;
+        d.audit(Children::Triangles { edges: nv })?;
         let out = Outputs {
             vertex: false,
             edges: nv,
             faces: None,
         };
-        d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))?;
+        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))? {
+            d.rewind_fallbacks(before);
+            d.blend_interior_edges(nv, &linear)?;
+            d.blend_edges_toward_linear(nv, &linear)?;
+        }
     }
-    let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
-    d.blend_interior_edges(nv, &linear)?;
-    d.boundary_edges(nv, butterfly::edge_boundary)
+    Ok(())
 }
 
 /// The Butterfly candidates of one star in its frame (the canonical form, or the guard's

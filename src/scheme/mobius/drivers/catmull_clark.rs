@@ -4,6 +4,7 @@
 //! (§4.4.3), interior edges their two edge candidates, boundary loops follow the Möbius
 //! approximating curve rule. Ears take their face candidates from a substitute's form.
 
+use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{FacePts, Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
@@ -31,15 +32,6 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         cands: [MISSING; MAX_VALENCE],
     };
     d.vertex_pass(|d, star| star_rule(d, star, &mut b))?;
-    if d.guard {
-        d.trust_edges()?;
-        let out = Outputs {
-            vertex: true,
-            edges: nv,
-            faces: Some(fp0),
-        };
-        d.guarded_pass(out, |d, star| star_rule(d, star, &mut b))?;
-    }
     d.finish_vertex_points(false, |t, v, p| {
         let mut ring = Ring::new();
         let mut faces = Ring::new();
@@ -52,7 +44,6 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         }
         catmull_clark::vertex_interior(p, &ring, &faces)
     })?;
-    d.blend_faces(fp0)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(catmull_clark::edge_interior(
@@ -62,9 +53,33 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             centroid(&face_points(t, t.face(t.twin(h)?)?)?)?,
         ))
     };
-    d.blend_interior_edges(nv, &linear)?;
+    // The boundary curves before the blends: the audit reads every output point of the
+    // step, and the blends may run twice (their fallbacks are rewound, these stay).
     d.boundary_edges(nv, |_, a, b, _| catmull_clark::edge_boundary(a, b))?;
-    d.boundary_vertices_approximating(nv)
+    d.boundary_vertices_approximating(nv)?;
+    let before = d.report;
+    d.blend_faces(fp0)?;
+    d.blend_interior_edges(nv, &linear)?;
+    if d.guard {
+        // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
+        // stars, blend again.
+        d.trust_edges()?;
+        d.audit(Children::Quads {
+            edges: nv,
+            faces: fp0,
+        })?;
+        let out = Outputs {
+            vertex: true,
+            edges: nv,
+            faces: Some(fp0),
+        };
+        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut b))? {
+            d.rewind_fallbacks(before);
+            d.blend_faces(fp0)?;
+            d.blend_interior_edges(nv, &linear)?;
+        }
+    }
+    Ok(())
 }
 
 /// The buffers of [`star_rule`], one set per step.

@@ -2,6 +2,7 @@
 //! and every spoke its edge candidate ([`loop_star_in_form`]); interior edges blend their two
 //! candidates, boundary loops follow the Möbius approximating curve rule.
 
+use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
@@ -21,15 +22,6 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let mut ring = Ring::new();
     let mut cands = [MISSING; MAX_VALENCE];
     d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
-    if d.guard {
-        d.trust_edges()?;
-        let out = Outputs {
-            vertex: true,
-            edges: nv,
-            faces: None,
-        };
-        d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))?;
-    }
     d.finish_vertex_points(false, |t, v, p| {
         loop_scheme::vertex_interior(p, &ring_points(t, v)?)
     })?;
@@ -42,9 +34,28 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             t.position(apex(t, t.twin(h)?)?)?,
         ))
     };
-    d.blend_interior_edges(nv, &linear)?;
+    // The boundary curves before the blends: the audit reads every output point of the
+    // step, and the blends may run twice (their fallbacks are rewound, these stay).
     d.boundary_edges(nv, |_, a, b, _| loop_scheme::edge_boundary(a, b))?;
-    d.boundary_vertices_approximating(nv)
+    d.boundary_vertices_approximating(nv)?;
+    let before = d.report;
+    d.blend_interior_edges(nv, &linear)?;
+    if d.guard {
+        // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
+        // stars, blend again.
+        d.trust_edges()?;
+        d.audit(Children::Triangles { edges: nv })?;
+        let out = Outputs {
+            vertex: true,
+            edges: nv,
+            faces: None,
+        };
+        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))? {
+            d.rewind_fallbacks(before);
+            d.blend_interior_edges(nv, &linear)?;
+        }
+    }
+    Ok(())
 }
 
 /// The Loop rules of one star in its frame (the canonical form, or the guard's `m_τ`): the

@@ -1,0 +1,211 @@
+//! The fold guard's output audit: the paper's output of one step, looked at from every interior
+//! star's own normalised canonical frame, lowers the trust of a star whose child faces fold
+//! or collapse there (seed 000 §7.1; `docs/folds.md` measures why the criterion of `trust.rs`
+//! alone leaves folds).
+//!
+//! The a-priori terms of `trust.rs` read a star's canonical form and its own candidates. A fold
+//! of the output, though, is made by the *blends*: an edge point is F4 of two stars'
+//! candidates, and two well-conditioned stars can still blend into a fan whose triangles
+//! overlap. The audit therefore reads the output itself. For an interior star `v` it maps the
+//! output points of the child faces around `v` into `v`'s normalised frame and takes
+//!
+//! 1. the **pair angle**: the least cosine between the normals of two adjacent child faces
+//!    (corner to corner across the child edge `(v', e_i)`, and for triangle schemes corner to
+//!    middle across `(e_i, e_{i+1})`): trust 1 at or below 80°, 0 at or beyond 90° (a fold);
+//! 2. the **fan angle**: the least signed sine of the angles at `v'` between consecutive
+//!    child edges `e_i − v'`, `e_{i+1} − v'`, signed by the normal of the polygon of the
+//!    `e_i`: trust 1 from 5°, 0 at 2° or less (a collapsed or turned-over fan, whose thin
+//!    triangles fold at the slightest bend).
+//!
+//! Where the audit's trust is below 1 it lowers the trust of `v` and of its interior
+//! neighbours, whose candidates made `v`'s child faces, to it. The guarded pass then evaluates
+//! those stars in `m_τ` and the drivers blend again.
+//!
+//! **Why it is Möbius-invariant.** The audit reads the paper's output, which commutes with
+//! every Möbius map `M` of the input, in the normalised frame, which `M` changes by an
+//! orthogonal map only (`trust.rs`). Cosines between normals and signed sines of triangles
+//! whose vertices are images of the same points are unchanged by an orthogonal map (a
+//! reflection flips a normal and the reference normal together). So a star is audited down,
+//! and by how much, on every Möbius image of its neighbourhood. The audit runs once per step,
+//! on the paper's output: a second audit of the guarded output would judge fallbacks, which are
+//! equivariant under similarities only.
+//!
+//! The frame is the one the vertex pass built (its centre and radius are kept per vertex in
+//! the scratch), so the audit costs no canonical form, only two inversions per mapped point.
+//! The thresholds come from the fold study of `docs/folds.md` (the paper's folded pairs
+//! measured in the frames of their stars), not from an optimisation.
+
+use super::driver::Driver;
+use super::form::{present, FacePts};
+use super::trust::{newell, ramp};
+use crate::error::Result;
+use crate::mesh::{get, internal, set, NONE};
+use crate::mobius::{CanonicalForm, StarKind};
+use crate::point::{cross, dot, sub, Point};
+use crate::MAX_VALENCE;
+use arrayvec::ArrayVec;
+
+/// Cosine between two adjacent child faces at or above which the audit trusts a star: 80°.
+const PAIR_TRUSTED: f64 = 0.087_155_742_747_658_17;
+/// Sine of the least fan angle at or below which the audit distrusts a star: 2°.
+const FAN_DISTRUSTED: f64 = 0.034_899_496_702_500_97;
+/// Sine of the least fan angle at or above which the audit trusts a star: 5°.
+const FAN_TRUSTED: f64 = 0.087_155_742_747_658_17;
+
+/// The child faces a scheme makes around a vertex `v` (output vertex `v` is `v'`).
+#[derive(Clone, Copy)]
+pub(super) enum Children {
+    /// Loop and Modified Butterfly (every triangle split in four): the corner triangles
+    /// `(v', e_i, e_{i+1})` and the middle triangles `(e_i, m_i, e_{i+1})` of the faces around
+    /// `v`, with `e_i` the point of spoke `i`'s edge and `m_i` that of the face's edge
+    /// opposite `v` (output vertex `edges + edge`).
+    Triangles { edges: usize },
+    /// Catmull–Clark: the corner quads `(v', e_i, f_i, e_{i+1})`, `f_i` the point of the
+    /// face after spoke `i` (output vertex `faces + face`).
+    Quads { edges: usize, faces: usize },
+}
+
+/// A child face's area vector (Newell), or `None` when a corner is missing.
+fn area(corners: &[Point]) -> Option<Point> {
+    corners.iter().all(present).then(|| newell(corners))
+}
+
+/// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
+fn cos_between(m: Point, n: Point) -> f64 {
+    let d = dot(m, m) * dot(n, n);
+    let c = dot(m, n) / libm::sqrt(d);
+    if d > 0.0 && c.is_finite() {
+        c
+    } else {
+        -1.0
+    }
+}
+
+impl Driver<'_, '_, '_, '_> {
+    /// Lowers the trust of every interior star whose child faces (the paper's output, in the
+    /// star's normalised frame) fold or collapse, and of its interior neighbours (module
+    /// docs). Boundary stars, and stars without a form, are not audited.
+    pub(super) fn audit(&mut self, children: Children) -> Result<()> {
+        let topo = self.topo;
+        let mut fan: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        let mut outer: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+        let mut quad = FacePts::new();
+        for v in 0..topo.num_vertices() as u32 {
+            let r = get(self.radius, v as usize)?;
+            let tau = get(self.trust, v as usize)?;
+            if r == 0.0 || tau > 1.0 {
+                continue;
+            }
+            let cf = CanonicalForm {
+                v: topo.position(v)?,
+                c: get(self.centre, v as usize)?,
+                r,
+                kind: StarKind::Interior,
+            };
+            // A point the frame cannot map (at the form's pole, or not finite) is missing:
+            // the terms below then distrust the star.
+            let map = |p: Point| cf.to_normalised(p).unwrap_or([f64::NAN; 3]);
+            let centre = map(get(self.pos, v as usize)?);
+            fan.clear();
+            outer.clear();
+            for s in topo.star(v) {
+                let (e, o) = match children {
+                    Children::Triangles { edges } => {
+                        // Interior stars: every spoke has its outgoing half-edge.
+                        if s.half_edge == NONE {
+                            return Err(internal());
+                        }
+                        let opposite = topo.edge(topo.next(s.half_edge)?)?;
+                        (edges + s.edge as usize, edges + opposite as usize)
+                    }
+                    Children::Quads { edges, faces } => {
+                        (edges + s.edge as usize, faces + s.face as usize)
+                    }
+                };
+                let (pe, po) = (map(get(self.pos, e)?), map(get(self.pos, o)?));
+                fan.try_push(pe).map_err(|_| internal())?;
+                outer.try_push(po).map_err(|_| internal())?;
+            }
+            let pair = Self::pair_cos(centre, &fan, &outer, children, &mut quad);
+            let a = ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(
+                fan_sine(centre, &fan),
+                FAN_DISTRUSTED,
+                FAN_TRUSTED,
+            ));
+            if a < 1.0 {
+                set(self.trust, v as usize, tau.min(a))?;
+                for s in topo.star(v) {
+                    let u = s.neighbour as usize;
+                    let t = get(self.trust, u)?;
+                    // Boundary neighbours (`t > 1`) keep the paper's rules (`guard.rs`).
+                    if t <= 1.0 {
+                        set(self.trust, u, t.min(a))?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The least cosine between adjacent child faces around `centre` (module docs, term 1);
+    /// -1 when a child face cannot be measured.
+    fn pair_cos(
+        centre: Point,
+        fan: &[Point],
+        outer: &[Point],
+        children: Children,
+        quad: &mut FacePts,
+    ) -> f64 {
+        let k = fan.len();
+        // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
+        // and the next spoke's edge point, cyclically.
+        let at = |i: usize| -> Option<(Point, Point, Point)> {
+            let next = if i + 1 < k { i + 1 } else { 0 };
+            Some((*fan.get(i)?, *outer.get(i)?, *fan.get(next)?))
+        };
+        let corner = |i: usize, quad: &mut FacePts| -> Option<Point> {
+            let (e0, o, e1) = at(i)?;
+            match children {
+                Children::Triangles { .. } => area(&[centre, e0, e1]),
+                Children::Quads { .. } => {
+                    quad.clear();
+                    for p in [centre, e0, o, e1] {
+                        quad.try_push(p).ok()?;
+                    }
+                    area(quad)
+                }
+            }
+        };
+        let mut least = f64::INFINITY;
+        for i in 0..k {
+            let next = if i + 1 < k { i + 1 } else { 0 };
+            let (Some(c0), Some(c1)) = (corner(i, quad), corner(next, quad)) else {
+                return -1.0;
+            };
+            least = least.min(cos_between(c0, c1));
+            if let Children::Triangles { .. } = children {
+                let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o, e1])) else {
+                    return -1.0;
+                };
+                least = least.min(cos_between(c0, middle));
+            }
+        }
+        least
+    }
+}
+
+/// The least signed sine of the angles at `centre` between consecutive points of the closed
+/// fan `fan`, signed by the fan polygon's normal (module docs, term 2); -1 when it cannot be
+/// measured.
+fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
+    let n = newell(fan);
+    let nn = libm::sqrt(dot(n, n));
+    let mut least = f64::INFINITY;
+    for (i, e) in fan.iter().enumerate() {
+        let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
+        let (p, q) = (sub(*e, centre), sub(next, centre));
+        let s = dot(cross(p, q), n) / (nn * libm::sqrt(dot(p, p) * dot(q, q)));
+        least = least.min(if s.is_finite() { s } else { -1.0 });
+    }
+    least
+}
