@@ -202,6 +202,7 @@ fn copy_points(src: &[Point], dst: &mut [Point]) -> Result<()> {
 
 /// One reconstruction (§3.5 step 4) of `δ` (in `rhs`) from the warm start in
 /// `out.positions`, overwritten with the solution; the anchors keep their warm-start values.
+#[allow(clippy::too_many_arguments)]
 fn reconstruct(
     u: &U32Buffers<'_>,
     k: usize,
@@ -576,6 +577,7 @@ fn for_each_level(
 /// and `Δ` ([`delta_step`]), each subdivided with the linear `scheme`; the faces of levels
 /// `1..k−1` go to `u.faces`, those of level `k` to `out`. Returns the number of DirMag normals
 /// too short to normalise.
+#[allow(clippy::too_many_arguments)]
 fn subdivide_fields(
     mesh: Mesh<'_>,
     plan: &DifferentialPlan,
@@ -620,6 +622,7 @@ fn subdivide_fields(
 
 /// Levels `1..k` of `Δ` alone ([`delta_step`]) over the faces already in `u.faces` and `out`.
 /// Returns the number of DirMag normals too short to normalise.
+#[allow(clippy::too_many_arguments)]
 fn subdivide_delta(
     mesh: Mesh<'_>,
     plan: &DifferentialPlan,

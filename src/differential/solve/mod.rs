@@ -521,6 +521,7 @@ impl System<'_> {
     ///
     /// # Errors
     /// [`Status::NumericalFailure`] when the residual is not finite.
+    #[allow(clippy::too_many_arguments)]
     fn flexible_pcg(
         &self,
         fine: &Laplacian<'_>,
