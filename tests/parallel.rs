@@ -254,7 +254,10 @@ fn differential_every_stencil_every_chunking() {
                 ok += diff_same_everywhere(m, &opts, &what) as u32;
             }
         }
-        // §4.4 edits: a curvature scale and a turned normal.
+        // §4.4 edits: a curvature scale and a turned normal (a closed and an open mesh).
+        if !matches!(*name, "icosahedron" | "tri grid") {
+            continue;
+        }
         let n = m.positions.len();
         let scale: Vec<f64> = (0..n).map(|i| 1.0 + 0.1 * (i % 3) as f64).collect();
         let mut normals = vec![[0.0; 3]; n];
@@ -272,7 +275,7 @@ fn differential_every_stencil_every_chunking() {
             ok += diff_same_everywhere(m, &opts, &format!("{name} {stencil:?} normal")) as u32;
         }
     }
-    assert!(ok > 40, "only {ok} cases succeeded");
+    assert!(ok > 30, "only {ok} cases succeeded");
 }
 
 /// Errors and the report with them: the iteration cap (`NotConverged`, the report of the
