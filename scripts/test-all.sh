@@ -151,6 +151,11 @@ fi
 # Seed 001 Fig. 9: Gaussian curvature near a convex valence-12 vertex (spatial Butterfly ripples,
 # differential Butterfly stays positive); the example exits 1 when that is not reproduced.
 step "paper figure: seed 001 Fig. 9 (Gaussian curvature at a valence-12 vertex, 4 levels)" cargo run -q --release --locked --example differential_fig9 -- 4
+# Seed 001 Fig. 4: when i^1.5 h_i decreases (h_i the Hausdorff distance between levels): the
+# contraction rates predicted by the highest valence and the decrease they imply, on an
+# icosahedron and a valence-16 bipyramid (generated, 5 levels); the example exits 1 when a
+# statement of docs/differential.md "Convergence of the levels" fails.
+step "paper figure: seed 001 Fig. 4 (when i^1.5 h_i decreases, 2 meshes x 5 levels)" cargo run -q --release --locked --example differential_fig4_check
 
 # --- peers: OpenMesh, CGAL, OpenSubdiv (Debian packages) ------------------------------------
 if [ -f /usr/include/OpenMesh/Core/Mesh/PolyMeshT.hh ] && [ -d /usr/include/CGAL ] && [ -d /usr/include/opensubdiv ]; then

@@ -187,3 +187,140 @@ fn large_levels_every_chunking() {
         assert!(same_everywhere(&m, &opts, &format!("Möbius {s:?}")));
     }
 }
+
+// ---------------------------------------------------------------- differential space
+
+use nlsubdiv::differential::{DifferentialOptions, DifferentialReport, Stencil};
+
+type DiffOutcome =
+    std::result::Result<(u64, DifferentialReport), (nlsubdiv::Error, DifferentialReport)>;
+
+fn diff_outcome(
+    m: &OwnedMesh,
+    opts: &DifferentialOptions<'_>,
+    exec: Option<&dyn Executor>,
+) -> DiffOutcome {
+    differential_subdivide_with(m, opts, exec).map(|(o, r)| (hash(&o), r))
+}
+
+/// Every executor gives the serial differential run's output hash, report and error;
+/// returns whether it succeeded.
+fn diff_same_everywhere(m: &OwnedMesh, opts: &DifferentialOptions<'_>, what: &str) -> bool {
+    let public = diff_outcome(m, opts, None);
+    let serial = diff_outcome(m, opts, Some(&Serial));
+    assert_eq!(serial, public, "{what}: Serial differs from subdivide");
+    for (threads, chunks, reverse) in POOLS {
+        let pool = Pool {
+            threads,
+            chunks,
+            reverse,
+        };
+        assert_eq!(
+            diff_outcome(m, opts, Some(&pool)),
+            serial,
+            "{what}: {threads} threads, {chunks} chunks, reverse {reverse}"
+        );
+    }
+    serial.is_ok()
+}
+
+/// Every differential stencil (Loop, Modified Butterfly, DirMag with either for one and
+/// for every level), closed and open meshes, 1 and 2 levels (3 in the next test), the §4.4
+/// edits: the output bits
+/// and the report of `differential::subdivide_with` equal the serial run's for 1, 2, 3, 7
+/// and 16 threads and 5, 13, 64 and 1000 chunks per pass.
+#[test]
+fn differential_every_stencil_every_chunking() {
+    let meshes: Vec<(&str, OwnedMesh)> = vec![
+        ("icosahedron", icosahedron()),
+        ("tri grid", jitter(&tri_grid(4, 5), 0.05, 2)),
+        ("fan", fan(7)),
+        (
+            "renumbered torus",
+            renumbered(&jitter(&tri_torus(5, 4), 0.03, 7), 3),
+        ),
+    ];
+    let mut ok = 0;
+    for (name, m) in &meshes {
+        for stencil in [Stencil::Loop, Stencil::ModifiedButterfly] {
+            for (dirmag, levels) in [(0, 1), (0, 2), (1, 2), (2, 2)] {
+                let opts = DifferentialOptions {
+                    stencil,
+                    levels,
+                    dirmag_levels: dirmag,
+                    ..Default::default()
+                };
+                let what = format!("{name} {stencil:?} dirmag {dirmag} levels {levels}");
+                ok += diff_same_everywhere(m, &opts, &what) as u32;
+            }
+        }
+        // §4.4 edits: a curvature scale and a turned normal (a closed and an open mesh).
+        if !matches!(*name, "icosahedron" | "tri grid") {
+            continue;
+        }
+        let n = m.positions.len();
+        let scale: Vec<f64> = (0..n).map(|i| 1.0 + 0.1 * (i % 3) as f64).collect();
+        let mut normals = vec![[0.0; 3]; n];
+        normals[0] = [0.3, 0.2, 1.0];
+        for stencil in [Stencil::Loop, Stencil::ModifiedButterfly] {
+            let mut opts = DifferentialOptions {
+                stencil,
+                levels: 2,
+                ..Default::default()
+            };
+            opts.curvature_scale = Some(&scale);
+            ok += diff_same_everywhere(m, &opts, &format!("{name} {stencil:?} scaled")) as u32;
+            opts.curvature_scale = None;
+            opts.normals = Some(&normals);
+            ok += diff_same_everywhere(m, &opts, &format!("{name} {stencil:?} normal")) as u32;
+        }
+    }
+    assert!(ok > 30, "only {ok} cases succeeded");
+}
+
+/// Errors and the report with them: the iteration cap (`NotConverged`, the report of the
+/// last iterate) and overflow (`NumericalFailure`) are the serial run's for every chunking.
+#[test]
+fn differential_errors_equal_the_serial_ones() {
+    let m = jitter(&tri_torus(8, 6), 0.03, 9);
+    for stencil in [Stencil::Loop, Stencil::ModifiedButterfly] {
+        let mut opts = DifferentialOptions {
+            stencil,
+            levels: 3,
+            ..Default::default()
+        };
+        opts.solve.max_iterations = 2;
+        assert!(!diff_same_everywhere(
+            &m,
+            &opts,
+            &format!("{stencil:?} capped")
+        ));
+        let e = differential_subdivide(&m, &opts).unwrap_err();
+        assert_eq!(e.0.status, Status::NotConverged);
+    }
+    let huge = tri_grid(5, 5).map_positions(|p| [p[0] * 1e307, p[1] * 1e307, p[2]]);
+    let opts = DifferentialOptions {
+        levels: 2,
+        ..Default::default()
+    };
+    assert!(!diff_same_everywhere(&huge, &opts, "huge"));
+}
+
+/// A mesh large enough for the std layer's default split (chunks of at least 2048 rows).
+#[test]
+fn differential_large_every_chunking() {
+    let m = jitter(&tri_torus(16, 12), 0.02, 11);
+    for stencil in [Stencil::Loop, Stencil::ModifiedButterfly] {
+        let opts = DifferentialOptions {
+            stencil,
+            levels: 3,
+            dirmag_levels: 1,
+            ..Default::default()
+        };
+        assert!(diff_same_everywhere(
+            &m,
+            &opts,
+            &format!("large {stencil:?}")
+        ));
+    }
+}

@@ -77,6 +77,9 @@ pub struct RunOptions<'a> {
     pub edits: Option<&'a Edits>,
     /// With edits: a fold of the output is an error naming the face (`--strict`).
     pub strict: bool,
+    /// Threads of the kernel's passes (`nlsubdiv_threads`; the output is the same bits for
+    /// every count).
+    pub threads: usize,
 }
 
 fn core_error(e: nlsubdiv::Error, src: &Source, name: &str, rep: &DifferentialReport) -> CliError {
@@ -192,7 +195,10 @@ pub fn run(
     let mut offs = memory::filled(s.faces + 1, 0u32, "the output faces")?;
     let mut idx = memory::filled(s.indices, 0u32, "the output faces")?;
     let mut out = MeshOut::new(&mut pos, &mut offs, &mut idx);
-    diff::subdivide(view, &opts, &mut su, &mut sp, &mut out, &mut rep).map_err(|e| err(e, &rep))?;
+    nlsubdiv_threads::differential_subdivide(
+        view, &opts, &mut su, &mut sp, &mut out, &mut rep, o.threads,
+    )
+    .map_err(|e| err(e, &rep))?;
     Ok(Outcome {
         mesh: Mesh {
             positions: pos,

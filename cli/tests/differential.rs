@@ -1,6 +1,6 @@
 //! `subdivide --scheme differential-*` and the thin-plate energy of `metrics`: the output is
-//! the library's (`nlsubdiv::differential::subdivide`) bit for bit, the summary reports the
-//! reconstruction, non-triangles and non-convergence give exit 2 with a message and no
+//! the library's (`nlsubdiv::differential::subdivide`) bit for bit for 1 and 3 threads, the
+//! summary reports the thread count and the reconstruction, non-triangles and non-convergence give exit 2 with a message and no
 //! output, and `metrics` reports the thin-plate energy of a sphere as about 2/r².
 
 #![allow(
@@ -61,22 +61,32 @@ fn differential_schemes_give_the_library_output_bit_for_bit() {
         ("differential-butterfly", Stencil::ModifiedButterfly, 0),
         ("differential-dirmag", Stencil::ModifiedButterfly, 1),
     ] {
-        let out = dir.path(&format!("{name}.off"));
-        let o = run(&[
-            "subdivide",
-            "--scheme",
-            name,
-            "--levels",
-            "2",
-            input.to_str().unwrap(),
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(code(&o), 0, "{}", stderr(&o));
-        assert!(stderr(&o).contains("reconstruction:"), "{}", stderr(&o));
-        let got = read_off(&out);
         let want = library(&m, stencil, 2, dirmag);
-        assert_eq!(got.faces, want.faces, "{name}");
-        assert_eq!(got.bits(), want.bits(), "{name}");
+        for threads in ["1", "3"] {
+            let out = dir.path(&format!("{name}-{threads}.off"));
+            let o = run(&[
+                "subdivide",
+                "--scheme",
+                name,
+                "--levels",
+                "2",
+                "--threads",
+                threads,
+                input.to_str().unwrap(),
+                out.to_str().unwrap(),
+            ]);
+            assert_eq!(code(&o), 0, "{}", stderr(&o));
+            assert!(stderr(&o).contains("reconstruction:"), "{}", stderr(&o));
+            let plural = if threads == "1" { "thread" } else { "threads" };
+            assert!(
+                stderr(&o).contains(&format!(" s ({threads} {plural}); ")),
+                "{}",
+                stderr(&o)
+            );
+            let got = read_off(&out);
+            assert_eq!(got.faces, want.faces, "{name}");
+            assert_eq!(got.bits(), want.bits(), "{name} {threads} threads");
+        }
     }
 }
 

@@ -16,6 +16,7 @@ use super::plan::{plan, plan_scratch_size, DifferentialPlan, Layout};
 use super::solve::{self, SolveLevel, SolveReport, System};
 use super::{dirmag, edit, folds, normal_edit};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
+use crate::exec::{Executor, Serial};
 use crate::mesh::{cadd, cmul, get, internal, set, Mesh, MeshOut, MeshSizes, Topology};
 use crate::point::{add, sub, Point};
 use crate::scheme::{Scheme, MAX_LEVELS};
@@ -36,6 +37,36 @@ pub fn subdivide(
     scratch_points: &mut [Point],
     out: &mut MeshOut<'_>,
     report: &mut DifferentialReport,
+) -> Result<MeshSizes> {
+    subdivide_with(
+        mesh,
+        opts,
+        scratch_u32,
+        scratch_points,
+        out,
+        report,
+        &Serial,
+    )
+}
+
+/// [`subdivide`] with the passes over all vertices split into disjoint output ranges run by
+/// `exec` ([`crate::exec`]): the linear subdivision steps of `Δ` and of the warm start, and
+/// in the reconstruction the row-wise sparse products and vector updates
+/// ([`solve::solve_with`]). Every output element is computed as in [`subdivide`] and the
+/// reductions stay serial, so the output, the report and the errors are those of
+/// [`subdivide`], bit for bit, for every executor and chunking. The core stays
+/// single-threaded; `nlsubdiv-threads` brings the threads.
+///
+/// # Errors
+/// Those of [`subdivide`].
+pub fn subdivide_with(
+    mesh: Mesh<'_>,
+    opts: &DifferentialOptions<'_>,
+    scratch_u32: &mut [u32],
+    scratch_points: &mut [Point],
+    out: &mut MeshOut<'_>,
+    report: &mut DifferentialReport,
+    exec: &dyn Executor,
 ) -> Result<MeshSizes> {
     let plan = {
         let need = plan_scratch_size(&mesh)?;
@@ -64,7 +95,7 @@ pub fn subdivide(
 
     // The unedited reconstruction (with edits: the reference they are measured against).
     let anchors = level_zero(mesh, dm, &mut u, &mut f)?;
-    let degenerate = subdivide_fields(mesh, &plan, scheme, dm, &mut u, out, &mut f)?;
+    let degenerate = subdivide_fields(mesh, &plan, scheme, dm, &mut u, out, &mut f, exec)?;
     if k == 0 {
         set_faces(mesh, out.offsets, out.indices)?;
     }
@@ -92,7 +123,7 @@ pub fn subdivide(
         let out_pos = out.positions.get_mut(..nk).ok_or(internal())?;
         placement::spatial_centroid_sums(u.labels, out_pos, p.sums_x, p.sums_s, p.counts)?;
     }
-    let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+    let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve, exec)?;
     report.solve = r;
     if !r.converged {
         return Err(Error::new(Status::NotConverged));
@@ -119,9 +150,10 @@ pub fn subdivide(
             };
             delta_level_zero(mesh, &topo, lap, Some(sc), dm, &mut f)?;
         }
-        report.dirmag_degenerate = subdivide_delta(mesh, &plan, scheme, dm, &mut u, out, &mut f)?;
+        report.dirmag_degenerate =
+            subdivide_delta(mesh, &plan, scheme, dm, &mut u, out, &mut f, exec)?;
         scaled_delta(k, f.da, p.rhs, nk);
-        let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+        let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve, exec)?;
         report.solve = r;
         if !r.converged {
             return Err(Error::new(Status::NotConverged));
@@ -130,7 +162,7 @@ pub fn subdivide(
     if let Some(normals) = opts.normals {
         // §4.4 normal edit (`normal_edit.rs`): `δ ← δ + L_k D`, solved from `X + D`.
         if turn_normals(mesh, &plan, normals, &mut u, out, p.rhs, p.work)? > 0 {
-            let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve)?;
+            let r = reconstruct(&u, k, anchors, p.rhs, out, p.work, &opts.solve, exec)?;
             report.solve = r;
             if !r.converged {
                 return Err(Error::new(Status::NotConverged));
@@ -170,6 +202,7 @@ fn copy_points(src: &[Point], dst: &mut [Point]) -> Result<()> {
 
 /// One reconstruction (§3.5 step 4) of `δ` (in `rhs`) from the warm start in
 /// `out.positions`, overwritten with the solution; the anchors keep their warm-start values.
+#[allow(clippy::too_many_arguments)]
 fn reconstruct(
     u: &U32Buffers<'_>,
     k: usize,
@@ -178,6 +211,7 @@ fn reconstruct(
     out: &mut MeshOut<'_>,
     work: &mut [Point],
     opts: &solve::SolveOptions,
+    exec: &dyn Executor,
 ) -> Result<solve::SolveReport> {
     let levels = solve_levels(u, k)?;
     let sys = System {
@@ -190,7 +224,7 @@ fn reconstruct(
     };
     let n = rhs.len();
     let x = out.positions.get_mut(..n).ok_or(internal())?;
-    solve::solve(&sys, rhs, x, work, opts)
+    solve::solve_with(&sys, rhs, x, work, opts, exec)
 }
 
 /// The normal edit of `normal_edit.rs` on the solved positions in `out.positions` (`nk`
@@ -273,8 +307,8 @@ fn turn_normals(
                     let t = Topology::build(m, &mut *topo)?;
                     seeds.seed(&t, j, wa, ca)?;
                 }
-                subdivide_field(Scheme::Loop, src, wa, wb, offs, idx, topo)?;
-                subdivide_field(Scheme::Loop, src, ca, cb, offs, idx, topo)?;
+                subdivide_field(Scheme::Loop, src, wa, wb, (offs, idx), topo, &Serial)?;
+                subdivide_field(Scheme::Loop, src, ca, cb, (offs, idx), topo, &Serial)?;
                 core::mem::swap(&mut wa, &mut wb);
                 core::mem::swap(&mut ca, &mut cb);
                 Ok(())
@@ -543,6 +577,7 @@ fn for_each_level(
 /// and `Δ` ([`delta_step`]), each subdivided with the linear `scheme`; the faces of levels
 /// `1..k−1` go to `u.faces`, those of level `k` to `out`. Returns the number of DirMag normals
 /// too short to normalise.
+#[allow(clippy::too_many_arguments)]
 fn subdivide_fields(
     mesh: Mesh<'_>,
     plan: &DifferentialPlan,
@@ -551,6 +586,7 @@ fn subdivide_fields(
     u: &mut U32Buffers<'_>,
     out: &mut MeshOut<'_>,
     f: &mut Fields<'_>,
+    exec: &dyn Executor,
 ) -> Result<u32> {
     let k = plan.levels;
     let nk = plan.output().vertices;
@@ -575,9 +611,9 @@ fn subdivide_fields(
             } else {
                 (&*f.spatial_tmp, &mut *op)
             };
-            subdivide_field(scheme, src, src_sp, dst_sp, doffs, didx, topo)?;
+            subdivide_field(scheme, src, src_sp, dst_sp, (doffs, didx), topo, exec)?;
             let sn = plan.size(j + 1)?.vertices;
-            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f)?;
+            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f, exec)?;
             Ok(())
         },
     )?;
@@ -586,6 +622,7 @@ fn subdivide_fields(
 
 /// Levels `1..k` of `Δ` alone ([`delta_step`]) over the faces already in `u.faces` and `out`.
 /// Returns the number of DirMag normals too short to normalise.
+#[allow(clippy::too_many_arguments)]
 fn subdivide_delta(
     mesh: Mesh<'_>,
     plan: &DifferentialPlan,
@@ -594,6 +631,7 @@ fn subdivide_delta(
     u: &mut U32Buffers<'_>,
     out: &mut MeshOut<'_>,
     f: &mut Fields<'_>,
+    exec: &dyn Executor,
 ) -> Result<u32> {
     let mut degenerate = 0u32;
     for_each_level(
@@ -604,7 +642,7 @@ fn subdivide_delta(
         out.indices,
         |j, src, doffs, didx, topo| {
             let sn = plan.size(j + 1)?.vertices;
-            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f)?;
+            degenerate += delta_step(scheme, j, dm, sn, src, doffs, didx, topo, f, exec)?;
             Ok(())
         },
     )?;
@@ -625,11 +663,12 @@ fn delta_step(
     didx: &mut [u32],
     topo: &mut [u32],
     f: &mut Fields<'_>,
+    exec: &dyn Executor,
 ) -> Result<u32> {
     let mut degenerate = 0u32;
     if j < dm {
-        subdivide_field(scheme, src, f.ha, f.hb, doffs, didx, topo)?;
-        subdivide_field(scheme, src, f.na, f.nb, doffs, didx, topo)?;
+        subdivide_field(scheme, src, f.ha, f.hb, (doffs, didx), topo, exec)?;
+        subdivide_field(scheme, src, f.na, f.nb, (doffs, didx), topo, exec)?;
         for p in f.nb.iter_mut().take(sn) {
             match dirmag::normalized(*p) {
                 Some(u) => *p = u,
@@ -646,7 +685,7 @@ fn delta_step(
             }
         }
     } else {
-        subdivide_field(scheme, src, f.da, f.db, doffs, didx, topo)?;
+        subdivide_field(scheme, src, f.da, f.db, (doffs, didx), topo, exec)?;
         core::mem::swap(&mut f.da, &mut f.db);
     }
     Ok(degenerate)
@@ -660,14 +699,14 @@ fn subdivide_field(
     (offsets, indices, n): (&[u32], &[u32], usize),
     field: &[Point],
     dst: &mut [Point],
-    offs: &mut [u32],
-    idx: &mut [u32],
+    (offs, idx): (&mut [u32], &mut [u32]),
     topo_buf: &mut [u32],
+    exec: &dyn Executor,
 ) -> Result<()> {
     let m = Mesh::new(field.get(..n).ok_or(internal())?, offsets, indices);
     let topo = Topology::build(m, topo_buf).map_err(non_finite_intermediate)?;
     let mut o = MeshOut::new(dst, offs, idx);
-    crate::scheme::step_linear(scheme, &topo, &mut o)?;
+    crate::scheme::step_linear_with(scheme, &topo, &mut o, exec)?;
     Ok(())
 }
 

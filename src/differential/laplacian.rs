@@ -17,6 +17,7 @@
 //! stored).
 
 use crate::error::{Error, Result, Status};
+use crate::exec::{pass, Executor};
 use crate::mesh::{get, internal, set, Topology};
 use crate::point::{add, scale, sub, Point};
 
@@ -129,27 +130,53 @@ impl Laplacian<'_> {
     /// `y = c · L x` (x, y at least [`Laplacian::len`] long).
     pub fn apply(&self, x: &[Point], c: f64, y: &mut [Point]) -> Result<()> {
         for (i, yi) in y.iter_mut().enumerate().take(self.len()) {
-            let (r, bnd) = self.row_parts(i)?;
-            if r.is_empty() {
-                *yi = [0.0; 3];
-                continue;
-            }
-            let (s, w) = if bnd {
-                let a = get(x, *r.first().ok_or(internal())? as usize)?;
-                let b = get(x, *r.last().ok_or(internal())? as usize)?;
-                (add(a, b), 0.5)
-            } else {
-                let mut s = [0.0; 3];
-                for &j in r {
-                    let p = get(x, j as usize)?;
-                    s = add(s, p);
-                }
-                (s, 1.0 / r.len() as f64)
-            };
-            let xi = get(x, i)?;
-            *yi = scale(sub(xi, scale(s, w)), c);
+            *yi = self.apply_row(x, c, i)?;
         }
         Ok(())
+    }
+
+    /// [`Laplacian::apply`] with the rows split into disjoint ranges run by `exec`
+    /// ([`crate::exec`]): every row is computed as there, so the bits are the same for every
+    /// executor and chunking.
+    pub fn apply_with(
+        &self,
+        x: &[Point],
+        c: f64,
+        y: &mut [Point],
+        exec: &dyn Executor,
+    ) -> Result<()> {
+        let n = self.len();
+        let y = y.get_mut(..n).ok_or(Error::too_small(n))?;
+        pass(exec, y, |start, out, _| {
+            for (k, yi) in out.iter_mut().enumerate() {
+                *yi = self.apply_row(x, c, start + k)?;
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Row `i` of `c · L x`.
+    #[inline]
+    fn apply_row(&self, x: &[Point], c: f64, i: usize) -> Result<Point> {
+        let (r, bnd) = self.row_parts(i)?;
+        if r.is_empty() {
+            return Ok([0.0; 3]);
+        }
+        let (s, w) = if bnd {
+            let a = get(x, *r.first().ok_or(internal())? as usize)?;
+            let b = get(x, *r.last().ok_or(internal())? as usize)?;
+            (add(a, b), 0.5)
+        } else {
+            let mut s = [0.0; 3];
+            for &j in r {
+                let p = get(x, j as usize)?;
+                s = add(s, p);
+            }
+            (s, 1.0 / r.len() as f64)
+        };
+        let xi = get(x, i)?;
+        Ok(scale(sub(xi, scale(s, w)), c))
     }
 
     /// `y += Lᵀ t` (scatter in row order, so deterministic).

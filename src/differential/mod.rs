@@ -59,6 +59,6 @@ mod options;
 mod placement;
 mod plan;
 
-pub use driver::subdivide;
+pub use driver::{subdivide, subdivide_with};
 pub use options::{DifferentialOptions, DifferentialReport, Stencil};
 pub use plan::{plan, plan_scratch_size, DifferentialPlan};

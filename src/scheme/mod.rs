@@ -60,7 +60,7 @@ pub use subdivide::{subdivide, subdivide_tagged, subdivide_with, Report, Scratch
 pub use tags::Tags;
 
 pub(crate) use plan::plan_levels;
-pub(crate) use step::linear as step_linear;
+pub(crate) use step::linear_with as step_linear_with;
 
 use crate::error::Result;
 use crate::mesh::refine::Pattern;

@@ -8,7 +8,7 @@ use super::size::step_size;
 use super::tags::Sharpness;
 use super::{linear, linear_tagged, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
-use crate::exec::{self, Executor, Serial};
+use crate::exec::{self, Executor};
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
@@ -66,15 +66,8 @@ fn tagged(
 /// output buffer is short, before any write; [`Status::NumericalFailure`] naming the first
 /// output vertex that is not finite (overflow on huge coordinates); the statuses of
 /// [`super::spherelike`].
-pub(crate) fn linear(
-    scheme: Scheme,
-    topo: &Topology<'_, '_>,
-    out: &mut MeshOut<'_>,
-) -> Result<MeshSizes> {
-    linear_with(scheme, topo, out, &Serial)
-}
-
-/// [`linear`] with its passes run by `exec` ([`crate::exec`]).
+///
+/// The passes are run by `exec` ([`crate::exec`]): the same bits for every executor.
 pub(crate) fn linear_with(
     scheme: Scheme,
     topo: &Topology<'_, '_>,

@@ -582,6 +582,18 @@ pub fn differential_subdivide(
     (OwnedMesh, nlsubdiv::differential::DifferentialReport),
     (nlsubdiv::Error, nlsubdiv::differential::DifferentialReport),
 > {
+    differential_subdivide_with(m, opts, None)
+}
+
+/// [`differential_subdivide`] through `subdivide_with(exec)` when `exec` is given.
+pub fn differential_subdivide_with(
+    m: &OwnedMesh,
+    opts: &nlsubdiv::differential::DifferentialOptions<'_>,
+    exec: Option<&dyn nlsubdiv::exec::Executor>,
+) -> std::result::Result<
+    (OwnedMesh, nlsubdiv::differential::DifferentialReport),
+    (nlsubdiv::Error, nlsubdiv::differential::DifferentialReport),
+> {
     use nlsubdiv::differential as d;
     let mut rep = d::DifferentialReport::default();
     let mut ps = vec![0u32; d::plan_scratch_size(&m.view()).map_err(|e| (e, rep))?];
@@ -593,7 +605,10 @@ pub fn differential_subdivide(
     let mut offs = vec![0u32; o.faces + 1];
     let mut idx = vec![0u32; o.indices];
     let mut out = nlsubdiv::mesh::MeshOut::new(&mut pos, &mut offs, &mut idx);
-    let r = d::subdivide(m.view(), opts, &mut su, &mut sp, &mut out, &mut rep);
+    let r = match exec {
+        Some(e) => d::subdivide_with(m.view(), opts, &mut su, &mut sp, &mut out, &mut rep, e),
+        None => d::subdivide(m.view(), opts, &mut su, &mut sp, &mut out, &mut rep),
+    };
     match r {
         Ok(_) => Ok((
             OwnedMesh {

@@ -30,14 +30,22 @@ use nlsubdiv::{Mesh, MeshOut, Options, Report, Result, Scratch};
 /// microseconds; a point between a fraction of a microsecond and a few).
 pub const MIN_CHUNK: usize = 2048;
 
+/// The smallest number of rows per chunk of differential-space subdivision's passes
+/// ([`differential_subdivide`]): a row of the reconstruction's sparse products costs a few
+/// nanoseconds, and the solve runs tens of passes per iteration, so only the finest levels
+/// are worth splitting.
+pub const DIFFERENTIAL_MIN_CHUNK: usize = 32768;
+
 /// Runs every pass on up to `n` scoped std threads, one contiguous group of chunks each (the
 /// calling thread takes the first group).
 #[derive(Clone, Copy, Debug)]
 pub struct Threads {
     n: usize,
     /// A fixed number of chunks per pass (tests of odd chunkings), or `None`: one chunk per
-    /// thread, each of at least [`MIN_CHUNK`] elements.
+    /// thread, each of at least `min_chunk` elements.
     fixed: Option<usize>,
+    /// The smallest chunk without `fixed` ([`MIN_CHUNK`] unless set).
+    min_chunk: usize,
 }
 
 impl Threads {
@@ -46,6 +54,16 @@ impl Threads {
         Threads {
             n: n.max(1),
             fixed: None,
+            min_chunk: MIN_CHUNK,
+        }
+    }
+
+    /// The same threads with chunks of at least `min` elements (1 at least): a pass shorter
+    /// than `2 · min` runs on the calling thread.
+    pub fn min_chunk(self, min: usize) -> Threads {
+        Threads {
+            min_chunk: min.max(1),
+            ..self
         }
     }
 
@@ -55,6 +73,7 @@ impl Threads {
         Threads {
             n: n.max(1),
             fixed: Some(k.max(1)),
+            min_chunk: MIN_CHUNK,
         }
     }
 
@@ -74,7 +93,7 @@ impl Executor for Threads {
     fn chunks(&self, len: usize) -> usize {
         match self.fixed {
             Some(k) => k,
-            None => (len / MIN_CHUNK).clamp(1, self.n),
+            None => (len / self.min_chunk).clamp(1, self.n),
         }
     }
 
@@ -110,4 +129,33 @@ pub fn subdivide(
     threads: usize,
 ) -> Result<Report> {
     nlsubdiv::subdivide_with(mesh, opts, scratch, out, &Threads::new(threads))
+}
+
+/// [`nlsubdiv::differential::subdivide`] on `threads` std threads (0 or 1: the calling
+/// thread only), through [`nlsubdiv::differential::subdivide_with`]: the linear steps of the
+/// fields and the reconstruction's row-wise sparse products are split over the threads in
+/// chunks of at least [`DIFFERENTIAL_MIN_CHUNK`] rows; the reductions and the Gauss–Seidel
+/// sweeps stay serial. The same output, report and errors,
+/// bit for bit, for every thread count.
+///
+/// # Errors
+/// Those of [`nlsubdiv::differential::subdivide`].
+pub fn differential_subdivide(
+    mesh: Mesh<'_>,
+    opts: &nlsubdiv::differential::DifferentialOptions<'_>,
+    scratch_u32: &mut [u32],
+    scratch_points: &mut [nlsubdiv::Point],
+    out: &mut MeshOut<'_>,
+    report: &mut nlsubdiv::differential::DifferentialReport,
+    threads: usize,
+) -> Result<nlsubdiv::MeshSizes> {
+    nlsubdiv::differential::subdivide_with(
+        mesh,
+        opts,
+        scratch_u32,
+        scratch_points,
+        out,
+        report,
+        &Threads::new(threads).min_chunk(DIFFERENTIAL_MIN_CHUNK),
+    )
 }

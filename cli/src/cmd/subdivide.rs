@@ -321,6 +321,9 @@ fn run_differential(
         max_iterations: args.max_iterations,
         edits: edits.as_ref(),
         strict: args.strict,
+        threads: args
+            .threads
+            .map_or_else(nlsubdiv_threads::Threads::available, |n| n as usize),
     };
     let r = differential::run(&l.mesh, &l.source, d, levels, o, ctx)?;
     {
@@ -332,8 +335,8 @@ fn run_differential(
         write_mesh(&args.output, &r.mesh, &opts)?;
     }
     ctx.note(&format!(
-        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s; reconstruction: \
-         {} iterations, relative residual {:.2e}, {} anchor{}",
+        "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s ({} thread{}); \
+         reconstruction: {} iterations, relative residual {:.2e}, {} anchor{}",
         args.output.display(),
         d.name(),
         levels,
@@ -343,6 +346,8 @@ fn run_differential(
         l.mesh.num_faces(),
         r.mesh.num_faces(),
         r.elapsed.as_secs_f64(),
+        o.threads.max(1),
+        if o.threads.max(1) == 1 { "" } else { "s" },
         r.report.solve.iterations,
         r.report.solve.relative_residual,
         r.report.anchors,

@@ -79,11 +79,12 @@ use arrayvec::ArrayVec;
 
 use super::laplacian::Laplacian;
 use crate::error::{Error, Result, Status};
+use crate::exec::{pass, Executor, Serial};
 use crate::mesh::{get, internal};
 use crate::point::{add, scale, sub, Point};
 use boundary_loop::solve_loop;
 use multigrid::{apply_k, Coarse, Work};
-use vectors::{axpy, copy, dots, frob, ratio, xpby};
+use vectors::{axpy_with, copy, dots, frob, ratio, xpby_with};
 
 /// Most levels of a hierarchy (the input and [`crate::scheme::MAX_LEVELS`] steps).
 pub const MAX_HIERARCHY: usize = crate::scheme::MAX_LEVELS + 1;
@@ -191,10 +192,16 @@ fn take<'a>(s: &mut &'a mut [Point], n: usize) -> Result<&'a mut [Point]> {
 
 impl System<'_> {
     /// `y = N x = (LᵀL + w anchors) x` at the finest level (`t` a temporary).
-    fn apply_normal(&self, x: &[Point], t: &mut [Point], y: &mut [Point]) -> Result<()> {
+    fn apply_normal(
+        &self,
+        x: &[Point],
+        t: &mut [Point],
+        y: &mut [Point],
+        exec: &dyn Executor,
+    ) -> Result<()> {
         let lv = self.levels.last().ok_or(internal())?;
         let n = lv.lap.len();
-        lv.lap.apply(x, 1.0, t)?;
+        lv.lap.apply_with(x, 1.0, t, exec)?;
         for yi in y.iter_mut().take(n) {
             *yi = [0.0; 3];
         }
@@ -215,8 +222,9 @@ impl System<'_> {
         x: &[Point],
         t: &mut [Point],
         y: &mut [Point],
+        exec: &dyn Executor,
     ) -> Result<f64> {
-        self.apply_normal(x, t, y)?;
+        self.apply_normal(x, t, y, exec)?;
         let mut s = [0.0; 3];
         for (yi, bi) in y.iter().zip(b) {
             let d = sub(*bi, *yi);
@@ -244,6 +252,26 @@ pub fn solve(
     scratch: &mut [Point],
     opts: &SolveOptions,
 ) -> Result<SolveReport> {
+    solve_with(sys, delta, x, scratch, opts, &Serial)
+}
+
+/// [`solve`] with the row-wise sparse products (`K̃ x` at every level, `L x`, the residuals,
+/// the prolongation) and the vector updates split into disjoint row ranges run by `exec`
+/// ([`crate::exec`]). Every row is computed as in [`solve`]; the reductions (inner products,
+/// norms), the Gauss–Seidel sweeps, the restriction and `Lᵀ t` (scatters) stay serial. The
+/// result and the report are those of [`solve`], bit for bit, for every executor and
+/// chunking.
+///
+/// # Errors
+/// Those of [`solve`].
+pub fn solve_with(
+    sys: &System<'_>,
+    delta: &[Point],
+    x: &mut [Point],
+    scratch: &mut [Point],
+    opts: &SolveOptions,
+    exec: &dyn Executor,
+) -> Result<SolveReport> {
     let counts = hierarchy_counts(sys, opts, scratch.len())?;
     let n = counts.last().copied().unwrap_or(0);
     let delta = delta.get(..n).ok_or(Error::too_small(n))?;
@@ -269,23 +297,23 @@ pub fn solve(
     }
     {
         let fw = b.work.last_mut().ok_or(internal())?;
-        report.initial_residual = sys.normal_residual(b.bne, x, fw.t, fw.b)? / bnorm;
+        report.initial_residual = sys.normal_residual(b.bne, x, fw.t, fw.b, exec)? / bnorm;
     }
 
     // Boundary loops: exact.
     for &a in sys.anchors.get(..sys.loop_anchors).ok_or(internal())? {
         solve_loop(&fine, a, delta, x, b.z, b.z_old)?;
     }
-    sys.poisson_residual(&fine, delta, x, &mut b.coarse, b.r)?;
+    sys.poisson_residual(&fine, delta, x, &mut b.coarse, b.r, exec)?;
     let rel = {
         let fw = b.work.last_mut().ok_or(internal())?;
-        sys.normal_residual(b.bne, x, fw.t, fw.b)? / bnorm
+        sys.normal_residual(b.bne, x, fw.t, fw.b, exec)? / bnorm
     };
     if rel > opts.tolerance {
-        report.iterations = sys.flexible_pcg(&fine, &mut b, x, c, bnorm, opts)?;
+        report.iterations = sys.flexible_pcg(&fine, &mut b, x, c, bnorm, opts, exec)?;
     }
     let fw = b.work.last_mut().ok_or(internal())?;
-    report.relative_residual = sys.normal_residual(b.bne, x, fw.t, fw.b)? / bnorm;
+    report.relative_residual = sys.normal_residual(b.bne, x, fw.t, fw.b, exec)? / bnorm;
     if !report.relative_residual.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }
@@ -422,6 +450,7 @@ impl System<'_> {
         x: &[Point],
         coarse: &mut [&mut [Point]; 3],
         r: &mut [Point],
+        exec: &dyn Executor,
     ) -> Result<()> {
         let n = x.len();
         let [sd, sdd, _] = coarse;
@@ -439,26 +468,31 @@ impl System<'_> {
             *s = add(*s, scale(get(delta, i)?, d));
             sdd.get_mut(l).ok_or(internal())?[0] += d * d;
         }
-        for (i, ri) in r.iter_mut().enumerate() {
-            if fine.is_fixed(i)? {
-                *ri = [0.0; 3];
-                continue;
-            }
-            let d = fine.degree(i)?;
-            let mut f = scale(get(delta, i)?, d);
-            let l = get(self.components, i)? as usize;
-            if get(self.open, l)? == 0 {
-                let den = get(sdd, l)?[0];
-                if den > 0.0 {
-                    f = sub(f, scale(get(sd, l)?, d * d / den));
+        let (sd, sdd) = (&**sd, &**sdd);
+        pass(exec, r, |start, out, _| {
+            for (k, ri) in out.iter_mut().enumerate() {
+                let i = start + k;
+                if fine.is_fixed(i)? {
+                    *ri = [0.0; 3];
+                    continue;
                 }
+                let d = fine.degree(i)?;
+                let mut f = scale(get(delta, i)?, d);
+                let l = get(self.components, i)? as usize;
+                if get(self.open, l)? == 0 {
+                    let den = get(sdd, l)?[0];
+                    if den > 0.0 {
+                        f = sub(f, scale(get(sd, l)?, d * d / den));
+                    }
+                }
+                let mut s = [0.0; 3];
+                for &j in fine.ring(i)? {
+                    s = add(s, get(x, j as usize)?);
+                }
+                *ri = add(f, sub(s, scale(get(x, i)?, d)));
             }
-            let mut s = [0.0; 3];
-            for &j in fine.ring(i)? {
-                s = add(s, get(x, j as usize)?);
-            }
-            *ri = add(f, sub(s, scale(get(x, i)?, d)));
-        }
+            Ok(())
+        })?;
         Ok(())
     }
 
@@ -470,10 +504,11 @@ impl System<'_> {
         c: Coarse,
         r: &[Point],
         z: &mut [Point],
+        exec: &dyn Executor,
     ) -> Result<()> {
         let fw = work.last_mut().ok_or(internal())?;
         copy(fw.b, r);
-        self.vcycle(work, coarse, c)?;
+        self.vcycle(work, coarse, c, exec)?;
         let fw = work.last().ok_or(internal())?;
         copy(z, fw.x);
         Ok(())
@@ -486,6 +521,7 @@ impl System<'_> {
     ///
     /// # Errors
     /// [`Status::NumericalFailure`] when the residual is not finite.
+    #[allow(clippy::too_many_arguments)]
     fn flexible_pcg(
         &self,
         fine: &Laplacian<'_>,
@@ -494,19 +530,20 @@ impl System<'_> {
         c: Coarse,
         bnorm: f64,
         opts: &SolveOptions,
+        exec: &dyn Executor,
     ) -> Result<u32> {
         let mut iterations = 0;
-        self.precondition(&mut b.work, &mut b.coarse, c, b.r, b.z)?;
+        self.precondition(&mut b.work, &mut b.coarse, c, b.r, b.z, exec)?;
         copy(b.p, b.z);
         let mut rz = dots(b.r, b.z);
         while iterations < opts.max_iterations {
-            apply_k(fine, b.p, b.q)?;
+            apply_k(fine, b.p, b.q, exec)?;
             let alpha = ratio(rz, dots(b.p, b.q));
-            axpy(x, alpha, b.p);
-            axpy(b.r, [-alpha[0], -alpha[1], -alpha[2]], b.q);
+            axpy_with(x, alpha, b.p, exec)?;
+            axpy_with(b.r, [-alpha[0], -alpha[1], -alpha[2]], b.q, exec)?;
             iterations += 1;
             let fw = b.work.last_mut().ok_or(internal())?;
-            let rel = self.normal_residual(b.bne, x, fw.t, fw.b)? / bnorm;
+            let rel = self.normal_residual(b.bne, x, fw.t, fw.b, exec)? / bnorm;
             if !rel.is_finite() {
                 return Err(Error::new(Status::NumericalFailure));
             }
@@ -514,13 +551,13 @@ impl System<'_> {
                 break;
             }
             core::mem::swap(&mut b.z, &mut b.z_old);
-            self.precondition(&mut b.work, &mut b.coarse, c, b.r, b.z)?;
+            self.precondition(&mut b.work, &mut b.coarse, c, b.r, b.z, exec)?;
             // Flexible (Polak–Ribière) β = rᵀ(z − z_old) / rz_old.
             let rz_new = dots(b.r, b.z);
             let cross = dots(b.r, b.z_old);
             let beta = ratio(sub(rz_new, cross), rz);
             rz = rz_new;
-            xpby(b.p, b.z, beta);
+            xpby_with(b.p, b.z, beta, exec)?;
         }
         Ok(iterations)
     }

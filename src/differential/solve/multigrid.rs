@@ -10,6 +10,7 @@ use super::vectors::{axpy, copy, dots, frob, ratio, xpby};
 use super::{SolveLevel, System};
 use crate::differential::laplacian::Laplacian;
 use crate::error::Result;
+use crate::exec::{pass, Executor, Serial};
 use crate::mesh::{get, internal, set};
 use crate::point::{add, scale, sub, Point};
 
@@ -37,29 +38,51 @@ pub(super) struct Work<'a> {
     pub(super) t: &'a mut [Point],
 }
 
-/// `y = K̃ x` at one level: `(K x)_i = dᵢ xᵢ − Σ_ring x_j` on free rows, 0 on fixed rows.
-pub(super) fn apply_k(lap: &Laplacian<'_>, x: &[Point], y: &mut [Point]) -> Result<()> {
-    for (i, yi) in y.iter_mut().enumerate().take(lap.len()) {
-        if lap.is_fixed(i)? {
-            *yi = [0.0; 3];
-            continue;
-        }
-        let r = lap.ring(i)?;
-        let mut s = [0.0; 3];
-        for &j in r {
-            s = add(s, get(x, j as usize)?);
-        }
-        *yi = sub(scale(get(x, i)?, r.len() as f64), s);
+/// Row `i` of `K̃ x`: `(K x)_i = dᵢ xᵢ − Σ_ring x_j` on a free row, 0 on a fixed row.
+#[inline]
+fn k_row(lap: &Laplacian<'_>, x: &[Point], i: usize) -> Result<Point> {
+    if lap.is_fixed(i)? {
+        return Ok([0.0; 3]);
     }
+    let r = lap.ring(i)?;
+    let mut s = [0.0; 3];
+    for &j in r {
+        s = add(s, get(x, j as usize)?);
+    }
+    Ok(sub(scale(get(x, i)?, r.len() as f64), s))
+}
+
+/// `y = K̃ x` at one level, the rows split into disjoint ranges run by `exec` (every row
+/// computed alone, so the same bits for every chunking).
+pub(super) fn apply_k(
+    lap: &Laplacian<'_>,
+    x: &[Point],
+    y: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let n = lap.len().min(y.len());
+    let y = y.get_mut(..n).ok_or(internal())?;
+    pass(exec, y, |start, out, _| {
+        for (k, yi) in out.iter_mut().enumerate() {
+            *yi = k_row(lap, x, start + k)?;
+        }
+        Ok(())
+    })?;
     Ok(())
 }
 
-/// `r = b − K̃ x` (0 on fixed rows).
-fn residual(lap: &Laplacian<'_>, w: &mut Work<'_>) -> Result<()> {
-    apply_k(lap, w.x, w.r)?;
-    for (ri, bi) in w.r.iter_mut().zip(w.b.iter()) {
-        *ri = sub(*bi, *ri);
-    }
+/// `r = b − K̃ x` (0 on fixed rows), by rows as [`apply_k`].
+fn residual(lap: &Laplacian<'_>, w: &mut Work<'_>, exec: &dyn Executor) -> Result<()> {
+    let n = lap.len().min(w.r.len()).min(w.b.len());
+    let (x, b) = (&*w.x, &*w.b);
+    let r = w.r.get_mut(..n).ok_or(internal())?;
+    pass(exec, r, |start, out, _| {
+        for (k, ri) in out.iter_mut().enumerate() {
+            let i = start + k;
+            *ri = sub(get(b, i)?, k_row(lap, x, i)?);
+        }
+        Ok(())
+    })?;
     Ok(())
 }
 
@@ -104,6 +127,7 @@ impl System<'_> {
         work: &mut [Work<'_>],
         coarse: &mut [&mut [Point]; 3],
         c: Coarse,
+        exec: &dyn Executor,
     ) -> Result<()> {
         let Some((cur, below)) = work.split_last_mut() else {
             return Err(internal());
@@ -111,6 +135,7 @@ impl System<'_> {
         let j = below.len();
         let lap = self.level(j)?.lap;
         if j == 0 {
+            // The control mesh is small and its CG runs many short passes: serial.
             return coarse_solve(&lap, cur, coarse, c);
         }
         let n = lap.len();
@@ -120,7 +145,7 @@ impl System<'_> {
         for _ in 0..NU {
             gauss_seidel(&lap, cur.b, cur.x, true)?;
         }
-        residual(&lap, cur)?;
+        residual(&lap, cur, exec)?;
         let lc = self.level(j - 1)?;
         let nc = lc.lap.len();
         let cw = below.last_mut().ok_or(internal())?;
@@ -141,18 +166,26 @@ impl System<'_> {
                 set(cw.b, i, [0.0; 3])?;
             }
         }
-        self.vcycle(below, coarse, c)?;
-        let cw = below.last().ok_or(internal())?;
-        for i in 0..nc {
-            let p = cur.x.get_mut(i).ok_or(internal())?;
-            *p = add(*p, get(cw.x, i)?);
-        }
-        for e in 0..(n - nc) {
-            let a = get(cw.x, get(lc.edges, 2 * e)? as usize)?;
-            let b = get(cw.x, get(lc.edges, 2 * e + 1)? as usize)?;
-            let p = cur.x.get_mut(nc + e).ok_or(internal())?;
-            *p = add(*p, scale(add(a, b), 0.5));
-        }
+        self.vcycle(below, coarse, c, exec)?;
+        // Prolongation, by rows: an old vertex adds its coarse value, an edge point the mean
+        // of its edge's ends.
+        let cx = &*below.last().ok_or(internal())?.x;
+        let edges = lc.edges;
+        let x = cur.x.get_mut(..n).ok_or(internal())?;
+        pass(exec, x, |start, out, _| {
+            for (k, p) in out.iter_mut().enumerate() {
+                let i = start + k;
+                *p = if i < nc {
+                    add(*p, get(cx, i)?)
+                } else {
+                    let e = i - nc;
+                    let a = get(cx, get(edges, 2 * e)? as usize)?;
+                    let b = get(cx, get(edges, 2 * e + 1)? as usize)?;
+                    add(*p, scale(add(a, b), 0.5))
+                };
+            }
+            Ok(())
+        })?;
         for _ in 0..NU {
             gauss_seidel(&lap, cur.b, cur.x, false)?;
         }
@@ -186,7 +219,7 @@ fn coarse_solve(
     copy(p, z);
     let mut rz = dots(w.r, z);
     for _ in 0..c.max {
-        apply_k(lap, p, q)?;
+        apply_k(lap, p, q, &Serial)?;
         let alpha = ratio(rz, dots(p, q));
         axpy(w.x, alpha, p);
         axpy(w.r, [-alpha[0], -alpha[1], -alpha[2]], q);

@@ -2,6 +2,9 @@
 //! coordinates are three independent linear systems with one matrix, so inner products, step
 //! lengths and CG coefficients are triples, each summed in a fixed order (deterministic bits).
 
+use crate::error::Result;
+use crate::exec::{pass, Executor};
+use crate::mesh::internal;
 use crate::point::Point;
 
 /// `dst = src` element-wise over the common length (no length-mismatch panic path).
@@ -65,4 +68,38 @@ pub(super) fn xpby(p: &mut [Point], z: &[Point], beta: [f64; 3]) {
             zi[2] + beta[2] * pi[2],
         ];
     }
+}
+
+/// [`axpy`] with the entries split into disjoint ranges run by `exec` (the same bits).
+pub(super) fn axpy_with(
+    y: &mut [Point],
+    a: [f64; 3],
+    x: &[Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let n = y.len().min(x.len());
+    let y = y.get_mut(..n).ok_or(internal())?;
+    pass(exec, y, |start, out, _| {
+        let xs = x.get(start..start + out.len()).ok_or(internal())?;
+        axpy(out, a, xs);
+        Ok(())
+    })?;
+    Ok(())
+}
+
+/// [`xpby`] with the entries split into disjoint ranges run by `exec` (the same bits).
+pub(super) fn xpby_with(
+    p: &mut [Point],
+    z: &[Point],
+    beta: [f64; 3],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let n = p.len().min(z.len());
+    let p = p.get_mut(..n).ok_or(internal())?;
+    pass(exec, p, |start, out, _| {
+        let zs = z.get(start..start + out.len()).ok_or(internal())?;
+        xpby(out, zs, beta);
+        Ok(())
+    })?;
+    Ok(())
 }
