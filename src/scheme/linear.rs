@@ -296,7 +296,7 @@ fn butterfly_across(topo: &Topology<'_, '_>, g: u32, z: u32) -> Result<Point> {
 }
 
 /// Zorin's stencil of interior vertex `v` for its edge to `other` (ring starts at `other`).
-fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
+pub(crate) fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
     let spokes = topo.spokes(v)?;
     let j = spokes
         .iter()

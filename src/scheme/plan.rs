@@ -129,8 +129,8 @@ pub fn plan_scratch_size_tagged(mesh: &Mesh<'_>, tags: &Tags<'_>) -> Result<usiz
 ///
 /// # Errors
 /// Those of [`plan`], and after [`Options`] are checked: [`Status::TagsNotSupported`] for
-/// tags with a scheme other than [`Scheme::Loop`] and [`Scheme::CatmullClark`] or with
-/// [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
+/// tags with a scheme that takes none ([`Scheme::takes_tags`]: all but [`Scheme::Loop`],
+/// [`Scheme::CatmullClark`] and [`Scheme::ModifiedButterfly`]) or with [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
 /// mismatch is [`Status::InvalidArgument`]; [`Status::IndexOutOfRange`],
 /// [`Status::InvalidSharpness`], [`Status::TagNotAnEdge`], [`Status::RepeatedTag`] naming
 /// the tag).
@@ -174,7 +174,7 @@ pub(super) fn plan_with_topology(
 ) -> Result<(Plan, Counts)> {
     opts.check()?;
     let tagged = !tags.is_empty();
-    if tagged && (opts.mobius || !matches!(opts.scheme, Scheme::Loop | Scheme::CatmullClark)) {
+    if tagged && (opts.mobius || !opts.scheme.takes_tags()) {
         return Err(Error::new(Status::TagsNotSupported));
     }
     let need = plan_scratch_size_tagged(&mesh, tags)?;
