@@ -45,6 +45,7 @@ pub(crate) fn positions(
         Scheme::ModifiedButterfly => {
             return interpolating_tagged::butterfly_positions(topo, sharp, pos)
         }
+        Scheme::Kobbelt => return interpolating_tagged::kobbelt_positions(topo, sharp, pos),
         _ => return Err(Error::new(Status::TagsNotSupported)),
     }
     for e in 0..ne as u32 {

@@ -169,12 +169,12 @@ impl Scheme {
     }
 
     /// Whether the linear scheme takes sharp-feature tags ([`plan_tagged`], `docs/creases.md`):
-    /// Loop and Catmull–Clark (OpenSubdiv's rules) and Modified Butterfly (its 4-point
-    /// boundary rule along the creases).
+    /// Loop and Catmull–Clark (OpenSubdiv's rules), Modified Butterfly and Kobbelt (their
+    /// 4-point boundary rule along the creases).
     pub const fn takes_tags(self) -> bool {
         matches!(
             self,
-            Scheme::Loop | Scheme::CatmullClark | Scheme::ModifiedButterfly
+            Scheme::Loop | Scheme::CatmullClark | Scheme::ModifiedButterfly | Scheme::Kobbelt
         )
     }
 
