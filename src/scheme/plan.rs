@@ -130,7 +130,8 @@ pub fn plan_scratch_size_tagged(mesh: &Mesh<'_>, tags: &Tags<'_>) -> Result<usiz
 /// # Errors
 /// Those of [`plan`], and after [`Options`] are checked: [`Status::TagsNotSupported`] for
 /// tags with a scheme that takes none ([`Scheme::takes_tags`]: all but [`Scheme::Loop`],
-/// [`Scheme::CatmullClark`] and [`Scheme::ModifiedButterfly`]) or with [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
+/// [`Scheme::CatmullClark`], [`Scheme::ModifiedButterfly`] and [`Scheme::Kobbelt`]) or with
+/// [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
 /// mismatch is [`Status::InvalidArgument`]; [`Status::IndexOutOfRange`],
 /// [`Status::InvalidSharpness`], [`Status::TagNotAnEdge`], [`Status::RepeatedTag`] naming
 /// the tag).
