@@ -1,8 +1,8 @@
-//! The interpolating schemes with sharp-feature tags (Modified Butterfly, Kobbelt) (`docs/creases.md`): a sharp edge is
-//! refined by the scheme's own curve rule, the 4-point rule along the crease polyline (the
-//! rule the scheme already takes on its boundary), and the smooth rules treat a crease like
-//! a boundary. Untagged meshes never come here, so their bits and speed are those of
-//! [`super::linear`]; old vertices are kept (interpolating).
+//! The interpolating schemes with sharp-feature tags, Modified Butterfly and Kobbelt
+//! (`docs/creases.md`): a sharp edge is refined by the scheme's own curve rule, the 4-point
+//! rule along the crease polyline (the rule the scheme already takes on its boundary), and
+//! the smooth rules treat a crease like a boundary. Untagged meshes never come here, so their
+//! bits and speed are those of [`super::linear`]; old vertices are kept (interpolating).
 //!
 //! * **Crease chain.** The neighbours of a sharp edge along its crease are the other sharp
 //!   edge at each endpoint when that endpoint *continues* the crease: no vertex sharpness and
@@ -15,8 +15,9 @@
 //!   edges is treated like a boundary vertex (its valence is not examined, Zorin's stencil is
 //!   not taken there, Kobbelt's point beyond it is extrapolated), and Butterfly's wing across
 //!   a sharp edge is the reflection `u + w − z`, Kobbelt's edge point across a sharp edge in
-//!   a face point the extrapolation, that the scheme takes across a boundary edge. So the two sides of an infinitely sharp crease are
-//!   refined independently, exactly as if the mesh were cut open along it.
+//!   a face point the extrapolation, that the scheme takes across a boundary edge. So the
+//!   two sides of an infinitely sharp crease are refined independently, exactly as if the
+//!   mesh were cut open along it.
 //! * **Semi-sharp edges.** While an edge's sharpness is positive it is a crease for its
 //!   neighbours; its own edge point is `w · crease + (1 − w) · smooth`, `w` OpenSubdiv's edge
 //!   weight ([`crease::edge_weight`]: 1 while both child edges stay sharp, else the
