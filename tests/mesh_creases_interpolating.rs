@@ -1,10 +1,10 @@
 //! Sharp-feature tags on linear Modified Butterfly and Kobbelt (`docs/creases.md`, "The
-//! interpolating schemes"): expectations from the rule, not recorded output. An infinitely sharp crease
-//! is the 4-point curve of its polygon (closed, and open with the virtual end points), a
-//! crease is a cut (the tagged mesh refines as the mesh cut open along it), old vertices are
-//! kept, sharpness 1 is one crease level then a smooth one, a fractional sharpness blends the
-//! crease's own edge point, empty and zero tags are the untagged call bit for bit, and bad
-//! tags keep their statuses.
+//! interpolating schemes"): expectations from the rule, not recorded output. An infinitely
+//! sharp crease is the 4-point curve of its polygon (closed, and open with the virtual end
+//! points), a crease is a cut (the tagged mesh refines as the mesh cut open along it), old
+//! vertices are kept, sharpness 1 is one crease level then a smooth one, a fractional
+//! sharpness blends the crease's own edge point, empty and zero tags are the untagged call
+//! bit for bit, and bad tags keep their statuses.
 
 // Test helpers outside #[test] functions: clippy's in-test allowances do not reach them.
 #![allow(

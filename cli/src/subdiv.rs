@@ -706,7 +706,8 @@ pub fn run_tagged(
             Status::IndexOutOfRange => "a vertex index is not below the vertex count",
             Status::TagsNotSupported => {
                 return Some(CliError::bad_input(format!(
-                    "{}: sharp-feature tags: {} does not take them (loop, catmull-clark, butterfly and kobbelt do)",
+                    "{}: sharp-feature tags: {} does not take them (loop, catmull-clark, \
+                     butterfly and kobbelt do)",
                     n0.file(),
                     ms.name()
                 )))

@@ -122,9 +122,9 @@ pub fn subdivide_with(
 /// and linear Modified Butterfly and Kobbelt with their 4-point rule along the creases
 /// (`docs/creases.md`), the tags carried to the child edges and vertices level by level.
 /// Buffer sizes come from [`plan_tagged`](super::plan_tagged) with the same arguments. Empty
-/// tags are [`subdivide`] exactly, bit for bit. The child levels' sharpness lives only inside the call: `k` levels
-/// of a tagged mesh are one call of `k` levels (`k` calls of one level would have to tag
-/// every intermediate level themselves).
+/// tags are [`subdivide`] exactly, bit for bit. The child levels' sharpness lives only
+/// inside the call: `k` levels of a tagged mesh are one call of `k` levels (`k` calls of one
+/// level would have to tag every intermediate level themselves).
 ///
 /// # Errors
 /// Those of [`plan_tagged`](super::plan_tagged) and [`subdivide`].
