@@ -404,3 +404,38 @@ fn bad_tags_for(s: Scheme, m: &OwnedMesh) {
     let e = run_tagged(m, &Options::new(s).mobius(true), &tags).unwrap_err();
     assert_eq!(e.status, Status::TagsNotSupported);
 }
+
+#[test]
+fn a_crease_across_a_grid_ends_at_the_boundary() {
+    for s in BOTH {
+        a_crease_across_a_grid_ends_at_the_boundary_for(s);
+    }
+}
+
+fn a_crease_across_a_grid_ends_at_the_boundary_for(s: Scheme) {
+    // The grid line j = 3 of a 6 × 6 grid, boundary to boundary: its ends have three sharp
+    // edges (two boundary edges and the crease), so the crease is the open 4-point curve of
+    // its polygon, and the boundary curves end there too.
+    let m = grid(s, 6, 0.1, 5);
+    let line: Vec<u32> = (0..7).map(|i| 3 * 7 + i).collect();
+    let creases: Vec<[u32; 2]> = (0..6).map(|i| [line[i], line[i + 1]]).collect();
+    let tags = Tags::new().creases(&creases, &[10.0; 6]);
+    let poly: Vec<[f64; 3]> = line.iter().map(|&v| m.positions[v as usize]).collect();
+    let sc = scale_of(&m.positions);
+    for levels in 1..=3 {
+        let out = run_tagged(&m, &Options::new(s).levels(levels), &tags).unwrap();
+        let curve = four_point_levels(&poly, false, levels);
+        let err = one_way(&curve, &out.positions) / sc;
+        assert!(err <= 1e-15, "{s:?}, {levels} levels: {err:e}");
+    }
+    // Level 1: the boundary edge (14, 21) of the column i = 0 ends at the crease's end 21:
+    // its point beyond vertex 21 is the virtual point 2 p21 − p14 (beyond 14 the real 7).
+    let out = run_tagged(&m, &Options::new(s), &tags).unwrap();
+    let (a, b) = (14u32, 21u32);
+    let edges = sorted_edges(&m);
+    let id = edges.binary_search(&[a, b]).unwrap();
+    let p = |v: u32| m.positions[v as usize];
+    let virt = four_point::virtual_end_point(p(b), p(a));
+    let want = four_point::edge_point(p(7), p(a), p(b), virt);
+    assert_eq!(out.positions[m.positions.len() + id], want, "{s:?}");
+}
