@@ -11,6 +11,11 @@
  *  - sharpness 1 (uniform decay): one sharp level, then smooth, so 2 tagged levels equal one
  *    infinitely sharp level followed by one untagged level;
  *  - a corner tag keeps its vertex bit for bit on a smooth Loop octahedron;
+ *  - the interpolating schemes: Kobbelt on the cube with all 12 edges infinitely sharp keeps
+ *    its edges straight and its faces flat (the same counts as Catmull–Clark; the untagged
+ *    surface bulges), and a lone infinitely sharp Modified Butterfly edge gets its midpoint
+ *    (the 4-point rule with the virtual end points 2 v - w at both ends), old vertices bit
+ *    for bit;
  *  - the statuses of bad tags, each naming the tag (crease i = i, corner j = crease_count + j),
  *    a short scratch, aliasing, NULL arrays and an unknown method.
  * Run under ASan+UBSan and valgrind like every C suite. */
@@ -187,14 +192,14 @@ static void test_empty_tags_are_untagged(void) {
 /* Coordinates exactly 0 or 1 (within rounding of dyadic weights). */
 static int on_face(double x) { return fabs(x) <= 1e-15 || fabs(x - 1.0) <= 1e-15; }
 
-static void test_sharp_cube_keeps_its_edges(void) {
+static void sharp_cube_keeps_its_edges(uint32_t scheme) {
     static const double inf[12] = {10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10};
     mesh c = cube(), r, plain;
     nls_tags t = cube_creases(inf);
     uint32_t levels;
     for (levels = 1; levels <= 3; levels++) {
         size_t k, on_edges = 0, off_surface = 0, moved_corners = 0;
-        CHECK_STATUS(run(&c, options(NLS_SCHEME_CATMULL_CLARK, 0, levels), &t, &r, NULL), NLS_STATUS_OK);
+        CHECK_STATUS(run(&c, options(scheme, 0, levels), &t, &r, NULL), NLS_STATUS_OK);
         for (k = 0; k < r.nv; k++) {
             int n = on_face(r.p[3 * k]) + on_face(r.p[3 * k + 1]) + on_face(r.p[3 * k + 2]);
             if (n >= 2) on_edges++;
@@ -207,13 +212,59 @@ static void test_sharp_cube_keeps_its_edges(void) {
         CHECK(on_edges == 12 * (((size_t)1 << levels) - 1) + 8);
         CHECK(off_surface == 0);
         CHECK(moved_corners == 0);
-        /* The untagged surface is smooth: its corners move off the cube. */
-        CHECK_STATUS(run(&c, options(NLS_SCHEME_CATMULL_CLARK, 0, levels), NULL, &plain, NULL), NLS_STATUS_OK);
-        CHECK(memcmp(plain.p, c.p, 3 * sizeof(double)) != 0);
+        /* The untagged surface is smooth: Catmull–Clark's corners move off the cube, Kobbelt's
+         * edge points bulge out of it. */
+        CHECK_STATUS(run(&c, options(scheme, 0, levels), NULL, &plain, NULL), NLS_STATUS_OK);
+        if (scheme == NLS_SCHEME_CATMULL_CLARK) {
+            CHECK(memcmp(plain.p, c.p, 3 * sizeof(double)) != 0);
+        } else {
+            size_t bulging = 0;
+            for (k = 0; k < plain.nv; k++) {
+                int n = on_face(plain.p[3 * k]) + on_face(plain.p[3 * k + 1]) + on_face(plain.p[3 * k + 2]);
+                if (n == 0) bulging++;
+            }
+            CHECK(bulging > 0);
+        }
         mesh_free(&r);
         mesh_free(&plain);
     }
     mesh_free(&c);
+}
+
+static void test_sharp_cube_keeps_its_edges(void) {
+    sharp_cube_keeps_its_edges(NLS_SCHEME_CATMULL_CLARK);
+    sharp_cube_keeps_its_edges(NLS_SCHEME_KOBBELT);
+}
+
+/* A lone infinitely sharp Butterfly edge ends at both ends: 9/16 (a + b) - 1/16 ((2a - b) + (2b - a))
+ * is its midpoint, exactly here. The untagged point (Zorin's valence-4 stencils) is
+ * (0.625, 0, 0.625). */
+static void test_butterfly_lone_crease_is_its_midpoint(void) {
+    static const uint32_t edge[2] = {0, 4};
+    static const double s[1] = {10};
+    static const double mid[3] = {0.5, 0.0, 0.5};
+    mesh o = octahedron(), r, plain;
+    nls_tags t = no_tags();
+    size_t k, found = 0, found_plain = 0;
+    uint32_t levels;
+    t.crease_vertices = edge;
+    t.crease_sharpness = s;
+    t.crease_count = 1;
+    CHECK_STATUS(run(&o, options(NLS_SCHEME_MODIFIED_BUTTERFLY, 0, 1), &t, &r, NULL), NLS_STATUS_OK);
+    CHECK_STATUS(run(&o, options(NLS_SCHEME_MODIFIED_BUTTERFLY, 0, 1), NULL, &plain, NULL), NLS_STATUS_OK);
+    for (k = 0; k < r.nv; k++) found += memcmp(&r.p[3 * k], mid, sizeof mid) == 0;
+    for (k = 0; k < plain.nv; k++) found_plain += memcmp(&plain.p[3 * k], mid, sizeof mid) == 0;
+    CHECK(found == 1);
+    CHECK(found_plain == 0);
+    mesh_free(&r);
+    mesh_free(&plain);
+    /* Interpolating with tags: the old vertices stay bit for bit. */
+    for (levels = 1; levels <= 3; levels++) {
+        CHECK_STATUS(run(&o, options(NLS_SCHEME_MODIFIED_BUTTERFLY, 0, levels), &t, &r, NULL), NLS_STATUS_OK);
+        CHECK(memcmp(r.p, o.p, 3 * o.nv * sizeof(double)) == 0);
+        mesh_free(&r);
+    }
+    mesh_free(&o);
 }
 
 static void test_semi_sharp_decays(void) {
@@ -401,6 +452,7 @@ int main(void) {
     test_sharp_cube_keeps_its_edges();
     test_semi_sharp_decays();
     test_corner_keeps_its_vertex();
+    test_butterfly_lone_crease_is_its_midpoint();
     test_statuses();
     return nls_summary("test_tags");
 }

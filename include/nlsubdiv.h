@@ -1572,7 +1572,8 @@ nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, c
 /**
  * `nls_mesh_plan` for a mesh with sharp-feature tags: Loop and Catmull–Clark, linear, with
  * OpenSubdiv's rules for creases, corners and darts (boundary edges stay infinitely sharp,
- * `VTX_BOUNDARY_EDGE_ONLY`). `scratch_u32` holds at least what
+ * `VTX_BOUNDARY_EDGE_ONLY`); Modified Butterfly and Kobbelt, linear, with their 4-point
+ * boundary rule along the creases (`docs/creases.md`). `scratch_u32` holds at least what
  * `nls_mesh_plan_scratch_size_tagged` gives and overlaps neither the mesh nor the tags. With
  * no tags (both counts 0) this is `nls_mesh_plan`.
  *
@@ -1582,11 +1583,12 @@ nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, c
  * pointers; `NLS_STATUS_INVALID_ARGUMENT` for an unknown crease method,
  * `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
  * pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then
- * `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop and
- * Catmull–Clark or with `NLS_SUBDIVIDE_MOBIUS`; then the validation of the mesh (as
- * `nls_mesh_plan`); then, tag by tag, creases first (the element names the tag: crease `i`
- * is `i`, corner `j` is `crease_count + j`): `NLS_STATUS_INDEX_OUT_OF_RANGE` (a vertex not
- * below `vertex_count`), `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or infinite),
+ * `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop,
+ * Catmull–Clark, Modified Butterfly and Kobbelt or with `NLS_SUBDIVIDE_MOBIUS`; then the
+ * validation of the mesh (as `nls_mesh_plan`); then, tag by tag, creases first (the
+ * element names the tag: crease `i` is `i`, corner `j` is `crease_count + j`):
+ * `NLS_STATUS_INDEX_OUT_OF_RANGE` (a vertex not below `vertex_count`),
+ * `NLS_STATUS_INVALID_SHARPNESS` (NaN, negative or infinite),
  * `NLS_STATUS_TAG_NOT_AN_EDGE` (the two vertices of a crease share no edge),
  * `NLS_STATUS_REPEATED_TAG` (an edge or vertex tagged twice).
  *

@@ -506,7 +506,7 @@ fn bad_tags_have_specific_statuses() {
     let tags = Tags::new().creases(&creases, &[1.0]);
     for opts in [
         Options::new(Scheme::CatmullClark).mobius(true),
-        Options::new(Scheme::Kobbelt),
+        Options::new(Scheme::Spherelike),
         Options::new(Scheme::DooSabin),
     ] {
         assert_eq!(

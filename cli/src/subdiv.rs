@@ -671,8 +671,8 @@ fn run_by_levels(
 
 /// [`run`] for a mesh with sharp-feature tags: every level in one core call
 /// (`scheme::subdivide_tagged`), which carries the tags to the child edges and vertices from
-/// level to level (one call per level would lose them). Loop and Catmull–Clark, linear; the
-/// kernel refuses the others with a status this names.
+/// level to level (one call per level would lose them). Loop, Catmull–Clark, Modified
+/// Butterfly and Kobbelt, linear; the kernel refuses the others with a status this names.
 ///
 /// # Errors
 /// Those of [`run`]; exit 2 for a tag the kernel refuses, naming the file and the line of the
@@ -706,7 +706,8 @@ pub fn run_tagged(
             Status::IndexOutOfRange => "a vertex index is not below the vertex count",
             Status::TagsNotSupported => {
                 return Some(CliError::bad_input(format!(
-                    "{}: sharp-feature tags: {} does not take them (loop and catmull-clark do)",
+                    "{}: sharp-feature tags: {} does not take them (loop, catmull-clark, \
+                     butterfly and kobbelt do)",
                     n0.file(),
                     ms.name()
                 )))

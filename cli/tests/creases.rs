@@ -189,3 +189,102 @@ fn bad_tags_exit_2_naming_the_line() {
         assert!(!out.exists(), "{tag}: output written");
     }
 }
+
+/// An octahedron, slightly irregular so that no symmetry makes a tagged point coincide with
+/// the untagged one.
+const OCTA: &str = "v 1 0 0.1\nv -1 0.05 0\nv 0 1 0\nv 0.1 -1 0\nv 0 0.05 1\nv 0 0 -1\n\
+f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
+
+fn octahedron() -> TMesh {
+    TMesh {
+        positions: vec![
+            [1.0, 0.0, 0.1],
+            [-1.0, 0.05, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.1, -1.0, 0.0],
+            [0.0, 0.05, 1.0],
+            [0.0, 0.0, -1.0],
+        ],
+        faces: [
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ]
+        .iter()
+        .map(|f| f.to_vec())
+        .collect(),
+    }
+}
+
+#[test]
+fn butterfly_takes_obj_creases_and_the_crease_angle() {
+    let dir = TempDir::new("creases-butterfly");
+    let input = dir.path("octa.obj");
+    std::fs::write(
+        &input,
+        format!("{OCTA}t crease 5/4/0 0 2 1 3 0 10 1.5 10 0.5\n"),
+    )
+    .unwrap();
+    let out = dir.path("out.off");
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "butterfly",
+        "--levels",
+        "2",
+        input.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let creases = [[0, 2], [2, 1], [1, 3], [3, 0]];
+    let s = [10.0, 1.5, 10.0, 0.5];
+    let tags = Tags::new().creases(&creases, &s);
+    let m = octahedron();
+    let want = library(&m, Scheme::ModifiedButterfly, 2, &tags);
+    let got = read_off(&out);
+    assert_eq!(got.bits(), want.bits());
+    assert_eq!(got.faces, want.faces);
+    assert_ne!(
+        got.bits(),
+        library(&m, Scheme::ModifiedButterfly, 2, &Tags::new()).bits()
+    );
+    // The dihedral angles are near 109°: --crease-angle 60 tags all twelve edges, every
+    // vertex is a corner, and each edge point is the 4-point rule with virtual end points:
+    // the library's result with every edge tagged.
+    std::fs::write(&input, OCTA).unwrap();
+    let o = run(&[
+        "subdivide",
+        "--scheme",
+        "butterfly",
+        "--levels",
+        "2",
+        "--crease-angle",
+        "60",
+        input.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let mut all: Vec<[u32; 2]> = Vec::new();
+    for f in &m.faces {
+        for i in 0..3 {
+            let (a, b) = (f[i], f[(i + 1) % 3]);
+            if a < b {
+                all.push([a, b]);
+            }
+        }
+    }
+    assert_eq!(all.len(), 12);
+    let inf = vec![10.0; 12];
+    let want = library(
+        &m,
+        Scheme::ModifiedButterfly,
+        2,
+        &Tags::new().creases(&all, &inf),
+    );
+    assert_eq!(read_off(&out).bits(), want.bits());
+}

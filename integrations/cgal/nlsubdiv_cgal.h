@@ -770,8 +770,8 @@ nlsubdiv::flat::FlatTags tags_of(const PM& pm, const NP& np, const Level<PM>& lv
 
 /// The bulk path: flat copy -> nls_mesh_subdivide -> the mesh rebuilt (old vertices
 /// first, in order; the mesh's internal point map receives the positions). With sharp
-/// features ([`tags_of`]) the tagged calls (linear Loop and Catmull–Clark; any other scheme
-/// is NLS_STATUS_TAGS_NOT_SUPPORTED, mesh unchanged).
+/// features ([`tags_of`]) the tagged calls (linear Loop, Catmull–Clark, Modified Butterfly
+/// and Kobbelt; any other scheme is NLS_STATUS_TAGS_NOT_SUPPORTED, mesh unchanged).
 template <class PM, class NP>
 Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts) {
   typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;

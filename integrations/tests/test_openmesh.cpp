@@ -395,9 +395,10 @@ static void synthetic(itest::Tally& t) {
 /// Sharp features: OpenMesh feature edges and vertices through set_feature_creases equal the
 /// C driver's tagged call with the same tags given directly, bit for bit; a unit cube with all
 /// twelve edges feature keeps its corners and has 12 (2^k - 1) + 8 vertices on its edge lines
-/// after k = 2 levels of Catmull-Clark (the rules' consequence, not a recorded output); no
-/// feature is the untagged result; a Möbius or Butterfly subdivider with features is refused
-/// (NLS_STATUS_TAGS_NOT_SUPPORTED) with the mesh unchanged.
+/// after k = 2 levels of Catmull-Clark (the rules' consequence, not a recorded output), and
+/// so does Kobbelt (its 4-point crease rule keeps the edges straight), each equal to the
+/// driver's tagged call; no feature is the untagged result; a Möbius subdivider with features
+/// is refused (NLS_STATUS_TAGS_NOT_SUPPORTED) with the mesh unchanged.
 static void feature_creases(itest::Tally& t) {
   static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -440,6 +441,30 @@ static void feature_creases(itest::Tally& t) {
   else
     t.fail(std::string("feature creases: ") + (ok ? "" : sd.message()) + (same ? "" : " differs from the tagged driver") +
            (corners_kept ? "" : " corners moved") + " on_edges=" + std::to_string(on_edges));
+  // Kobbelt: the same tags through LinearKobbeltT, the driver's bits, the edges kept.
+  {
+    nlsubdiv::flat::FlatMesh kwant;
+    uint32_t kel = 0, kfb = 0;
+    nls_status ks = nlsubdiv::flat::run_levels(NLS_SCHEME_KOBBELT, 0, in, 2, kwant, kel, kfb, &tags);
+    Poly k = cube;
+    nom::LinearKobbeltT<Poly> ksd;
+    ksd.set_feature_creases(true);
+    const bool kok = ksd(k, 2);
+    Flat kgot = flat_of(k);
+    const bool ksame =
+        ks == NLS_STATUS_OK && kok && kgot.pos == kwant.positions && kgot.off == kwant.offsets && kgot.idx == kwant.indices;
+    std::size_t kon = 0;
+    for (std::size_t v = 0; v < kgot.nv(); ++v) {
+      int n = 0;
+      for (int c = 0; c < 3; ++c) n += (std::fabs(kgot.pos[3 * v + c]) <= 1e-15 || std::fabs(kgot.pos[3 * v + c] - 1.0) <= 1e-15);
+      kon += n >= 2;
+    }
+    if (ksame && kon == 12 * 3 + 8)
+      t.pass("OpenMesh Kobbelt feature edges = driver tags (sharp cube keeps its edges)", 0);
+    else
+      t.fail(std::string("Kobbelt feature creases: ") + (kok ? "" : ksd.message()) + (ksame ? "" : " differs from the tagged driver") +
+             " on_edges=" + std::to_string(kon));
+  }
   // No feature flag set: the untagged result.
   Poly b = plain, c = plain;
   nom::LinearCatmullClarkT<Poly> sd2, sd3;

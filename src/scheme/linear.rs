@@ -296,7 +296,7 @@ fn butterfly_across(topo: &Topology<'_, '_>, g: u32, z: u32) -> Result<Point> {
 }
 
 /// Zorin's stencil of interior vertex `v` for its edge to `other` (ring starts at `other`).
-fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
+pub(crate) fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
     let spokes = topo.spokes(v)?;
     let j = spokes
         .iter()
@@ -380,7 +380,7 @@ pub(crate) fn butterfly_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
 
 /// The point beyond `v` on the grid line from `toward` through `v` (seed 000 §4.3 "virtual
 /// points"; decisions in [`crate::stencil::kobbelt`]).
-fn kobbelt_beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Point> {
+pub(crate) fn kobbelt_beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Point> {
     let pv = topo.position(v)?;
     if topo.is_boundary_vertex(v)? {
         return Ok(kobbelt::extrapolate(pv, topo.position(toward)?));

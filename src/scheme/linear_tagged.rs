@@ -10,6 +10,7 @@
 //! Boundary edges are infinitely sharp, so an untagged boundary keeps today's rules and a
 //! tagged edge meeting the boundary makes a corner there.
 
+use super::interpolating_tagged;
 use super::tags::Sharpness;
 use super::Scheme;
 use crate::error::{Error, Result, Status};
@@ -21,7 +22,8 @@ use crate::stencil::{catmull_clark, crease_vertex, loop_scheme};
 use crate::MAX_VALENCE;
 use arrayvec::ArrayVec;
 
-/// Writes the positions of one tagged step of `scheme` (Loop or Catmull–Clark) on `topo`
+/// Writes the positions of one tagged step of `scheme` (Loop, Catmull–Clark; the
+/// interpolating schemes in [`interpolating_tagged`]) on `topo`
 /// into `pos`, with the sharpness values `sharp` of this level.
 pub(crate) fn positions(
     scheme: Scheme,
@@ -40,6 +42,10 @@ pub(crate) fn positions(
             }
         }
         Scheme::Loop => {}
+        Scheme::ModifiedButterfly => {
+            return interpolating_tagged::butterfly_positions(topo, sharp, pos)
+        }
+        Scheme::Kobbelt => return interpolating_tagged::kobbelt_positions(topo, sharp, pos),
         _ => return Err(Error::new(Status::TagsNotSupported)),
     }
     for e in 0..ne as u32 {
@@ -86,6 +92,26 @@ fn child_at(topo: &Topology<'_, '_>, sharp: &Sharpness<'_>, v: u32, e: u32) -> R
     get(&child, i)
 }
 
+/// The weight of the crease rule in the edge point of edge `e` (ends `i0`, `i1`):
+/// [`crease::edge_weight`] of its value and its two children's.
+pub(super) fn edge_crease_weight(
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    e: u32,
+    i0: u32,
+    i1: u32,
+) -> Result<f64> {
+    let s = sharp.edge(topo, e)?;
+    let ends = match sharp.method {
+        _ if !crease::is_sharp(s) => [0.0; 2],
+        crease::CreaseMethod::Uniform => [crease::decrement(s); 2],
+        crease::CreaseMethod::Chaikin => {
+            [child_at(topo, sharp, i0, e)?, child_at(topo, sharp, i1, e)?]
+        }
+    };
+    Ok(crease::edge_weight(s, ends))
+}
+
 fn edge_point(
     scheme: Scheme,
     topo: &Topology<'_, '_>,
@@ -100,15 +126,7 @@ fn edge_point(
     if t == NONE {
         return Ok(mid);
     }
-    let s = sharp.edge(topo, e)?;
-    let ends = match sharp.method {
-        _ if !crease::is_sharp(s) => [0.0; 2],
-        crease::CreaseMethod::Uniform => [crease::decrement(s); 2],
-        crease::CreaseMethod::Chaikin => {
-            [child_at(topo, sharp, i0, e)?, child_at(topo, sharp, i1, e)?]
-        }
-    };
-    let w = crease::edge_weight(s, ends);
+    let w = edge_crease_weight(topo, sharp, e, i0, i1)?;
     if w == 1.0 {
         return Ok(mid);
     }

@@ -14,8 +14,8 @@
 //! levels in the caller's [`Scratch`], and returns a [`Report`]. Parameters come in the order
 //! input, options, scratch, output. [`Scheme::Spherelike`] (seed 003 §3, [`spherelike`]) runs
 //! through the same path. A mesh with sharp-feature tags ([`Tags`]: creases and corners with
-//! OpenSubdiv's conventions, for Loop and Catmull–Clark) takes [`plan_tagged`] and
-//! [`subdivide_tagged`], the same path with the tags next to the mesh.
+//! OpenSubdiv's conventions, for Loop, Catmull–Clark, Modified Butterfly and Kobbelt) takes
+//! [`plan_tagged`] and [`subdivide_tagged`], the same path with the tags next to the mesh.
 //!
 //! Sizes are counted in elements of the buffer they size (points, `u32` entries, faces); a
 //! function named `…_size` returns an exact size, one named `…_bound` a worst case.
@@ -35,9 +35,11 @@
 //! exact sizes of one step), `linear.rs` (the linear position rules), `spherelike.rs`,
 //! `mobius/`, `carry.rs` (old vertices carried through), `tags.rs` (sharp-feature tags:
 //! validation, the sharpness of each level), `linear_tagged.rs` (Loop and Catmull–Clark
-//! with sharp features).
+//! with sharp features), `interpolating_tagged.rs` (Modified Butterfly and Kobbelt with sharp
+//! features).
 
 mod carry;
+mod interpolating_tagged;
 mod levels;
 mod linear;
 mod linear_tagged;
@@ -164,6 +166,16 @@ impl Scheme {
                 | Scheme::Kobbelt
                 | Scheme::VertexInsertion
                 | Scheme::Spherelike
+        )
+    }
+
+    /// Whether the linear scheme takes sharp-feature tags ([`plan_tagged`], `docs/creases.md`):
+    /// Loop and Catmull–Clark (OpenSubdiv's rules), Modified Butterfly and Kobbelt (their
+    /// 4-point boundary rule along the creases).
+    pub const fn takes_tags(self) -> bool {
+        matches!(
+            self,
+            Scheme::Loop | Scheme::CatmullClark | Scheme::ModifiedButterfly | Scheme::Kobbelt
         )
     }
 

@@ -130,7 +130,8 @@ pub fn plan_scratch_size_tagged(mesh: &Mesh<'_>, tags: &Tags<'_>) -> Result<usiz
 ///
 /// # Errors
 /// Those of [`plan`], and after [`Options`] are checked: [`Status::TagsNotSupported`] for
-/// tags with a scheme other than [`Scheme::Loop`] and [`Scheme::CatmullClark`] or with
+/// tags with a scheme that takes none ([`Scheme::takes_tags`]: all but [`Scheme::Loop`],
+/// [`Scheme::CatmullClark`], [`Scheme::ModifiedButterfly`] and [`Scheme::Kobbelt`]) or with
 /// [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
 /// mismatch is [`Status::InvalidArgument`]; [`Status::IndexOutOfRange`],
 /// [`Status::InvalidSharpness`], [`Status::TagNotAnEdge`], [`Status::RepeatedTag`] naming
@@ -175,7 +176,7 @@ pub(super) fn plan_with_topology(
 ) -> Result<(Plan, Counts)> {
     opts.check()?;
     let tagged = !tags.is_empty();
-    if tagged && (opts.mobius || !matches!(opts.scheme, Scheme::Loop | Scheme::CatmullClark)) {
+    if tagged && (opts.mobius || !opts.scheme.takes_tags()) {
         return Err(Error::new(Status::TagsNotSupported));
     }
     let need = plan_scratch_size_tagged(&mesh, tags)?;

@@ -119,11 +119,12 @@ pub fn subdivide_with(
 
 /// [`subdivide`] for a mesh with sharp-feature tags ([`Tags`]): Loop and Catmull–Clark,
 /// linear, with OpenSubdiv's rules for creases, corners and darts ([`crate::stencil::crease`]),
-/// the tags carried to the child edges and vertices level by level. Buffer sizes come from
-/// [`plan_tagged`](super::plan_tagged) with the same arguments. Empty tags are [`subdivide`]
-/// exactly, bit for bit. The child levels' sharpness lives only inside the call: `k` levels
-/// of a tagged mesh are one call of `k` levels (`k` calls of one level would have to tag
-/// every intermediate level themselves).
+/// and linear Modified Butterfly and Kobbelt with their 4-point rule along the creases
+/// (`docs/creases.md`), the tags carried to the child edges and vertices level by level.
+/// Buffer sizes come from [`plan_tagged`](super::plan_tagged) with the same arguments. Empty
+/// tags are [`subdivide`] exactly, bit for bit. The child levels' sharpness lives only
+/// inside the call: `k` levels of a tagged mesh are one call of `k` levels (`k` calls of one
+/// level would have to tag every intermediate level themselves).
 ///
 /// # Errors
 /// Those of [`plan_tagged`](super::plan_tagged) and [`subdivide`].

@@ -102,8 +102,8 @@ pub struct Args {
     #[arg(long, value_name = "METHOD", default_value = "uniform", value_parser = parse_method)]
     pub crease_method: CreaseMethod,
     /// Tag every edge whose dihedral angle (between the normals of its two faces) exceeds DEG
-    /// degrees as an infinitely sharp crease (loop, catmull-clark), besides the OBJ file's
-    /// own `t crease` / `t corner` tags.
+    /// degrees as an infinitely sharp crease (loop, catmull-clark, butterfly, kobbelt),
+    /// besides the OBJ file's own `t crease` / `t corner` tags.
     #[arg(long, value_name = "DEG")]
     pub crease_angle: Option<f64>,
     /// Threads of the kernel's passes (default: every core the machine offers). The output
@@ -149,8 +149,8 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
         SchemeArg::Mesh(m) => m,
         SchemeArg::Differential(_) if !tags.is_empty() => {
             return Err(crate::error::CliError::bad_input(format!(
-                "{}: sharp-feature tags (t crease / t corner, --crease-angle) apply to loop and \
-                 catmull-clark, not to differential-space subdivision",
+                "{}: sharp-feature tags (t crease / t corner, --crease-angle) apply to loop, \
+                 catmull-clark, butterfly and kobbelt, not to differential-space subdivision",
                 args.input.display()
             )))
         }
