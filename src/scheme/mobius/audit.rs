@@ -36,7 +36,7 @@
 //! measured in the frames of their stars), not from an optimisation.
 
 use super::driver::Driver;
-use super::form::{present, FacePts};
+use super::form::present;
 use super::trust::{newell, ramp};
 use crate::error::Result;
 use crate::mesh::{get, internal, set, NONE};
@@ -85,11 +85,14 @@ impl Driver<'_, '_, '_, '_> {
     /// Lowers the trust of every interior star whose child faces (the paper's output, in the
     /// star's normalised frame) fold or collapse, and of its interior neighbours (module
     /// docs). Boundary stars, and stars without a form, are not audited.
+    ///
+    /// Not inlined: its two point arrays then live in its own stack frame, after the vertex
+    /// pass's has gone, and do not add to the drivers' deepest stack (`docs/firmware.md`).
+    #[inline(never)]
     pub(super) fn audit(&mut self, children: Children) -> Result<()> {
         let topo = self.topo;
         let mut fan: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
         let mut outer: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-        let mut quad = FacePts::new();
         for v in 0..topo.num_vertices() as u32 {
             let r = get(self.radius, v as usize)?;
             let tau = get(self.trust, v as usize)?;
@@ -126,7 +129,7 @@ impl Driver<'_, '_, '_, '_> {
                 fan.try_push(pe).map_err(|_| internal())?;
                 outer.try_push(po).map_err(|_| internal())?;
             }
-            let pair = Self::pair_cos(centre, &fan, &outer, children, &mut quad);
+            let pair = Self::pair_cos(centre, &fan, &outer, children);
             let a = ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(
                 fan_sine(centre, &fan),
                 FAN_DISTRUSTED,
@@ -149,13 +152,7 @@ impl Driver<'_, '_, '_, '_> {
 
     /// The least cosine between adjacent child faces around `centre` (module docs, term 1);
     /// -1 when a child face cannot be measured.
-    fn pair_cos(
-        centre: Point,
-        fan: &[Point],
-        outer: &[Point],
-        children: Children,
-        quad: &mut FacePts,
-    ) -> f64 {
+    fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
         let k = fan.len();
         // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
         // and the next spoke's edge point, cyclically.
@@ -163,23 +160,17 @@ impl Driver<'_, '_, '_, '_> {
             let next = if i + 1 < k { i + 1 } else { 0 };
             Some((*fan.get(i)?, *outer.get(i)?, *fan.get(next)?))
         };
-        let corner = |i: usize, quad: &mut FacePts| -> Option<Point> {
+        let corner = |i: usize| -> Option<Point> {
             let (e0, o, e1) = at(i)?;
             match children {
                 Children::Triangles { .. } => area(&[centre, e0, e1]),
-                Children::Quads { .. } => {
-                    quad.clear();
-                    for p in [centre, e0, o, e1] {
-                        quad.try_push(p).ok()?;
-                    }
-                    area(quad)
-                }
+                Children::Quads { .. } => area(&[centre, e0, o, e1]),
             }
         };
         let mut least = f64::INFINITY;
         for i in 0..k {
             let next = if i + 1 < k { i + 1 } else { 0 };
-            let (Some(c0), Some(c1)) = (corner(i, quad), corner(next, quad)) else {
+            let (Some(c0), Some(c1)) = (corner(i), corner(next)) else {
                 return -1.0;
             };
             least = least.min(cos_between(c0, c1));
