@@ -31,7 +31,8 @@
 //! equivariant under similarities only.
 //!
 //! The frame is the one the vertex pass built (its centre and radius are kept per vertex in
-//! the scratch), so the audit costs no canonical form, only two inversions per mapped point.
+//! the scratch), so the audit costs no canonical form, only two inversions per mapped point;
+//! it measures the stars in vertex ranges on the executor, and lowers the trusts serially.
 //! The thresholds come from the fold study of `docs/folds.md` (the paper's folded pairs
 //! measured in the frames of their stars), not from an optimisation.
 
@@ -39,7 +40,8 @@ use super::driver::Driver;
 use super::form::present;
 use super::trust::{newell, ramp};
 use crate::error::Result;
-use crate::mesh::{get, internal, set, NONE};
+use crate::exec::pass;
+use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{cross, dot, sub, Point};
 use crate::MAX_VALENCE;
@@ -56,10 +58,12 @@ const FAN_TRUSTED: f64 = 0.087_155_742_747_658_17;
 #[derive(Clone, Copy)]
 pub(super) enum Children {
     /// Loop and Modified Butterfly (every triangle split in four): the corner triangles
-    /// `(v', e_i, e_{i+1})` and the middle triangles `(e_i, m_i, e_{i+1})` of the faces around
-    /// `v`, with `e_i` the point of spoke `i`'s edge and `m_i` that of the face's edge
-    /// opposite `v` (output vertex `edges + edge`).
-    Triangles { edges: usize },
+    /// `(v', e_i, e_{i+1})` of the faces around `v`, with `e_i` the point of spoke `i`'s edge
+    /// (output vertex `edges + edge`); with `middles`, also the middle triangles
+    /// `(e_i, m_i, e_{i+1})`, `m_i` the point of the face's edge opposite `v`. Loop reaches
+    /// the linear fold count without the middles (half the mapped points); Butterfly needs
+    /// them (bunny, 3 levels: 279 folded edges without, 267 with, linear 277).
+    Triangles { edges: usize, middles: bool },
     /// Catmull–Clark: the corner quads `(v', e_i, f_i, e_{i+1})`, `f_i` the point of the
     /// face after spoke `i` (output vertex `faces + face`).
     Quads { edges: usize, faces: usize },
@@ -91,53 +95,37 @@ impl Driver<'_, '_, '_, '_> {
     #[inline(never)]
     pub(super) fn audit(&mut self, children: Children) -> Result<()> {
         let topo = self.topo;
-        let mut fan: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-        let mut outer: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-        for v in 0..topo.num_vertices() as u32 {
-            let r = get(self.radius, v as usize)?;
-            let tau = get(self.trust, v as usize)?;
-            if r == 0.0 || tau > 1.0 {
-                continue;
-            }
-            let cf = CanonicalForm {
-                v: topo.position(v)?,
-                c: get(self.centre, v as usize)?,
-                r,
-                kind: StarKind::Interior,
-            };
-            // A point the frame cannot map (at the form's pole, or not finite) is missing:
-            // the terms below then distrust the star.
-            let map = |p: Point| cf.to_normalised(p).unwrap_or([f64::NAN; 3]);
-            let centre = map(get(self.pos, v as usize)?);
-            fan.clear();
-            outer.clear();
-            for s in topo.star(v) {
-                let (e, o) = match children {
-                    Children::Triangles { edges } => {
-                        // Interior stars: every spoke has its outgoing half-edge.
-                        if s.half_edge == NONE {
-                            return Err(internal());
-                        }
-                        let opposite = topo.edge(topo.next(s.half_edge)?)?;
-                        (edges + s.edge as usize, edges + opposite as usize)
-                    }
-                    Children::Quads { edges, faces } => {
-                        (edges + s.edge as usize, faces + s.face as usize)
-                    }
+        let (pos, radius, trust): (&[Point], &[f64], &[f64]) = (self.pos, self.radius, self.trust);
+        // Measure every star (vertex ranges, `crate::exec`): the star's trust from the audit
+        // replaces the first coordinate of its kept centre, which nothing reads afterwards.
+        pass(self.exec, self.centre, |first, out, _| {
+            let mut fan: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            let mut outer: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
+            for (v, c) in (first as u32..).zip(out.iter_mut()) {
+                let r = get(radius, v as usize)?;
+                let a = if r == 0.0 || get(trust, v as usize)? > 1.0 {
+                    1.0
+                } else {
+                    let cf = CanonicalForm {
+                        v: topo.position(v)?,
+                        c: *c,
+                        r,
+                        kind: StarKind::Interior,
+                    };
+                    star_audit(topo, pos, &cf, v, children, &mut fan, &mut outer)?
                 };
-                let (pe, po) = (map(get(self.pos, e)?), map(get(self.pos, o)?));
-                fan.try_push(pe).map_err(|_| internal())?;
-                outer.try_push(po).map_err(|_| internal())?;
+                *c = [a, 0.0, 0.0];
             }
-            let pair = Self::pair_cos(centre, &fan, &outer, children);
-            let a = ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(
-                fan_sine(centre, &fan),
-                FAN_DISTRUSTED,
-                FAN_TRUSTED,
-            ));
+            Ok(())
+        })?;
+        // Lower the trust of each distrusted star and its interior neighbours (serial: a
+        // neighbour is shared by several stars; `min` makes the order irrelevant).
+        for v in 0..topo.num_vertices() {
+            let a = get(self.centre, v)?[0];
             if a < 1.0 {
-                set(self.trust, v as usize, tau.min(a))?;
-                for s in topo.star(v) {
+                let t = get(self.trust, v)?;
+                set(self.trust, v, t.min(a))?;
+                for s in topo.star(v as u32) {
                     let u = s.neighbour as usize;
                     let t = get(self.trust, u)?;
                     // Boundary neighbours (`t > 1`) keep the paper's rules (`guard.rs`).
@@ -146,43 +134,89 @@ impl Driver<'_, '_, '_, '_> {
                     }
                 }
             }
+            // The kept form is spent (the guarded pass builds its own frames).
+            set(self.radius, v, 0.0)?;
         }
         Ok(())
     }
+}
 
-    /// The least cosine between adjacent child faces around `centre` (module docs, term 1);
-    /// -1 when a child face cannot be measured.
-    fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
-        let k = fan.len();
-        // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
-        // and the next spoke's edge point, cyclically.
-        let at = |i: usize| -> Option<(Point, Point, Point)> {
-            let next = if i + 1 < k { i + 1 } else { 0 };
-            Some((*fan.get(i)?, *outer.get(i)?, *fan.get(next)?))
-        };
-        let corner = |i: usize| -> Option<Point> {
-            let (e0, o, e1) = at(i)?;
-            match children {
-                Children::Triangles { .. } => area(&[centre, e0, e1]),
-                Children::Quads { .. } => area(&[centre, e0, o, e1]),
+/// The audit's trust of interior star `v` whose canonical form is `cf` (module docs): its
+/// child faces' output points `pos` mapped into the form's normalised frame; `fan`, `outer`
+/// are scratch.
+fn star_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    children: Children,
+    fan: &mut ArrayVec<Point, MAX_VALENCE>,
+    outer: &mut ArrayVec<Point, MAX_VALENCE>,
+) -> Result<f64> {
+    // A point the frame cannot map (at the form's pole, or not finite) is missing: the
+    // terms then distrust the star.
+    let map = |p: Point| cf.to_normalised(p).unwrap_or([f64::NAN; 3]);
+    let centre = map(get(pos, v as usize)?);
+    fan.clear();
+    outer.clear();
+    for s in topo.star(v) {
+        let (e, o) = match children {
+            Children::Triangles { edges, middles } => {
+                // Interior stars: every spoke has its outgoing half-edge.
+                if s.half_edge == NONE {
+                    return Err(internal());
+                }
+                let opposite = topo.edge(topo.next(s.half_edge)?)?;
+                (
+                    edges + s.edge as usize,
+                    middles.then_some(edges + opposite as usize),
+                )
+            }
+            Children::Quads { edges, faces } => {
+                (edges + s.edge as usize, Some(faces + s.face as usize))
             }
         };
-        let mut least = f64::INFINITY;
-        for i in 0..k {
-            let next = if i + 1 < k { i + 1 } else { 0 };
-            let (Some(c0), Some(c1)) = (corner(i), corner(next)) else {
+        fan.try_push(map(get(pos, e)?)).map_err(|_| internal())?;
+        if let Some(o) = o {
+            outer.try_push(map(get(pos, o)?)).map_err(|_| internal())?;
+        }
+    }
+    let pair = pair_cos(centre, fan, outer, children);
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan_sine(centre, fan), FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
+/// The least cosine between adjacent child faces around `centre` (module docs, term 1);
+/// -1 when a child face cannot be measured.
+fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
+    let k = fan.len();
+    // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
+    // and the next spoke's edge point, cyclically.
+    let at = |i: usize| -> Option<(Point, Option<Point>, Point)> {
+        let next = if i + 1 < k { i + 1 } else { 0 };
+        Some((*fan.get(i)?, outer.get(i).copied(), *fan.get(next)?))
+    };
+    let corner = |i: usize| -> Option<Point> {
+        let (e0, o, e1) = at(i)?;
+        match children {
+            Children::Triangles { .. } => area(&[centre, e0, e1]),
+            Children::Quads { .. } => area(&[centre, e0, o?, e1]),
+        }
+    };
+    let mut least = f64::INFINITY;
+    for i in 0..k {
+        let next = if i + 1 < k { i + 1 } else { 0 };
+        let (Some(c0), Some(c1)) = (corner(i), corner(next)) else {
+            return -1.0;
+        };
+        least = least.min(cos_between(c0, c1));
+        if let Children::Triangles { middles: true, .. } = children {
+            let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o?, e1])) else {
                 return -1.0;
             };
-            least = least.min(cos_between(c0, c1));
-            if let Children::Triangles { .. } = children {
-                let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o, e1])) else {
-                    return -1.0;
-                };
-                least = least.min(cos_between(c0, middle));
-            }
+            least = least.min(cos_between(c0, middle));
         }
-        least
     }
+    least
 }
 
 /// The least signed sine of the angles at `centre` between consecutive points of the closed

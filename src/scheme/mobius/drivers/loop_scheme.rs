@@ -44,7 +44,10 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
         d.trust_edges()?;
-        d.audit(Children::Triangles { edges: nv })?;
+        d.audit(Children::Triangles {
+            edges: nv,
+            middles: false,
+        })?;
         let out = Outputs {
             vertex: true,
             edges: nv,
