@@ -1178,9 +1178,10 @@ mod tests {
             )
         };
         assert_eq!(s, Status::Ok);
-        // Points: two candidates per corner (4 corners), and ⌈4 / 3⌉ for the fold guard's
-        // per-vertex trust (three values to a point).
-        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 2));
+        // Points: two candidates per corner (4 corners), and per vertex the kept form's
+        // centre (4) and the fold guard's trust and the form's radius (⌈8 / 3⌉ = 3: three
+        // values to a point).
+        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 3));
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {
