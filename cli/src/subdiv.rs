@@ -32,11 +32,7 @@ pub struct MeshScheme {
 
 /// The differential-space names (seed 001), run by `cli/src/differential.rs`, not by
 /// [`MeshScheme`]; listed so that every "available" message names them.
-const DIFFERENTIAL: [&str; 3] = [
-    "differential-loop",
-    "differential-butterfly",
-    "differential-dirmag",
-];
+const DIFFERENTIAL: [&str; 3] = crate::differential::DifferentialScheme::NAMES;
 
 impl MeshScheme {
     /// The command-line name: the core's name, with `mobius-` in front for the Möbius form.

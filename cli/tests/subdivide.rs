@@ -432,6 +432,16 @@ fn bad_input_gives_its_status_names_the_element_and_leaves_nothing() {
             &inputs,
         );
     }
+    // The list names every scheme once (the differential names used to appear twice).
+    let o = run(&refs(&sub("catmul-clark", "1", "quads.off", &out)));
+    for name in ["differential-loop", "differential-dirmag", "mobius-loop,"] {
+        assert_eq!(
+            stderr(&o).matches(name).count(),
+            1,
+            "{name}: {}",
+            stderr(&o)
+        );
+    }
     let a = sub("vertex-insertion", "9", "quads.off", &out);
     must_fail(
         &dir,

@@ -48,9 +48,8 @@ fn parse_scheme(name: &str) -> Result<SchemeArg, String> {
     if let Some(d) = DifferentialScheme::from_name(name) {
         return Ok(SchemeArg::Differential(d));
     }
-    MeshScheme::parse(name)
-        .map(SchemeArg::Mesh)
-        .map_err(|e| format!("{e}, {}", DifferentialScheme::NAMES.join(", ")))
+    // The message's list already names the differential schemes (`MeshScheme::available`).
+    MeshScheme::parse(name).map(SchemeArg::Mesh)
 }
 
 /// Arguments of `subdivide`.
