@@ -90,7 +90,10 @@ static void level_from_star_rules(tri_mesh *m, const char *what) {
     uint32_t v, c, f;
     for (f = 0; f <= m->nf; f++) off[f] = 3 * f;
     nls_mesh_sizes sz = {0, 0, 0};
-    CHECK_STATUS(flat_subdivide(NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS, 1, m->p, m->nv, off, m->nf, m->idx,
+    /* The star rules are the paper's rules: the driver's literal mode (the default's fold guard
+     * changes the driver's output wherever it distrusts a star). */
+    CHECK_STATUS(flat_subdivide(NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL, 1, m->p, m->nv,
+                                off, m->nf, m->idx,
                                 3 * m->nf, scratch, 4096, spts, 600, out, 512, ooff, 511, oidx, 2048, &sz, NULL, NULL),
                  NLS_STATUS_OK);
     nv = sz.vertex_count;
