@@ -134,7 +134,8 @@ pub(super) fn run(
         .split_at_mut_checked(lay.levels_u32[1])
         .ok_or(internal())?;
     let (s_a, rest) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
-    let (s_b, _) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
+    let (s_b, rest) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
+    let crease = rest.get_mut(..p.crease.u32s).ok_or(internal())?;
     let mut bufs_s: [&mut [u32]; 2] = [s_a, s_b];
     let tagged = p.sharpness > 0;
     let (p_a, rest) = scratch_points
@@ -199,7 +200,7 @@ pub(super) fn run(
         };
         let sharp = tagged.then_some(&sharp);
         let (written, r) = if k + 1 == levels {
-            step(scheme, mobius, sharp, &topo, out, step_scratch, exec)?
+            step(scheme, mobius, sharp, &topo, out, step_scratch, crease, exec)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
@@ -211,6 +212,7 @@ pub(super) fn run(
                 &topo,
                 &mut step_out,
                 step_scratch,
+                crease,
                 exec,
             )?
         };

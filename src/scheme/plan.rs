@@ -52,18 +52,24 @@ pub struct Plan {
     ///   With sharp-feature tags ([`plan_tagged`]) two more alternating buffers of one
     ///   value per edge and per vertex of the largest level stepped from (the sharpness of
     ///   the level stepped from and of its child), and at least
-    ///   [`plan_scratch_size_tagged`].
+    ///   [`plan_scratch_size_tagged`]; with tags and [`Options::mobius`], the scratch of the
+    ///   largest step on a level cut along its sharp edges (its cut flags, vertex copies,
+    ///   indices, topology and the child's connectivity).
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and,
     ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
-    ///   and the form's radius (two `f64`, three to a point); with a
+    ///   and the form's radius (two `f64`, three to a point) — with tags, at least the cut
+    ///   level's positions, its step's output and candidates; with a
     ///   spectrum weight below 1 ([`Options::spectrum`]), the linear positions of the
     ///   largest level written.
     pub scratch: ScratchSizes,
     /// `u32` entries of one of the two sharpness buffers of a tagged mesh (one value per
     /// edge and per vertex of the largest level stepped from); 0 without tags.
     pub(super) sharpness: usize,
+    /// The scratch of the largest tagged Möbius step (the level cut along its sharp edges,
+    /// [`super::mobius::crease::scratch`]); zero without tags or without Möbius.
+    pub(super) crease: ScratchSizes,
 }
 
 impl Plan {
@@ -85,7 +91,8 @@ impl Plan {
 
     /// The candidate points of the largest Möbius step: two per corner of the largest level
     /// stepped from, and per vertex a point and two `f64` for the fold guard
-    /// ([`super::mobius::candidate_points`]; 0 for zero levels).
+    /// ([`super::mobius::candidate_points`]; 0 for zero levels); with tags, at least the
+    /// points of the largest tagged step ([`Plan::crease`]).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {
         let (mut vertices, mut corners) = (0usize, 0usize);
         for k in 0..self.levels {
@@ -93,7 +100,7 @@ impl Plan {
             vertices = vertices.max(sz.vertices);
             corners = corners.max(sz.indices);
         }
-        super::mobius::candidate_points(vertices, corners)
+        Ok(super::mobius::candidate_points(vertices, corners)?.max(self.crease.points))
     }
 }
 
@@ -131,8 +138,8 @@ pub fn plan_scratch_size_tagged(mesh: &Mesh<'_>, tags: &Tags<'_>) -> Result<usiz
 /// # Errors
 /// Those of [`plan`], and after [`Options`] are checked: [`Status::TagsNotSupported`] for
 /// tags with a scheme that takes none ([`Scheme::takes_tags`]: all but [`Scheme::Loop`],
-/// [`Scheme::CatmullClark`], [`Scheme::ModifiedButterfly`] and [`Scheme::Kobbelt`]) or with
-/// [`Options::mobius`]; after the mesh is validated, the tag errors ([`Tags`]: a length
+/// [`Scheme::CatmullClark`], [`Scheme::ModifiedButterfly`] and [`Scheme::Kobbelt`], linear
+/// or Möbius); after the mesh is validated, the tag errors ([`Tags`]: a length
 /// mismatch is [`Status::InvalidArgument`]; [`Status::IndexOutOfRange`],
 /// [`Status::InvalidSharpness`], [`Status::TagNotAnEdge`], [`Status::RepeatedTag`] naming
 /// the tag).
@@ -176,7 +183,7 @@ pub(super) fn plan_with_topology(
 ) -> Result<(Plan, Counts)> {
     opts.check()?;
     let tagged = !tags.is_empty();
-    if tagged && (opts.mobius || !opts.scheme.takes_tags()) {
+    if tagged && !opts.scheme.takes_tags() {
         return Err(Error::new(Status::TagsNotSupported));
     }
     let need = plan_scratch_size_tagged(&mesh, tags)?;
@@ -244,6 +251,7 @@ fn levels_plan(
         sizes: [MeshSizes::default(); MAX_LEVELS + 1],
         scratch: ScratchSizes::default(),
         sharpness: 0,
+        crease: ScratchSizes::default(),
     };
     // One sharpness value per edge and vertex of the largest level stepped from.
     let mut sharpness = cadd(stats.edges(), stats.sizes().vertices)?;
@@ -265,14 +273,26 @@ fn levels_plan(
         }
     }
     let lay = Layout::of(&p, pattern)?;
-    let candidates = if mobius { p.mobius_step_points()? } else { 0 };
     p.sharpness = if tags.is_some() && levels > 0 {
         sharpness
     } else {
         0
     };
+    if mobius && p.sharpness > 0 {
+        for k in 0..levels {
+            let sz = p.sizes.get(k).copied().ok_or(internal())?;
+            let next = p.sizes.get(k + 1).copied().ok_or(internal())?;
+            let c = super::mobius::crease::scratch(sz.vertices, sz.indices, sz.faces, next)?;
+            p.crease.u32s = p.crease.u32s.max(c.u32s);
+            p.crease.points = p.crease.points.max(c.points);
+        }
+    }
+    let candidates = if mobius { p.mobius_step_points()? } else { 0 };
     p.scratch = ScratchSizes {
-        u32s: cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?,
+        u32s: cadd(
+            cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?,
+            p.crease.u32s,
+        )?,
         points: cadd(cadd(lay.points[0], lay.points[1])?, candidates)?,
     };
     if p.scratch.u32s > MAX_COUNT.saturating_mul(8) {

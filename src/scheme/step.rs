@@ -17,10 +17,13 @@ use crate::point::{self, Point};
 /// `None`, the canonical Möbius version with its options otherwise, `candidates` its scratch
 /// ([`mobius::candidate_points`]; unused by the other rules). Returns the sizes written and
 /// the Möbius report (empty for the other rules). With `sharp` (the level's sharpness
-/// values of a tagged mesh) the linear rules with sharp features ([`linear_tagged`]).
+/// values of a tagged mesh) the linear rules with sharp features ([`linear_tagged`]), or
+/// the Möbius step on the mesh cut along its sharp edges ([`mobius::crease`], whose `u32`
+/// scratch is `crease`; `candidates` then holds its points).
 ///
 /// # Errors
-/// Those of [`linear`] and [`mobius::step`].
+/// Those of [`linear`], [`mobius::step`] and [`mobius::crease::step`].
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn step(
     scheme: Scheme,
     mobius: Option<MobiusOptions>,
@@ -28,14 +31,58 @@ pub(crate) fn step(
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     candidates: &mut [Point],
+    crease: &mut [u32],
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     match (mobius, sharp) {
         (None, None) => linear_with(scheme, topo, out, exec).map(|s| (s, MobiusReport::default())),
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
-        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts, exec),
-        (Some(_), Some(_)) => Err(Error::new(Status::TagsNotSupported)),
+        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts, exec, &[]),
+        (Some(opts), Some(sh)) if opts.spectrum < 1.0 => {
+            mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, opts, exec)
+        }
+        (Some(opts), Some(sh)) => {
+            mobius::crease::step(scheme, topo, sh, out, crease, candidates, opts, exec)
+        }
     }
+}
+
+/// The Möbius–linear spectrum (seed 000 §7.2) with sharp features: the tagged Möbius step
+/// ([`mobius::crease`]) blended with the tagged linear step, `w · möbius + (1 − w) · linear`
+/// per output vertex, as the untagged step blends with the untagged linear rule. The linear
+/// positions take the last output-size points of `candidates`.
+#[allow(clippy::too_many_arguments)]
+fn mobius_tagged_spectrum(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    sh: &Sharpness<'_>,
+    out: &mut MeshOut<'_>,
+    crease: &mut [u32],
+    candidates: &mut [Point],
+    opts: MobiusOptions,
+    exec: &dyn Executor,
+) -> Result<(MeshSizes, MobiusReport)> {
+    let n = step_size(scheme, topo)?.vertices;
+    let split = candidates.len().checked_sub(n).ok_or(internal())?;
+    let (cand, lin) = candidates.split_at_mut_checked(split).ok_or(internal())?;
+    tagged(scheme, topo, sh, out)?;
+    for (l, p) in lin.iter_mut().zip(out.positions.iter()) {
+        *l = *p;
+    }
+    let full = MobiusOptions {
+        spectrum: 1.0,
+        ..opts
+    };
+    let (sizes, report) = mobius::crease::step(scheme, topo, sh, out, crease, cand, full, exec)?;
+    let w = opts.spectrum;
+    let pos = out.positions.get_mut(..n).ok_or(internal())?;
+    for (p, l) in pos.iter_mut().zip(lin.iter()) {
+        *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
+    }
+    if let Some(i) = first_non_finite(pos) {
+        return Err(Error::at(Status::NumericalFailure, i as u32));
+    }
+    Ok((sizes, report))
 }
 
 /// [`linear`] with sharp features (Loop, Catmull–Clark).

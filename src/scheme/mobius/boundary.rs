@@ -4,12 +4,21 @@
 //! `P'_i = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`) and the interpolating rule (odd points
 //! only) for the others, the Möbius counterparts of the linear schemes' boundary curves (the
 //! cubic B-spline crease rule, the 4-point rule).
+//!
+//! With sharp features the driver runs on the mesh cut along its sharp edges (`crease.rs`):
+//! the crease curves are then boundary loops, and a loop vertex marked as a *corner* ends
+//! its curve there. Next to a corner the open-curve rules of [`crate::curve::mobius`] apply
+//! (the end edge point `E` with `cr[P_2, P_1, P_0, E] = 1/3`; the midpoint between two
+//! corners), and an approximating scheme keeps the corner, exactly as an open Möbius curve
+//! through the same points. Without corners every loop is closed, as above.
 
 use super::driver::Driver;
 use crate::blend::f4;
+use crate::curve::mobius::end_edge_point;
 use crate::error::Result;
 use crate::mesh::{get, set, NONE};
-use crate::point::Point;
+use crate::point::{midpoint, Point};
+use crate::curve::four_point::virtual_end_point;
 
 impl Driver<'_, '_, '_, '_> {
     /// The boundary neighbours of boundary half-edge `h = (a → b)`: `(P_{i−1}, P_{i+2})`.
@@ -21,8 +30,45 @@ impl Driver<'_, '_, '_, '_> {
         ))
     }
 
+    /// Whether vertex `v` is a corner: its boundary loop is an open curve ending there
+    /// (module docs). Never without sharp features.
+    pub(super) fn is_corner(&self, v: u32) -> bool {
+        self.corners.get(v as usize).is_some_and(|&c| c != 0)
+    }
+
+    /// Whether the origin and the end of boundary half-edge `h` are corners.
+    pub(super) fn corner_ends(&self, h: u32) -> Result<(bool, bool)> {
+        let topo = self.topo;
+        Ok((
+            self.is_corner(topo.origin(h)?),
+            self.is_corner(topo.dest(h)?),
+        ))
+    }
+
+    /// The curve segment of boundary half-edge `h = (a → b)`: the four points
+    /// `[P_{i−1}, a, b, P_{i+2}]` of the linear fallback (past a corner the 4-point rule's
+    /// virtual end point `2a − b`), and the Möbius edge point — `F4` of the four points, the
+    /// open-curve end rule next to a corner, the midpoint between two corners (module docs).
+    pub(super) fn boundary_segment(&self, h: u32) -> Result<([Point; 4], Result<Point>)> {
+        let topo = self.topo;
+        let (i0, i3) = self.boundary_outer(h)?;
+        let (a, b) = (topo.position(topo.origin(h)?)?, topo.position(topo.dest(h)?)?);
+        let (before, after) = (topo.position(i0)?, topo.position(i3)?);
+        let (ca, cb) = self.corner_ends(h)?;
+        let q = match (ca, cb) {
+            (false, false) => f4(before, a, b, after),
+            (true, false) => end_edge_point(a, b, after),
+            (false, true) => end_edge_point(b, a, before),
+            (true, true) => Ok(midpoint(a, b)),
+        };
+        let p0 = if ca { virtual_end_point(a, b) } else { before };
+        let p3 = if cb { virtual_end_point(b, a) } else { after };
+        Ok(([p0, a, b, p3], q))
+    }
+
     /// Odd points of every boundary loop by the Möbius curve rule
-    /// `F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})` into `start + edge`; fallback `linear(p0, a, b, p1)`.
+    /// `F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})` (open-curve rules next to corners,
+    /// [`Driver::boundary_segment`]) into `start + edge`; fallback `linear(p0, a, b, p1)`.
     pub(super) fn boundary_edges(
         &mut self,
         start: usize,
@@ -34,15 +80,9 @@ impl Driver<'_, '_, '_, '_> {
             if topo.twin(h)? != NONE {
                 continue;
             }
-            let (i0, i3) = self.boundary_outer(h)?;
-            let p = [
-                topo.position(i0)?,
-                topo.position(topo.origin(h)?)?,
-                topo.position(topo.dest(h)?)?,
-                topo.position(i3)?,
-            ];
+            let (p, q) = self.boundary_segment(h)?;
             let k = start + e as usize;
-            let q = match f4(p[0], p[1], p[2], p[3]) {
+            let q = match q {
                 Ok(q) => q,
                 Err(_) => {
                     self.fallback(k)?;
@@ -56,11 +96,15 @@ impl Driver<'_, '_, '_, '_> {
 
     /// Even points of the boundary loops by the Möbius approximating rule
     /// `P'_i = F4(P_{i−1}, E_{i−½}, E_{i+½}, P_{i+1})`, reading the odd points from
-    /// `start + edge`; fallback `3/4 v + 1/8 (b0 + b1)`.
+    /// `start + edge`; fallback `3/4 v + 1/8 (b0 + b1)`. A corner keeps its position.
     pub(super) fn boundary_vertices_approximating(&mut self, start: usize) -> Result<()> {
         let topo = self.topo;
         for v in 0..topo.num_vertices() as u32 {
             if !topo.is_boundary_vertex(v)? {
+                continue;
+            }
+            if self.is_corner(v) {
+                set(self.pos, v as usize, topo.position(v)?)?;
                 continue;
             }
             let out_h = topo.vertex_half_edge(v)?; // v → b0

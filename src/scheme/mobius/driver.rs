@@ -37,6 +37,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// Runs the passes that write disjoint output ranges (the blends, the vertex points'
     /// completion; [`crate::exec`]).
     pub(super) exec: &'o dyn Executor,
+    /// Per vertex: non-zero where a boundary loop ends as an open curve (a corner of a
+    /// sharp feature, `crease.rs`); empty without sharp features (`boundary.rs`).
+    pub(super) corners: &'o [u32],
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -73,6 +76,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             strict: opts.strict,
             guard: opts.guard,
             exec,
+            corners: &[],
         }
     }
 

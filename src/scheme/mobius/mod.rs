@@ -57,6 +57,7 @@
 
 mod audit;
 mod boundary;
+pub(crate) mod crease;
 mod driver;
 mod drivers;
 mod ears;
@@ -146,6 +147,9 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 /// `scratch`; [`Status::FallbackInStrictMode`] (element = output vertex) with
 /// [`MobiusOptions::strict`]; [`Status::NumericalFailure`] naming an output vertex that is
 /// not finite.
+///
+/// `corners` marks the vertices where a boundary loop ends as an open curve (sharp
+/// features, [`crease`]); empty otherwise.
 pub(crate) fn step(
     scheme: Scheme,
     topo: &Topology<'_, '_>,
@@ -153,6 +157,7 @@ pub(crate) fn step(
     scratch: &mut [Point],
     opts: MobiusOptions,
     exec: &dyn Executor,
+    corners: &[u32],
 ) -> Result<(MeshSizes, MobiusReport)> {
     if !scheme.has_mobius_form() {
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
@@ -189,6 +194,7 @@ pub(crate) fn step(
     let radius = rest.get_mut(..nv).ok_or(internal())?;
     let form = (trust, centre, radius);
     let mut d = Driver::new(topo, pos, edge_c, face_c, form, opts, exec);
+    d.corners = corners;
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
         Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,

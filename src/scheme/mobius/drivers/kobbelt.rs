@@ -71,7 +71,8 @@ fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
         let (a0, a1) = (topo.position(i0)?, topo.position(i1)?);
         let k = nv + e as usize;
-        let (r0, r1) = if topo.twin(h)? == NONE {
+        let boundary = topo.twin(h)? == NONE;
+        let (r0, r1) = if boundary {
             let (o0, o3) = d.boundary_outer(h)?;
             (Some(topo.position(o0)?), Some(topo.position(o3)?))
         } else {
@@ -79,6 +80,8 @@ fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         };
         let hint = topo.position(topo.dest(topo.next(h)?)?)?;
         let q = match (r0, r1) {
+            // A boundary curve ending at a corner (sharp features): the open-curve rule.
+            _ if boundary && d.corner_ends(h)? != (false, false) => d.boundary_segment(h)?.1.ok(),
             (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
             _ => None,
         };

@@ -1,0 +1,615 @@
+//! Sharp-feature tags on the Möbius schemes (`docs/creases.md`, "Möbius creases"): the
+//! expectations come from the mathematics, not from recorded output. A crease is subdivided
+//! by the Möbius curve rules of its polygon (closed, or open between corners), so a tagged
+//! circle stays a circle and a tagged circle of a spherical cage keeps the cage's output on
+//! its sphere; the result commutes with random Möbius maps; semi-sharp values are whole
+//! sharp levels; empty and zero tags are the untagged Möbius call bit for bit; the spectrum
+//! weight blends with the tagged linear rules; bad tags keep their statuses.
+
+// Test helpers outside #[test] functions: clippy's in-test allowances do not reach them.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+
+mod common;
+
+use common::{cube, icosahedron, jitter, octahedron, quad_grid, quad_torus, tri_grid, tri_torus};
+use common::OwnedMesh;
+use nlsubdiv::curve::mobius as curve;
+use nlsubdiv::mesh::MeshOut;
+use nlsubdiv::mobius::MobiusMap;
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
+use nlsubdiv::{Point, Result, Status};
+use std::collections::{BTreeMap, BTreeSet};
+
+const LOOP: Scheme = Scheme::Loop;
+const CC: Scheme = Scheme::CatmullClark;
+const MB: Scheme = Scheme::ModifiedButterfly;
+const KOBBELT: Scheme = Scheme::Kobbelt;
+const ALL: [Scheme; 4] = [LOOP, CC, MB, KOBBELT];
+const INF: f64 = 10.0;
+
+fn triangles(s: Scheme) -> bool {
+    matches!(s, LOOP | MB)
+}
+
+fn approximating(s: Scheme) -> bool {
+    matches!(s, LOOP | CC)
+}
+
+/// The public tagged path with owned buffers of exactly the planned sizes.
+fn run_tagged(m: &OwnedMesh, opts: &Options, tags: &Tags<'_>) -> Result<(OwnedMesh, Report)> {
+    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
+    let p = scheme::plan_tagged(m.view(), opts, tags, &mut su)?;
+    let o = p.output();
+    su.resize(p.scratch.u32s, 0);
+    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; o.vertices],
+        offsets: vec![u32::MAX; o.faces + 1],
+        indices: vec![u32::MAX; o.indices],
+    };
+    let r = scheme::subdivide_tagged(
+        m.view(),
+        opts,
+        tags,
+        Scratch::new(&mut su, &mut sp),
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+    )?;
+    assert_eq!(r.sizes, o);
+    Ok((out, r))
+}
+
+fn mobius(s: Scheme, levels: usize) -> Options {
+    Options::new(s).mobius(true).levels(levels)
+}
+
+fn dist(a: Point, b: Point) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn norm(p: Point) -> f64 {
+    dist(p, [0.0; 3])
+}
+
+fn diameter(p: &[Point]) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for q in p {
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    dist(lo, hi)
+}
+
+/// The edges of `m` sorted by `(min, max)` vertex key: the kernel's edge numbering, so the
+/// edge point of edge `k` is output vertex `V + k` (old vertices first, then edge points).
+fn edge_ids(m: &OwnedMesh) -> BTreeMap<[u32; 2], u32> {
+    let mut set = BTreeSet::new();
+    for f in m.faces() {
+        for i in 0..f.len() {
+            let (a, b) = (f[i], f[(i + 1) % f.len()]);
+            set.insert([a.min(b), a.max(b)]);
+        }
+    }
+    set.into_iter().zip(0..).collect()
+}
+
+/// The vertex chains of a crease polygon after each of `levels` levels: `meshes[k]` is level
+/// `k` (`meshes[0]` the input), `chain` a polygon of level 0 (closed: its last vertex joins
+/// its first). Each edge `a b` of level `k` becomes `a e b` with `e` its edge point.
+fn descendants(meshes: &[OwnedMesh], chain: &[u32], closed: bool) -> Vec<u32> {
+    let mut cur = chain.to_vec();
+    for m in &meshes[..meshes.len() - 1] {
+        let ids = edge_ids(m);
+        let nv = m.positions.len() as u32;
+        let n = cur.len();
+        let segs = if closed { n } else { n - 1 };
+        let mut next = Vec::new();
+        for i in 0..segs {
+            let (a, b) = (cur[i], cur[(i + 1) % n]);
+            next.push(a);
+            next.push(nv + ids[&[a.min(b), a.max(b)]]);
+        }
+        if !closed {
+            next.push(cur[n - 1]);
+        }
+        cur = next;
+    }
+    cur
+}
+
+/// `levels` levels of the Möbius curve rule of `s` on `poly`.
+fn curve_levels(s: Scheme, poly: &[Point], closed: bool, levels: usize) -> Vec<Point> {
+    let mut cur = poly.to_vec();
+    for _ in 0..levels {
+        let n = if closed { 2 * cur.len() } else { 2 * cur.len() - 1 };
+        let mut out = vec![[0.0; 3]; n];
+        let written = if approximating(s) {
+            curve::refine_approximating(&cur, closed, &mut out)
+        } else {
+            curve::refine_interpolating(&cur, closed, &mut out)
+        };
+        assert_eq!(written.unwrap(), n);
+        cur = out;
+    }
+    cur
+}
+
+/// Level 0 to `levels` of `m` with `opts` and `tags` (level `k` from a `k`-level call).
+fn level_meshes(m: &OwnedMesh, opts: Options, tags: &Tags<'_>, levels: usize) -> Vec<OwnedMesh> {
+    let mut v = vec![m.clone()];
+    for k in 1..=levels {
+        v.push(run_tagged(m, &opts.levels(k), tags).unwrap().0);
+    }
+    v
+}
+
+fn edges_of(chain: &[u32], closed: bool) -> Vec<[u32; 2]> {
+    let n = chain.len();
+    let segs = if closed { n } else { n - 1 };
+    (0..segs).map(|i| [chain[i], chain[(i + 1) % n]]).collect()
+}
+
+/// A jittered torus of the scheme's faces and a closed staircase crease of 14 edges around
+/// it that no grid line follows.
+fn torus_with_staircase(s: Scheme) -> (OwnedMesh, Vec<u32>) {
+    let m = if triangles(s) {
+        tri_torus(8, 6)
+    } else {
+        quad_torus(8, 6, 3.0, 1.0)
+    };
+    let mut ring = Vec::new();
+    for k in 0..6u32 {
+        ring.push(k * 8 + k);
+        ring.push(k * 8 + k + 1);
+    }
+    ring.extend([6, 7]);
+    (jitter(&m, 0.08, 11), ring)
+}
+
+/// A jittered `n × n` grid of the scheme's faces and its middle row, a crease from one side
+/// to the other (its ends on the boundary are corners).
+fn grid_with_row(s: Scheme, n: usize) -> (OwnedMesh, Vec<u32>) {
+    let m = if triangles(s) {
+        tri_grid(n, n)
+    } else {
+        quad_grid(n, n)
+    };
+    let m = jitter(&m, 0.05, 5);
+    // Vertex (i, j) of the grid generators is j (n + 1) + i.
+    let j = (n / 2) as u32;
+    let row = (0..=n as u32).map(|i| j * (n as u32 + 1) + i).collect();
+    (m, row)
+}
+
+#[test]
+fn the_grids_row_is_a_row() {
+    // The layout `grid_with_row` assumes: the row's vertices share their y coordinate.
+    for s in [LOOP, CC] {
+        let m = if triangles(s) {
+            tri_grid(6, 6)
+        } else {
+            quad_grid(6, 6)
+        };
+        let y = m.positions[3 * 7][1];
+        for i in 0..=6 {
+            assert_eq!(m.positions[3 * 7 + i][1], y, "{s:?}");
+        }
+        assert!(m.positions[3 * 7 + 1][0] != m.positions[3 * 7][0]);
+    }
+}
+
+#[test]
+fn empty_and_zero_tags_are_the_untagged_mobius_call_bit_for_bit() {
+    for s in ALL {
+        let (m, ring) = torus_with_staircase(s);
+        for levels in 1..=2 {
+            for opts in [mobius(s, levels), mobius(s, levels).literal(true)] {
+                let (plain, pr) = common::run(&m, &opts).unwrap();
+                let (empty, er) = run_tagged(&m, &opts, &Tags::new()).unwrap();
+                assert_eq!(empty, plain, "{s:?} empty tags");
+                assert_eq!(er, pr);
+                let creases = edges_of(&ring[..3], false);
+                let corner = [ring[5]];
+                let tags = Tags::new()
+                    .creases(&creases, &[0.0, 0.0])
+                    .corners(&corner, &[0.0]);
+                let (zero, zr) = run_tagged(&m, &opts, &tags).unwrap();
+                assert_eq!(zero, plain, "{s:?} zero tags");
+                assert_eq!(zr, pr);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_closed_crease_is_the_closed_mobius_curve_of_its_polygon() {
+    for s in ALL {
+        let (m, ring) = torus_with_staircase(s);
+        let creases = edges_of(&ring, true);
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        let poly: Vec<Point> = ring.iter().map(|&v| m.positions[v as usize]).collect();
+        let levels = level_meshes(&m, mobius(s, 1), &tags, 3);
+        let scale = diameter(&poly);
+        let (plain, _) = common::run(&m, &mobius(s, 1)).unwrap();
+        for k in 1..=3 {
+            let chain = descendants(&levels[..=k], &ring, true);
+            let want = curve_levels(s, &poly, true, k);
+            assert_eq!(chain.len(), want.len());
+            let err = chain
+                .iter()
+                .zip(&want)
+                .map(|(&v, &q)| dist(levels[k].positions[v as usize], q) / scale)
+                .fold(0.0, f64::max);
+            assert!(err <= 1e-12, "{s:?}, level {k}: {err:e}");
+            if k == 1 {
+                // The tags change the result: the untagged surface does not hold the curve.
+                let off = chain
+                    .iter()
+                    .zip(&want)
+                    .map(|(&v, &q)| dist(plain.positions[v as usize], q) / scale)
+                    .fold(0.0, f64::max);
+                assert!(off > 1e-6, "{s:?}: the untagged step holds the curve");
+            }
+        }
+    }
+}
+
+#[test]
+fn an_open_crease_between_corners_is_the_open_mobius_curve() {
+    for s in ALL {
+        let (m, row) = grid_with_row(s, 6);
+        let creases = edges_of(&row, false);
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        let poly: Vec<Point> = row.iter().map(|&v| m.positions[v as usize]).collect();
+        let levels = level_meshes(&m, mobius(s, 1), &tags, 3);
+        let scale = diameter(&poly);
+        for k in 1..=3 {
+            let chain = descendants(&levels[..=k], &row, false);
+            let want = curve_levels(s, &poly, false, k);
+            let err = chain
+                .iter()
+                .zip(&want)
+                .map(|(&v, &q)| dist(levels[k].positions[v as usize], q) / scale)
+                .fold(0.0, f64::max);
+            assert!(err <= 1e-12, "{s:?}, level {k}: {err:e}");
+            // The corners where the crease meets the boundary stay.
+            for &v in [row[0], row[row.len() - 1]].iter() {
+                assert_eq!(levels[k].positions[v as usize], m.positions[v as usize]);
+            }
+        }
+    }
+}
+
+/// A closed cylinder cage: rims of `n` vertices on the unit circles `z = 0` and `z = 1`, a
+/// middle ring of radius 1.3 at `z = ½`, caps around centres off the rims' planes (quads
+/// around a valence-`n/2` centre, or triangle fans). Returns the mesh and the two rims.
+fn cylinder(quads: bool, n: usize) -> (OwnedMesh, [Vec<u32>; 2]) {
+    let mut p = Vec::new();
+    for (z, r) in [(0.0, 1.0), (0.5, 1.3), (1.0, 1.0)] {
+        for i in 0..n {
+            // Uneven angles: the rims are circles, not regular polygons.
+            let t = 2.0 * std::f64::consts::PI * (i as f64 + 0.2 * ((i * 7) % 3) as f64) / n as f64;
+            p.push([r * t.cos(), r * t.sin(), z]);
+        }
+    }
+    p.push([0.1, 0.0, -0.4]);
+    p.push([0.0, -0.1, 1.3]);
+    let ring = |k: usize, i: usize| (k * n + i % n) as u32;
+    let (cb, ct) = ((3 * n) as u32, (3 * n + 1) as u32);
+    let mut faces = Vec::new();
+    for k in 0..2 {
+        for i in 0..n {
+            let q = [ring(k, i), ring(k, i + 1), ring(k + 1, i + 1), ring(k + 1, i)];
+            if quads {
+                faces.push(q.to_vec());
+            } else {
+                faces.push(vec![q[0], q[1], q[2]]);
+                faces.push(vec![q[0], q[2], q[3]]);
+            }
+        }
+    }
+    if quads {
+        for i in (0..n).step_by(2) {
+            faces.push(vec![cb, ring(0, i + 2), ring(0, i + 1), ring(0, i)]);
+            faces.push(vec![ct, ring(2, i), ring(2, i + 1), ring(2, i + 2)]);
+        }
+    } else {
+        for i in 0..n {
+            faces.push(vec![cb, ring(0, i + 1), ring(0, i)]);
+            faces.push(vec![ct, ring(2, i), ring(2, i + 1)]);
+        }
+    }
+    let rims = [
+        (0..n).map(|i| ring(0, i)).collect(),
+        (0..n).map(|i| ring(2, i)).collect(),
+    ];
+    (OwnedMesh::from_faces(p, &faces), rims)
+}
+
+#[test]
+fn tagged_rims_of_a_cylinder_stay_on_their_circles() {
+    for s in ALL {
+        let (m, rims) = cylinder(!triangles(s), 8);
+        let mut creases = edges_of(&rims[0], true);
+        creases.extend(edges_of(&rims[1], true));
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        for literal in [false, true] {
+            let opts = mobius(s, 1).literal(literal);
+            let levels = level_meshes(&m, opts, &tags, 3);
+            let (untagged, _) = common::run(&m, &opts.levels(1)).unwrap();
+            let mut worst = 0.0f64;
+            let mut untagged_worst = 0.0f64;
+            for (rim, z) in rims.iter().zip([0.0, 1.0]) {
+                let chain = descendants(&levels, rim, true);
+                assert_eq!(chain.len(), 8 << 3);
+                for &v in &chain {
+                    let p = levels[3].positions[v as usize];
+                    let off = (p[2] - z).abs().max((norm([p[0], p[1], 0.0]) - 1.0).abs());
+                    worst = worst.max(off);
+                }
+                for &v in &descendants(&levels[..=1], rim, true) {
+                    let p = untagged.positions[v as usize];
+                    let off = (p[2] - z).abs().max((norm([p[0], p[1], 0.0]) - 1.0).abs());
+                    untagged_worst = untagged_worst.max(off);
+                }
+            }
+            assert!(worst < 1e-12, "{s:?} literal {literal}: {worst:e}");
+            // Without the tags the rims do not keep their circles.
+            assert!(untagged_worst > 1e-3, "{s:?}: {untagged_worst:e}");
+        }
+    }
+}
+
+/// A spherical cage and a circle of its edges: the octahedron's equator (a great circle)
+/// and the icosahedron's pentagon around vertex 0 (a small circle) for triangles; for quads
+/// the once-subdivided cube on the unit sphere and its equator of eight vertices (a great
+/// circle). (A circle around a single face would not do: that face alone is a surface whose
+/// boundary is the circle, and no sphere through a circle is singled out by it.)
+fn spherical_cages(s: Scheme) -> Vec<(OwnedMesh, Vec<u32>)> {
+    if triangles(s) {
+        return vec![
+            (octahedron(), vec![0, 2, 1, 3]),
+            (icosahedron(), vec![11, 5, 1, 7, 10]),
+        ];
+    }
+    let c = common::subdivide(CC, &cube()).unwrap().map_positions(|p| {
+        let n = norm(p);
+        [p[0] / n, p[1] / n, p[2] / n]
+    });
+    let mut equator: Vec<u32> = (0..c.positions.len() as u32)
+        .filter(|&v| c.positions[v as usize][2].abs() < 1e-12)
+        .collect();
+    let angle = |v: u32| {
+        let p = c.positions[v as usize];
+        p[1].atan2(p[0])
+    };
+    equator.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)));
+    assert_eq!(equator.len(), 8);
+    vec![(c, equator)]
+}
+
+#[test]
+fn a_spherical_cage_with_a_tagged_circle_stays_on_its_sphere() {
+    for s in ALL {
+        for (m, circle) in spherical_cages(s) {
+            for p in &m.positions {
+                assert!((norm(*p) - 1.0).abs() < 1e-15);
+            }
+            let creases = edges_of(&circle, true);
+            let infs = vec![INF; creases.len()];
+            let tags = Tags::new().creases(&creases, &infs);
+            let (out, _) = run_tagged(&m, &mobius(s, 3), &tags).unwrap();
+            let off = out
+                .positions
+                .iter()
+                .map(|&p| (norm(p) - 1.0).abs())
+                .fold(0.0, f64::max);
+            assert!(off < 1e-12, "{s:?}, {} vertices: {off:e}", m.positions.len());
+            // The circle is a crease: the linear tagged scheme leaves the sphere.
+            let (lin, _) = run_tagged(&m, &Options::new(s).levels(3), &tags).unwrap();
+            let lin_off = lin
+                .positions
+                .iter()
+                .map(|&p| (norm(p) - 1.0).abs())
+                .fold(0.0, f64::max);
+            assert!(lin_off > 1e-3);
+        }
+    }
+}
+
+/// A random Möbius map with an inversion centre outside the mesh's bounding sphere,
+/// composed with a rotation and a scaling (as in `tests/mesh_mobius.rs`).
+fn random_mobius(m: &OwnedMesh, seed: u64) -> MobiusMap {
+    let mut rng = common::Lcg(seed);
+    let n = m.positions.len() as f64;
+    let mut c = [0.0; 3];
+    for p in &m.positions {
+        for k in 0..3 {
+            c[k] += p[k] / n;
+        }
+    }
+    let r = m.positions.iter().map(|&p| dist(p, c)).fold(0.0, f64::max);
+    let unit = |rng: &mut common::Lcg| loop {
+        let p = [rng.next(), rng.next(), rng.next()];
+        let l = norm(p);
+        if l > 0.1 && l < 1.0 {
+            return [p[0] / l, p[1] / l, p[2] / l];
+        }
+    };
+    let dir = unit(&mut rng);
+    let t = r * (1.65 + 0.35 * rng.next());
+    let centre = [c[0] + t * dir[0], c[1] + t * dir[1], c[2] + t * dir[2]];
+    MobiusMap::inversion(centre, r * (1.0 + 0.5 * rng.next().abs()))
+        .compose(&MobiusMap::rotation(unit(&mut rng), 3.0 * rng.next()))
+        .compose(&MobiusMap::scaling(0.5 + rng.next().abs()))
+}
+
+#[test]
+fn tagged_mobius_subdivision_commutes_with_mobius_maps() {
+    let mut worst = 0.0f64;
+    for s in ALL {
+        let (torus, ring) = torus_with_staircase(s);
+        let (grid, row) = grid_with_row(s, 6);
+        let (cyl, rims) = cylinder(!triangles(s), 8);
+        let cases = [
+            (torus, edges_of(&ring, true), vec![]),
+            (grid, edges_of(&row, false), vec![row[2]]),
+            (cyl, edges_of(&rims[0], true), vec![rims[1][3]]),
+        ];
+        for (seed, (m, creases, corners)) in cases.into_iter().enumerate() {
+            // Semi-sharp values too: 1.4 is sharp at the first level only.
+            let sharpness: Vec<f64> = (0..creases.len())
+                .map(|i| if i % 3 == 0 { 1.4 } else { INF })
+                .collect();
+            let cs = vec![INF; corners.len()];
+            let tags = Tags::new()
+                .creases(&creases, &sharpness)
+                .corners(&corners, &cs);
+            let f = random_mobius(&m, 17 + seed as u64);
+            let image = m.map_positions(|p| f.apply(p).unwrap());
+            for literal in [true, false] {
+                let opts = mobius(s, 2).literal(literal);
+                let (a, ra) = run_tagged(&image, &opts, &tags).unwrap();
+                let (b, rb) = run_tagged(&m, &opts, &tags).unwrap();
+                // Which elements the fold guard changes is Möbius-invariant.
+                assert_eq!((ra.guarded, ra.first_guarded), (rb.guarded, rb.first_guarded));
+                assert_eq!(ra.fallbacks, rb.fallbacks);
+                if !literal && rb.guarded > 0 {
+                    continue;
+                }
+                let scale = diameter(&a.positions);
+                let err = a
+                    .positions
+                    .iter()
+                    .zip(&b.positions)
+                    .map(|(&p, &q)| dist(p, f.apply(q).unwrap()) / scale)
+                    .fold(0.0, f64::max);
+                assert!(err < 1e-9, "{s:?} case {seed} literal {literal}: {err:e}");
+                worst = worst.max(err);
+            }
+        }
+    }
+    println!("tagged Möbius equivariance: worst relative error {worst:.2e}");
+}
+
+#[test]
+fn sharpness_one_is_one_sharp_level_then_smooth_levels() {
+    for s in ALL {
+        let (m, ring) = torus_with_staircase(s);
+        let creases = edges_of(&ring, true);
+        let ones = vec![1.0; creases.len()];
+        let one = Tags::new().creases(&creases, &ones);
+        let infs = vec![INF; creases.len()];
+        let inf = Tags::new().creases(&creases, &infs);
+        let (two, _) = run_tagged(&m, &mobius(s, 2), &one).unwrap();
+        let (first, _) = run_tagged(&m, &mobius(s, 1), &inf).unwrap();
+        let (second, _) = common::run(&first, &mobius(s, 1)).unwrap();
+        assert_eq!(two, second, "{s:?}");
+    }
+}
+
+#[test]
+fn a_corner_tag_keeps_its_vertex() {
+    for s in [LOOP, CC] {
+        // A smooth vertex tagged as a corner, and a corner on a closed crease.
+        let (m, ring) = torus_with_staircase(s);
+        let creases = edges_of(&ring, true);
+        let infs = vec![INF; creases.len()];
+        let corner_ids = [ring[4], 30];
+        let tags = Tags::new()
+            .creases(&creases, &infs)
+            .corners(&corner_ids, &[INF, INF]);
+        let (out, _) = run_tagged(&m, &mobius(s, 2), &tags).unwrap();
+        for v in [ring[4], 30] {
+            assert_eq!(out.positions[v as usize], m.positions[v as usize], "{s:?} {v}");
+        }
+        // The corner splits the loop into an open curve from the corner back to itself.
+        let mut open: Vec<u32> = ring[4..].to_vec();
+        open.extend(&ring[..=4]);
+        let poly: Vec<Point> = open.iter().map(|&v| m.positions[v as usize]).collect();
+        let levels = level_meshes(&m, mobius(s, 1), &tags, 2);
+        let chain = descendants(&levels, &open, false);
+        let want = curve_levels(s, &poly, false, 2);
+        let err = chain
+            .iter()
+            .zip(&want)
+            .map(|(&v, &q)| dist(levels[2].positions[v as usize], q))
+            .fold(0.0, f64::max);
+        assert!(err <= 1e-12 * diameter(&poly), "{s:?}: {err:e}");
+    }
+}
+
+#[test]
+fn a_chain_ending_at_darts_is_smooth() {
+    // A crease that does not close and meets no corner or boundary cannot be cut (module
+    // docs of the kernel's crease step): the chain is subdivided smooth.
+    for s in ALL {
+        let (m, ring) = torus_with_staircase(s);
+        let creases = edges_of(&ring[..5], false);
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        let (tagged, _) = run_tagged(&m, &mobius(s, 2), &tags).unwrap();
+        let (plain, _) = common::run(&m, &mobius(s, 2)).unwrap();
+        assert_eq!(tagged, plain, "{s:?}");
+    }
+}
+
+#[test]
+fn the_spectrum_blends_with_the_tagged_linear_scheme() {
+    for s in ALL {
+        let (m, ring) = torus_with_staircase(s);
+        let creases = edges_of(&ring, true);
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        let (lin, _) = run_tagged(&m, &Options::new(s).levels(1), &tags).unwrap();
+        let (mob, _) = run_tagged(&m, &mobius(s, 1), &tags).unwrap();
+        let (zero, _) = run_tagged(&m, &mobius(s, 1).spectrum(0.0), &tags).unwrap();
+        assert_eq!(zero, lin, "{s:?}: weight 0");
+        let (one, _) = run_tagged(&m, &mobius(s, 1).spectrum(1.0), &tags).unwrap();
+        assert_eq!(one, mob, "{s:?}: weight 1");
+        for w in [0.25, 0.5, 0.75] {
+            let (mid, _) = run_tagged(&m, &mobius(s, 1).spectrum(w), &tags).unwrap();
+            for ((p, l), q) in mid.positions.iter().zip(&lin.positions).zip(&mob.positions) {
+                for k in 0..3 {
+                    let want = w * q[k] + (1.0 - w) * l[k];
+                    assert!((p[k] - want).abs() <= 1e-14 * (1.0 + want.abs()), "{s:?} {w}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_tags_keep_their_statuses_with_mobius() {
+    for s in ALL {
+        let (m, _) = torus_with_staircase(s);
+        let opts = mobius(s, 1);
+        let status = |t: &Tags<'_>| run_tagged(&m, &opts, t).unwrap_err();
+        let e = status(&Tags::new().creases(&[[0, 30]], &[INF]));
+        assert_eq!((e.status, e.element), (Status::TagNotAnEdge, 0));
+        let e = status(&Tags::new().creases(&[[0, 1], [1, 0]], &[INF, INF]));
+        assert_eq!((e.status, e.element), (Status::RepeatedTag, 1));
+        let e = status(&Tags::new().creases(&[[0, 1]], &[f64::NAN]));
+        assert_eq!((e.status, e.element), (Status::InvalidSharpness, 0));
+        let e = status(&Tags::new().corners(&[9999], &[INF]));
+        assert_eq!(e.status, Status::IndexOutOfRange);
+    }
+    // Schemes that take no tags still refuse them with Möbius.
+    let (m, _) = torus_with_staircase(CC);
+    let e = run_tagged(
+        &m,
+        &Options::new(Scheme::DooSabin).mobius(true),
+        &Tags::new().creases(&[[0, 1]], &[INF]),
+    )
+    .unwrap_err();
+    assert_eq!(e.status, Status::TagsNotSupported);
+}
