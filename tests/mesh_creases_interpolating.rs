@@ -398,11 +398,11 @@ fn bad_tags_for(s: Scheme, m: &OwnedMesh) {
     assert_eq!((e.status, e.element), (Status::RepeatedTag, 1));
     let e = err(&[[a, b]], &[], &[], &[]);
     assert_eq!(e.status, Status::InvalidArgument);
-    // The Möbius version takes no tags.
-    let one = [[a, b]];
-    let tags = Tags::new().creases(&one, &[1.0]);
-    let e = run_tagged(m, &Options::new(s).mobius(true), &tags).unwrap_err();
-    assert_eq!(e.status, Status::TagsNotSupported);
+    // The Möbius version takes tags (`tests/mesh_creases_mobius.rs`); its bad tags are the
+    // same statuses.
+    let e = run_tagged(m, &Options::new(s).mobius(true), &Tags::new().creases(&[[a, nv]], &[1.0]))
+        .unwrap_err();
+    assert_eq!((e.status, e.element), (Status::IndexOutOfRange, 0));
 }
 
 #[test]

@@ -703,7 +703,7 @@ pub fn run_tagged(
             Status::TagsNotSupported => {
                 return Some(CliError::bad_input(format!(
                     "{}: sharp-feature tags: {} does not take them (loop, catmull-clark, \
-                     butterfly and kobbelt do)",
+                     butterfly and kobbelt do, linear and Möbius)",
                     n0.file(),
                     ms.name()
                 )))

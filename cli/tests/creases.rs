@@ -43,9 +43,13 @@ fn cube() -> TMesh {
 
 /// The library's tagged result.
 fn library(m: &TMesh, s: Scheme, levels: usize, tags: &Tags<'_>) -> TMesh {
+    library_with(m, Options::new(s).levels(levels), tags)
+}
+
+/// The library's tagged result with `opts`.
+fn library_with(m: &TMesh, opts: Options, tags: &Tags<'_>) -> TMesh {
     let (offsets, indices) = m.csr();
     let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
-    let opts = Options::new(s).levels(levels);
     let mut s0 = vec![0u32; scheme::plan_scratch_size_tagged(&mesh, tags).unwrap()];
     let plan = scheme::plan_tagged(mesh, &opts, tags, &mut s0).unwrap();
     let mut su = vec![0u32; plan.scratch.u32s];
@@ -168,8 +172,13 @@ fn bad_tags_exit_2_naming_the_line() {
         ("t hole 1/0/0 1", "catmull-clark", "cube.obj:15: tag 'hole'"),
         (
             "t crease 2/1/0 0 1 1",
-            "mobius-catmull-clark",
+            "mobius-doo-sabin",
             "does not take them",
+        ),
+        (
+            "t crease 2/1/0 0 7 1",
+            "mobius-catmull-clark",
+            "cube.obj:15: crease tag 0 7",
         ),
         ("t crease 2/1/0 0 1 1", "doo-sabin", "does not take them"),
     ] {
@@ -287,4 +296,46 @@ fn butterfly_takes_obj_creases_and_the_crease_angle() {
         &Tags::new().creases(&all, &inf),
     );
     assert_eq!(read_off(&out).bits(), want.bits());
+}
+
+#[test]
+fn mobius_schemes_take_obj_creases() {
+    // A closed crease around the octahedron's equator, one edge semi-sharp: the Möbius
+    // versions give the library's tagged Möbius result.
+    let dir = TempDir::new("creases-mobius");
+    let input = dir.path("octa.obj");
+    std::fs::write(
+        &input,
+        format!("{OCTA}t crease 5/4/0 0 2 1 3 0 10 1.5 10 10\n"),
+    )
+    .unwrap();
+    let out = dir.path("out.off");
+    let creases = [[0, 2], [2, 1], [1, 3], [3, 0]];
+    let sharpness = [10.0, 1.5, 10.0, 10.0];
+    let tags = Tags::new().creases(&creases, &sharpness);
+    let m = octahedron();
+    for (name, s) in [
+        ("mobius-loop", Scheme::Loop),
+        ("mobius-butterfly", Scheme::ModifiedButterfly),
+    ] {
+        let o = run(&[
+            "subdivide",
+            "--scheme",
+            name,
+            "--levels",
+            "2",
+            input.to_str().unwrap(),
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code(&o), 0, "{name}: {}", stderr(&o));
+        let opts = Options::new(s).mobius(true).levels(2);
+        let want = library_with(&m, opts, &tags);
+        let got = read_off(&out);
+        assert_eq!(got.bits(), want.bits(), "{name}");
+        assert_ne!(
+            got.bits(),
+            library_with(&m, opts, &Tags::new()).bits(),
+            "{name}: the tags change nothing"
+        );
+    }
 }
