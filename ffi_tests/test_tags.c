@@ -16,6 +16,8 @@
  *    surface bulges), and a lone infinitely sharp Modified Butterfly edge gets its midpoint
  *    (the 4-point rule with the virtual end points 2 v - w at both ends), old vertices bit
  *    for bit;
+ *  - Möbius Loop and Modified Butterfly on the octahedron with its equator sharp keep every
+ *    vertex on the unit sphere and the equator's vertices on it (a great circle);
  *  - the statuses of bad tags, each naming the tag (crease i = i, corner j = crease_count + j),
  *    a short scratch, aliasing, NULL arrays and an unknown method.
  * Run under ASan+UBSan and valgrind like every C suite. */
@@ -267,6 +269,50 @@ static void test_butterfly_lone_crease_is_its_midpoint(void) {
     mesh_free(&o);
 }
 
+/* Möbius Loop and Modified Butterfly on the regular octahedron (on the unit sphere) with its
+ * equator (a great circle) infinitely sharp: the crease takes the Möbius curve rule, which
+ * keeps points of a circle on it, and each half takes the Möbius rules, which reproduce the
+ * sphere; so after 3 levels every output vertex is on the unit sphere and every vertex of
+ * the plane z = 0 on the equator. The linear tagged scheme leaves the sphere, and the
+ * untagged Möbius output differs from the tagged one. */
+static void test_mobius_crease_keeps_the_sphere(void) {
+    static const uint32_t equator[8] = {0, 2, 2, 1, 1, 3, 3, 0};
+    static const double s[4] = {10, 10, 10, 10};
+    static const uint32_t schemes[2] = {NLS_SCHEME_LOOP, NLS_SCHEME_MODIFIED_BUTTERFLY};
+    mesh o = octahedron(), r, lin, plain;
+    nls_tags t = no_tags();
+    size_t k, i, on_equator;
+    double worst, lin_worst;
+    t.crease_vertices = equator;
+    t.crease_sharpness = s;
+    t.crease_count = 4;
+    for (i = 0; i < 2; i++) {
+        CHECK_STATUS(run(&o, options(schemes[i], NLS_SUBDIVIDE_MOBIUS, 3), &t, &r, NULL), NLS_STATUS_OK);
+        CHECK_STATUS(run(&o, options(schemes[i], 0, 3), &t, &lin, NULL), NLS_STATUS_OK);
+        CHECK_STATUS(run(&o, options(schemes[i], NLS_SUBDIVIDE_MOBIUS, 3), NULL, &plain, NULL), NLS_STATUS_OK);
+        worst = 0.0;
+        lin_worst = 0.0;
+        on_equator = 0;
+        for (k = 0; k < r.nv; k++) {
+            const double *p = &r.p[3 * k], *q = &lin.p[3 * k];
+            double d = fabs(sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0);
+            double dl = fabs(sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - 1.0);
+            worst = d > worst ? d : worst;
+            lin_worst = dl > lin_worst ? dl : lin_worst;
+            on_equator += fabs(p[2]) <= 1e-12;
+        }
+        CHECK(worst < 1e-12);
+        CHECK(lin_worst > 1e-3);
+        /* The equator's 4 edges become 4 * 2^3 segments, with as many vertices. */
+        CHECK(on_equator == 32);
+        CHECK(!same_mesh(&r, &plain));
+        mesh_free(&r);
+        mesh_free(&lin);
+        mesh_free(&plain);
+    }
+    mesh_free(&o);
+}
+
 static void test_semi_sharp_decays(void) {
     static const double one[12] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
     static const double inf[12] = {10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10};
@@ -366,10 +412,10 @@ static void test_statuses(void) {
     CHECK(e == 3);
     mesh_free(&r);
     t.corner_count = 1;
-    /* Tags with a scheme or version that does not take them. */
+    /* Tags with a scheme that does not take them, linear or Möbius. */
     CHECK_STATUS(run(&c, options(NLS_SCHEME_DOO_SABIN, 0, 1), &t, &r, &e), NLS_STATUS_TAGS_NOT_SUPPORTED);
     mesh_free(&r);
-    CHECK_STATUS(run(&c, options(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1), &t, &r, &e),
+    CHECK_STATUS(run(&c, options(NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS, 1), &t, &r, &e),
                  NLS_STATUS_TAGS_NOT_SUPPORTED);
     mesh_free(&r);
     /* An unknown method; NULL arrays with a count. */
@@ -453,6 +499,7 @@ int main(void) {
     test_semi_sharp_decays();
     test_corner_keeps_its_vertex();
     test_butterfly_lone_crease_is_its_midpoint();
+    test_mobius_crease_keeps_the_sphere();
     test_statuses();
     return nls_summary("test_tags");
 }

@@ -1584,7 +1584,8 @@ nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, c
  * `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
  * pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then
  * `NLS_STATUS_TAGS_NOT_SUPPORTED` (no element) for tags with a scheme other than Loop,
- * Catmull–Clark, Modified Butterfly and Kobbelt or with `NLS_SUBDIVIDE_MOBIUS`; then the
+ * Catmull–Clark, Modified Butterfly and Kobbelt (linear, or Möbius with
+ * `NLS_SUBDIVIDE_MOBIUS`); then the
  * validation of the mesh (as `nls_mesh_plan`); then, tag by tag, creases first (the
  * element names the tag: crease `i` is `i`, corner `j` is `crease_count + j`):
  * `NLS_STATUS_INDEX_OUT_OF_RANGE` (a vertex not below `vertex_count`),

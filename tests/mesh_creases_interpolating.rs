@@ -400,8 +400,12 @@ fn bad_tags_for(s: Scheme, m: &OwnedMesh) {
     assert_eq!(e.status, Status::InvalidArgument);
     // The Möbius version takes tags (`tests/mesh_creases_mobius.rs`); its bad tags are the
     // same statuses.
-    let e = run_tagged(m, &Options::new(s).mobius(true), &Tags::new().creases(&[[a, nv]], &[1.0]))
-        .unwrap_err();
+    let e = run_tagged(
+        m,
+        &Options::new(s).mobius(true),
+        &Tags::new().creases(&[[a, nv]], &[1.0]),
+    )
+    .unwrap_err();
     assert_eq!((e.status, e.element), (Status::IndexOutOfRange, 0));
 }
 

@@ -16,8 +16,8 @@
 
 mod common;
 
-use common::{cube, icosahedron, jitter, octahedron, quad_grid, quad_torus, tri_grid, tri_torus};
 use common::OwnedMesh;
+use common::{cube, icosahedron, jitter, octahedron, quad_grid, quad_torus, tri_grid, tri_torus};
 use nlsubdiv::curve::mobius as curve;
 use nlsubdiv::mesh::MeshOut;
 use nlsubdiv::mobius::MobiusMap;
@@ -127,7 +127,11 @@ fn descendants(meshes: &[OwnedMesh], chain: &[u32], closed: bool) -> Vec<u32> {
 fn curve_levels(s: Scheme, poly: &[Point], closed: bool, levels: usize) -> Vec<Point> {
     let mut cur = poly.to_vec();
     for _ in 0..levels {
-        let n = if closed { 2 * cur.len() } else { 2 * cur.len() - 1 };
+        let n = if closed {
+            2 * cur.len()
+        } else {
+            2 * cur.len() - 1
+        };
         let mut out = vec![[0.0; 3]; n];
         let written = if approximating(s) {
             curve::refine_approximating(&cur, closed, &mut out)
@@ -307,7 +311,12 @@ fn cylinder(quads: bool, n: usize) -> (OwnedMesh, [Vec<u32>; 2]) {
     let mut faces = Vec::new();
     for k in 0..2 {
         for i in 0..n {
-            let q = [ring(k, i), ring(k, i + 1), ring(k + 1, i + 1), ring(k + 1, i)];
+            let q = [
+                ring(k, i),
+                ring(k, i + 1),
+                ring(k + 1, i + 1),
+                ring(k + 1, i),
+            ];
             if quads {
                 faces.push(q.to_vec());
             } else {
@@ -413,7 +422,11 @@ fn a_spherical_cage_with_a_tagged_circle_stays_on_its_sphere() {
                 .iter()
                 .map(|&p| (norm(p) - 1.0).abs())
                 .fold(0.0, f64::max);
-            assert!(off < 1e-12, "{s:?}, {} vertices: {off:e}", m.positions.len());
+            assert!(
+                off < 1e-12,
+                "{s:?}, {} vertices: {off:e}",
+                m.positions.len()
+            );
             // The circle is a crease: the linear tagged scheme leaves the sphere.
             let (lin, _) = run_tagged(&m, &Options::new(s).levels(3), &tags).unwrap();
             let lin_off = lin
@@ -481,7 +494,10 @@ fn tagged_mobius_subdivision_commutes_with_mobius_maps() {
                 let (a, ra) = run_tagged(&image, &opts, &tags).unwrap();
                 let (b, rb) = run_tagged(&m, &opts, &tags).unwrap();
                 // Which elements the fold guard changes is Möbius-invariant.
-                assert_eq!((ra.guarded, ra.first_guarded), (rb.guarded, rb.first_guarded));
+                assert_eq!(
+                    (ra.guarded, ra.first_guarded),
+                    (rb.guarded, rb.first_guarded)
+                );
                 assert_eq!(ra.fallbacks, rb.fallbacks);
                 if !literal && rb.guarded > 0 {
                     continue;
@@ -530,7 +546,10 @@ fn a_corner_tag_keeps_its_vertex() {
             .corners(&corner_ids, &[INF, INF]);
         let (out, _) = run_tagged(&m, &mobius(s, 2), &tags).unwrap();
         for v in [ring[4], 30] {
-            assert_eq!(out.positions[v as usize], m.positions[v as usize], "{s:?} {v}");
+            assert_eq!(
+                out.positions[v as usize], m.positions[v as usize],
+                "{s:?} {v}"
+            );
         }
         // The corner splits the loop into an open curve from the corner back to itself.
         let mut open: Vec<u32> = ring[4..].to_vec();
@@ -581,7 +600,10 @@ fn the_spectrum_blends_with_the_tagged_linear_scheme() {
             for ((p, l), q) in mid.positions.iter().zip(&lin.positions).zip(&mob.positions) {
                 for k in 0..3 {
                     let want = w * q[k] + (1.0 - w) * l[k];
-                    assert!((p[k] - want).abs() <= 1e-14 * (1.0 + want.abs()), "{s:?} {w}");
+                    assert!(
+                        (p[k] - want).abs() <= 1e-14 * (1.0 + want.abs()),
+                        "{s:?} {w}"
+                    );
                 }
             }
         }

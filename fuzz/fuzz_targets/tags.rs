@@ -6,8 +6,8 @@
 //!   untagged one without, `INVALID_ARGUMENT` for an unknown method;
 //! - the plan and the call refuse with the same status and element, and a refusal writes no
 //!   sizes, no report and no output; tags (creases first, then corners) name themselves;
-//! - tags with a scheme other than linear Loop, Catmull–Clark, Modified Butterfly or Kobbelt
-//!   are `TAGS_NOT_SUPPORTED` on a valid mesh;
+//! - tags with a scheme other than Loop, Catmull–Clark, Modified Butterfly or Kobbelt (linear
+//!   or Möbius) are `TAGS_NOT_SUPPORTED` on a valid mesh;
 //! - on success: the counts are the plan's, every position is finite, a second call gives the
 //!   same bits, and with no tags the result is the untagged call's, bit for bit.
 //!
@@ -281,8 +281,7 @@ fuzz_target!(|data: &[u8]| {
         let tag_scheme = (scheme == NLS_SCHEME_LOOP
             || scheme == NLS_SCHEME_CATMULL_CLARK
             || scheme == NLS_SCHEME_MODIFIED_BUTTERFLY
-            || scheme == NLS_SCHEME_KOBBELT)
-            && flags & NLS_SUBDIVIDE_MOBIUS == 0;
+            || scheme == NLS_SCHEME_KOBBELT);
         let (su0, _, _) = plan(&o, &m, None, su_plain);
         if su0 == Status::Ok && !tags.is_empty() && !tag_scheme && method != 7 && levels > 0 {
             assert_eq!(s, Status::TagsNotSupported);

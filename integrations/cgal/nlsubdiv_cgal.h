@@ -770,8 +770,9 @@ nlsubdiv::flat::FlatTags tags_of(const PM& pm, const NP& np, const Level<PM>& lv
 
 /// The bulk path: flat copy -> nls_mesh_subdivide -> the mesh rebuilt (old vertices
 /// first, in order; the mesh's internal point map receives the positions). With sharp
-/// features ([`tags_of`]) the tagged calls (linear Loop, Catmull–Clark, Modified Butterfly
-/// and Kobbelt; any other scheme is NLS_STATUS_TAGS_NOT_SUPPORTED, mesh unchanged).
+/// features ([`tags_of`]) the tagged calls (Loop, Catmull–Clark, Modified Butterfly and
+/// Kobbelt, linear or Möbius; any other scheme is NLS_STATUS_TAGS_NOT_SUPPORTED, mesh
+/// unchanged).
 template <class PM, class NP>
 Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts) {
   typedef typename CGAL::GetVertexPointMap<PM, NP>::type Vpm;
@@ -887,14 +888,11 @@ Report with_mask(PM& pm, const NP& np, Options opts) {
   const unsigned int levels = iterations<PM>(np);
   Report total;
   {
-    // The star rules have no sharp features (the Möbius schemes take no tags).
+    // The star rules have no sharp features: a mesh with tags takes the bulk path, whose
+    // tagged calls subdivide the creases with the Möbius curve rules.
     Level<PM> lv;
     lv.build(pm, vpm, SIZE_MAX);
-    if (!tags_of(pm, np, lv, opts).empty()) {
-      total.status = NLS_STATUS_TAGS_NOT_SUPPORTED;
-      total.level = 1;
-      return total;
-    }
+    if (!tags_of(pm, np, lv, opts).empty()) return bulk(pm, Mask::scheme, Mask::flags, np, opts);
   }
   // CGAL's hosts assert CGAL::is_valid_polygon_mesh after each step (it refuses isolated
   // vertices, which the kernel carries through): such meshes take the bulk path, which

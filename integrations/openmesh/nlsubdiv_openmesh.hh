@@ -446,9 +446,9 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
 /// Sharp features: with set_feature_creases(true), the mesh's feature edges
 /// (`status(eh).feature()`, OpenMesh's own flag for sharp edges) are crease tags of the given
 /// sharpness and its feature vertices corners (linear Loop and Catmull–Clark with
-/// OpenSubdiv's rules, linear Modified Butterfly and Kobbelt with their 4-point crease rule;
-/// any other scheme, or the Möbius flag, fails with NLS_STATUS_TAGS_NOT_SUPPORTED when the
-/// mesh has a feature). The tags are carried level by
+/// OpenSubdiv's rules, linear Modified Butterfly and Kobbelt with their 4-point crease rule,
+/// the Möbius versions of these four with the Möbius curve rules along the creases; any
+/// other scheme fails with NLS_STATUS_TAGS_NOT_SUPPORTED when the mesh has a feature). The tags are carried level by
 /// level inside the one call, so update_points = false (one call per level) is refused with
 /// NLS_STATUS_INVALID_ARGUMENT when there is a feature. The output carries no feature flags.
 template <typename MeshType, uint32_t Scheme, uint32_t Flags, typename RealType = double>

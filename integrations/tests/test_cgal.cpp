@@ -306,8 +306,10 @@ static int bad_child(const std::string& path, int fd, bool valid) {
 /// vertex_is_constrained_map (corners): a unit cube with all twelve edges constrained equals
 /// the C driver's tagged call with the same edges given as vertex pairs, keeps its corners
 /// and has 12 (2^k - 1) + 8 vertices on its edge lines after k = 2 levels of Catmull-Clark;
-/// one constrained corner stays put under Loop on an octahedron; a Möbius function with a
-/// constrained edge is refused (NLS_STATUS_TAGS_NOT_SUPPORTED), mesh unchanged.
+/// one constrained corner stays put under Loop on an octahedron; Möbius Catmull-Clark with
+/// the same edges equals the driver's tagged Möbius call and keeps the edge lines, Möbius
+/// Loop keeps a constrained corner; Doo-Sabin with a constrained edge is refused
+/// (NLS_STATUS_TAGS_NOT_SUPPORTED), mesh unchanged.
 static void sharp_features(itest::Tally& t) {
   static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -370,18 +372,44 @@ static void sharp_features(itest::Tally& t) {
     t.pass("CGAL vertex_is_constrained_map corner kept, the free apex moves", 0);
   else
     t.fail(std::string("CGAL corner: ") + r2.message());
-  // A scheme without tag rules refuses, mesh unchanged.
+  // Möbius Catmull-Clark with the twelve constrained edges: the driver's tagged Möbius call
+  // (every vertex a corner: each face refined alone, its edges open Möbius curves of
+  // collinear points, so the edge lines stay); Möbius Loop keeps a constrained corner.
   SM b = cube;
   auto ecm2 = b.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
-  nc::Report r3 = nc::mobius_catmull_clark_subdivision(b, CGAL::parameters::number_of_iterations(1).edge_is_constrained_map(ecm2));
+  nc::Report r3 = nc::mobius_catmull_clark_subdivision(b, CGAL::parameters::number_of_iterations(2).edge_is_constrained_map(ecm2));
+  nlsubdiv::flat::FlatMesh mwant;
+  const nls_status ms = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, fin, 2, mwant, el, fb, &tags);
+  Flat mgot = flat_of(b), mref;
+  mref.pos = mwant.positions;
+  mref.off = mwant.offsets;
+  mref.idx = mwant.indices;
+  itest::Cmp mc = itest::compare(mgot, mref);
+  std::size_t mon = 0;
+  for (std::size_t v = 0; v < mgot.nv(); ++v) {
+    int n = 0;
+    for (int k = 0; k < 3; ++k) n += (std::fabs(mgot.pos[3 * v + k]) <= 1e-12 || std::fabs(mgot.pos[3 * v + k] - 1.0) <= 1e-12);
+    mon += n >= 2;
+  }
   SM d = make_oct();
   auto vcm2 = d.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
   put(vcm2, SM::Vertex_index(4), true);
-  nc::Report r4 = nc::mobius_loop_subdivision(d, CGAL::parameters::number_of_iterations(1).vertex_is_constrained_map(vcm2));
-  if (r3.status == NLS_STATUS_TAGS_NOT_SUPPORTED && flat_of(b) == in && r4.status == NLS_STATUS_TAGS_NOT_SUPPORTED)
-    t.pass("CGAL Möbius functions refuse constrained edges and vertices, mesh unchanged", 0);
+  nc::Report r4 = nc::mobius_loop_subdivision(d, CGAL::parameters::number_of_iterations(2).vertex_is_constrained_map(vcm2));
+  const auto q4 = d.point(SM::Vertex_index(4)), q5 = d.point(SM::Vertex_index(5));
+  if (ms == NLS_STATUS_OK && r3.ok() && mc.ok(0.0) && mon == 12 * 3 + 8 && r4.ok() && q4.x() == 0 && q4.y() == 0 && q4.z() == 1 &&
+      q5.z() != -1)
+    t.pass("CGAL Möbius functions take constrained edges (= driver tags) and corners", mc.max_rel);
   else
-    t.fail(std::string("CGAL Möbius with features: ") + r3.message() + " / " + r4.message());
+    t.fail(std::string("CGAL Möbius with features: ") + r3.message() + "; " + mc.summary() + " on_edges=" + std::to_string(mon) +
+           " / " + r4.message());
+  // A scheme without tag rules refuses, mesh unchanged.
+  SM e = cube;
+  auto ecm3 = e.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
+  nc::Report r5 = nc::mobius_doo_sabin_subdivision(e, CGAL::parameters::number_of_iterations(1).edge_is_constrained_map(ecm3));
+  if (r5.status == NLS_STATUS_TAGS_NOT_SUPPORTED && flat_of(e) == in)
+    t.pass("CGAL Doo-Sabin refuses constrained edges, mesh unchanged", 0);
+  else
+    t.fail(std::string("CGAL Doo-Sabin with features: ") + r5.message());
 }
 
 // ---- CGAL-style entry points (nlsubdiv::Subdivision_method_3) ----

@@ -397,8 +397,10 @@ static void synthetic(itest::Tally& t) {
 /// twelve edges feature keeps its corners and has 12 (2^k - 1) + 8 vertices on its edge lines
 /// after k = 2 levels of Catmull-Clark (the rules' consequence, not a recorded output), and
 /// so does Kobbelt (its 4-point crease rule keeps the edges straight), each equal to the
-/// driver's tagged call; no feature is the untagged result; a Möbius subdivider with features
-/// is refused (NLS_STATUS_TAGS_NOT_SUPPORTED) with the mesh unchanged.
+/// driver's tagged call; so does Möbius Catmull–Clark (every vertex a corner: each face
+/// refined alone, its edges open Möbius curves of collinear points); no feature is the
+/// untagged result; a Doo–Sabin subdivider with features is refused
+/// (NLS_STATUS_TAGS_NOT_SUPPORTED) with the mesh unchanged.
 static void feature_creases(itest::Tally& t) {
   static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -473,9 +475,40 @@ static void feature_creases(itest::Tally& t) {
     t.pass("OpenMesh feature creases without features = untagged", 0);
   else
     t.fail("feature creases without features differ from the untagged subdivider");
+  // Möbius Catmull-Clark with the same features: the driver's tagged Möbius bits. Every
+  // vertex is a corner (three sharp edges), so each face is refined alone with its edges as
+  // open Möbius curves between corners: collinear points stay on their line and a planar
+  // face in its plane, so the edge lines are kept as by the linear rules.
+  {
+    nlsubdiv::flat::FlatMesh mwant;
+    uint32_t mel = 0, mfb = 0;
+    nls_status ms = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, in, 2, mwant, mel, mfb, &tags);
+    Poly m = cube;
+    nom::MobiusCatmullClarkBulkT<Poly> msd;
+    msd.set_feature_creases(true);
+    const bool mok = msd(m, 2);
+    Flat mgot = flat_of(m);
+    const bool msame =
+        ms == NLS_STATUS_OK && mok && mgot.pos == mwant.positions && mgot.off == mwant.offsets && mgot.idx == mwant.indices;
+    std::size_t mon = 0, on_faces = 0;
+    for (std::size_t v = 0; v < mgot.nv(); ++v) {
+      int n = 0;
+      for (int k = 0; k < 3; ++k) n += (std::fabs(mgot.pos[3 * v + k]) <= 1e-12 || std::fabs(mgot.pos[3 * v + k] - 1.0) <= 1e-12);
+      mon += n >= 2;
+      on_faces += n >= 1;
+    }
+    Poly mp = plain;
+    nom::MobiusCatmullClarkBulkT<Poly> mplain;
+    const bool differs = mplain(mp, 2) && !(flat_of(mp) == mgot);
+    if (msame && mon == 12 * 3 + 8 && on_faces == mgot.nv() && differs)
+      t.pass("OpenMesh Möbius Catmull-Clark feature edges = driver tags (sharp cube keeps its edges and faces)", 0);
+    else
+      t.fail(std::string("Möbius feature creases: ") + (mok ? "" : msd.message()) + (msame ? "" : " differs from the tagged driver") +
+             " on_edges=" + std::to_string(mon) + " on_faces=" + std::to_string(on_faces) + (differs ? "" : " same as untagged"));
+  }
   // Schemes without tag rules refuse a mesh with features, unchanged.
   Poly d = cube;
-  nom::MobiusCatmullClarkBulkT<Poly> mob;
+  nom::MobiusDooSabinT<Poly> mob;
   mob.set_feature_creases(true);
   const bool refused = !mob(d, 1) && mob.status() == NLS_STATUS_TAGS_NOT_SUPPORTED && flat_of(d) == flat_of(cube);
   Poly e = cube;
@@ -483,7 +516,7 @@ static void feature_creases(itest::Tally& t) {
   per_level.set_feature_creases(true);
   const bool refused2 = !per_level(e, 1, false) && per_level.status() == NLS_STATUS_INVALID_ARGUMENT;
   if (refused && refused2)
-    t.pass("features refused by Möbius subdividers and by per-level calls, mesh unchanged", 0);
+    t.pass("features refused by Doo-Sabin and by per-level calls, mesh unchanged", 0);
   else
     t.fail(std::string("features not refused: ") + mob.message() + " / " + per_level.message());
 }

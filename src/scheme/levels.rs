@@ -200,7 +200,16 @@ pub(super) fn run(
         };
         let sharp = tagged.then_some(&sharp);
         let (written, r) = if k + 1 == levels {
-            step(scheme, mobius, sharp, &topo, out, step_scratch, crease, exec)?
+            step(
+                scheme,
+                mobius,
+                sharp,
+                &topo,
+                out,
+                step_scratch,
+                crease,
+                exec,
+            )?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;

@@ -14,7 +14,8 @@
 //! levels in the caller's [`Scratch`], and returns a [`Report`]. Parameters come in the order
 //! input, options, scratch, output. [`Scheme::Spherelike`] (seed 003 §3, [`spherelike`]) runs
 //! through the same path. A mesh with sharp-feature tags ([`Tags`]: creases and corners with
-//! OpenSubdiv's conventions, for Loop, Catmull–Clark, Modified Butterfly and Kobbelt) takes
+//! OpenSubdiv's conventions, for Loop, Catmull–Clark, Modified Butterfly and Kobbelt, linear
+//! or Möbius) takes
 //! [`plan_tagged`] and [`subdivide_tagged`], the same path with the tags next to the mesh.
 //!
 //! Sizes are counted in elements of the buffer they size (points, `u32` entries, faces); a
@@ -169,9 +170,10 @@ impl Scheme {
         )
     }
 
-    /// Whether the linear scheme takes sharp-feature tags ([`plan_tagged`], `docs/creases.md`):
+    /// Whether the scheme takes sharp-feature tags ([`plan_tagged`], `docs/creases.md`):
     /// Loop and Catmull–Clark (OpenSubdiv's rules), Modified Butterfly and Kobbelt (their
-    /// 4-point boundary rule along the creases).
+    /// 4-point boundary rule along the creases); their Möbius versions too (the Möbius curve
+    /// rules along the creases, [`mobius`]).
     pub const fn takes_tags(self) -> bool {
         matches!(
             self,

@@ -14,11 +14,11 @@
 
 use super::driver::Driver;
 use crate::blend::f4;
+use crate::curve::four_point::virtual_end_point;
 use crate::curve::mobius::end_edge_point;
 use crate::error::Result;
 use crate::mesh::{get, set, NONE};
 use crate::point::{midpoint, Point};
-use crate::curve::four_point::virtual_end_point;
 
 impl Driver<'_, '_, '_, '_> {
     /// The boundary neighbours of boundary half-edge `h = (a → b)`: `(P_{i−1}, P_{i+2})`.
@@ -52,7 +52,10 @@ impl Driver<'_, '_, '_, '_> {
     pub(super) fn boundary_segment(&self, h: u32) -> Result<([Point; 4], Result<Point>)> {
         let topo = self.topo;
         let (i0, i3) = self.boundary_outer(h)?;
-        let (a, b) = (topo.position(topo.origin(h)?)?, topo.position(topo.dest(h)?)?);
+        let (a, b) = (
+            topo.position(topo.origin(h)?)?,
+            topo.position(topo.dest(h)?)?,
+        );
         let (before, after) = (topo.position(i0)?, topo.position(i3)?);
         let (ca, cb) = self.corner_ends(h)?;
         let q = match (ca, cb) {

@@ -86,10 +86,7 @@ pub(crate) fn scratch(
     .iter()
     .try_fold(0usize, |a, &b| cadd(a, b))?;
     let out = cadd(cadd(cut_v, corners)?, faces)?;
-    let points = cadd(
-        cadd(cut_v, out)?,
-        super::candidate_points(cut_v, corners)?,
-    )?;
+    let points = cadd(cadd(cut_v, out)?, super::candidate_points(cut_v, corners)?)?;
     Ok(ScratchSizes { u32s, points })
 }
 
@@ -162,16 +159,8 @@ pub(crate) fn step(
     let mut cut_out = MeshOut::new(c_pos, c_offs, c_idx);
     let corner: &[u32] = corner;
     let rename = |e: Error| rename_error(e, topo, &cut_topo, copy_of);
-    let (_, mut report) = super::step(
-        scheme,
-        &cut_topo,
-        &mut cut_out,
-        points,
-        opts,
-        exec,
-        corner,
-    )
-    .map_err(rename)?;
+    let (_, mut report) =
+        super::step(scheme, &cut_topo, &mut cut_out, points, opts, exec, corner).map_err(rename)?;
     // The uncut level's output: its pattern, the first copy's vertex point (the vertex
     // itself), the edge point of each edge's representative half-edge, the face points.
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;

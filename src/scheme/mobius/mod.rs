@@ -48,7 +48,9 @@
 //!   of canonical images), `vertex_pass.rs` (the pass every driver runs), `ears.rs`
 //!   (substitute forms for ears);
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
-//!   (boundary curves);
+//!   (boundary curves, closed or open between corners);
+//! * sharp features: `crease.rs` (a tagged level refined as the level cut along its sharp
+//!   edges, so creases are boundary curves);
 //! * the fold guard: `trust.rs` (the criterion), `spectrum.rs` (the interpolated form
 //!   `m_τ`), `guard.rs` (its passes and counts);
 //! * `drivers/`: one per scheme, choosing the rule and the blends; `driver.rs`: the state of
