@@ -16,9 +16,14 @@
 //!   paper's boundary form, §4.2): the faces across a crease do not shape this side, as the
 //!   cut mesh refines each side as if the other were absent;
 //! * a **corner** — a vertex tagged as one, or where three or more sharp edges (boundary
-//!   edges included) meet — ends the curves through it: its copies are marked for the
-//!   boundary rules, which use the open-curve rules of [`crate::curve::mobius`] next to it
-//!   and keep it in place; a corner tag on a smooth vertex keeps it in place too.
+//!   edges included, counted before darts are given up: the linear rules' classification)
+//!   meet — ends the curves through it: its copies are marked for the boundary rules, which
+//!   use the open-curve rules of [`crate::curve::mobius`] next to it and keep it in place; a
+//!   corner of Loop or Catmull–Clark left with no cut edge stays in place too. A smooth edge
+//!   from a corner to a non-corner takes the non-corner's candidate alone where it has one
+//!   (`edges.rs`): a corner is no smooth point, and the canonical form of its sector
+//!   extrapolates one — on fandisk the blend with that candidate flipped thin triangles next
+//!   to the corners of planar faces.
 //!
 //! Everything is Möbius-equivariant, because the cut is combinatorial and every rule used is:
 //! a tagged circle stays a circle, a tagged great circle of a spherical cage stays on the
@@ -118,31 +123,28 @@ pub(crate) fn step(
 ) -> Result<(MeshSizes, MobiusReport)> {
     let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
     let nc = topo.num_half_edges();
+    let cut_v = cadd(nv, nc)?;
     let cut = take(&mut u32s, ne)?;
     let count = take(&mut u32s, nv)?;
-    let any = cut_edges(topo, sh, cut, count)?;
-    let mut tagged_corner = false;
-    for v in 0..nv as u32 {
-        tagged_corner |= sharp(sh.vertex(v)?);
-    }
-    if !any && !tagged_corner {
+    let copy_of = take(&mut u32s, cut_v)?;
+    let corner = take(&mut u32s, cut_v)?;
+    // The corners of the uncut level first (`corner[..nv]`), then those of the copies.
+    let any = cut_edges(topo, sh, cut, count, corner)?;
+    let any_corner = corner.get(..nv).ok_or(internal())?.iter().any(|&c| c != 0);
+    if !any && !any_corner {
         // Nothing sharp at this level: the untagged step, bit for bit.
         let cand = &mut *points;
         return super::step(scheme, topo, out, cand, opts, exec, &[]);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
-    let cut_v = cadd(nv, nc)?;
-    let copy_of = take(&mut u32s, cut_v)?;
-    let corner = take(&mut u32s, cut_v)?;
     let cut_idx = take(&mut u32s, nc)?;
     let n_cut = split_vertices(topo, cut, count, copy_of, cut_idx)?;
     let copy_of = copy_of.get(..n_cut).ok_or(internal())?;
     let corner = corner.get_mut(..n_cut).ok_or(internal())?;
-    for (c, &v) in corner.iter_mut().zip(copy_of) {
-        let meets = get(count, v as usize)? + if topo.is_boundary_vertex(v)? { 2 } else { 0 };
-        let ends = get(count, v as usize)? >= 1 && meets >= 3;
-        *c = u32::from(ends || sharp(sh.vertex(v)?));
+    for c in nv..n_cut {
+        let v = get(copy_of, c)? as usize;
+        set(corner, c, get(corner, v)?)?;
     }
     let pos = take(&mut points, n_cut)?;
     for (p, &v) in pos.iter_mut().zip(copy_of) {
@@ -182,12 +184,12 @@ pub(crate) fn step(
             set(dst, nv + ne + f, get(src, n_cut + cut_ne + f)?)?;
         }
     }
-    // A tagged corner of an approximating scheme stays (the boundary rules keep those on a
-    // curve; this keeps those in a smooth region).
+    // A corner of an approximating scheme stays (the boundary rules keep those on a curve;
+    // this keeps those in a smooth region: a corner tag there, or sharp edges all peeled).
     if matches!(scheme, Scheme::Loop | Scheme::CatmullClark) {
-        for v in 0..nv as u32 {
-            if sharp(sh.vertex(v)?) {
-                set(dst, v as usize, topo.position(v)?)?;
+        for v in 0..nv {
+            if get(corner, v)? != 0 {
+                set(dst, v, topo.position(v as u32)?)?;
             }
         }
     }
@@ -196,16 +198,24 @@ pub(crate) fn step(
     Ok((sizes, report))
 }
 
-/// Marks in `cut` the edges the step cuts along, counts them per vertex in `count`, and
-/// returns whether there is one. An interior edge is cut when it is sharp at this level,
-/// unless it ends at a dart: an interior vertex with one cut edge gives it up, which may
-/// leave the vertex at its other end a dart in turn (module docs) — followed along the chain
-/// at once, so the result does not depend on the order the vertices are visited in.
+/// Marks in `cut` the edges the step cuts along, counts them per vertex in `count`, marks
+/// the corners in `corner` and returns whether there is a cut edge.
+///
+/// An interior edge is cut when it is sharp at this level, unless it ends at a dart: an
+/// interior vertex with one cut edge gives it up, which may leave the vertex at its other
+/// end a dart in turn (module docs) — followed along the chain at once, so the result does
+/// not depend on the order the vertices are visited in.
+///
+/// A corner is a vertex tagged as one, or one where three or more sharp edges meet,
+/// boundary edges counted, **before** the darts are given up: the classification of the
+/// linear rules (OpenSubdiv's), so a vertex that is a corner there is one here, even when a
+/// chain through it ends at a dart.
 fn cut_edges(
     topo: &Topology<'_, '_>,
     sh: &Sharpness<'_>,
     cut: &mut [u32],
     count: &mut [u32],
+    corner: &mut [u32],
 ) -> Result<bool> {
     count.fill(0);
     for e in 0..topo.num_edges() as u32 {
@@ -218,6 +228,12 @@ fn cut_edges(
                 set(count, v as usize, get(count, v as usize)? + 1)?;
             }
         }
+    }
+    for v in 0..topo.num_vertices() as u32 {
+        let n = get(count, v as usize)?;
+        let meets = n + if topo.is_boundary_vertex(v)? { 2 } else { 0 };
+        let ends = n >= 1 && meets >= 3;
+        set(corner, v as usize, u32::from(ends || sharp(sh.vertex(v)?)))?;
     }
     for v in 0..topo.num_vertices() as u32 {
         let mut u = v;

@@ -7,7 +7,7 @@
 use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
-use super::form::present;
+use super::form::{present, MISSING};
 use crate::blend::f4_hinted;
 use crate::error::Result;
 use crate::exec::pass;
@@ -44,11 +44,12 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let ne = topo.num_edges();
         let edge_c: &[Point] = self.edge_c;
+        let corners: &[u32] = self.corners;
         let strict = self.strict;
         let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
         let t = pass(self.exec, out, |first, out, tally| {
             let mut f = |k: usize| chunk_fallback(strict, tally, start + k);
-            blend_edge_range(topo, edge_c, first, out, &mut f, linear)
+            blend_edge_range(topo, edge_c, corners, first, out, &mut f, linear)
         })?;
         self.add_fallbacks(t);
         Ok(())
@@ -57,9 +58,11 @@ impl Driver<'_, '_, '_, '_> {
 
 /// The interior edge points of edges `first..first + out.len()` (boundary edges untouched),
 /// `fallback(e)` counting an edge that takes `linear(e)`.
+#[allow(clippy::too_many_arguments)]
 fn blend_edge_range(
     topo: &Topology<'_, '_>,
     edge_c: &[Point],
+    corners: &[u32],
     first: usize,
     out: &mut [Point],
     fallback: &mut dyn FnMut(usize) -> Result<()>,
@@ -85,13 +88,24 @@ fn blend_edge_range(
             if t == NONE {
                 continue;
             }
+            let (va, vb) = (topo.origin(h)?, topo.dest(h)?);
+            // Next to a corner of a sharp feature (`crease.rs`), the other end's candidate
+            // alone where it has one (unless it is a corner too): a corner is no smooth
+            // point, and its sector's form extrapolates one (docs/creases.md).
+            let corner = |v: u32| corners.get(v as usize).is_some_and(|&c| c != 0);
+            let (mut ca, mut cb) = (get(edge_c, h as usize)?, get(edge_c, t as usize)?);
+            if corner(va) && !corner(vb) && present(&cb) {
+                ca = MISSING;
+            } else if corner(vb) && !corner(va) && present(&ca) {
+                cb = MISSING;
+            }
             batch
                 .try_push(EdgeInputs {
                     e,
-                    a: topo.position(topo.origin(h)?)?,
-                    b: topo.position(topo.dest(h)?)?,
-                    ca: get(edge_c, h as usize)?,
-                    cb: get(edge_c, t as usize)?,
+                    a: topo.position(va)?,
+                    b: topo.position(vb)?,
+                    ca,
+                    cb,
                     hint: topo.position(topo.dest(topo.next(h)?)?)?,
                 })
                 .map_err(|_| internal())?;
