@@ -635,3 +635,83 @@ fn bad_tags_keep_their_statuses_with_mobius() {
     .unwrap_err();
     assert_eq!(e.status, Status::TagsNotSupported);
 }
+
+/// The circumcentre and circumradius of the triangle `a b c`.
+fn circumcircle(a: Point, b: Point, c: Point) -> (Point, f64) {
+    let sub = |p: Point, q: Point| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let cross = |p: Point, q: Point| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    let dot = |p: Point, q: Point| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+    let (u, v) = (sub(b, a), sub(c, a));
+    let w = cross(u, v);
+    let t1 = cross(w, u);
+    let t2 = cross(v, w);
+    let s = 2.0 * dot(w, w);
+    let (k1, k2) = (dot(v, v) / s, dot(u, u) / s);
+    let o = [
+        a[0] + k1 * t1[0] + k2 * t2[0],
+        a[1] + k1 * t1[1] + k2 * t2[1],
+        a[2] + k1 * t1[2] + k2 * t2[2],
+    ];
+    (o, dist(o, a))
+}
+
+#[test]
+fn a_crease_curve_of_three_points_takes_the_linear_rule_in_the_default_mode() {
+    // A thin triangle of a grid with its three edges sharp: a closed crease of three points.
+    // The paper's rules put its curve on the triangle's circumcircle (any three points are
+    // Möbius images of any other three); the default mode takes the linear curve rule there
+    // and counts it as guarded.
+    for s in [LOOP, MB] {
+        let mut m = jitter(&tri_grid(4, 4), 0.02, 9);
+        let f = m.faces()[10].clone();
+        // Thin: the third corner near the middle of the first two.
+        let (a, b) = (m.positions[f[0] as usize], m.positions[f[1] as usize]);
+        m.positions[f[2] as usize] = [
+            0.5 * (a[0] + b[0]) + 0.05,
+            0.5 * (a[1] + b[1]) + 0.08,
+            0.5 * (a[2] + b[2]),
+        ];
+        let creases = edges_of(&f, true);
+        let tags = Tags::new().creases(&creases, &[INF; 3]);
+        let ids = edge_ids(&m);
+        let nv = m.positions.len();
+        let p = |v: u32| m.positions[v as usize];
+        let (o, r) = circumcircle(p(f[0]), p(f[1]), p(f[2]));
+        let (lit, lr) = run_tagged(&m, &mobius(s, 1).literal(true), &tags).unwrap();
+        let (def, dr) = run_tagged(&m, &mobius(s, 1), &tags).unwrap();
+        assert_eq!(lr.guarded, 0);
+        assert!(dr.guarded >= 3, "{s:?}: {}", dr.guarded);
+        for [x, y] in creases {
+            let k = nv + ids[&[x.min(y), x.max(y)]] as usize;
+            // The paper's rules: on the circumcircle (the Möbius curve of three points).
+            assert!((dist(lit.positions[k], o) - r).abs() < 1e-12 * r, "{s:?}");
+            // The default: the linear curve rule (the midpoint for Loop, the 4-point rule of
+            // the closed curve for Butterfly), which lies off the circle.
+            let want = if s == LOOP {
+                let (a, b) = (p(x), p(y));
+                [
+                    0.5 * (a[0] + b[0]),
+                    0.5 * (a[1] + b[1]),
+                    0.5 * (a[2] + b[2]),
+                ]
+            } else {
+                let z = f.iter().copied().find(|&v| v != x && v != y).unwrap();
+                let (a, b, c) = (p(x), p(y), p(z));
+                let w = |i: usize| 9.0 / 16.0 * (a[i] + b[i]) - 1.0 / 8.0 * c[i];
+                [w(0), w(1), w(2)]
+            };
+            assert!(
+                dist(def.positions[k], want) < 1e-14,
+                "{s:?}: {:?}",
+                def.positions[k]
+            );
+            assert!((dist(def.positions[k], o) - r).abs() > 1e-3 * r);
+        }
+    }
+}

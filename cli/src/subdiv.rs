@@ -668,7 +668,9 @@ fn run_by_levels(
 /// [`run`] for a mesh with sharp-feature tags: every level in one core call
 /// (`scheme::subdivide_tagged`), which carries the tags to the child edges and vertices from
 /// level to level (one call per level would lose them). Loop, Catmull–Clark, Modified
-/// Butterfly and Kobbelt, linear; the kernel refuses the others with a status this names.
+/// Butterfly and Kobbelt, linear or Möbius (with `mode`'s strict, literal and spectrum; the
+/// tagged call runs on the calling thread); the kernel refuses the others with a status
+/// this names.
 ///
 /// # Errors
 /// Those of [`run`]; exit 2 for a tag the kernel refuses, naming the file and the line of the
@@ -680,6 +682,7 @@ pub fn run_tagged(
     levels: usize,
     tags: &crate::mesh::FileTags,
     method: scheme::CreaseMethod,
+    mode: Mode,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
     let started = Instant::now();
@@ -728,7 +731,12 @@ pub fn run_tagged(
         };
         Some(CliError::bad_input(format!("{at}: {what}: {why}")))
     };
-    let opts = Options::new(ms.scheme).mobius(ms.mobius).levels(levels);
+    let opts = Options::new(ms.scheme)
+        .mobius(ms.mobius)
+        .strict(mode.strict)
+        .literal(mode.literal)
+        .spectrum(mode.spectrum)
+        .levels(levels);
     // Validation (naming the file's elements) and the sizes of every level, as `run`.
     {
         let len = scheme::plan_scratch_size(&mesh0)
@@ -773,12 +781,17 @@ pub fn run_tagged(
     )
     .map_err(|e| {
         tag_error(e).unwrap_or_else(|| {
-            CliError::internal(format!(
-                "{}: {} levels of {}: {e}",
-                n0.file(),
-                levels,
-                ms.name()
-            ))
+            if levels == 1 {
+                // The element is an output vertex of the one step: named by the input's.
+                call_error(e, ms, mesh0, &n0)
+            } else {
+                CliError::bad_input(format!(
+                    "{}: {} levels of {} with sharp-feature tags: {e}",
+                    n0.file(),
+                    levels,
+                    ms.name()
+                ))
+            }
         })
     })?;
     let kernel = kernel_started.elapsed();
@@ -787,13 +800,23 @@ pub fn run_tagged(
             "tagged subdivision wrote other sizes than planned",
         ));
     }
-    // Tags are taken by the linear schemes only: no fallback, no fold guard.
+    // Later levels are described by their index (as `run` does).
+    let describe = |level: u32, i: u32| {
+        let what = if level == 1 {
+            describe_fallback(ms, mesh0, i, &n0)
+        } else {
+            format!("an element of level {}", level - 1)
+        };
+        format!("step {level}, output vertex {i} ({what})")
+    };
     Ok(Outcome {
         mesh: next,
-        fallbacks: 0,
-        first_fallback: None,
-        guarded: 0,
-        first_guarded: None,
+        fallbacks: u64::from(report.fallbacks),
+        first_fallback: (report.fallbacks > 0)
+            .then(|| describe(report.first_fallback_level, report.first_fallback)),
+        guarded: u64::from(report.guarded),
+        first_guarded: (report.guarded > 0)
+            .then(|| describe(report.first_guarded_level, report.first_guarded)),
         elapsed: started.elapsed(),
         kernel,
         // The tagged rules run on the calling thread (tests/parallel.rs covers the untagged

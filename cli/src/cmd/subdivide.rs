@@ -163,22 +163,16 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             scheme.name()
         )));
     }
+    let mode = subdiv::Mode {
+        strict: args.strict,
+        literal: args.literal,
+        spectrum: args.spectrum,
+        threads: args
+            .threads
+            .map_or_else(nlsubdiv_threads::Threads::available, |n| n as usize),
+    };
     let r = if tags.is_empty() {
-        subdiv::run(
-            &l.mesh,
-            &l.source,
-            scheme,
-            levels,
-            subdiv::Mode {
-                strict: args.strict,
-                literal: args.literal,
-                spectrum: args.spectrum,
-                threads: args
-                    .threads
-                    .map_or_else(nlsubdiv_threads::Threads::available, |n| n as usize),
-            },
-            ctx,
-        )?
+        subdiv::run(&l.mesh, &l.source, scheme, levels, mode, ctx)?
     } else {
         subdiv::run_tagged(
             &l.mesh,
@@ -187,6 +181,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             levels,
             &tags,
             args.crease_method,
+            mode,
             ctx,
         )?
     };

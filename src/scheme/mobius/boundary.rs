@@ -69,6 +69,30 @@ impl Driver<'_, '_, '_, '_> {
         Ok(([p0, a, b, p3], q))
     }
 
+    /// Whether boundary half-edge `h` lies on a crease curve of three points — an open curve
+    /// of two segments between corners, or a closed loop of three segments — on a level cut
+    /// along its sharp edges with the fold guard on (module docs). Any three points are
+    /// Möbius images of any other three, so the Möbius curve rules cannot tell a thin
+    /// triangle of crease edges from a fat one and put its curve on its circumcircle, far
+    /// off the edges of a thin one; such a curve takes the linear curve rule, counted as
+    /// guarded. The decision depends on the tags only, so it is the same on every Möbius
+    /// image.
+    pub(super) fn short_curve(&self, h: u32) -> Result<bool> {
+        if !self.guard || self.corners.is_empty() {
+            return Ok(false);
+        }
+        let topo = self.topo;
+        Ok(match self.corner_ends(h)? {
+            (true, true) => false,
+            (true, false) => self.is_corner(topo.dest(topo.next_boundary(h)?)?),
+            (false, true) => self.is_corner(topo.origin(topo.prev_boundary(h)?)?),
+            (false, false) => {
+                let (i0, i3) = self.boundary_outer(h)?;
+                i0 == i3
+            }
+        })
+    }
+
     /// Odd points of every boundary loop by the Möbius curve rule
     /// `F4(P_{i−1}, P_i, P_{i+1}, P_{i+2})` (open-curve rules next to corners,
     /// [`Driver::boundary_segment`]) into `start + edge`; fallback `linear(p0, a, b, p1)`.
@@ -86,6 +110,10 @@ impl Driver<'_, '_, '_, '_> {
             let (p, q) = self.boundary_segment(h)?;
             let k = start + e as usize;
             let q = match q {
+                Ok(_) if self.short_curve(h)? => {
+                    self.guarded(k)?;
+                    linear(p[0], p[1], p[2], p[3])
+                }
                 Ok(q) => q,
                 Err(_) => {
                     self.fallback(k)?;
@@ -116,6 +144,12 @@ impl Driver<'_, '_, '_, '_> {
             let e_out = get(self.pos, start + topo.edge(out_h)? as usize)?;
             let e_in = get(self.pos, start + topo.edge(in_h)? as usize)?;
             let (p0, p1) = (topo.position(b1)?, topo.position(b0)?);
+            if self.short_curve(out_h)? {
+                self.guarded(v as usize)?;
+                let q = crate::stencil::crease_vertex(topo.position(v)?, p1, p0);
+                set(self.pos, v as usize, q)?;
+                continue;
+            }
             let q = match f4(p0, e_in, e_out, p1) {
                 Ok(q) => q,
                 Err(_) => {

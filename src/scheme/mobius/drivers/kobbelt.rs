@@ -79,14 +79,28 @@ fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
             (beyond_of(d, h)?, beyond_of(d, topo.twin(h)?)?)
         };
         let hint = topo.position(topo.dest(topo.next(h)?)?)?;
+        let cut_curve = boundary && d.corner_ends(h)? != (false, false);
+        if boundary && d.short_curve(h)? {
+            // A crease curve of three points (`boundary.rs`): the linear 4-point rule.
+            d.guarded(k)?;
+            let p = d.boundary_segment(h)?.0;
+            set(d.pos, k, kobbelt::four_point(p[0], p[1], p[2], p[3]))?;
+            continue;
+        }
         let q = match (r0, r1) {
             // A boundary curve ending at a corner (sharp features): the open-curve rule.
-            _ if boundary && d.corner_ends(h)? != (false, false) => d.boundary_segment(h)?.1.ok(),
+            _ if cut_curve => d.boundary_segment(h)?.1.ok(),
             (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
             _ => None,
         };
         let q = match q {
             Some(q) => q,
+            None if cut_curve => {
+                // The 4-point rule of the open curve (virtual end points past a corner).
+                d.fallback(k)?;
+                let p = d.boundary_segment(h)?.0;
+                kobbelt::four_point(p[0], p[1], p[2], p[3])
+            }
             None => {
                 d.fallback(k)?;
                 kobbelt_edge(topo, e)?
