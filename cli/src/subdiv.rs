@@ -680,8 +680,7 @@ pub fn run_tagged(
     src: &Source,
     ms: MeshScheme,
     levels: usize,
-    tags: &crate::mesh::FileTags,
-    method: scheme::CreaseMethod,
+    (tags, method): (&crate::mesh::FileTags, scheme::CreaseMethod),
     mode: Mode,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {

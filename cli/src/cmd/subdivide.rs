@@ -179,8 +179,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             &l.source,
             scheme,
             levels,
-            &tags,
-            args.crease_method,
+            (&tags, args.crease_method),
             mode,
             ctx,
         )?
