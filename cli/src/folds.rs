@@ -1,7 +1,7 @@
 //! Folded edges of a mesh: interior edges whose two faces have (Newell) normals more than 90°
 //! apart, the fold measure of `docs/folds.md`, reported by `metrics` and after `subdivide`.
 
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 
 use crate::mesh::{area_vector, dot, norm, Mesh};
 
@@ -21,6 +21,12 @@ pub struct Folds {
 /// The folds of `m`. An edge used by other than exactly two faces in opposite directions,
 /// or whose faces have no normal (zero area), is not measured.
 pub fn measure(m: &Mesh) -> Folds {
+    measure_except(m, &BTreeSet::new())
+}
+
+/// [`measure`] leaving out the edges in `creases` (`(min, max)` vertex pairs): the sharp
+/// edges of a tagged mesh, whose faces may meet at any angle by design.
+pub fn measure_except(m: &Mesh, creases: &BTreeSet<[u32; 2]>) -> Folds {
     let normals: Vec<[f64; 3]> = m.faces().map(|f| area_vector(m, f)).collect();
     let mut half: HashMap<(u32, u32), usize> = HashMap::new();
     let mut repeated: HashMap<(u32, u32), ()> = HashMap::new();
@@ -41,7 +47,10 @@ pub fn measure(m: &Mesh) -> Folds {
     let mut keys: Vec<&(u32, u32)> = half.keys().filter(|(a, b)| a < b).collect();
     keys.sort_unstable();
     for &(a, b) in keys {
-        if repeated.contains_key(&(a, b)) || repeated.contains_key(&(b, a)) {
+        if repeated.contains_key(&(a, b))
+            || repeated.contains_key(&(b, a))
+            || creases.contains(&[a, b])
+        {
             continue;
         }
         let (Some(&fa), Some(&fb)) = (half.get(&(a, b)), half.get(&(b, a))) else {

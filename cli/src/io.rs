@@ -157,6 +157,9 @@ pub struct WriteOptions {
     /// PLY only: a per-vertex scalar written as a `float` property of this name (MeshLab
     /// reads `quality`).
     pub scalar: Option<(String, Vec<f64>)>,
+    /// OBJ only: sharp-feature tags written as `t crease 2/1/0 a b s` and
+    /// `t corner 1/1/0 v s` lines (0-based vertices, OpenSubdiv's shape tags).
+    pub tags: Option<crate::mesh::FileTags>,
 }
 
 /// Reads a mesh file in the format of its content or extension (see [`Format`]).
@@ -553,6 +556,7 @@ mod tests {
                 scalar: name
                     .ends_with(".ply")
                     .then(|| ("quality".to_string(), vec![0.5; m.num_vertices()])),
+                tags: None,
             };
             write_mesh(&p, &m, &opts).unwrap();
             let (back2, _) = read_mesh(&p).unwrap();

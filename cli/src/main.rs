@@ -17,6 +17,7 @@ mod out;
 mod progress;
 mod sphere;
 mod subdiv;
+mod tags_out;
 mod topology;
 
 // The file readers and writers live in the library part of this package (src/lib.rs).

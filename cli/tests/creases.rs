@@ -339,3 +339,61 @@ fn mobius_schemes_take_obj_creases() {
         );
     }
 }
+
+#[test]
+fn obj_output_carries_the_last_levels_tags() {
+    // The tags written with level 1 are the ones the kernel carries to level 2: one more
+    // level from the written OBJ gives two levels from the input, bit for bit (linear and
+    // Möbius, uniform and Chaikin decay, infinitely sharp and semi-sharp creases, a corner).
+    let dir = TempDir::new("creases-out-tags");
+    let input = dir.path("cube.obj");
+    std::fs::write(
+        &input,
+        format!(
+            "{CUBE}t crease 2/1/0 0 1 10\nt crease 2/1/0 1 3 1.5\nt crease 2/1/0 3 2 2.25\n\
+             t crease 2/1/0 2 0 10\nt crease 2/1/0 4 5 0.75\nt corner 1/1/0 6 2.5\n"
+        ),
+    )
+    .unwrap();
+    for scheme in [
+        "catmull-clark",
+        "mobius-catmull-clark",
+        "kobbelt",
+        "mobius-kobbelt",
+    ] {
+        for method in ["uniform", "chaikin"] {
+            let (one, two, again) = (
+                dir.path("one.obj"),
+                dir.path("two.off"),
+                dir.path("again.off"),
+            );
+            let sub = |levels: &str, i: &std::path::Path, o: &std::path::Path| {
+                let o = run(&[
+                    "subdivide",
+                    "--scheme",
+                    scheme,
+                    "--crease-method",
+                    method,
+                    "--levels",
+                    levels,
+                    i.to_str().unwrap(),
+                    o.to_str().unwrap(),
+                ]);
+                assert_eq!(code(&o), 0, "{scheme} {method}: {}", stderr(&o));
+            };
+            sub("1", &input, &one);
+            sub("2", &input, &two);
+            sub("1", &one, &again);
+            let text = std::fs::read_to_string(&one).unwrap();
+            // The four loop edges have two children each; the 0.75 edge decays to nothing.
+            let creases = text.lines().filter(|l| l.starts_with("t crease")).count();
+            assert_eq!(creases, 8, "{scheme} {method}:\n{text}");
+            assert!(text.contains("t corner 1/1/0 6 1.5"), "{scheme} {method}");
+            assert_eq!(
+                std::fs::read(&two).unwrap(),
+                std::fs::read(&again).unwrap(),
+                "{scheme} {method}"
+            );
+        }
+    }
+}

@@ -234,6 +234,7 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
                     values.iter().map(|x| x.unwrap_or(0.0)).collect(),
                 )
             }),
+            tags: None,
         };
         write_mesh(out, m, &opts)?;
         ctx.note(&format!(

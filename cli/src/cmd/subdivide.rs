@@ -184,10 +184,23 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             ctx,
         )?
     };
+    // The tags of the last level: written to an OBJ output, left out of the fold count.
+    let out_tags = if tags.is_empty() {
+        None
+    } else {
+        Some(crate::tags_out::last_level(
+            &l.mesh,
+            scheme.scheme,
+            levels,
+            &tags,
+            args.crease_method,
+        )?)
+    };
     {
         let _spinner = ctx.spinner("writing");
         let opts = WriteOptions {
             ply_ascii: args.ascii,
+            tags: out_tags.clone(),
             ..WriteOptions::default()
         };
         write_mesh(&args.output, &r.mesh, &opts)?;
@@ -216,12 +229,14 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
     } else {
         "; 0 elements changed by the fold guard".to_string()
     };
-    let measured = crate::folds::measure(&r.mesh);
-    let mut folds = measured.describe();
-    if !tags.is_empty() && measured.folded > 0 {
-        // The fold measure compares face normals and knows nothing of the tags: the child
-        // edges of a crease sharper than 90° count (fandisk's right-angled edges do).
-        folds.push_str(" — edges along creases sharper than 90° count here");
+    let creases: std::collections::BTreeSet<[u32; 2]> = out_tags
+        .as_ref()
+        .map(|t| t.creases.iter().copied().collect())
+        .unwrap_or_default();
+    let mut folds = crate::folds::measure_except(&r.mesh, &creases).describe();
+    if !creases.is_empty() {
+        // The creases may meet at any angle by design: they are not counted.
+        folds.push_str(&format!(" off the {} crease edges", creases.len()));
     }
     ctx.note(&format!(
         "wrote {}: {}, {} level{}: {} → {} vertices, {} → {} faces in {:.3} s \

@@ -405,6 +405,14 @@ pub fn write(out: &mut dyn Write, mesh: &Mesh, opts: &WriteOptions) -> std::io::
         }
         writeln!(out)?;
     }
+    if let Some(t) = &opts.tags {
+        for ([a, b], &s) in t.creases.iter().zip(&t.crease_sharpness) {
+            writeln!(out, "t crease 2/1/0 {a} {b} {}", fmt_f64(s))?;
+        }
+        for (v, &s) in t.corners.iter().zip(&t.corner_sharpness) {
+            writeln!(out, "t corner 1/1/0 {v} {}", fmt_f64(s))?;
+        }
+    }
     Ok(())
 }
 
