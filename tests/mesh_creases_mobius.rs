@@ -663,10 +663,11 @@ fn circumcircle(a: Point, b: Point, c: Point) -> (Point, f64) {
 
 #[test]
 fn a_crease_curve_of_three_points_takes_the_linear_rule_in_the_default_mode() {
-    // A thin triangle of a grid with its three edges sharp: a closed crease of three points.
-    // The paper's rules put its curve on the triangle's circumcircle (any three points are
-    // Möbius images of any other three); the default mode takes the linear curve rule there
-    // and counts it as guarded.
+    // A thin triangle of a grid with its three edges sharp: a closed crease of three points,
+    // alone and with a corner on it (the curve then closes at the corner). The paper's rules
+    // put its curve on the triangle's circumcircle (any three points are Möbius images of
+    // any other three); the default mode takes the linear curve rule there and counts it as
+    // guarded.
     for s in [LOOP, MB] {
         let mut m = jitter(&tri_grid(4, 4), 0.02, 9);
         let f = m.faces()[10].clone();
@@ -678,40 +679,54 @@ fn a_crease_curve_of_three_points_takes_the_linear_rule_in_the_default_mode() {
             0.5 * (a[2] + b[2]),
         ];
         let creases = edges_of(&f, true);
-        let tags = Tags::new().creases(&creases, &[INF; 3]);
         let ids = edge_ids(&m);
         let nv = m.positions.len();
         let p = |v: u32| m.positions[v as usize];
         let (o, r) = circumcircle(p(f[0]), p(f[1]), p(f[2]));
-        let (lit, lr) = run_tagged(&m, &mobius(s, 1).literal(true), &tags).unwrap();
-        let (def, dr) = run_tagged(&m, &mobius(s, 1), &tags).unwrap();
-        assert_eq!(lr.guarded, 0);
-        assert!(dr.guarded >= 3, "{s:?}: {}", dr.guarded);
-        for [x, y] in creases {
-            let k = nv + ids[&[x.min(y), x.max(y)]] as usize;
-            // The paper's rules: on the circumcircle (the Möbius curve of three points).
-            assert!((dist(lit.positions[k], o) - r).abs() < 1e-12 * r, "{s:?}");
-            // The default: the linear curve rule (the midpoint for Loop, the 4-point rule of
-            // the closed curve for Butterfly), which lies off the circle.
-            let want = if s == LOOP {
-                let (a, b) = (p(x), p(y));
-                [
-                    0.5 * (a[0] + b[0]),
-                    0.5 * (a[1] + b[1]),
-                    0.5 * (a[2] + b[2]),
-                ]
+        let corner = [f[0]];
+        for with_corner in [false, true] {
+            let tags = Tags::new().creases(&creases, &[INF; 3]);
+            let tags = if with_corner {
+                tags.corners(&corner, &[INF])
             } else {
-                let z = f.iter().copied().find(|&v| v != x && v != y).unwrap();
-                let (a, b, c) = (p(x), p(y), p(z));
-                let w = |i: usize| 9.0 / 16.0 * (a[i] + b[i]) - 1.0 / 8.0 * c[i];
-                [w(0), w(1), w(2)]
+                tags
             };
-            assert!(
-                dist(def.positions[k], want) < 1e-14,
-                "{s:?}: {:?}",
-                def.positions[k]
-            );
-            assert!((dist(def.positions[k], o) - r).abs() > 1e-3 * r);
+            let (lit, lr) = run_tagged(&m, &mobius(s, 1).literal(true), &tags).unwrap();
+            let (def, dr) = run_tagged(&m, &mobius(s, 1), &tags).unwrap();
+            assert_eq!(lr.guarded, 0);
+            assert!(dr.guarded >= 3, "{s:?}: {}", dr.guarded);
+            for &[x, y] in &creases {
+                let k = nv + ids[&[x.min(y), x.max(y)]] as usize;
+                // The paper's rules: on the circumcircle (the Möbius curve of three points).
+                assert!((dist(lit.positions[k], o) - r).abs() < 1e-12 * r, "{s:?}");
+                // The default: the linear curve rule — the midpoint for Loop; for Butterfly
+                // the 4-point rule of the closed curve, or next to the corner of the open
+                // curve with the virtual point 2 c − u before the corner c — off the circle.
+                let z = f.iter().copied().find(|&v| v != x && v != y).unwrap();
+                let want = if s == LOOP {
+                    let (a, b) = (p(x), p(y));
+                    [
+                        0.5 * (a[0] + b[0]),
+                        0.5 * (a[1] + b[1]),
+                        0.5 * (a[2] + b[2]),
+                    ]
+                } else if with_corner && (x == f[0] || y == f[0]) {
+                    let (c, u) = if x == f[0] { (x, y) } else { (y, x) };
+                    let (pc, pu, pz) = (p(c), p(u), p(z));
+                    let w = |i: usize| {
+                        -1.0 / 16.0 * (2.0 * pc[i] - pu[i]) + 9.0 / 16.0 * (pc[i] + pu[i])
+                            - 1.0 / 16.0 * pz[i]
+                    };
+                    [w(0), w(1), w(2)]
+                } else {
+                    let (a, b, c) = (p(x), p(y), p(z));
+                    let w = |i: usize| 9.0 / 16.0 * (a[i] + b[i]) - 1.0 / 8.0 * c[i];
+                    [w(0), w(1), w(2)]
+                };
+                let err = dist(def.positions[k], want);
+                assert!(err < 1e-14, "{s:?} corner {with_corner}: {err:e}");
+                assert!((dist(def.positions[k], o) - r).abs() > 1e-3 * r);
+            }
         }
     }
 }

@@ -80,6 +80,8 @@ enum corner_sharpness_t { corner_sharpness };
 enum crease_method_t { crease_method };
 enum report_t { report };
 enum vertex_curvature_scale_map_t { vertex_curvature_scale_map };
+enum edge_sharpness_map_t { edge_sharpness_map };
+enum vertex_sharpness_map_t { vertex_sharpness_map };
 enum solver_max_iterations_t { solver_max_iterations };
 enum solver_tolerance_t { solver_tolerance };
 enum dirmag_levels_t { dirmag_levels };
@@ -740,30 +742,43 @@ bool rebuild(PM& pm, const FlatMesh& out) {
 }
 
 /// Sharp-feature tags from the named parameters `edge_is_constrained_map` (edges -> bool:
-/// creases, e.g. the output of CGAL::Polygon_mesh_processing::detect_sharp_edges) and
-/// `vertex_is_constrained_map` (vertices -> bool: corners), numbered as `lv` numbers the
-/// vertices. Without either parameter, no tags.
+/// creases of `opts.crease_sharpness`, e.g. the output of
+/// CGAL::Polygon_mesh_processing::detect_sharp_edges), `vertex_is_constrained_map`
+/// (vertices -> bool: corners of `opts.corner_sharpness`) and nlsubdiv's
+/// `edge_sharpness_map` / `vertex_sharpness_map` (-> double: every non-zero value tags its
+/// element with that sharpness, and wins over the flag), numbered as `lv` numbers the
+/// vertices. Without any of them, no tags.
 template <class PM, class NP>
 nlsubdiv::flat::FlatTags tags_of(const PM& pm, const NP& np, const Level<PM>& lv, const Options& opts) {
   nlsubdiv::flat::FlatTags t;
   t.method = opts.crease_method;
-  if constexpr (!CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::edge_is_constrained_t>::value) {
-    auto ecm = CGAL::parameters::get_parameter(np, CGAL::internal_np::edge_is_constrained);
-    for (auto e : CGAL::edges(pm))
-      if (get(ecm, e)) {
-        auto h = halfedge(e, pm);
-        t.crease_vertices.push_back(lv.vid.at(source(h, pm)));
-        t.crease_vertices.push_back(lv.vid.at(target(h, pm)));
-        t.crease_sharpness.push_back(opts.crease_sharpness);
-      }
+  constexpr bool ecm_given = !CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::edge_is_constrained_t>::value;
+  constexpr bool esm_given = !CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::edge_sharpness_map_t>::value;
+  constexpr bool vcm_given = !CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::vertex_is_constrained_t>::value;
+  constexpr bool vsm_given = !CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::vertex_sharpness_map_t>::value;
+  if constexpr (ecm_given || esm_given) {
+    for (auto e : CGAL::edges(pm)) {
+      double s = 0.0;
+      if constexpr (esm_given) s = get(CGAL::parameters::get_parameter(np, nlsubdiv::internal_np::edge_sharpness_map), e);
+      if constexpr (ecm_given)
+        if (s == 0.0 && get(CGAL::parameters::get_parameter(np, CGAL::internal_np::edge_is_constrained), e)) s = opts.crease_sharpness;
+      if (s == 0.0) continue;  // smooth (NaN is not 0: the kernel refuses it)
+      auto h = halfedge(e, pm);
+      t.crease_vertices.push_back(lv.vid.at(source(h, pm)));
+      t.crease_vertices.push_back(lv.vid.at(target(h, pm)));
+      t.crease_sharpness.push_back(s);
+    }
   }
-  if constexpr (!CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::vertex_is_constrained_t>::value) {
-    auto vcm = CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_is_constrained);
-    for (auto v : CGAL::vertices(pm))
-      if (get(vcm, v)) {
-        t.corner_vertices.push_back(lv.vid.at(v));
-        t.corner_sharpness.push_back(opts.corner_sharpness);
-      }
+  if constexpr (vcm_given || vsm_given) {
+    for (auto v : CGAL::vertices(pm)) {
+      double s = 0.0;
+      if constexpr (vsm_given) s = get(CGAL::parameters::get_parameter(np, nlsubdiv::internal_np::vertex_sharpness_map), v);
+      if constexpr (vcm_given)
+        if (s == 0.0 && get(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_is_constrained), v)) s = opts.corner_sharpness;
+      if (s == 0.0) continue;
+      t.corner_vertices.push_back(lv.vid.at(v));
+      t.corner_sharpness.push_back(s);
+    }
   }
   return t;
 }
@@ -1164,6 +1179,16 @@ struct Named_function_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   Named_function_parameters<Map, internal_np::vertex_curvature_scale_map_t, self> vertex_curvature_scale_map(const Map& m) const {
     return {m, *this};
   }
+  /// See nlsubdiv::parameters::edge_sharpness_map.
+  template <typename Map>
+  Named_function_parameters<Map, internal_np::edge_sharpness_map_t, self> edge_sharpness_map(const Map& m) const {
+    return {m, *this};
+  }
+  /// See nlsubdiv::parameters::vertex_sharpness_map.
+  template <typename Map>
+  Named_function_parameters<Map, internal_np::vertex_sharpness_map_t, self> vertex_sharpness_map(const Map& m) const {
+    return {m, *this};
+  }
   /// See nlsubdiv::parameters::solver_max_iterations.
   Named_function_parameters<uint32_t, internal_np::solver_max_iterations_t, self> solver_max_iterations(uint32_t n) const {
     return {n, *this};
@@ -1219,6 +1244,21 @@ inline Named_function_parameters<std::reference_wrapper<cgal::Report>, internal_
 /// own normal).
 template <typename Map>
 Named_function_parameters<Map, internal_np::vertex_curvature_scale_map_t> vertex_curvature_scale_map(const Map& m) {
+  return {m};
+}
+/// Sharp features: a readable property map edge -> double, the sharpness of every edge
+/// whose value is not 0 (OpenSubdiv's scale: 10 or more infinitely sharp, below it
+/// semi-sharp); a value wins over edge_is_constrained_map's uniform crease_sharpness for
+/// its edge. NaN, negative or infinite values are NLS_STATUS_INVALID_SHARPNESS, mesh
+/// unchanged.
+template <typename Map>
+Named_function_parameters<Map, internal_np::edge_sharpness_map_t> edge_sharpness_map(const Map& m) {
+  return {m};
+}
+/// Sharp features: a readable property map vertex -> double, the corner sharpness of every
+/// vertex whose value is not 0 (wins over vertex_is_constrained_map's corner_sharpness).
+template <typename Map>
+Named_function_parameters<Map, internal_np::vertex_sharpness_map_t> vertex_sharpness_map(const Map& m) {
   return {m};
 }
 /// Differential schemes: the reconstruction's iteration cap (default 100; reaching it is

@@ -448,7 +448,9 @@ class SubdividerBaseT : public OpenMesh::Subdivider::Uniform::SubdividerT<MeshTy
 /// sharpness and its feature vertices corners (linear Loop and Catmull–Clark with
 /// OpenSubdiv's rules, linear Modified Butterfly and Kobbelt with their 4-point crease rule,
 /// the Möbius versions of these four with the Möbius curve rules along the creases; any
-/// other scheme fails with NLS_STATUS_TAGS_NOT_SUPPORTED when the mesh has a feature). The tags are carried level by
+/// other scheme fails with NLS_STATUS_TAGS_NOT_SUPPORTED when the mesh has a feature). With
+/// set_sharpness_properties, per-edge and per-vertex sharpness values from OpenMesh
+/// properties tag their elements too (semi-sharp creases with their own values). The tags are carried level by
 /// level inside the one call, so update_points = false (one call per level) is refused with
 /// NLS_STATUS_INVALID_ARGUMENT when there is a feature. The output carries no feature flags.
 template <typename MeshType, uint32_t Scheme, uint32_t Flags, typename RealType = double>
@@ -467,6 +469,17 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     features_ = on;
     crease_sharpness_ = sharpness;
     corner_sharpness_ = corner_sharpness;
+  }
+  /// Per-element sharpness from OpenMesh properties (OpenSubdiv's scale): every edge whose
+  /// `edge_sharpness` value is not 0 is a crease of that sharpness and every vertex whose
+  /// `vertex_sharpness` value is not 0 a corner, whether or not feature creases are on; a
+  /// value wins over the feature flag's uniform sharpness for its element. NaN, negative or
+  /// infinite values reach the kernel, which refuses them (NLS_STATUS_INVALID_SHARPNESS,
+  /// mesh unchanged). A default-constructed (invalid) handle is not read.
+  void set_sharpness_properties(OpenMesh::EPropHandleT<double> edge_sharpness,
+                                OpenMesh::VPropHandleT<double> vertex_sharpness = OpenMesh::VPropHandleT<double>()) {
+    edge_sharpness_ = edge_sharpness;
+    vertex_sharpness_ = vertex_sharpness;
   }
   /// NLS_CREASE_UNIFORM (the default) or NLS_CREASE_CHAIKIN.
   void set_crease_method(uint32_t method) { crease_method_ = method; }
@@ -504,7 +517,7 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     }
     tags_ = nlsubdiv::flat::FlatTags();
     tags_.method = crease_method_;
-    if (features_) feature_tags(m, tags_);
+    if (features_ || edge_sharpness_.is_valid() || vertex_sharpness_.is_valid()) feature_tags(m, tags_);
     if (!tags_.empty() && !update_points) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
     FlatMesh cur = in, next;
     // update_points = false: one level at a time, old vertices put back after each.
@@ -539,25 +552,31 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     return true;
   }
 
-  /// The feature edges and vertices of `m` as tags (vertex indices are export_flat's).
+  /// The feature edges and vertices of `m` (with feature creases on) and the elements with
+  /// a sharpness property value as tags (vertex indices are export_flat's).
   void feature_tags(const mesh_t& m, nlsubdiv::flat::FlatTags& t) const {
-    if (m.has_edge_status())
-      for (auto e : m.edges())
-        if (m.status(e).feature()) {
-          auto h = m.halfedge_handle(e, 0);
-          t.crease_vertices.push_back(static_cast<uint32_t>(m.from_vertex_handle(h).idx()));
-          t.crease_vertices.push_back(static_cast<uint32_t>(m.to_vertex_handle(h).idx()));
-          t.crease_sharpness.push_back(crease_sharpness_);
-        }
-    if (m.has_vertex_status())
-      for (auto v : m.vertices())
-        if (m.status(v).feature()) {
-          t.corner_vertices.push_back(static_cast<uint32_t>(v.idx()));
-          t.corner_sharpness.push_back(corner_sharpness_);
-        }
+    const bool edge_flags = features_ && m.has_edge_status(), vertex_flags = features_ && m.has_vertex_status();
+    for (auto e : m.edges()) {
+      double s = edge_sharpness_.is_valid() ? m.property(edge_sharpness_, e) : 0.0;
+      if (s == 0.0 && edge_flags && m.status(e).feature()) s = crease_sharpness_;
+      if (s == 0.0) continue;  // smooth (NaN is not 0: the kernel refuses it)
+      auto h = m.halfedge_handle(e, 0);
+      t.crease_vertices.push_back(static_cast<uint32_t>(m.from_vertex_handle(h).idx()));
+      t.crease_vertices.push_back(static_cast<uint32_t>(m.to_vertex_handle(h).idx()));
+      t.crease_sharpness.push_back(s);
+    }
+    for (auto v : m.vertices()) {
+      double s = vertex_sharpness_.is_valid() ? m.property(vertex_sharpness_, v) : 0.0;
+      if (s == 0.0 && vertex_flags && m.status(v).feature()) s = corner_sharpness_;
+      if (s == 0.0) continue;
+      t.corner_vertices.push_back(static_cast<uint32_t>(v.idx()));
+      t.corner_sharpness.push_back(s);
+    }
   }
 
   bool features_ = false;
+  OpenMesh::EPropHandleT<double> edge_sharpness_;
+  OpenMesh::VPropHandleT<double> vertex_sharpness_;
   double crease_sharpness_ = 10.0;
   double corner_sharpness_ = 10.0;
   uint32_t crease_method_ = NLS_CREASE_UNIFORM;

@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -505,6 +506,57 @@ static void feature_creases(itest::Tally& t) {
     else
       t.fail(std::string("Möbius feature creases: ") + (mok ? "" : msd.message()) + (msame ? "" : " differs from the tagged driver") +
              " on_edges=" + std::to_string(mon) + " on_faces=" + std::to_string(on_faces) + (differs ? "" : " same as untagged"));
+  }
+  // Per-element sharpness from OpenMesh properties: the top face's edges infinitely sharp,
+  // one vertical edge 1.5, vertex 0 a corner of 2.5; the driver with the same tags typed
+  // directly (tag order does not matter to the kernel). A NaN value is refused, mesh unchanged.
+  {
+    Poly q = plain;
+    OpenMesh::EPropHandleT<double> esh;
+    OpenMesh::VPropHandleT<double> vsh;
+    q.add_property(esh);
+    q.add_property(vsh);
+    for (auto e : q.edges()) q.property(esh, e) = 0.0;
+    for (auto v : q.vertices()) q.property(vsh, v) = 0.0;
+    auto edge_of = [&](int a, int b) -> Poly::EdgeHandle {
+      for (auto h : q.voh_range(q.vertex_handle(a)))
+        if (q.to_vertex_handle(h).idx() == b) return Poly::EdgeHandle(q.edge_handle(h));
+      return Poly::EdgeHandle();
+    };
+    static const uint32_t PE[10] = {4, 5, 5, 6, 6, 7, 7, 4, 0, 4};
+    static const double PS[5] = {10, 10, 10, 10, 1.5};
+    for (int k = 0; k < 5; ++k) q.property(esh, edge_of(static_cast<int>(PE[2 * k]), static_cast<int>(PE[2 * k + 1]))) = PS[k];
+    q.property(vsh, q.vertex_handle(0)) = 2.5;
+    nls_tags pt{};
+    static const uint32_t PV[1] = {0};
+    static const double PVS[1] = {2.5};
+    pt.crease_vertices = PE;
+    pt.crease_sharpness = PS;
+    pt.crease_count = 5;
+    pt.corner_vertices = PV;
+    pt.corner_sharpness = PVS;
+    pt.corner_count = 1;
+    nlsubdiv::flat::FlatMesh pwant;
+    uint32_t pel = 0, pfb = 0;
+    nls_status ps = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, 0, in, 2, pwant, pel, pfb, &pt);
+    Poly r = q;
+    nom::LinearCatmullClarkT<Poly> psd;
+    psd.set_sharpness_properties(esh, vsh);
+    const bool pok = psd(r, 2);
+    Flat pgot = flat_of(r);
+    const bool psame = ps == NLS_STATUS_OK && pok && pgot.pos == pwant.positions && pgot.off == pwant.offsets && pgot.idx == pwant.indices;
+    Poly nan_mesh = q;
+    nan_mesh.property(esh, edge_of(0, 1)) = std::nan("");
+    Poly nan_copy = nan_mesh;
+    nom::LinearCatmullClarkT<Poly> nsd;
+    nsd.set_sharpness_properties(esh, vsh);
+    const bool refused_nan = !nsd(nan_mesh, 1) && nsd.status() == NLS_STATUS_INVALID_SHARPNESS && flat_of(nan_mesh) == flat_of(nan_copy);
+    const bool differs = !(pgot == flat_of(b));
+    if (psame && refused_nan && differs)
+      t.pass("OpenMesh sharpness properties = driver tags (semi-sharp, corner); NaN refused", 0);
+    else
+      t.fail(std::string("sharpness properties: ") + (pok ? "" : psd.message()) + (psame ? "" : " differs from the tagged driver") +
+             (refused_nan ? "" : " NaN not refused: " + std::string(nsd.message())) + (differs ? "" : " same as untagged"));
   }
   // Schemes without tag rules refuse a mesh with features, unchanged.
   Poly d = cube;

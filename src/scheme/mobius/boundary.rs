@@ -70,7 +70,8 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// Whether boundary half-edge `h` lies on a crease curve of three points — an open curve
-    /// of two segments between corners, or a closed loop of three segments — on a level cut
+    /// of two segments between corners, or a closed loop of three segments (with or without
+    /// a corner on it) — on a level cut
     /// along its sharp edges with the fold guard on (module docs). Any three points are
     /// Möbius images of any other three, so the Möbius curve rules cannot tell a thin
     /// triangle of crease edges from a fat one and put its curve on its circumcircle, far
@@ -84,8 +85,17 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         Ok(match self.corner_ends(h)? {
             (true, true) => false,
-            (true, false) => self.is_corner(topo.dest(topo.next_boundary(h)?)?),
-            (false, true) => self.is_corner(topo.origin(topo.prev_boundary(h)?)?),
+            (true, false) => {
+                // a → b → c: c a corner, or the loop a → b → c → a closing at the corner a.
+                let n = topo.next_boundary(h)?;
+                let c = topo.dest(n)?;
+                self.is_corner(c) || topo.dest(topo.next_boundary(n)?)? == topo.origin(h)?
+            }
+            (false, true) => {
+                let p = topo.prev_boundary(h)?;
+                let c = topo.origin(p)?;
+                self.is_corner(c) || topo.origin(topo.prev_boundary(p)?)? == topo.dest(h)?
+            }
             (false, false) => {
                 let (i0, i3) = self.boundary_outer(h)?;
                 i0 == i3

@@ -16,18 +16,26 @@
 //!   paper's boundary form, §4.2): the faces across a crease do not shape this side, as the
 //!   cut mesh refines each side as if the other were absent;
 //! * a **corner** — a vertex tagged as one, or where three or more sharp edges (boundary
-//!   edges included, counted before darts are given up: the linear rules' classification)
-//!   meet — ends the curves through it: its copies are marked for the boundary rules, which
-//!   use the open-curve rules of [`crate::curve::mobius`] next to it and keep it in place; a
-//!   corner of Loop or Catmull–Clark left with no cut edge stays in place too. A smooth edge
-//!   from a corner to a non-corner takes the non-corner's candidate alone where it has one
-//!   (`edges.rs`): a corner is no smooth point, and the canonical form of its sector
-//!   extrapolates one — on fandisk the blend with that candidate flipped thin triangles next
-//!   to the corners of planar faces.
+//!   edges included, counted before darts are given up: the linear rules' classification
+//!   for values of at least ½) meet — ends the curves through it: its copies are marked for
+//!   the boundary rules, which use the open-curve rules of [`crate::curve::mobius`] next to
+//!   it and keep it in place; a corner of Loop or Catmull–Clark left with no cut edge stays
+//!   in place too. A smooth edge from a corner to a non-corner takes the non-corner's
+//!   candidate alone where it has one (`edges.rs`; Loop, Catmull–Clark and Butterfly, whose
+//!   edge points blend two candidates): a corner is no smooth point, and the canonical form
+//!   of its sector extrapolates one — on fandisk the blend with that candidate flipped thin
+//!   triangles next to the corners of planar faces.
 //!
-//! Everything is Möbius-equivariant, because the cut is combinatorial and every rule used is:
-//! a tagged circle stays a circle, a tagged great circle of a spherical cage stays on the
-//! sphere.
+//! The cut is combinatorial and the curve and star rules are Möbius-equivariant, so a
+//! tagged circle stays a circle and a tagged great circle of a spherical cage stays on the
+//! sphere. The exceptions are those of the open curves and of the guard: a crease of one
+//! segment between two corners takes its midpoint (a curve of two points, as in
+//! [`crate::curve::mobius`]), a face enclosed by sharp edges whose form does not exist takes
+//! the linear rule (a fallback), and in the default mode a crease curve of three points
+//! takes the linear curve rule (`boundary.rs`, counted as guarded).
+//!
+//! The report's fallbacks and guarded elements are counted on the cut level: both sides of
+//! a crease count, and the first one is renamed to the uncut level's output vertex.
 //!
 //! Decisions the paper leaves open (docs/creases.md, "Möbius creases"):
 //! * **Semi-sharp** values are whole levels: an edge or a corner is sharp at a level when
@@ -38,14 +46,17 @@
 //! * **Darts** — a crease ending at a vertex with no other sharp edge — cannot be cut (the
 //!   cut would leave a slit whose tip has two coincident neighbours and no canonical form),
 //!   so a sharp edge ending at a dart is subdivided smooth, and so, in turn, is a chain
-//!   whose far end becomes a dart: a crease chain stays sharp when it is closed or ends at
-//!   corners or on the boundary. A corner tag at the end of a chain does not change this.
+//!   whose far end becomes a dart — through a corner too, when the corner is left with one
+//!   sharp edge (a Y of three creases, two of them ending at darts, keeps none): a crease
+//!   chain stays sharp when it is closed, or ends at corners with two or more remaining
+//!   sharp edges, or on the boundary. A corner tag at the end of a chain does not change
+//!   this.
 //!
-//! Output bits: an untagged level, and a tagged level with nothing sharp at it, run the
-//! untagged step itself.
+//! Output bits: an untagged level, and a tagged level with nothing sharp at it and no
+//! corner (not even one left by peeled darts), run the untagged step itself.
 
 use super::{MobiusOptions, MobiusReport};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Status};
 use crate::exec::Executor;
 use crate::mesh::refine::write_pattern;
 use crate::mesh::{
@@ -332,13 +343,21 @@ fn rename_output(
     Ok(r as u32)
 }
 
-/// [`rename_output`] of the element an error of the cut step names.
+/// [`rename_output`] of the element an error of the cut step names, for the errors that
+/// name an output vertex ([`Status::FallbackInStrictMode`], [`Status::NumericalFailure`]);
+/// other errors keep theirs.
 fn rename_error(
     e: Error,
     topo: &Topology<'_, '_>,
     cut_topo: &Topology<'_, '_>,
     copy_of: &[u32],
 ) -> Error {
+    if !matches!(
+        e.status,
+        Status::FallbackInStrictMode | Status::NumericalFailure
+    ) {
+        return e;
+    }
     match rename_output(e.element, topo, cut_topo, copy_of) {
         Ok(i) => Error { element: i, ..e },
         Err(err) => err,
