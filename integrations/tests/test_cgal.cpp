@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -399,13 +400,52 @@ static void sharp_features(itest::Tally& t) {
   put(vcm2, SM::Vertex_index(4), true);
   nc::Report r4 = nc::mobius_loop_subdivision(d, CGAL::parameters::number_of_iterations(2).vertex_is_constrained_map(vcm2));
   nc::Report r4p = nc::mobius_loop_subdivision(d_plain, CGAL::parameters::number_of_iterations(2));
-  const auto q4 = d.point(SM::Vertex_index(4)), p4 = d_plain.point(SM::Vertex_index(4));
-  const bool kept = q4.x() == 0 && q4.y() == 0 && q4.z() == 1, moved = !(p4.x() == 0 && p4.y() == 0 && p4.z() == 1);
+  const auto q4 = d.point(SM::Vertex_index(4)), w4 = d_plain.point(SM::Vertex_index(4));
+  const bool kept = q4.x() == 0 && q4.y() == 0 && q4.z() == 1, moved = !(w4.x() == 0 && w4.y() == 0 && w4.z() == 1);
   if (ms == NLS_STATUS_OK && r3.ok() && mc.ok(0.0) && mon == 12 * 3 + 8 && r4.ok() && r4p.ok() && kept && moved)
     t.pass("CGAL Möbius functions take constrained edges (= driver tags) and corners", mc.max_rel);
   else
     t.fail(std::string("CGAL Möbius with features: ") + r3.message() + "; " + mc.summary() + " on_edges=" + std::to_string(mon) +
            " / " + r4.message());
+  // Per-element sharpness through nlsubdiv's edge_sharpness_map / vertex_sharpness_map:
+  // the top face's edges infinitely sharp, one vertical edge 1.5, vertex 0 a corner of 2.5
+  // = the driver with the same tags; a NaN value is refused, mesh unchanged.
+  {
+    SM g = cube;
+    auto esm = g.add_property_map<SM::Edge_index, double>("e:sharpness", 0.0).first;
+    auto vsm = g.add_property_map<SM::Vertex_index, double>("v:sharpness", 0.0).first;
+    static const uint32_t GE[10] = {4, 5, 5, 6, 6, 7, 7, 4, 0, 4};
+    static const double GS[5] = {10, 10, 10, 10, 1.5};
+    auto edge_of = [&](uint32_t a, uint32_t b) { return g.edge(g.halfedge(SM::Vertex_index(a), SM::Vertex_index(b))); };
+    for (int k = 0; k < 5; ++k) put(esm, edge_of(GE[2 * k], GE[2 * k + 1]), GS[k]);
+    put(vsm, SM::Vertex_index(0), 2.5);
+    nls_tags gt{};
+    static const uint32_t GV[1] = {0};
+    static const double GVS[1] = {2.5};
+    gt.crease_vertices = GE;
+    gt.crease_sharpness = GS;
+    gt.crease_count = 5;
+    gt.corner_vertices = GV;
+    gt.corner_sharpness = GVS;
+    gt.corner_count = 1;
+    nlsubdiv::flat::FlatMesh gwant;
+    const nls_status gs = nlsubdiv::flat::run_levels(NLS_SCHEME_CATMULL_CLARK, 0, fin, 2, gwant, el, fb, &gt);
+    nc::Report rg = nc::catmull_clark_subdivision(
+        g, nlsubdiv::parameters::number_of_iterations(2).edge_sharpness_map(esm).vertex_sharpness_map(vsm));
+    Flat ggot = flat_of(g), gref;
+    gref.pos = gwant.positions;
+    gref.off = gwant.offsets;
+    gref.idx = gwant.indices;
+    itest::Cmp gc = itest::compare(ggot, gref);
+    SM h = cube;
+    auto hsm = h.add_property_map<SM::Edge_index, double>("e:sharpness", 0.0).first;
+    put(hsm, *CGAL::edges(h).begin(), std::nan(""));
+    nc::Report rh = nc::catmull_clark_subdivision(h, nlsubdiv::parameters::number_of_iterations(1).edge_sharpness_map(hsm));
+    if (gs == NLS_STATUS_OK && rg.ok() && gc.ok(0.0) && rh.status == NLS_STATUS_INVALID_SHARPNESS && flat_of(h) == in)
+      t.pass("CGAL edge_sharpness_map / vertex_sharpness_map = driver tags (semi-sharp, corner); NaN refused", gc.max_rel);
+    else
+      t.fail(std::string("CGAL sharpness maps: ") + rg.message() + "; " + gc.summary() + " / NaN: " + rh.message());
+  }
   // A scheme without tag rules refuses, mesh unchanged.
   SM e = cube;
   auto ecm3 = e.add_property_map<SM::Edge_index, bool>("e:sharp", true).first;
