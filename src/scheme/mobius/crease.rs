@@ -297,7 +297,7 @@ fn split_vertices(
             set(copy_of, next, v)?;
             next += 1;
         }
-        let mut k = 0;
+        let mut k: u32 = 0;
         for (j, s) in topo.star(v).enumerate() {
             if j > 0 && get(cut, s.edge as usize)? == 1 {
                 k += 1;
@@ -305,7 +305,13 @@ fn split_vertices(
             if s.face == NONE {
                 continue;
             }
-            let sector = if open { k } else { k % c };
+            // `checked_rem`: `c ≥ 2` here (a closed star with fewer cuts has one sector),
+            // but the panicking `%` would link a panic path into every export.
+            let sector = if open {
+                k
+            } else {
+                k.checked_rem(c).ok_or(internal())?
+            };
             let copy = if sector == 0 {
                 v
             } else {
