@@ -730,3 +730,82 @@ fn a_crease_curve_of_three_points_takes_the_linear_rule_in_the_default_mode() {
         }
     }
 }
+
+#[test]
+fn tagged_regular_grids_under_mobius_maps_stay_mobius_regular() {
+    // A regular grid (unit quads, or the equilateral lattice for the triangle schemes) with
+    // a straight crease along its middle row, boundary to boundary: the linear rules with
+    // the crease reproduce the regular grid at half the spacing (each side is a half-grid
+    // with a straight boundary curve), the Möbius rules equal the linear ones on it, and
+    // they commute with Möbius maps. So on a Möbius image of the grid the tagged Möbius
+    // result is the image of the regular grid: Möbius-regular at every interior vertex,
+    // the crease's included, and equal to the image of the linear result.
+    let n = 8;
+    let s3 = 3f64.sqrt() / 2.0;
+    let mut worst_map = 0.0f64;
+    let mut worst_mr = 0.0f64;
+    for (k, s) in ALL.into_iter().enumerate() {
+        let param = if triangles(s) {
+            tri_grid(n, n)
+        } else {
+            quad_grid(n, n)
+        };
+        let grid = if triangles(s) {
+            param.map_positions(|p| [p[0] - 0.5 * p[1], s3 * p[1], 0.0])
+        } else {
+            param.clone()
+        };
+        let row: Vec<u32> = (0..=n as u32).map(|i| 4 * (n as u32 + 1) + i).collect();
+        let creases = edges_of(&row, false);
+        let infs = vec![INF; creases.len()];
+        let tags = Tags::new().creases(&creases, &infs);
+        let lin = run_tagged(&grid, &Options::new(s).levels(1), &tags)
+            .unwrap()
+            .0;
+        let f = random_mobius(&grid, 31 + k as u64);
+        let image = grid.map_positions(|p| f.apply(p).unwrap());
+        let (mob, r) = run_tagged(&image, &mobius(s, 1), &tags).unwrap();
+        assert_eq!((r.fallbacks, r.guarded), (0, 0), "{s:?}");
+        // Interior: two original cells away from the outer boundary (whose corners the
+        // curve rules round), in the parameter plane.
+        let lin_param = run_tagged(&param, &Options::new(s).levels(1), &tags)
+            .unwrap()
+            .0;
+        let interior: Vec<bool> = lin_param
+            .positions
+            .iter()
+            .map(|p| p[0] > 2.01 && p[0] < n as f64 - 2.01 && p[1] > 2.01 && p[1] < n as f64 - 2.01)
+            .collect();
+        let expect = lin.map_positions(|p| f.apply(p).unwrap());
+        let scale = diameter(&expect.positions);
+        for (i, (&p, &q)) in mob.positions.iter().zip(&expect.positions).enumerate() {
+            if interior[i] {
+                let e = dist(p, q) / scale;
+                assert!(e < 1e-10, "{s:?}: {e:e} at {i}");
+                worst_map = worst_map.max(e);
+            }
+        }
+        if s.pattern().keeps_old_vertices() {
+            common::with_topology(&mob, |t| {
+                for v in 0..t.num_vertices() as u32 {
+                    if !interior[v as usize] {
+                        continue;
+                    }
+                    let ring: Vec<Point> = t
+                        .ring(v)
+                        .unwrap()
+                        .iter()
+                        .map(|&u| t.position(u).unwrap())
+                        .collect();
+                    let mr =
+                        nlsubdiv::metrics::mobius_regularity(t.position(v).unwrap(), &ring, true)
+                            .unwrap();
+                    assert!(mr < 1e-10, "{s:?}: Möbius regularity defect {mr:e} at {v}");
+                    worst_mr = worst_mr.max(mr);
+                }
+            })
+            .unwrap();
+        }
+    }
+    println!("tagged regular grids: image error {worst_map:.2e}, regularity defect {worst_mr:.2e}");
+}
