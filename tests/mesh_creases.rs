@@ -14,35 +14,16 @@
 mod common;
 
 use common::{cube, icosahedron, jitter, octahedron, prism, quad_grid, skip, tri_grid, OwnedMesh};
-use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, CreaseMethod, Options, Scheme, Scratch, Tags};
+use nlsubdiv::scheme::{self, CreaseMethod, Options, Scheme, Tags};
 use nlsubdiv::{Result, Status};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
-/// The public tagged path with owned buffers of exactly the planned sizes.
+/// The public tagged path ([`common::run_tagged`]), its output.
 fn run_tagged(m: &OwnedMesh, opts: &Options, tags: &Tags<'_>) -> Result<OwnedMesh> {
-    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
-    let p = scheme::plan_tagged(m.view(), opts, tags, &mut su)?;
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let r = scheme::subdivide_tagged(
-        m.view(),
-        opts,
-        tags,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-    )?;
-    assert_eq!(r.sizes, o);
-    Ok(out)
+    common::run_tagged(m, opts, tags).map(|(o, _)| o)
 }
 
 /// The OpenSubdiv runner, compiled once per test binary; `None` (reported as a skip) when

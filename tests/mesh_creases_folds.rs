@@ -18,8 +18,7 @@ mod common;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use common::*;
-use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, Options, Scheme, Scratch, Tags};
+use nlsubdiv::scheme::{Options, Scheme, Tags};
 use nlsubdiv::Point;
 
 const TEST: &str = "mesh_creases_folds::tagged_mobius_folds_no_more_than_tagged_linear";
@@ -81,27 +80,9 @@ fn crease_angle(m: &OwnedMesh, degrees: f64) -> Vec<[u32; 2]> {
         .collect()
 }
 
-/// The tagged call with owned buffers.
+/// The tagged call ([`common::run_tagged`]), its output.
 fn run_tagged(m: &OwnedMesh, opts: &Options, tags: &Tags<'_>) -> OwnedMesh {
-    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags).unwrap()];
-    let p = scheme::plan_tagged(m.view(), opts, tags, &mut su).unwrap();
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    scheme::subdivide_tagged(
-        m.view(),
-        opts,
-        tags,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-    )
-    .unwrap();
-    out
+    common::run_tagged(m, opts, tags).unwrap().0
 }
 
 /// The children of `edges` of level `m` in its child: old vertices keep their index and the

@@ -18,8 +18,7 @@ mod common;
 
 use common::{cube, icosahedron, jitter, quad_grid, quad_torus, tri_grid, tri_torus, OwnedMesh};
 use nlsubdiv::curve::four_point;
-use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, CreaseMethod, Options, Scheme, Scratch, Tags};
+use nlsubdiv::scheme::{CreaseMethod, Options, Scheme, Tags};
 use nlsubdiv::{Result, Status};
 use std::collections::BTreeSet;
 
@@ -27,27 +26,9 @@ const MB: Scheme = Scheme::ModifiedButterfly;
 const KOBBELT: Scheme = Scheme::Kobbelt;
 const BOTH: [Scheme; 2] = [MB, KOBBELT];
 
-/// The public tagged path with owned buffers of exactly the planned sizes.
+/// The public tagged path ([`common::run_tagged`]), its output.
 fn run_tagged(m: &OwnedMesh, opts: &Options, tags: &Tags<'_>) -> Result<OwnedMesh> {
-    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
-    let p = scheme::plan_tagged(m.view(), opts, tags, &mut su)?;
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let r = scheme::subdivide_tagged(
-        m.view(),
-        opts,
-        tags,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-    )?;
-    assert_eq!(r.sizes, o);
-    Ok(out)
+    common::run_tagged(m, opts, tags).map(|(o, _)| o)
 }
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {

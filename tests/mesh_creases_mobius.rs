@@ -19,10 +19,9 @@ mod common;
 use common::OwnedMesh;
 use common::{cube, icosahedron, jitter, octahedron, quad_grid, quad_torus, tri_grid, tri_torus};
 use nlsubdiv::curve::mobius as curve;
-use nlsubdiv::mesh::MeshOut;
 use nlsubdiv::mobius::MobiusMap;
-use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
-use nlsubdiv::{Point, Result, Status};
+use nlsubdiv::scheme::{Options, Scheme, Tags};
+use nlsubdiv::{Point, Status};
 use std::collections::{BTreeMap, BTreeSet};
 
 const LOOP: Scheme = Scheme::Loop;
@@ -40,28 +39,7 @@ fn approximating(s: Scheme) -> bool {
     matches!(s, LOOP | CC)
 }
 
-/// The public tagged path with owned buffers of exactly the planned sizes.
-fn run_tagged(m: &OwnedMesh, opts: &Options, tags: &Tags<'_>) -> Result<(OwnedMesh, Report)> {
-    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
-    let p = scheme::plan_tagged(m.view(), opts, tags, &mut su)?;
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let r = scheme::subdivide_tagged(
-        m.view(),
-        opts,
-        tags,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-    )?;
-    assert_eq!(r.sizes, o);
-    Ok((out, r))
-}
+use common::run_tagged;
 
 fn mobius(s: Scheme, levels: usize) -> Options {
     Options::new(s).mobius(true).levels(levels)
