@@ -267,12 +267,14 @@ fn tag<'a>(
         .ok_or_else(|| format!("'t': counts {} are not ni/nf/ns", quote(counts)))?;
     let (ni, nf, ns) = (n[0], n[1], n[2]);
     let rest: Vec<&[u8]> = toks.collect();
-    if rest.len() != ni + nf + ns {
+    // Checked: the counts come from the file and may be as large as `usize` allows.
+    let announced = ni.checked_add(nf).and_then(|x| x.checked_add(ns));
+    if announced != Some(rest.len()) {
         return Err(format!(
             "tag {}: {} values after the counts, {ni}/{nf}/{ns} announce {}",
             quote(name),
             rest.len(),
-            ni + nf + ns
+            announced.map_or_else(|| "more than can be counted".to_string(), |a| a.to_string())
         ));
     }
     let mut ints = Vec::with_capacity(ni);
@@ -462,5 +464,16 @@ mod tests {
             .unwrap_err()
             .message;
         assert!(e.contains("2 corners"), "{e}");
+        // Tag counts whose sum overflows (a fuzz finding): an error naming the line.
+        let e = parse(&format!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt crease {}/1/0 0 1 10\n",
+            usize::MAX
+        ))
+        .unwrap_err()
+        .message;
+        assert!(
+            e.contains("t.obj:5") && e.contains("more than can be counted"),
+            "{e}"
+        );
     }
 }
