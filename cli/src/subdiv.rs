@@ -390,6 +390,23 @@ fn describe_fallback(ms: MeshScheme, mesh: CoreMesh<'_>, i: u32, n: &Namer<'_>) 
 /// The message of a failed core call (`plan` or `subdivide`) on `mesh`, the input of step
 /// `n.level + 1`: a validation error names the element of `mesh`; any other error is the
 /// step's, described with `mesh`'s topology (built here, on the error path only).
+/// The output vertex `i` of step `level` of a multi-level call, for a report: elements of
+/// level 1 are described by the input's elements (file lines), later ones by their index.
+fn describe_step_vertex(
+    ms: MeshScheme,
+    mesh0: CoreMesh<'_>,
+    n0: &Namer<'_>,
+    level: u32,
+    i: u32,
+) -> String {
+    let what = if level == 1 {
+        describe_fallback(ms, mesh0, i, n0)
+    } else {
+        format!("an element of level {}", level - 1)
+    };
+    format!("step {level}, output vertex {i} ({what})")
+}
+
 fn call_error(e: Error, ms: MeshScheme, mesh: CoreMesh<'_>, n: &Namer<'_>) -> CliError {
     let Some(mut scratch) = scheme::plan_scratch_size(&mesh)
         .ok()
@@ -593,14 +610,7 @@ pub fn run(
     }
     // Elements of level 1 are described by the input's elements (file lines); later levels
     // by their index.
-    let describe = |level: u32, i: u32| {
-        let what = if level == 1 {
-            describe_fallback(ms, mesh0, i, &n0)
-        } else {
-            format!("an element of level {}", level - 1)
-        };
-        format!("step {level}, output vertex {i} ({what})")
-    };
+    let describe = |level: u32, i: u32| describe_step_vertex(ms, mesh0, &n0, level, i);
     Ok(Outcome {
         mesh: next,
         fallbacks: u64::from(report.fallbacks),
@@ -800,14 +810,7 @@ pub fn run_tagged(
         ));
     }
     // Later levels are described by their index (as `run` does).
-    let describe = |level: u32, i: u32| {
-        let what = if level == 1 {
-            describe_fallback(ms, mesh0, i, &n0)
-        } else {
-            format!("an element of level {}", level - 1)
-        };
-        format!("step {level}, output vertex {i} ({what})")
-    };
+    let describe = |level: u32, i: u32| describe_step_vertex(ms, mesh0, &n0, level, i);
     Ok(Outcome {
         mesh: next,
         fallbacks: u64::from(report.fallbacks),
