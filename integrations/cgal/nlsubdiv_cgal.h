@@ -14,7 +14,7 @@
 // The entry points are nlsubdiv::Subdivision_method_3::*_subdivision (one per scheme, linear
 // and Mobius_*, and Differential_*), in the style of CGAL::Subdivision_method_3: a polygon
 // mesh, CGAL named parameters (CGAL's own and nlsubdiv::parameters::strict, literal,
-// linear_weight, crease_sharpness, corner_sharpness, crease_method, report,
+// linear_weight, crease_sharpness, corner_sharpness, crease_method, report, threads,
 // vertex_curvature_scale_map, solver_max_iterations, solver_tolerance, dirmag_levels), no
 // return value, nlsubdiv::cgal::Subdivision_error on failure. The lowercase functions of
 // nlsubdiv::cgal (mobius_loop_subdivision, ...) are deprecated, kept for one version.
@@ -64,6 +64,7 @@
 #include <vector>
 
 #include "../common/nlsubdiv_flat.hh"
+#include "../common/nlsubdiv_pool.hh"
 #include "nlsubdiv.h"
 
 namespace nlsubdiv {
@@ -85,6 +86,7 @@ enum vertex_sharpness_map_t { vertex_sharpness_map };
 enum solver_max_iterations_t { solver_max_iterations };
 enum solver_tolerance_t { solver_tolerance };
 enum dirmag_levels_t { dirmag_levels };
+enum threads_t { threads };
 }  // namespace internal_np
 
 namespace cgal {
@@ -108,6 +110,14 @@ struct Options {
   /// the Möbius–linear spectrum (seed 000 §7.2): 0 Möbius, 1 linear, bit for bit. The star-rule
   /// masks evaluate weight 0 only.
   double linear_weight = 0.0;
+  /// Threads of the kernel's passes (nls_subdivide_options::executor), the calling thread
+  /// included: 1 the calling thread only, 0 the hardware's thread count. The result is the
+  /// same bits for every count. The star-rule masks and the differential functions run on the
+  /// calling thread.
+  unsigned threads = 1;
+  /// The pool of `threads` threads, started on first use and shared by the copies of these
+  /// options (a mask evaluates every level with the same pool).
+  std::shared_ptr<nlsubdiv::ThreadPool> pool;
 };
 
 /// Options of the differential functions (nls_differential_options; seed 001 §3): the
@@ -250,6 +260,12 @@ struct MaskState {
   }
 };
 
+/// The executor of `o`: NULL for one thread, otherwise its pool's (started here on first use).
+inline const nls_executor* executor_of(Options& o) {
+  if (o.threads != 1 && !o.pool) o.pool = std::make_shared<nlsubdiv::ThreadPool>(o.threads);
+  return o.pool ? o.pool->executor() : nullptr;
+}
+
 /// Evaluates the level of `st` (its flat copy) with the driver and fills the lookup tables
 /// (old vertices, edge points by (min, max) pair, face points of the quad schemes).
 template <class PM>
@@ -257,7 +273,8 @@ bool fill_from_driver(MaskState<PM>& st, uint32_t scheme, uint32_t flags) {
   const FlatMesh& in = st.level.flat;
   uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
   FlatMesh out;
-  nls_status s = nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks, nullptr, st.opts.linear_weight);
+  nls_status s =
+      nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks, nullptr, st.opts.linear_weight, executor_of(st.opts));
   if (s != NLS_STATUS_OK) return st.fail(s, el);
   st.report.fallbacks += fallbacks;
   const std::size_t n = in.vertex_count();
@@ -810,7 +827,7 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
   const nls_tags tv = tags.view();
   if (s == NLS_STATUS_OK)
     s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks, tags.empty() ? nullptr : &tv,
-                                   (flags & NLS_SUBDIVIDE_MOBIUS) ? opts.linear_weight : 0.0);
+                                   (flags & NLS_SUBDIVIDE_MOBIUS) ? opts.linear_weight : 0.0, executor_of(opts));
   if (s != NLS_STATUS_OK) {
     r.status = s;
     r.element = el;
@@ -1197,6 +1214,8 @@ struct Named_function_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   Named_function_parameters<double, internal_np::solver_tolerance_t, self> solver_tolerance(double t) const { return {t, *this}; }
   /// See nlsubdiv::parameters::dirmag_levels.
   Named_function_parameters<uint32_t, internal_np::dirmag_levels_t, self> dirmag_levels(uint32_t n) const { return {n, *this}; }
+  /// See nlsubdiv::parameters::threads.
+  Named_function_parameters<unsigned, internal_np::threads_t, self> threads(unsigned n) const { return {n, *this}; }
 };
 
 namespace parameters {
@@ -1268,6 +1287,12 @@ inline Named_function_parameters<uint32_t, internal_np::solver_max_iterations_t>
 inline Named_function_parameters<double, internal_np::solver_tolerance_t> solver_tolerance(double t) { return {t}; }
 /// DirMag: the first this many levels use DirMag (default 1).
 inline Named_function_parameters<uint32_t, internal_np::dirmag_levels_t> dirmag_levels(uint32_t n) { return {n}; }
+/// Threads of the kernel's passes (default 1: the calling thread only; 0: the hardware's
+/// thread count), through nlsubdiv::ThreadPool (nlsubdiv_pool.hh), started once per call and
+/// shared by its levels. The result, the fallbacks and the errors are the same bits for every
+/// count. The star-rule masks (Mobius_loop_mask_3, Mobius_butterfly_mask_3) and the
+/// differential functions run on the calling thread.
+inline Named_function_parameters<unsigned, internal_np::threads_t> threads(unsigned n) { return {n}; }
 
 }  // namespace parameters
 
@@ -1289,6 +1314,7 @@ Options options_of(const NP& np) {
   o.crease_sharpness = param_or(np, nlsubdiv::internal_np::crease_sharpness, o.crease_sharpness);
   o.corner_sharpness = param_or(np, nlsubdiv::internal_np::corner_sharpness, o.corner_sharpness);
   o.crease_method = param_or(np, nlsubdiv::internal_np::crease_method, o.crease_method);
+  o.threads = param_or(np, nlsubdiv::internal_np::threads, o.threads);
   return o;
 }
 

@@ -62,11 +62,13 @@
 #include <string>
 #include <utility>
 #include <type_traits>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include "nlsubdiv.h"
 #include "../common/nlsubdiv_flat.hh"
+#include "../common/nlsubdiv_pool.hh"
 
 namespace nlsubdiv {
 namespace openmesh {
@@ -490,6 +492,18 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   /// unchanged. The linear classes ignore it.
   void set_linear_weight(double u) { linear_weight_ = u; }
   double linear_weight() const { return linear_weight_; }
+  /// Threads of the kernel's passes, the calling thread included: 1 (the default) runs on the
+  /// calling thread only, 0 takes the hardware's thread count. The subdivider starts a pool
+  /// (nlsubdiv::ThreadPool, nlsubdiv_pool.hh) here, once, and every later call reuses it.
+  /// The result, the fallbacks and the errors are the same bits for every thread count.
+  void set_threads(unsigned n) {
+    if (n == 1) {
+      pool_.reset();
+      return;
+    }
+    pool_ = std::make_shared<nlsubdiv::ThreadPool>(n);
+  }
+  unsigned threads() const { return pool_ ? pool_->threads() : 1u; }
 
   const char* name() const override {
     static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
@@ -546,7 +560,8 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     uint32_t element = NLS_NO_ELEMENT, fallbacks = 0;
     const nls_tags t = tags_.view();
     nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks, tags_.empty() ? nullptr : &t,
-                                              (Flags & NLS_SUBDIVIDE_MOBIUS) ? linear_weight_ : 0.0);
+                                              (Flags & NLS_SUBDIVIDE_MOBIUS) ? linear_weight_ : 0.0,
+                                              pool_ ? pool_->executor() : nullptr);
     if (s != NLS_STATUS_OK) return this->fail(s, element, done + 1);
     this->out_.fallbacks += fallbacks;
     return true;
@@ -581,6 +596,7 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   double corner_sharpness_ = 10.0;
   uint32_t crease_method_ = NLS_CREASE_UNIFORM;
   double linear_weight_ = 0.0;
+  std::shared_ptr<nlsubdiv::ThreadPool> pool_;  // shared by copies of the subdivider
   nlsubdiv::flat::FlatTags tags_;
 };
 

@@ -646,6 +646,48 @@ static void named_parameters(itest::Tally& t) {
     else
       t.fail("SM3 linear_weight(1) Butterfly / Catmull-Clark");
   }
+  // threads: the same bits for 1, 2, 3, 7 and the hardware's thread count, on the bulk path
+  // and on the driver masks (Catmull-Clark's PQQ host), and the same refusal.
+  {
+    SM obent = oct, cbent = cube;
+    for (auto v : vertices(obent)) {
+      const K::Point_3 p = obent.point(v);
+      const double s = 1.0 + 0.1 * static_cast<double>(v.idx());
+      obent.point(v) = K::Point_3(p.x() * s, p.y() * s, p.z() * s);
+    }
+    for (auto v : vertices(cbent))
+      if (v.idx() == 7) cbent.point(v) = K::Point_3(0, 1, 1.3);
+    bool all = true;
+    std::string why;
+    auto check = [&](const char* what, auto run, const SM& m0) {
+      SM ref = m0;
+      run(ref, 1u);
+      for (unsigned n : {2u, 3u, 7u, 0u}) {
+        SM m = m0;
+        run(m, n);
+        if (!(flat_of(m) == flat_of(ref))) {
+          all = false;
+          why += std::string(" ") + what + "/" + std::to_string(n);
+        }
+      }
+    };
+    check("Mobius_Loop", [](SM& m, unsigned n) { SM3::Mobius_Loop_subdivision(m, NP::number_of_iterations(4).threads(n)); }, obent);
+    check("Mobius_Butterfly", [](SM& m, unsigned n) { SM3::Mobius_Butterfly_subdivision(m, NP::number_of_iterations(4).threads(n)); }, obent);
+    check("Mobius_CatmullClark",
+          [](SM& m, unsigned n) { SM3::Mobius_CatmullClark_subdivision(m, NP::number_of_iterations(4).threads(n)); }, cbent);
+    check("Mobius_Kobbelt", [](SM& m, unsigned n) { SM3::Mobius_Kobbelt_subdivision(m, NP::number_of_iterations(3).threads(n)); }, cbent);
+    check("Loop", [](SM& m, unsigned n) { SM3::Loop_subdivision(m, NP::number_of_iterations(4).threads(n)); }, obent);
+    check("Mobius_Loop weight 0.5",
+          [](SM& m, unsigned n) { SM3::Mobius_Loop_subdivision(m, NP::number_of_iterations(3).linear_weight(0.5).threads(n)); }, obent);
+    SM bad = oct;
+    bool consistent = false;
+    nc::Report rb =
+        call_new([&](nc::Report& r) { SM3::Mobius_Loop_subdivision(bad, NP::linear_weight(2.0).threads(3).report(r)); }, &consistent);
+    if (all && consistent && rb.status == NLS_STATUS_INVALID_ARGUMENT && flat_of(bad) == oin)
+      t.pass("SM3 threads: 1, 2, 3, 7 and all threads give the same bits (bulk and driver masks); refusals unchanged", 0);
+    else
+      t.fail("SM3 threads:" + why + " " + rb.message());
+  }
   // strict: an unreferenced vertex is accepted by default and refused in strict mode
   // (NLS_STATUS_INVALID_ARGUMENT naming it), mesh unchanged.
   {

@@ -690,6 +690,67 @@ static void spectrum_weight(itest::Tally& t) {
     t.fail("OpenMesh set_linear_weight(1) Catmull-Clark");
 }
 
+/// `Sd` on `mesh0` (`levels` levels, linear weight `u`) on 2, 3, 7 and all threads, each
+/// subdivider called twice (its pool serves both calls), against one thread.
+template <class Sd, class M>
+static void same_bits(itest::Tally& t, const M& mesh0, unsigned levels, const char* what, double u = 0.0) {
+  M ref = mesh0;
+  Sd sd1;
+  sd1.set_linear_weight(u);
+  const bool ok1 = sd1(ref, levels);
+  bool all = ok1;
+  std::string why;
+  for (unsigned n : {2u, 3u, 7u, 0u}) {
+    Sd sd;
+    sd.set_linear_weight(u);
+    sd.set_threads(n);
+    for (int rep = 0; rep < 2; ++rep) {
+      M m = mesh0;
+      const bool ok = sd(m, levels);
+      if (ok != ok1 || !(flat_of(m) == flat_of(ref)) || sd.fallbacks() != sd1.fallbacks() || sd.status() != sd1.status()) {
+        all = false;
+        why += " threads " + std::to_string(n);
+      }
+    }
+    if (n != 0 && sd.threads() != n) all = false;
+  }
+  if (all)
+    t.pass(std::string("OpenMesh set_threads: ") + what + ": 1, 2, 3, 7 and all threads give the same bits", 0);
+  else
+    t.fail(std::string("OpenMesh set_threads: ") + what + ":" + why);
+}
+
+/// set_threads: the same output and fallbacks for 1, 2, 3, 7 and the hardware's thread count
+/// (every pass of the kernel split over a persistent pool); a pool is reused by later calls;
+/// a refused call is refused the same way on the pool, mesh unchanged.
+static void threads(itest::Tally& t) {
+  Tri oct = octahedron<Tri>();
+  // Off the sphere, so that the Möbius rules differ from the sphere's and the guard has work.
+  for (auto v : oct.vertices()) oct.point(v) *= 1.0 + 0.1 * v.idx();
+  Poly cube;
+  {
+    static const double P[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1.3}};
+    static const int F[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    std::vector<Poly::VertexHandle> v;
+    for (auto& p : P) v.push_back(cube.add_vertex(Poly::Point(p[0], p[1], p[2])));
+    for (auto& f : F) cube.add_face(std::vector<Poly::VertexHandle>{v[f[0]], v[f[1]], v[f[2]], v[f[3]]});
+  }
+  same_bits<nom::MobiusLoopBulkT<Tri>>(t, oct, 4, "Möbius Loop, 4 levels");
+  same_bits<nom::MobiusButterflyBulkT<Tri>>(t, oct, 4, "Möbius Butterfly, 4 levels");
+  same_bits<nom::MobiusCatmullClarkBulkT<Poly>>(t, cube, 4, "Möbius Catmull-Clark, 4 levels");
+  same_bits<nom::LinearCatmullClarkT<Poly>>(t, cube, 4, "Catmull-Clark, 4 levels");
+  same_bits<nom::MobiusLoopBulkT<Tri>>(t, oct, 3, "Möbius Loop at linear weight 0.5, 3 levels", 0.5);
+  // A refused call: the same status on the pool, the mesh unchanged.
+  Tri bad = oct;
+  nom::MobiusLoopBulkT<Tri> e;
+  e.set_threads(3);
+  e.set_linear_weight(2.0);
+  if (!e(bad, 2) && e.status() == NLS_STATUS_INVALID_ARGUMENT && flat_of(bad) == flat_of(oct))
+    t.pass("OpenMesh set_threads(3): a bad weight is refused as on one thread, mesh unchanged", 0);
+  else
+    t.fail(std::string("OpenMesh set_threads(3) refusal: ") + e.message());
+}
+
 /// Differential edits through vertex properties = the C ABI with the same arrays.
 static void differential_edits(itest::Tally& t) {
   const Tri oct = octahedron<Tri>();
@@ -1037,6 +1098,7 @@ int main(int argc, char** argv) {
   feature_creases(t);
   openmesh_interfaces_and_messages(t);
   spectrum_weight(t);
+  threads(t);
   differential_edits(t);
   properties(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
