@@ -4,6 +4,7 @@
  * NULL-executor call of the same input, bit for bit, for every scheme, linear and Möbius,
  * 1 to 3 levels, with
  *  - a pthread pool of 1, 2, 3 and 7 threads (tasks dealt round-robin, run concurrently),
+ *  - the public persistent pool of nlsubdiv_pool.h with 1, 2, 3, 7, all and 64 threads,
  *  - a serial executor that runs the tasks in reverse order, with max_tasks 2, 5, 64 and 1000,
  *  - a host that calls one task twice or an index out of range (ignored: same bits);
  * a host that skips a task gets NLS_STATUS_INVALID_ARGUMENT, as does max_tasks > 1 with a
@@ -17,6 +18,7 @@
 #include <stdlib.h>
 
 #include "nlsubdiv.h"
+#include "nlsubdiv_pool.h"
 #include "check.h"
 
 typedef struct {
@@ -258,6 +260,19 @@ static void test_same_bits(void) {
                     ok &= p.calls > 0; /* this scheme's passes went to the pool */
                     mesh_free(&got);
                 }
+                for (k = 0; k < sizeof threads / sizeof threads[0]; k++) {
+                    /* The public persistent pool (nlsubdiv_pool.h), used twice. */
+                    nls_pool np;
+                    int rep;
+                    CHECK(nls_pool_init(&np, threads[k]) == 0);
+                    CHECK((nls_pool_executor(&np) == NULL) == (threads[k] == 1));
+                    for (rep = 0; rep < 2; rep++) {
+                        CHECK_STATUS(run(m, sch, flags, levels, nls_pool_executor(&np), &got, &rgot), NLS_STATUS_OK);
+                        ok &= same(&ref, &got, &rref, &rgot);
+                        mesh_free(&got);
+                    }
+                    nls_pool_destroy(&np);
+                }
                 for (k = 0; k < sizeof tasks / sizeof tasks[0]; k++) {
                     nls_executor ex;
                     ex.run = reverse_run;
@@ -318,8 +333,34 @@ static void test_contract_breaches(void) {
     mesh_free(&m);
 }
 
+/* nls_pool_init(0) takes the online cores; an error from the pool's start is not reached here,
+ * but a pool of the maximal size is, and its executor asks for one task per thread. */
+static void test_public_pool(void) {
+    mesh m = torus(13, 9), ref, got;
+    nls_subdivide_report rref, rgot;
+    nls_pool np;
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2, NULL, &ref, &rref), NLS_STATUS_OK);
+    CHECK(nls_pool_init(&np, 0) == 0);
+    CHECK(np.threads == (cores > 1 ? (cores < NLS_MAX_TASKS ? (unsigned)cores : NLS_MAX_TASKS) : 1u));
+    CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2, nls_pool_executor(&np), &got, &rgot), NLS_STATUS_OK);
+    CHECK(same(&ref, &got, &rref, &rgot));
+    mesh_free(&got);
+    nls_pool_destroy(&np);
+    nls_pool_destroy(&np); /* harmless twice */
+    CHECK(nls_pool_init(&np, 1000) == 0);
+    CHECK(np.threads == NLS_MAX_TASKS && nls_pool_executor(&np)->max_tasks == NLS_MAX_TASKS);
+    CHECK_STATUS(run(&m, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 2, nls_pool_executor(&np), &got, &rgot), NLS_STATUS_OK);
+    CHECK(same(&ref, &got, &rref, &rgot));
+    mesh_free(&got);
+    nls_pool_destroy(&np);
+    mesh_free(&ref);
+    mesh_free(&m);
+}
+
 int main(void) {
     test_same_bits();
+    test_public_pool();
     test_contract_breaches();
     return nls_summary("test_executor");
 }

@@ -7,6 +7,7 @@
 #   PREFIX/bin/nlsubdiv                              the command
 #   PREFIX/share/man/man1/nlsubdiv.1                 its manual page
 #   PREFIX/include/nlsubdiv.h                        the C ABI (C99 and C++)
+#   PREFIX/include/nlsubdiv_pool.h                   a header-only POSIX-threads pool for it
 #   PREFIX/include/nlsubdiv/openmesh/*.hh            header-only OpenMesh subdividers
 #   PREFIX/include/nlsubdiv/cgal/*.h                 header-only CGAL masks and functions
 #   PREFIX/include/nlsubdiv/common/*.hh              what both of them share
@@ -58,7 +59,7 @@ install -d "$D/bin" "$D/share/man/man1" "$D/include/nlsubdiv/openmesh" "$D/inclu
     "$D/include/nlsubdiv/common" "$D/$LIBDIR/pkgconfig" "$D/$LIBDIR/cmake/nlsubdiv"
 install -p -m 755 "$rel/nlsubdiv" "$D/bin/"
 install -p -m 644 "$rel/nlsubdiv.1" "$D/share/man/man1/"
-install -p -m 644 include/nlsubdiv.h "$D/include/"
+install -p -m 644 include/nlsubdiv.h include/nlsubdiv_pool.h "$D/include/"
 install -p -m 644 integrations/openmesh/*.hh "$D/include/nlsubdiv/openmesh/"
 install -p -m 644 integrations/cgal/*.h "$D/include/nlsubdiv/cgal/"
 install -p -m 644 integrations/common/*.hh "$D/include/nlsubdiv/common/"
