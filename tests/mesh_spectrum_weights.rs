@@ -25,7 +25,7 @@ mod common;
 use common::*;
 use nlsubdiv::exec::Serial;
 use nlsubdiv::mesh::MeshOut;
-use nlsubdiv::scheme::{self, Options, Scheme, Scratch, Tags};
+use nlsubdiv::scheme::{self, Options, Scheme, Scratch, Tags, VertexWeights};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
 fn mobius_schemes() -> impl Iterator<Item = Scheme> {
@@ -70,7 +70,7 @@ fn weighted(
     opts: &Options,
     w: Option<&[f64]>,
 ) -> nlsubdiv::Result<(OwnedMesh, nlsubdiv::Report)> {
-    run_weighted(m, opts, &Tags::new(), w, &Serial)
+    run_weighted(m, opts, &Tags::new(), w.map(VertexWeights::Mobius), &Serial)
 }
 
 /// Pseudo-random weights in `[lo, hi]`.
@@ -129,6 +129,43 @@ fn uniform_weights_are_the_global_weight_bit_for_bit() {
                 weighted(&m, &Options::new(s).levels(2), Some(&ws)).unwrap(),
                 run(&m, &Options::new(s).levels(2)).unwrap(),
                 "{s:?} linear"
+            );
+        }
+    }
+}
+
+/// Weights of the linear result ([`VertexWeights::Linear`], the C ABI's convention): equal
+/// values `u` are the global weight `1 − u` bit for bit (as the C ABI's `linear_weight` is
+/// turned into it), mixed ones the same result as the weights `1 − u` of the Möbius result
+/// up to rounding, and bad values are refused alike.
+#[test]
+fn weights_of_the_linear_result() {
+    let lin_w = |m: &OwnedMesh, o: &Options, u: &[f64]| {
+        run_weighted(m, o, &Tags::new(), Some(VertexWeights::Linear(u)), &Serial)
+    };
+    for s in mobius_schemes() {
+        for m in meshes(s) {
+            let n = m.positions.len();
+            let mob = Options::new(s).mobius(true).levels(2);
+            for u in [0.0, 1.0, 0.25, 0.1, 0.9] {
+                assert_eq!(
+                    lin_w(&m, &mob, &vec![u; n]).unwrap(),
+                    run(&m, &mob.spectrum(1.0 - u)).unwrap(),
+                    "{s:?} all u = {u}"
+                );
+            }
+            let us = random_weights(n, 0.0, 1.0, 19);
+            let ws: Vec<f64> = us.iter().map(|u| 1.0 - u).collect();
+            let a = lin_w(&m, &mob, &us).unwrap().0;
+            let b = weighted(&m, &mob, Some(&ws)).unwrap().0;
+            let scale = gap(&a.positions, &vec![[0.0; 3]; a.positions.len()]);
+            let g = gap(&a.positions, &b.positions) / scale;
+            assert!(g < 1e-13, "{s:?}: {g:e}");
+            let mut bad = vec![0.5; n];
+            bad[2] = f64::NAN;
+            assert_eq!(
+                lin_w(&m, &mob, &bad).unwrap_err(),
+                Error::at(Status::InvalidArgument, 2)
             );
         }
     }
@@ -282,7 +319,14 @@ fn bad_weights_are_refused_naming_the_vertex_and_nothing_is_written() {
     let mob = Options::new(s).mobius(true).levels(2);
     let good = vec![0.5; n];
     let mut su = vec![0u32; scheme::plan_scratch_size(&m.view()).unwrap()];
-    let p = scheme::plan_weighted(m.view(), &mob, &Tags::new(), Some(&good), &mut su).unwrap();
+    let p = scheme::plan_weighted(
+        m.view(),
+        &mob,
+        &Tags::new(),
+        Some(VertexWeights::Mobius(&good)),
+        &mut su,
+    )
+    .unwrap();
     su.resize(p.scratch.u32s, 0);
     let mut sp = vec![[0.0; 3]; p.scratch.points];
     let o = p.output();
@@ -290,12 +334,18 @@ fn bad_weights_are_refused_naming_the_vertex_and_nothing_is_written() {
     let mut off = vec![u32::MAX; o.faces + 1];
     let mut idx = vec![u32::MAX; o.indices];
     let mut call = |w: &[f64]| {
-        let plan = scheme::plan_weighted(m.view(), &mob, &Tags::new(), Some(w), &mut su.clone());
+        let plan = scheme::plan_weighted(
+            m.view(),
+            &mob,
+            &Tags::new(),
+            Some(VertexWeights::Mobius(w)),
+            &mut su.clone(),
+        );
         let e = scheme::subdivide_weighted(
             m.view(),
             &mob,
             &Tags::new(),
-            Some(w),
+            Some(VertexWeights::Mobius(w)),
             Scratch::new(&mut su, &mut sp),
             &mut MeshOut::new(&mut pos, &mut off, &mut idx),
             &Serial,
@@ -358,7 +408,9 @@ fn weights_work_with_tags() {
         let tags = Tags::new().creases(&creases, &sharp);
         let n = m.positions.len();
         let mob = Options::new(s).mobius(true).levels(2);
-        let tagged = |o: &Options, w: Option<&[f64]>| run_weighted(&m, o, &tags, w, &Serial);
+        let tagged = |o: &Options, w: Option<&[f64]>| {
+            run_weighted(&m, o, &tags, w.map(VertexWeights::Mobius), &Serial)
+        };
         for w in [0.0, 1.0, 0.25, 0.6] {
             let ws = vec![w; n];
             assert_eq!(

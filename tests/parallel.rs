@@ -14,7 +14,7 @@ mod common;
 
 use common::*;
 use nlsubdiv::exec::{Chunk, Executor, Serial, MAX_CHUNKS};
-use nlsubdiv::scheme::{Options, Scheme, Tags};
+use nlsubdiv::scheme::{Options, Scheme, Tags, VertexWeights};
 use nlsubdiv::{Report, Result, Status};
 
 /// `threads` scoped std threads over `chunks` chunks per pass (every pass split, however
@@ -138,7 +138,7 @@ fn mobius_every_scheme_every_chunking() {
 #[test]
 fn weighted_spectrum_every_scheme_every_chunking() {
     let outcome_w = |m: &OwnedMesh, o: &Options, t: &Tags<'_>, w: &[f64], x: &dyn Executor| {
-        run_weighted(m, o, t, Some(w), x).map(|(o, r)| (hash(&o), r))
+        run_weighted(m, o, t, Some(VertexWeights::Mobius(w)), x).map(|(o, r)| (hash(&o), r))
     };
     let mut ok = 0;
     for (name, m) in meshes() {

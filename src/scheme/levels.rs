@@ -12,7 +12,7 @@ use super::mobius::MobiusOptions;
 use super::plan::{plan_with_topology, Plan};
 use super::step::{step, step_weighted};
 use super::tags::{self, Sharpness, Tags};
-use super::weights;
+use super::weights::{self, VertexWeights};
 use super::{Options, Report, Scratch};
 #[cfg(doc)]
 use crate::error::Status;
@@ -90,7 +90,7 @@ pub(super) fn run(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
-    weights: Option<&[f64]>,
+    weights: Option<VertexWeights<'_>>,
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
     exec: &dyn Executor,
@@ -226,15 +226,16 @@ pub(super) fn run(
         // k = 0, else the other buffer).
         let [wa, wb] = &mut bufs_w;
         let (w_in, w_out): (&[f64], &mut [f64]) = match (k, weights) {
-            (0, Some(w)) => (w, &mut **wa),
+            (0, Some(w)) => (w.values(), &mut **wa),
             (_, _) if k % 2 == 0 => (&**wb, &mut **wa),
             _ => (&**wa, &mut **wb),
         };
         let mut one = |o: &mut MeshOut<'_>| match (mobius, weights) {
-            (Some(m), Some(_)) => {
+            (Some(m), Some(given)) => {
                 weights::carry(scheme, &topo, w_in, w_out)?;
                 let w: &[f64] = w_out;
                 let w = w.get(..out_sizes.vertices).ok_or(internal())?;
+                let w = (w, given.of_linear());
                 step_weighted(scheme, m, w, sharp, &topo, o, step_scratch, crease, exec)
             }
             _ => step(scheme, mobius, sharp, &topo, o, step_scratch, crease, exec),

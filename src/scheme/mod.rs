@@ -65,6 +65,7 @@ pub use subdivide::{
     subdivide, subdivide_tagged, subdivide_weighted, subdivide_with, Report, Scratch,
 };
 pub use tags::Tags;
+pub use weights::VertexWeights;
 
 pub(crate) use plan::plan_levels;
 pub(crate) use step::linear_with as step_linear_with;

@@ -12,6 +12,7 @@
 use super::levels::Layout;
 use super::size::step_size;
 use super::tags::{self, Tags};
+use super::weights::VertexWeights;
 use super::{Options, Scheme, MAX_LEVELS};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::LevelCounts;
@@ -156,8 +157,8 @@ pub fn plan_tagged(
 
 /// [`plan_tagged`] with per-vertex weights of the Möbius–linear spectrum (seed 000 §7.2),
 /// the plan of [`subdivide_weighted`](super::subdivide_weighted) with the same arguments:
-/// `weights` holds the weight of the Möbius result at every input vertex (the convention of
-/// [`Options::spectrum`], which they replace), `None` is [`plan_tagged`] exactly. With
+/// `weights` holds a weight at every input vertex ([`VertexWeights`]; they replace
+/// [`Options::spectrum`]), `None` is [`plan_tagged`] exactly. With
 /// [`Options::mobius`] the point scratch also holds the linear positions of the largest
 /// level written and two buffers of the weights of the largest level written (three
 /// weights to a point). Checked, and without effect, for the linear schemes.
@@ -170,7 +171,7 @@ pub fn plan_weighted(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
-    weights: Option<&[f64]>,
+    weights: Option<VertexWeights<'_>>,
     scratch_u32: &mut [u32],
 ) -> Result<Plan> {
     plan_with_topology(mesh, opts, tags, weights, scratch_u32).map(|(p, _)| p)
@@ -203,7 +204,7 @@ pub(super) fn plan_with_topology(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
-    weights: Option<&[f64]>,
+    weights: Option<VertexWeights<'_>>,
     scratch_u32: &mut [u32],
 ) -> Result<(Plan, Counts)> {
     opts.check()?;

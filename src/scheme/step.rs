@@ -50,7 +50,8 @@ pub(crate) fn step(
 }
 
 /// [`step`] of the Möbius version with per-vertex spectrum weights (seed 000 §7.2,
-/// [`weights`]): `w` holds the weight of every output vertex of this step. All 0 is the
+/// [`weights`]): `w` holds the weight of every output vertex of this step (of the linear
+/// result with `of_linear`). All 0 is the
 /// linear step and all 1 the Möbius step, exactly those (`mobius` with weight 1); otherwise
 /// both are computed and blended per vertex, the linear positions in the last output-size
 /// points of `candidates` (which holds the Möbius candidates and those points).
@@ -61,7 +62,7 @@ pub(crate) fn step(
 pub(crate) fn step_weighted(
     scheme: Scheme,
     mobius: MobiusOptions,
-    w: &[f64],
+    (w, of_linear): (&[f64], bool),
     sharp: Option<&Sharpness<'_>>,
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
@@ -76,7 +77,7 @@ pub(crate) fn step_weighted(
     let w = w
         .get(..step_size(scheme, topo)?.vertices)
         .ok_or(internal())?;
-    match weights::uniform(w) {
+    match weights::uniform(w, of_linear) {
         Uniform::Zero => step(scheme, None, sharp, topo, out, candidates, crease, exec),
         Uniform::One => step(
             scheme,
@@ -90,7 +91,7 @@ pub(crate) fn step_weighted(
         ),
         Uniform::Mixed => match sharp {
             Some(sh) => {
-                let blend = Blend::PerVertex(w);
+                let blend = Blend::PerVertex(w, of_linear);
                 mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, full, blend, exec)
             }
             None => {
@@ -100,7 +101,7 @@ pub(crate) fn step_weighted(
                 let (sizes, report) = mobius::step(scheme, topo, out, cand, full, exec, &[])?;
                 linear::positions(scheme, topo, lin, exec)?;
                 let pos = out.positions.get_mut(..n).ok_or(internal())?;
-                Blend::PerVertex(w).apply(pos, lin)?;
+                Blend::PerVertex(w, of_linear).apply(pos, lin)?;
                 if let Some(i) = exec::first_non_finite(exec, pos)? {
                     return Err(Error::at(Status::NumericalFailure, i as u32));
                 }

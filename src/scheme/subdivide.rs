@@ -3,6 +3,7 @@
 
 use super::levels::run;
 use super::tags::Tags;
+use super::weights::VertexWeights;
 use super::Options;
 #[cfg(doc)]
 use crate::error::Status;
@@ -143,8 +144,9 @@ pub fn subdivide_tagged(
 /// (as [`subdivide_with`]; [`Serial`](crate::exec::Serial) for the calling thread). Buffer
 /// sizes come from [`plan_weighted`](super::plan_weighted) with the same arguments.
 ///
-/// `weights` (seed 000 §7.2, the module `weights.rs`): with [`Options::mobius`], the weight
-/// `w ∈ [0, 1]` of the Möbius result at every input vertex, replacing the global
+/// `weights` (seed 000 §7.2, [`VertexWeights`]): with [`Options::mobius`], a weight in
+/// `[0, 1]` at every input vertex, of the Möbius result (`w`, [`VertexWeights::Mobius`]) or
+/// of the linear one (`u = 1 − w`, [`VertexWeights::Linear`]), replacing the global
 /// [`Options::spectrum`]. They are carried to every output vertex of every level like a
 /// vertex attribute (an old vertex keeps its weight, an edge point takes the mean of its
 /// edge's ends, a face point the mean of its corners, a Doo–Sabin corner point its parent
@@ -163,7 +165,7 @@ pub fn subdivide_weighted(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
-    weights: Option<&[f64]>,
+    weights: Option<VertexWeights<'_>>,
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
     exec: &dyn Executor,

@@ -20,6 +20,13 @@
 //! weights stay equal exactly, level after level, and equal input weights `w` are the global
 //! weight `w` bit for bit; regions of weight exactly 0 or 1 stay exactly 0 or 1.
 //!
+//! **Two conventions.** [`VertexWeights::Mobius`] gives the weight `w` of the Möbius result
+//! (as [`super::Options::spectrum`]), [`VertexWeights::Linear`] the weight `u` of the linear
+//! result (as the C ABI's `linear_weight`). The values are carried as given and turned into
+//! `w = 1 − u` only at each output vertex, as the global weight of the C ABI is: equal `u`
+//! everywhere is then the global `u` bit for bit in either API, and `u` of exactly 0 or 1 is
+//! `w` of exactly 1 or 0.
+//!
 //! **Exact ends.** A level whose weights are all 0 is the linear step alone, all 1 the Möbius
 //! step alone (as the global weight's ends are). In a mixed level an output vertex of weight
 //! exactly 0 takes the linear point and one of weight exactly 1 the Möbius point, bit for
@@ -32,12 +39,40 @@ use crate::mesh::refine::Pattern;
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{self, Point};
 
+/// Per-vertex weights of the Möbius–linear spectrum, one per input vertex, each in
+/// `[0, 1]` ([`subdivide_weighted`](super::subdivide_weighted); the module docs say how they
+/// reach every output vertex).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VertexWeights<'a> {
+    /// The weight `w` of the Möbius result at each vertex (the convention of
+    /// [`Options::spectrum`](super::Options::spectrum)): 1 Möbius, 0 linear.
+    Mobius(&'a [f64]),
+    /// The weight `u` of the linear result at each vertex (the convention of the C ABI's
+    /// `linear_weight`): 0 Möbius, 1 linear; each output vertex takes `w = 1 − u`.
+    Linear(&'a [f64]),
+}
+
+impl<'a> VertexWeights<'a> {
+    /// The values as given.
+    pub const fn values(&self) -> &'a [f64] {
+        match *self {
+            VertexWeights::Mobius(v) | VertexWeights::Linear(v) => v,
+        }
+    }
+
+    /// Whether the values are weights of the linear result.
+    pub(super) const fn of_linear(&self) -> bool {
+        matches!(self, VertexWeights::Linear(_))
+    }
+}
+
 /// [`Status::InvalidArgument`] unless `weights` holds one weight per input vertex
 /// (`vertices`; no element), each in `[0, 1]` (NaN or outside names the first such vertex).
-pub(super) fn check(weights: Option<&[f64]>, vertices: usize) -> Result<()> {
+pub(super) fn check(weights: Option<VertexWeights<'_>>, vertices: usize) -> Result<()> {
     let Some(w) = weights else {
         return Ok(());
     };
+    let w = w.values();
     if w.len() != vertices {
         return Err(Error::new(Status::InvalidArgument));
     }
@@ -65,12 +100,13 @@ pub(super) enum Uniform {
     Mixed,
 }
 
-/// Whether the weights `w` are all 0, all 1 or mixed (an empty level counts as all 1: the
-/// Möbius step, which writes nothing).
-pub(super) fn uniform(w: &[f64]) -> Uniform {
-    if w.iter().all(|x| *x == 1.0) {
+/// Whether the weights `w` (of the linear result with `of_linear`) ask for the linear step,
+/// the Möbius step or both (an empty level: the Möbius step, which writes nothing).
+pub(super) fn uniform(w: &[f64], of_linear: bool) -> Uniform {
+    let (mobius, linear) = if of_linear { (0.0, 1.0) } else { (1.0, 0.0) };
+    if w.iter().all(|x| *x == mobius) {
         Uniform::One
-    } else if w.iter().all(|x| *x == 0.0) {
+    } else if w.iter().all(|x| *x == linear) {
         Uniform::Zero
     } else {
         Uniform::Mixed
@@ -82,8 +118,9 @@ pub(super) fn uniform(w: &[f64]) -> Uniform {
 pub(super) enum Blend<'a> {
     /// One weight for every output vertex ([`super::Options::spectrum`]).
     Global(f64),
-    /// One weight per output vertex of the step (the carried weights).
-    PerVertex(&'a [f64]),
+    /// One weight per output vertex of the step (the carried weights; of the linear result
+    /// with `true`).
+    PerVertex(&'a [f64], bool),
 }
 
 impl Blend<'_> {
@@ -95,11 +132,13 @@ impl Blend<'_> {
                     *p = mix(*p, *l, w);
                 }
             }
-            Blend::PerVertex(ws) => {
+            Blend::PerVertex(ws, of_linear) => {
                 if ws.len() < pos.len() || lin.len() < pos.len() {
                     return Err(internal());
                 }
-                for ((p, l), w) in pos.iter_mut().zip(lin.iter()).zip(ws.iter()) {
+                for ((p, l), x) in pos.iter_mut().zip(lin.iter()).zip(ws.iter()) {
+                    // `1 − u` as the C ABI's global weight is turned into `w`.
+                    let w = &if of_linear { 1.0 - *x } else { *x };
                     if *w == 0.0 {
                         *p = *l;
                     } else if *w != 1.0 {
@@ -268,26 +307,31 @@ mod tests {
 
     #[test]
     fn check_names_the_vertex() {
+        use VertexWeights::{Linear, Mobius};
         assert!(check(None, 3).is_ok());
-        assert!(check(Some(&[0.0, 0.5, 1.0]), 3).is_ok());
+        assert!(check(Some(Mobius(&[0.0, 0.5, 1.0])), 3).is_ok());
         assert_eq!(
-            check(Some(&[0.0, 0.5]), 3).unwrap_err(),
+            check(Some(Linear(&[0.0, 0.5])), 3).unwrap_err(),
             Error::new(Status::InvalidArgument)
         );
         for bad in [f64::NAN, -0.1, 1.5, f64::INFINITY] {
-            assert_eq!(
-                check(Some(&[0.0, bad, 1.0]), 3).unwrap_err(),
-                Error::at(Status::InvalidArgument, 1)
-            );
+            for w in [Mobius(&[0.0, bad, 1.0]), Linear(&[0.0, bad, 1.0])] {
+                assert_eq!(
+                    check(Some(w), 3).unwrap_err(),
+                    Error::at(Status::InvalidArgument, 1)
+                );
+            }
         }
     }
 
     #[test]
     fn uniform_levels() {
-        assert_eq!(uniform(&[0.0, 0.0]), Uniform::Zero);
-        assert_eq!(uniform(&[1.0, 1.0]), Uniform::One);
-        assert_eq!(uniform(&[]), Uniform::One);
-        assert_eq!(uniform(&[1.0, 0.0]), Uniform::Mixed);
-        assert_eq!(uniform(&[0.5, 0.5]), Uniform::Mixed);
+        assert_eq!(uniform(&[0.0, 0.0], false), Uniform::Zero);
+        assert_eq!(uniform(&[1.0, 1.0], false), Uniform::One);
+        assert_eq!(uniform(&[0.0, 0.0], true), Uniform::One);
+        assert_eq!(uniform(&[1.0, 1.0], true), Uniform::Zero);
+        assert_eq!(uniform(&[], false), Uniform::One);
+        assert_eq!(uniform(&[1.0, 0.0], true), Uniform::Mixed);
+        assert_eq!(uniform(&[0.5, 0.5], false), Uniform::Mixed);
     }
 }

@@ -151,7 +151,7 @@ pub fn run_weighted(
     m: &OwnedMesh,
     opts: &Options,
     tags: &scheme::Tags<'_>,
-    weights: Option<&[f64]>,
+    weights: Option<scheme::VertexWeights<'_>>,
     exec: &dyn nlsubdiv::exec::Executor,
 ) -> Result<(OwnedMesh, Report)> {
     let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
