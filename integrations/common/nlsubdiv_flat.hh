@@ -158,12 +158,15 @@ inline nls_status strict_check(const FlatMesh& flat, uint32_t& element) {
 /// features: crease edges as vertex pairs, corners) the _tagged calls, which carry the tags
 /// level by level inside the one call. `linear_weight` is nls_subdivide_options::linear_weight
 /// (the Möbius–linear spectrum, seed 000 §7.2: 0 Möbius, 1 linear; read with
-/// NLS_SUBDIVIDE_MOBIUS).
+/// NLS_SUBDIVIDE_MOBIUS); `linear_weights` (NULL, or one per vertex of `in`) is
+/// nls_subdivide_options::linear_weights, the same weight per input vertex, replacing it.
 inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in, uint32_t levels, FlatMesh& out, uint32_t& element,
-                             uint32_t& fallbacks, const nls_tags* tags = nullptr, double linear_weight = 0.0) {
+                             uint32_t& fallbacks, const nls_tags* tags = nullptr, double linear_weight = 0.0,
+                             const double* linear_weights = nullptr) {
   const nls_mesh_view v = view_of(in);
   nls_subdivide_options o = options_of(scheme, flags, levels);
   o.linear_weight = linear_weight;
+  o.linear_weights = linear_weights;
   std::size_t su0 = 0;
   element = NLS_NO_ELEMENT;
   nls_status s = tags ? nls_mesh_plan_scratch_size_tagged(&v, tags, &su0) : nls_mesh_plan_scratch_size(&v, &su0);
