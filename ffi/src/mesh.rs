@@ -194,7 +194,8 @@ pub struct nls_subdivide_options {
     /// [0, 1] is `NLS_STATUS_INVALID_ARGUMENT` with `out_element` = the vertex, found by
     /// `nls_mesh_plan` too, before anything is written. Read (and checked) without
     /// `NLS_SUBDIVIDE_MOBIUS` too, without effect. An input: it may overlap the other inputs,
-    /// no output or scratch buffer.
+    /// no output or scratch buffer (`NLS_STATUS_ALIASING_BUFFERS`); a misaligned array is
+    /// `NLS_STATUS_MISALIGNED_POINTER`.
     pub linear_weights: *const f64,
 }
 
@@ -864,7 +865,9 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 /// `NLS_NO_ELEMENT`.
 /// @return `NLS_STATUS_OK`, a validation error above, `NLS_STATUS_BUFFER_TOO_SMALL`,
 /// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits, `NLS_SUBDIVIDE_MOBIUS` with
-/// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride),
+/// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride, a spectrum
+/// weight NaN or outside [0, 1]: `linear_weight`, or one of `linear_weights`, which names its
+/// vertex, before the mesh is validated),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
 /// `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
 /// into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
