@@ -229,6 +229,51 @@ fn one_level_blends_each_vertex_at_its_carried_weight() {
     }
 }
 
+/// The weights the carry rule gives one level of `s` on a closed mesh (no boundary or
+/// isolated vertices), by the pattern's documented output order (`mesh::refine`): old
+/// vertices, edge points (mean of the ends) in `(min, max)` order, face points (mean of the
+/// corners); Doo–Sabin corner `h` its vertex's weight.
+fn carried_closed(s: Scheme, m: &OwnedMesh, ws: &[f64]) -> Vec<f64> {
+    use nlsubdiv::mesh::refine::Pattern;
+    let mean = |vs: &[u32]| vs.iter().map(|&v| ws[v as usize]).sum::<f64>() / vs.len() as f64;
+    let edge_w: Vec<f64> = edges(m).iter().map(|&(a, b)| mean(&[a, b])).collect();
+    let face_w: Vec<f64> = m.faces().iter().map(|f| mean(f)).collect();
+    match s.pattern() {
+        Pattern::Split1To4 => [ws, &edge_w[..]].concat(),
+        Pattern::Quads => [ws, &edge_w[..], &face_w[..]].concat(),
+        Pattern::VertexInsertion | Pattern::DualTruncation => [ws, &face_w[..]].concat(),
+        Pattern::CornerCut => m.indices.iter().map(|&v| ws[v as usize]).collect(),
+        Pattern::MidEdge => edge_w,
+        Pattern::Dual => face_w,
+        _ => panic!("a new pattern: {s:?}"),
+    }
+}
+
+/// Every scheme, one level on a closed mesh with random weights: each output vertex is the
+/// blend at the weight the documented carry rule gives it.
+#[test]
+fn every_pattern_carries_the_weights_as_documented() {
+    for s in mobius_schemes() {
+        let m = meshes(s).remove(0);
+        let ws = random_weights(m.positions.len(), 0.0, 1.0, 23);
+        let mob = Options::new(s).mobius(true);
+        let (got, _) = weighted(&m, &mob, Some(&ws)).unwrap();
+        let (lin, _) = run(&m, &Options::new(s)).unwrap();
+        let (full, _) = run(&m, &mob).unwrap();
+        let want_w = carried_closed(s, &m, &ws);
+        assert_eq!(want_w.len(), got.positions.len(), "{s:?}");
+        let scale = 1.0 + gap(&lin.positions, &vec![[0.0; 3]; lin.positions.len()]);
+        for (i, w) in want_w.iter().enumerate() {
+            let (p, l, q) = (got.positions[i], lin.positions[i], full.positions[i]);
+            for k in 0..3 {
+                let want = w * q[k] + (1.0 - w) * l[k];
+                assert!((p[k] - want).abs() <= 1e-14 * scale, "{s:?} vertex {i}");
+            }
+        }
+        assert!(gap(&full.positions, &lin.positions) > 1e-6, "{s:?}");
+    }
+}
+
 /// The weight of an input vertex: 0 left of `x = 0.35`, 1 right of `x = 0.65`, a ramp between.
 fn ramp(p: Point) -> f64 {
     ((p[0] - 0.35) / 0.3).clamp(0.0, 1.0)
