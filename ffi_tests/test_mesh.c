@@ -269,7 +269,7 @@ static void test_constants(void) {
     CHECK(NLS_NO_ELEMENT == UINT32_MAX);
     {
         nls_subdivide_report r;
-        nls_subdivide_options o = {777, 777, 777, 777.0, NULL};
+        nls_subdivide_options o = {777, 777, 777, 777.0, NULL, NULL};
         CHECK(sizeof r == 6 * sizeof(uint32_t));
         CHECK_STATUS(nls_subdivide_default_options(&o), NLS_STATUS_OK);
         CHECK(o.scheme == NLS_SCHEME_LOOP && o.flags == 0 && o.levels == 1 && o.linear_weight == 0.0);

@@ -519,6 +519,25 @@ typedef struct nls_subdivide_options {
      * (`docs/architecture.md`).
      */
     const struct nls_executor *executor;
+    /**
+     * NULL (the default, and what a zero-initialised struct holds): every vertex takes
+     * `linear_weight`. Otherwise, with `NLS_SUBDIVIDE_MOBIUS`, `mesh.vertex_count` doubles:
+     * the weight `u ∈ [0, 1]` of the linear result at each input vertex (the convention of
+     * `linear_weight`, which they replace). Each output vertex of each level takes a weight
+     * carried from its parents like a vertex attribute (an old vertex keeps its weight, an
+     * edge point takes the mean of its edge's ends, a face point the mean of its face's
+     * corners, a Doo–Sabin corner point its vertex's weight; equal weights stay exactly
+     * equal) and is `(1 − u) · Möbius + u · linear` of its level: all 0 is the Möbius
+     * result, all 1 the linear one, all equal to `linear_weight` the global weight, bit for
+     * bit; a vertex of weight exactly 0 or 1 takes the Möbius or the linear point of its
+     * level exactly (`docs/folds.md`, "The spectrum"). A weight that is NaN or outside
+     * [0, 1] is `NLS_STATUS_INVALID_ARGUMENT` with `out_element` = the vertex, found by
+     * `nls_mesh_plan` too, before anything is written. Read (and checked) without
+     * `NLS_SUBDIVIDE_MOBIUS` too, without effect. An input: it may overlap the other inputs,
+     * no output or scratch buffer (`NLS_STATUS_ALIASING_BUFFERS`); a misaligned array is
+     * `NLS_STATUS_MISALIGNED_POINTER`.
+     */
+    const double *linear_weights;
 } nls_subdivide_options;
 
 /**
@@ -1056,7 +1075,9 @@ nls_status nls_mesh_plan_scratch_size(const struct nls_mesh_view *mesh, size_t *
  * `NLS_NO_ELEMENT`.
  * @return `NLS_STATUS_OK`, a validation error above, `NLS_STATUS_BUFFER_TOO_SMALL`,
  * `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits, `NLS_SUBDIVIDE_MOBIUS` with
- * `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride),
+ * `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride, a spectrum
+ * weight NaN or outside [0, 1]: `linear_weight`, or one of `linear_weights`, which names its
+ * vertex, before the mesh is validated),
  * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
  * `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
  * into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.

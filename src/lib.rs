@@ -87,9 +87,9 @@ pub use mesh::{Mesh, MeshOut, MeshSizes};
 pub use point::Point;
 pub use quat::Quat;
 pub use scheme::{
-    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, subdivide, subdivide_tagged,
-    subdivide_with, CreaseMethod, Options, Plan, Report, Scheme, Scratch, ScratchSizes, Tags,
-    MAX_LEVELS,
+    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, plan_weighted, subdivide,
+    subdivide_tagged, subdivide_weighted, subdivide_with, CreaseMethod, Options, Plan, Report,
+    Scheme, Scratch, ScratchSizes, Tags, VertexWeights, MAX_LEVELS,
 };
 
 /// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held

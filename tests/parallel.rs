@@ -14,7 +14,7 @@ mod common;
 
 use common::*;
 use nlsubdiv::exec::{Chunk, Executor, Serial, MAX_CHUNKS};
-use nlsubdiv::scheme::{Options, Scheme};
+use nlsubdiv::scheme::{Options, Scheme, Tags, VertexWeights};
 use nlsubdiv::{Report, Result, Status};
 
 /// `threads` scoped std threads over `chunks` chunks per pass (every pass split, however
@@ -126,6 +126,50 @@ fn mobius_every_scheme_every_chunking() {
             ];
             for (mode, opts) in cases {
                 ok += same_everywhere(&m, &opts, &format!("{name} {s:?} Möbius {mode}")) as u32;
+            }
+        }
+    }
+    assert!(ok > 60, "only {ok} cases succeeded");
+}
+
+/// Per-vertex spectrum weights ([`nlsubdiv::subdivide_weighted`]): mixed weights (and
+/// uniform ones, which run one step alone), with and without tags, give the serial bits,
+/// report and errors for every executor.
+#[test]
+fn weighted_spectrum_every_scheme_every_chunking() {
+    let outcome_w = |m: &OwnedMesh, o: &Options, t: &Tags<'_>, w: &[f64], x: &dyn Executor| {
+        run_weighted(m, o, t, Some(VertexWeights::Mobius(w)), x).map(|(o, r)| (hash(&o), r))
+    };
+    let mut ok = 0;
+    for (name, m) in meshes() {
+        let n = m.positions.len();
+        let mut r = Lcg(17);
+        let mixed: Vec<f64> = (0..n).map(|_| 0.5 * (r.next() + 1.0)).collect();
+        let ramp: Vec<f64> = (0..n).map(|i| (i % 3) as f64 * 0.5).collect();
+        let creases = [[0u32, 1u32]];
+        let sharp = [10.0];
+        for s in Scheme::ALL.into_iter().filter(|s| s.has_mobius_form()) {
+            let tags = if s.takes_tags() && name == "quad torus" {
+                Tags::new().creases(&creases, &sharp)
+            } else {
+                Tags::new()
+            };
+            let opts = Options::new(s).mobius(true).levels(2);
+            for w in [&mixed, &ramp] {
+                let serial = outcome_w(&m, &opts, &tags, w, &Serial);
+                for (threads, chunks, reverse) in POOLS {
+                    let pool = Pool {
+                        threads,
+                        chunks,
+                        reverse,
+                    };
+                    assert_eq!(
+                        outcome_w(&m, &opts, &tags, w, &pool),
+                        serial,
+                        "{name} {s:?}: {threads} threads, {chunks} chunks, reverse {reverse}"
+                    );
+                }
+                ok += u32::from(serial.is_ok());
             }
         }
     }

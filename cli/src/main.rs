@@ -15,6 +15,7 @@ mod folds;
 mod memory;
 mod out;
 mod progress;
+mod spectrum_weights;
 mod sphere;
 mod subdiv;
 mod tags_out;

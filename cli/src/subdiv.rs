@@ -481,24 +481,28 @@ fn output_mesh(sizes: MeshSizes) -> CliResult<Mesh> {
 
 /// How `run` treats the Möbius schemes' special elements.
 #[derive(Clone, Copy, Debug)]
-pub struct Mode {
+pub struct Mode<'a> {
     /// A Möbius fallback or an element the fold guard changes is an error naming it.
     pub strict: bool,
     /// The paper's Möbius rules without the fold guard (`Options::literal`).
     pub literal: bool,
     /// The weight of the Möbius result in the Möbius–linear spectrum (`Options::spectrum`).
     pub spectrum: f64,
+    /// Per input vertex, the weight of the Möbius result (`VertexWeights::Mobius`, replacing
+    /// `spectrum`); `None` for the global weight.
+    pub weights: Option<&'a [f64]>,
     /// Threads of the kernel's passes (`nlsubdiv_threads`; the output is the same bits for
     /// every count).
     pub threads: usize,
 }
 
-impl Mode {
+impl Mode<'_> {
     /// Not strict, the fold guard on, the Möbius result, one thread.
-    pub const DEFAULT: Mode = Mode {
+    pub const DEFAULT: Mode<'static> = Mode {
         strict: false,
         literal: false,
         spectrum: 1.0,
+        weights: None,
         threads: 1,
     };
 }
@@ -507,7 +511,8 @@ impl Mode {
 /// an element the fold guard changes) is an error naming the element. `mode.literal`: the paper's
 /// Möbius rules without the fold guard (`Options::literal`). `mode.spectrum`: the weight of the
 /// Möbius result in the Möbius–linear spectrum (`Options::spectrum`; 1 for the Möbius
-/// result). Level 0 returns a copy.
+/// result); `mode.weights`: per-vertex weights replacing it (`scheme::subdivide_weighted`,
+/// one multi-level call that carries them). Level 0 returns a copy.
 ///
 /// # Errors
 /// Exit 2 for meshes the scheme refuses (naming the file, the level and the element), exit 4
@@ -517,13 +522,14 @@ pub fn run(
     src: &Source,
     ms: MeshScheme,
     levels: usize,
-    mode: Mode,
+    mode: Mode<'_>,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
     let Mode {
         strict,
         literal,
         spectrum,
+        weights,
         threads,
     } = mode;
     let started = Instant::now();
@@ -568,11 +574,14 @@ pub fn run(
     // diagnosed afterwards by running the levels one call each, so that the message names
     // the level and the element of that level's mesh (the error path only).
     let all = opts.levels(levels);
+    let no_tags = scheme::Tags::new();
+    let weights = weights.map(scheme::VertexWeights::Mobius);
     let plan = {
         let len = scheme::plan_scratch_size(&mesh0)
             .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
         let mut scratch = memory::filled(len, 0u32, "the topology")?;
-        scheme::plan(mesh0, &all, &mut scratch).map_err(|e| call_error(e, ms, mesh0, &n0))?
+        scheme::plan_weighted(mesh0, &all, &no_tags, weights, &mut scratch)
+            .map_err(|e| call_error(e, ms, mesh0, &n0))?
     };
     let out_sizes = plan.output();
     let mut u32s = memory::filled(plan.scratch.u32s, 0u32, "the topologies")?;
@@ -583,13 +592,30 @@ pub fn run(
     let result = {
         let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
         let scratch = Scratch::new(&mut u32s, &mut points);
-        nlsubdiv_threads::subdivide(mesh0, &all, scratch, &mut out, threads)
+        match weights {
+            None => nlsubdiv_threads::subdivide(mesh0, &all, scratch, &mut out, threads),
+            Some(_) => {
+                let exec = nlsubdiv_threads::Threads::new(threads);
+                scheme::subdivide_weighted(mesh0, &all, &no_tags, weights, scratch, &mut out, &exec)
+            }
+        }
     };
     let kernel = kernel_started.elapsed();
     drop(spinner);
     drop((u32s, points));
     let report = match result {
         Ok(report) => report,
+        Err(e) if weights.is_some() && levels > 1 => {
+            // The weights of the later levels live inside the call: its levels cannot be
+            // run one call each. The error names an element of the level it gives.
+            return Err(CliError::bad_input(format!(
+                "{}: {} levels of {} with spectrum weights: {e}",
+                n0.file(),
+                levels,
+                ms.name()
+            )));
+        }
+        Err(e) if weights.is_some() => return Err(call_error(e, ms, mesh0, &n0)),
         Err(e) => {
             drop(next);
             let by_levels = run_by_levels(input, src, ms, &sizes, opts, ctx);
@@ -691,7 +717,7 @@ pub fn run_tagged(
     ms: MeshScheme,
     levels: usize,
     (tags, method): (&crate::mesh::FileTags, scheme::CreaseMethod),
-    mode: Mode,
+    mode: Mode<'_>,
     ctx: &Ctx,
 ) -> CliResult<Outcome> {
     let started = Instant::now();
@@ -758,7 +784,8 @@ pub fn run_tagged(
     let len = scheme::plan_scratch_size_tagged(&mesh0, &core_tags)
         .map_err(|e| core_error(e, Stage::Build, ms, None, &mesh0, &n0))?;
     let mut scratch = memory::filled(len, 0u32, "the topology")?;
-    let plan = scheme::plan_tagged(mesh0, &opts, &core_tags, &mut scratch)
+    let weights = mode.weights.map(scheme::VertexWeights::Mobius);
+    let plan = scheme::plan_weighted(mesh0, &opts, &core_tags, weights, &mut scratch)
         .map_err(|e| tag_error(e).unwrap_or_else(|| call_error(e, ms, mesh0, &n0)))?;
     let out_sizes = plan.output();
     if sizes.last().copied().unwrap_or_default() != out_sizes {
@@ -781,12 +808,14 @@ pub fn run_tagged(
     let _spinner = ctx.spinner("subdividing");
     let mut out = MeshOut::new(&mut next.positions, &mut next.offsets, &mut next.indices);
     let kernel_started = Instant::now();
-    let report = scheme::subdivide_tagged(
+    let report = scheme::subdivide_weighted(
         mesh0,
         &opts,
         &core_tags,
+        weights,
         Scratch::new(&mut scratch, &mut points),
         &mut out,
+        &nlsubdiv::exec::Serial,
     )
     .map_err(|e| {
         tag_error(e).unwrap_or_else(|| {

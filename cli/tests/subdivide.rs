@@ -682,6 +682,139 @@ fn spectrum_runs_from_the_linear_to_the_mobius_result() {
     assert!(!dir.path("bad.off").exists());
 }
 
+/// `--spectrum-weights FILE`: equal weights are `--spectrum` bit for bit (all 1 the Möbius
+/// result, all 0 the linear one), mixed weights are the library's `subdivide_weighted` with
+/// the same weights for every thread count, and a bad file is refused naming its line and
+/// vertex (exit 2), with a linear scheme or with `--spectrum` as a usage error (exit 4),
+/// nothing written.
+#[test]
+fn spectrum_weights_file() {
+    let dir = TempDir::new("spectrum-weights");
+    let mut m = quad_grid(4, 3);
+    for p in &mut m.positions {
+        p[2] = 0.3 * (1.7 * p[0]).sin() * (1.1 * p[1]).cos();
+    }
+    m.write_off(&dir.path("grid.off"));
+    let n = m.positions.len();
+    let input = dir.path("grid.off").to_str().unwrap().to_string();
+    let weights_file = |name: &str, ws: &[String]| {
+        let path = dir.path(name);
+        std::fs::write(
+            &path,
+            format!("# one weight per vertex\n{}\n", ws.join("\n")),
+        )
+        .unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let sub = |scheme: &str, extra: &[&str], out: &str| {
+        let out = dir.path(out);
+        let mut a = vec!["subdivide", "--scheme", scheme, "--levels", "2"];
+        a.extend_from_slice(extra);
+        a.push(&input);
+        let o_str = out.to_str().unwrap().to_string();
+        let o = run(&[a, vec![o_str.as_str()]].concat());
+        (o, out)
+    };
+    let ok = |(o, path): (std::process::Output, std::path::PathBuf)| {
+        assert_eq!(code(&o), 0, "{}", stderr(&o));
+        read_off(&path)
+    };
+    for (w, global) in [("0", "0"), ("1", "1"), ("0.3", "0.3")] {
+        let f = weights_file(&format!("all{w}.txt"), &vec![w.to_string(); n]);
+        let a = ok(sub(
+            "mobius-catmull-clark",
+            &["--spectrum-weights", &f],
+            "a.off",
+        ));
+        let b = ok(sub(
+            "mobius-catmull-clark",
+            &["--spectrum", global],
+            "b.off",
+        ));
+        assert_same(&a, &b, &format!("all {w}"));
+    }
+    // Mixed: the library's call with the same weights, on 1 and 3 threads.
+    let ws: Vec<f64> = (0..n).map(|i| (i % 4) as f64 / 3.0).collect();
+    let f = weights_file(
+        "mixed.txt",
+        &ws.iter().map(|w| format!("{w:?}")).collect::<Vec<_>>(),
+    );
+    let (offsets, indices) = m.csr();
+    let mesh = CoreMesh::new(&m.positions, &offsets, &indices);
+    let opts = Options::new(Scheme::CatmullClark).mobius(true).levels(2);
+    let (tags, weights) = (
+        scheme::Tags::new(),
+        Some(scheme::VertexWeights::Mobius(&ws)),
+    );
+    let mut su = vec![0u32; scheme::plan_scratch_size(&mesh).unwrap()];
+    let plan = scheme::plan_weighted(mesh, &opts, &tags, weights, &mut su).unwrap();
+    su.resize(plan.scratch.u32s, 0);
+    let mut sp = vec![[0.0; 3]; plan.scratch.points];
+    let o = plan.output();
+    let (mut pos, mut offs, mut idx) = (
+        vec![[0.0; 3]; o.vertices],
+        vec![0u32; o.faces + 1],
+        vec![0u32; o.indices],
+    );
+    scheme::subdivide_weighted(
+        mesh,
+        &opts,
+        &tags,
+        weights,
+        Scratch::new(&mut su, &mut sp),
+        &mut MeshOut::new(&mut pos, &mut offs, &mut idx),
+        &nlsubdiv::exec::Serial,
+    )
+    .unwrap();
+    let want = TMesh::from_csr(pos, &offs, &idx);
+    for threads in ["1", "3"] {
+        let got = ok(sub(
+            "mobius-catmull-clark",
+            &["--spectrum-weights", &f, "--threads", threads],
+            "mixed.off",
+        ));
+        assert_same(&got, &want, &format!("mixed weights, {threads} threads"));
+    }
+    let lin = ok(sub("catmull-clark", &[], "lin.off"));
+    assert!(want.positions != lin.positions);
+    // Bad files: named by line (and vertex), nothing written.
+    let mut bad = vec!["0.5".to_string(); n];
+    bad[2] = "1.5".to_string();
+    let f = weights_file("bad.txt", &bad);
+    let (o, out) = sub(
+        "mobius-catmull-clark",
+        &["--spectrum-weights", &f],
+        "bad.off",
+    );
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("bad.txt:4") && stderr(&o).contains("vertex 2"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+    let f = weights_file("short.txt", &vec!["0.5".to_string(); n - 1]);
+    let (o, out) = sub(
+        "mobius-catmull-clark",
+        &["--spectrum-weights", &f],
+        "bad.off",
+    );
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    assert!(stderr(&o).contains("one per vertex"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let f = weights_file("good.txt", &vec!["0.5".to_string(); n]);
+    let (o, out) = sub("catmull-clark", &["--spectrum-weights", &f], "bad.off");
+    assert_eq!(code(&o), 4, "{}", stderr(&o));
+    assert!(!out.exists());
+    let (o, out) = sub(
+        "mobius-catmull-clark",
+        &["--spectrum-weights", &f, "--spectrum", "0.5"],
+        "bad.off",
+    );
+    assert_eq!(code(&o), 4, "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
 /// `--threads N`: the same output file, byte for byte, for 1, 2, 3 and 7 threads, linear and
 /// Möbius; the summary names the thread count and the kernel's time in milliseconds.
 #[test]

@@ -26,6 +26,7 @@ pub mod mobius;
 pub mod primitives;
 pub mod star;
 pub mod tags;
+mod weights;
 
 pub use nlsubdiv::Status;
 

@@ -15,14 +15,16 @@
 use core::mem::size_of;
 use core::ptr::null;
 
+use nlsubdiv::exec::{Executor, Serial};
 use nlsubdiv::mesh::{Mesh, MeshOut, MeshSizes, MAX_COUNT};
-use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags};
+use nlsubdiv::scheme::{self, Options, Report, Scheme, Scratch, Tags, VertexWeights};
 use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 
 use crate::executor::{nls_executor, HostExecutor};
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
 use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_raw_spans, tag_spans, tags_of};
+use crate::weights::{check_weights, weight_raw_span, weight_span, weights_of};
 
 /// Mesh scheme: Loop (triangles only; 1→4; approximating).
 pub const NLS_SCHEME_LOOP: u32 = 0;
@@ -178,6 +180,23 @@ pub struct nls_subdivide_options {
     /// vertex points, the finiteness checks; the rest of a level is serial
     /// (`docs/architecture.md`).
     pub executor: *const nls_executor,
+    /// NULL (the default, and what a zero-initialised struct holds): every vertex takes
+    /// `linear_weight`. Otherwise, with `NLS_SUBDIVIDE_MOBIUS`, `mesh.vertex_count` doubles:
+    /// the weight `u ∈ [0, 1]` of the linear result at each input vertex (the convention of
+    /// `linear_weight`, which they replace). Each output vertex of each level takes a weight
+    /// carried from its parents like a vertex attribute (an old vertex keeps its weight, an
+    /// edge point takes the mean of its edge's ends, a face point the mean of its face's
+    /// corners, a Doo–Sabin corner point its vertex's weight; equal weights stay exactly
+    /// equal) and is `(1 − u) · Möbius + u · linear` of its level: all 0 is the Möbius
+    /// result, all 1 the linear one, all equal to `linear_weight` the global weight, bit for
+    /// bit; a vertex of weight exactly 0 or 1 takes the Möbius or the linear point of its
+    /// level exactly (`docs/folds.md`, "The spectrum"). A weight that is NaN or outside
+    /// [0, 1] is `NLS_STATUS_INVALID_ARGUMENT` with `out_element` = the vertex, found by
+    /// `nls_mesh_plan` too, before anything is written. Read (and checked) without
+    /// `NLS_SUBDIVIDE_MOBIUS` too, without effect. An input: it may overlap the other inputs,
+    /// no output or scratch buffer (`NLS_STATUS_ALIASING_BUFFERS`); a misaligned array is
+    /// `NLS_STATUS_MISALIGNED_POINTER`.
+    pub linear_weights: *const f64,
 }
 
 /// What a subdivision call needs, from `nls_mesh_plan` or `nls_differential_plan` (the struct
@@ -718,8 +737,7 @@ fn report_of(r: &Report) -> nls_subdivide_report {
 #[allow(clippy::too_many_arguments)] // internal: the buffers of the call, split
 fn subdivide_call(
     view: Mesh<'_>,
-    opts: &Options,
-    tags: &Tags<'_>,
+    (opts, tags, weights): (&Options, &Tags<'_>, Option<VertexWeights<'_>>),
     exec: Option<&HostExecutor>,
     su: &mut [u32],
     sp: &mut [Point],
@@ -729,10 +747,11 @@ fn subdivide_call(
 ) -> Result<Report, Fail> {
     let scratch = Scratch::new(&mut *su, &mut *sp);
     // The tagged rules run on the calling thread (their passes are not split).
-    let result = match exec {
-        Some(x) if tags.is_empty() => scheme::subdivide_with(view, opts, scratch, out, x),
-        _ => scheme::subdivide_tagged(view, opts, tags, scratch, out),
+    let x: &dyn Executor = match exec {
+        Some(x) if tags.is_empty() => x,
+        _ => &Serial,
     };
+    let result = scheme::subdivide_weighted(view, opts, tags, weights, scratch, out, x);
     if exec.is_some_and(HostExecutor::fp_refused) {
         // A task found its pool thread's floating-point modes changed and did not run.
         return Err(Status::FpEnvironment.into());
@@ -740,7 +759,7 @@ fn subdivide_call(
     match result {
         Ok(report) => Ok(report),
         Err(e) if e.status == Status::BufferTooSmall => {
-            let plan = scheme::plan_tagged(view, opts, tags, su)?;
+            let plan = scheme::plan_weighted(view, opts, tags, weights, su)?;
             if su.len() < plan.scratch.u32s {
                 return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
             }
@@ -778,6 +797,7 @@ pub unsafe extern "C" fn nls_subdivide_default_options(
                     levels: 1,
                     linear_weight: 0.0,
                     executor: core::ptr::null(),
+                    linear_weights: core::ptr::null(),
                 },
             )
         };
@@ -845,7 +865,9 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 /// `NLS_NO_ELEMENT`.
 /// @return `NLS_STATUS_OK`, a validation error above, `NLS_STATUS_BUFFER_TOO_SMALL`,
 /// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits, `NLS_SUBDIVIDE_MOBIUS` with
-/// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride),
+/// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride, a spectrum
+/// weight NaN or outside [0, 1]: `linear_weight`, or one of `linear_weights`, which names its
+/// vertex, before the mesh is validated),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
 /// `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
 /// into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
@@ -888,31 +910,34 @@ pub(crate) unsafe fn plan_body(
 ) -> Status {
     run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
-        let (mesh_r, tags_r) = unsafe { (RawMesh::read(mesh), read_tags(tags)) };
+        let (mesh_r, tags_r, opts_r) =
+            unsafe { (RawMesh::read(mesh), read_tags(tags), read_arg(options)) };
         // SAFETY: the caller passes NULL or a readable view.
         let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
         let [d, e, f, g] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
+        let w = weight_raw_span(options, &opts_r, &mesh_r);
         let su = Some(Span::raw(scratch_u32.cast_const(), scratch_u32_capacity));
-        element.close_unless_clear(&[Span::of_one(out_plan)], &[a, b, c, d, e, f, g, su]);
-        // SAFETY: the caller passes NULL or a readable struct.
-        let (mesh, opts) = (mesh_r?, unsafe { read_arg(options) }?);
+        element.close_unless_clear(&[Span::of_one(out_plan)], &[a, b, c, d, e, f, g, w, su]);
+        let (mesh, raw_opts) = (mesh_r?, opts_r?);
         let tags = tags_r?;
         let tags = tags.as_ref();
         check_ptr(out_plan.cast_const(), 1)?;
         check_optional(out_element)?;
         let [a, b, c] = mesh.spans();
         let [d, e, f, g] = tag_spans(tags);
+        let w = weight_span(&raw_opts, &mesh);
         let su = Span::checked(scratch_u32.cast_const(), scratch_u32_capacity);
         check_out_pointers(
             &[Span::of_one(out_plan)],
             element,
-            &[a, b, c, d, e, f, g, su],
+            &[a, b, c, d, e, f, g, w, su],
         )?;
-        let opts = parse_options(&opts)?;
+        let opts = parse_options(&raw_opts)?;
         mesh.check()?;
         check_tags(tags)?;
+        check_weights(&raw_opts, &mesh)?;
         check_ptr(scratch_u32.cast_const(), scratch_u32_capacity)?;
-        if [a, b, c, d, e, f, g].iter().any(|i| su.overlaps(*i)) {
+        if [a, b, c, d, e, f, g, w].iter().any(|i| su.overlaps(*i)) {
             return Err(Status::AliasingBuffers.into());
         }
         if scratch_u32_capacity < plan_need(&mesh, tags)? {
@@ -922,9 +947,9 @@ pub(crate) unsafe fn plan_body(
         // SAFETY: inputs checked; scratch checked and disjoint from them.
         let (view, scratch) =
             unsafe { (mesh.mesh()?, slice_mut(scratch_u32, scratch_u32_capacity)) };
-        // SAFETY: the tags were checked (NULL, alignment, size).
-        let tags = unsafe { tags_of(tags) }?;
-        let plan = scheme::plan_tagged(view, &opts, &tags, scratch)?;
+        // SAFETY: the tags and the weights were checked (NULL, alignment, size).
+        let (tags, weights) = unsafe { (tags_of(tags)?, weights_of(&raw_opts, &mesh)) };
+        let plan = scheme::plan_weighted(view, &opts, &tags, weights, scratch)?;
         let plan = nls_plan {
             output: sizes_of(&plan.output()),
             scratch_u32: plan.scratch.u32s,
@@ -1023,12 +1048,13 @@ pub(crate) unsafe fn subdivide_body(
     let mut sizes_ok = false;
     let status = run_with_element(out_element, |element| {
         // SAFETY: the caller passes NULL or readable structs.
-        let (mesh_r, scratch_r, out_r, tags_r) = unsafe {
+        let (mesh_r, scratch_r, out_r, tags_r, opts_r) = unsafe {
             (
                 RawMesh::read(mesh),
                 read_arg(scratch),
                 read_arg(out),
                 read_tags(tags),
+                read_arg(options),
             )
         };
         // SAFETY: the caller passes NULL or a readable view.
@@ -1036,12 +1062,12 @@ pub(crate) unsafe fn subdivide_body(
         let [d, e] = named(scratch, &scratch_r, scratch_raw_spans);
         let [f, g, h] = named(out, &out_r, out_raw_spans);
         let [i, j, k, l] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
+        let m = weight_raw_span(options, &opts_r, &mesh_r);
         element.close_unless_clear(
             &[Span::of_one(out_sizes), Span::of_one(out_report)],
-            &[a, b, c, d, e, f, g, h, i, j, k, l],
+            &[a, b, c, d, e, f, g, h, i, j, k, l, m],
         );
-        // SAFETY: the caller passes NULL or a readable struct.
-        let (mesh, opts) = (mesh_r?, unsafe { read_arg(options) }?);
+        let (mesh, opts) = (mesh_r?, opts_r?);
         let raw = RawOut {
             scratch: scratch_r?,
             out: out_r?,
@@ -1055,18 +1081,21 @@ pub(crate) unsafe fn subdivide_body(
         let [s0, s1, s2, s3, s4] = raw.spans();
         let [i0, i1, i2] = inputs;
         let [t0, t1, t2, t3] = tag_spans(tags);
+        let w0 = weight_span(&opts, &mesh);
         check_out_pointers(
             &[Span::of_one(out_sizes), Span::of_one(out_report)],
             element,
-            &[i0, i1, i2, t0, t1, t2, t3, s0, s1, s2, s3, s4],
+            &[i0, i1, i2, t0, t1, t2, t3, w0, s0, s1, s2, s3, s4],
         )?;
         sizes_ok = true;
         // SAFETY: the caller passes NULL or a readable executor in the options.
         let exec = unsafe { HostExecutor::read(opts.executor) }?;
-        let opts = parse_options(&opts)?;
+        let raw_opts = opts;
+        let opts = parse_options(&raw_opts)?;
         mesh.check()?;
         check_tags(tags)?;
-        raw.check(&[i0, i1, i2, t0, t1, t2, t3])?;
+        check_weights(&raw_opts, &mesh)?;
+        raw.check(&[i0, i1, i2, t0, t1, t2, t3, w0])?;
         if raw.scratch.u32_capacity < plan_need(&mesh, tags)? {
             return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
         }
@@ -1074,12 +1103,11 @@ pub(crate) unsafe fn subdivide_body(
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };
-        // SAFETY: the tags were checked (NULL, alignment, size).
-        let tags = unsafe { tags_of(tags) }?;
+        // SAFETY: the tags and the weights were checked (NULL, alignment, size).
+        let (tags, weights) = unsafe { (tags_of(tags)?, weights_of(&raw_opts, &mesh)) };
         let report = subdivide_call(
             view,
-            &opts,
-            &tags,
+            (&opts, &tags, weights),
             exec.as_ref(),
             su,
             sp,
@@ -1158,6 +1186,7 @@ mod tests {
             levels: 1,
             linear_weight: 0.0,
             executor: core::ptr::null(),
+            linear_weights: core::ptr::null(),
         };
         let mut su0 = 0usize;
         assert_eq!(
@@ -1255,6 +1284,7 @@ mod tests {
                 levels: 2,
                 linear_weight: 0.0,
                 executor: core::ptr::null(),
+                linear_weights: core::ptr::null(),
             };
             let mut su = vec![0u32; 4096];
             let mut sp = vec![0.0; 3 * 512];

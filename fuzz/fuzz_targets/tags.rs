@@ -58,6 +58,7 @@ fn options(scheme: u32, flags: u32, levels: u32) -> nls_subdivide_options {
         levels: 0,
         linear_weight: 0.0,
         executor: core::ptr::null(),
+        linear_weights: core::ptr::null(),
     };
     assert_eq!(unsafe { nls_subdivide_default_options(&mut o) }, Status::Ok);
     o.scheme = scheme;

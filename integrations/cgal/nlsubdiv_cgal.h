@@ -14,7 +14,8 @@
 // The entry points are nlsubdiv::Subdivision_method_3::*_subdivision (one per scheme, linear
 // and Mobius_*, and Differential_*), in the style of CGAL::Subdivision_method_3: a polygon
 // mesh, CGAL named parameters (CGAL's own and nlsubdiv::parameters::strict, literal,
-// linear_weight, crease_sharpness, corner_sharpness, crease_method, report, threads,
+// linear_weight, vertex_linear_weight_map, crease_sharpness, corner_sharpness, crease_method, report,
+// threads,
 // vertex_curvature_scale_map, solver_max_iterations, solver_tolerance, dirmag_levels), no
 // return value, nlsubdiv::cgal::Subdivision_error on failure. The lowercase functions of
 // nlsubdiv::cgal (mobius_loop_subdivision, ...) are deprecated, kept for one version.
@@ -83,6 +84,7 @@ enum report_t { report };
 enum vertex_curvature_scale_map_t { vertex_curvature_scale_map };
 enum edge_sharpness_map_t { edge_sharpness_map };
 enum vertex_sharpness_map_t { vertex_sharpness_map };
+enum vertex_linear_weight_map_t { vertex_linear_weight_map };
 enum solver_max_iterations_t { solver_max_iterations };
 enum solver_tolerance_t { solver_tolerance };
 enum dirmag_levels_t { dirmag_levels };
@@ -274,7 +276,8 @@ bool fill_from_driver(MaskState<PM>& st, uint32_t scheme, uint32_t flags) {
   uint32_t el = NLS_NO_ELEMENT, fallbacks = 0;
   FlatMesh out;
   nls_status s =
-      nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks, nullptr, st.opts.linear_weight, executor_of(st.opts));
+      nlsubdiv::flat::run_levels(scheme, flags, in, 1, out, el, fallbacks, nullptr, st.opts.linear_weight, nullptr,
+                                 executor_of(st.opts));
   if (s != NLS_STATUS_OK) return st.fail(s, el);
   st.report.fallbacks += fallbacks;
   const std::size_t n = in.vertex_count();
@@ -825,9 +828,17 @@ Report bulk(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, Options opts)
   FlatMesh out;
   const nlsubdiv::flat::FlatTags tags = tags_of(pm, np, lv, opts);
   const nls_tags tv = tags.view();
+  // Per-vertex spectrum weights (vertex_linear_weight_map), in the flat copy's vertex order.
+  std::vector<double> weights;
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::vertex_linear_weight_map_t>::value) {
+    auto wm = CGAL::parameters::get_parameter(np, nlsubdiv::internal_np::vertex_linear_weight_map);
+    if (flags & NLS_SUBDIVIDE_MOBIUS)
+      for (auto v : lv.verts) weights.push_back(static_cast<double>(get(wm, v)));
+  }
   if (s == NLS_STATUS_OK)
     s = nlsubdiv::flat::run_levels(scheme, f, lv.flat, iterations<PM>(np), out, el, fallbacks, tags.empty() ? nullptr : &tv,
-                                   (flags & NLS_SUBDIVIDE_MOBIUS) ? opts.linear_weight : 0.0, executor_of(opts));
+                                   (flags & NLS_SUBDIVIDE_MOBIUS) ? opts.linear_weight : 0.0,
+                                   weights.empty() ? nullptr : weights.data(), executor_of(opts));
   if (s != NLS_STATUS_OK) {
     r.status = s;
     r.element = el;
@@ -976,6 +987,9 @@ using Vpm_t = typename CGAL::GetVertexPointMap<PM, NP>::type;
 template <class PM, class NP>
 Report run_scheme(PM& pm, uint32_t scheme, uint32_t flags, const NP& np, const Options& opts) {
   const bool mobius = (flags & NLS_SUBDIVIDE_MOBIUS) != 0;
+  // Per-vertex weights are carried level to level inside one driver call: the bulk path.
+  if constexpr (!CGAL::parameters::is_default_parameter<NP, nlsubdiv::internal_np::vertex_linear_weight_map_t>::value)
+    if (mobius) return bulk(pm, scheme, flags, np, opts);
   if (mobius && opts.literal && opts.linear_weight == 0.0) {
     if (scheme == NLS_SCHEME_LOOP) return with_mask<Mobius_loop_mask_3<PM, Vpm_t<PM, NP>>, false>(pm, np, opts);
     if (scheme == NLS_SCHEME_MODIFIED_BUTTERFLY)
@@ -1206,6 +1220,11 @@ struct Named_function_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   Named_function_parameters<Map, internal_np::vertex_sharpness_map_t, self> vertex_sharpness_map(const Map& m) const {
     return {m, *this};
   }
+  /// See nlsubdiv::parameters::vertex_linear_weight_map.
+  template <typename Map>
+  Named_function_parameters<Map, internal_np::vertex_linear_weight_map_t, self> vertex_linear_weight_map(const Map& m) const {
+    return {m, *this};
+  }
   /// See nlsubdiv::parameters::solver_max_iterations.
   Named_function_parameters<uint32_t, internal_np::solver_max_iterations_t, self> solver_max_iterations(uint32_t n) const {
     return {n, *this};
@@ -1278,6 +1297,19 @@ Named_function_parameters<Map, internal_np::edge_sharpness_map_t> edge_sharpness
 /// vertex whose value is not 0 (wins over vertex_is_constrained_map's corner_sharpness).
 template <typename Map>
 Named_function_parameters<Map, internal_np::vertex_sharpness_map_t> vertex_sharpness_map(const Map& m) {
+  return {m};
+}
+/// Möbius schemes: a readable property map vertex -> double, the weight u of the linear
+/// result at each vertex (nls_subdivide_options::linear_weights; the convention of
+/// linear_weight, which it replaces). Each output vertex of each level takes a weight carried
+/// from its parents (an old vertex its own, an edge point the mean of its ends, a face point
+/// the mean of its corners, a Doo–Sabin corner point its vertex's) and is
+/// (1 − u) · Möbius + u · linear; equal values everywhere are linear_weight of that value,
+/// bit for bit. Always the bulk path. NaN or outside [0, 1]: NLS_STATUS_INVALID_ARGUMENT
+/// naming the vertex (its index in the mesh's vertex order), mesh unchanged. The linear
+/// schemes ignore it.
+template <typename Map>
+Named_function_parameters<Map, internal_np::vertex_linear_weight_map_t> vertex_linear_weight_map(const Map& m) {
   return {m};
 }
 /// Differential schemes: the reconstruction's iteration cap (default 100; reaching it is

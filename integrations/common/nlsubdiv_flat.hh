@@ -158,14 +158,17 @@ inline nls_status strict_check(const FlatMesh& flat, uint32_t& element) {
 /// features: crease edges as vertex pairs, corners) the _tagged calls, which carry the tags
 /// level by level inside the one call. `linear_weight` is nls_subdivide_options::linear_weight
 /// (the Möbius–linear spectrum, seed 000 §7.2: 0 Möbius, 1 linear; read with
-/// NLS_SUBDIVIDE_MOBIUS). `executor` is nls_subdivide_options::executor (NULL: the calling
-/// thread; a ThreadPool's, nlsubdiv_pool.hh: the same bits on its threads).
+/// NLS_SUBDIVIDE_MOBIUS); `linear_weights` (NULL, or one per vertex of `in`) is
+/// nls_subdivide_options::linear_weights, the same weight per input vertex, replacing it.
+/// `executor` is nls_subdivide_options::executor (NULL: the calling thread; a ThreadPool's,
+/// nlsubdiv_pool.hh: the same bits on its threads).
 inline nls_status run_levels(uint32_t scheme, uint32_t flags, const FlatMesh& in, uint32_t levels, FlatMesh& out, uint32_t& element,
                              uint32_t& fallbacks, const nls_tags* tags = nullptr, double linear_weight = 0.0,
-                             const nls_executor* executor = nullptr) {
+                             const double* linear_weights = nullptr, const nls_executor* executor = nullptr) {
   const nls_mesh_view v = view_of(in);
   nls_subdivide_options o = options_of(scheme, flags, levels);
   o.linear_weight = linear_weight;
+  o.linear_weights = linear_weights;
   o.executor = executor;
   std::size_t su0 = 0;
   element = NLS_NO_ELEMENT;

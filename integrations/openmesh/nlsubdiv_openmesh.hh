@@ -504,6 +504,17 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     pool_ = std::make_shared<nlsubdiv::ThreadPool>(n);
   }
   unsigned threads() const { return pool_ ? pool_->threads() : 1u; }
+  /// Möbius classes: the weight u of the linear result per vertex from an OpenMesh property
+  /// (nls_subdivide_options::linear_weights; the convention of set_linear_weight, which it
+  /// replaces): each output vertex of each level takes a weight carried from its parents (an
+  /// old vertex its own, an edge point the mean of its ends, a face point the mean of its
+  /// corners, a Doo–Sabin corner point its vertex's) and is (1 − u) · Möbius + u · linear.
+  /// Equal values everywhere are set_linear_weight of that value, bit for bit. A value NaN
+  /// or outside [0, 1] is NLS_STATUS_INVALID_ARGUMENT naming the vertex (element = its
+  /// index), mesh unchanged. The weights live inside one call, so update_points = false (one
+  /// call per level) is refused with NLS_STATUS_INVALID_ARGUMENT. A default-constructed
+  /// (invalid) handle is not read (the global weight); the linear classes ignore it.
+  void set_linear_weight_property(OpenMesh::VPropHandleT<double> linear_weights) { linear_weights_ = linear_weights; }
 
   const char* name() const override {
     static const char* const names[] = {"Loop", "Catmull-Clark", "Modified Butterfly", "Kobbelt", "Doo-Sabin",
@@ -533,6 +544,13 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     tags_.method = crease_method_;
     if (features_ || edge_sharpness_.is_valid() || vertex_sharpness_.is_valid()) feature_tags(m, tags_);
     if (!tags_.empty() && !update_points) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+    weights_.clear();
+    if ((Flags & NLS_SUBDIVIDE_MOBIUS) && linear_weights_.is_valid()) {
+      // In export_flat's vertex order (the vertex indices).
+      if (!update_points) return this->fail(NLS_STATUS_INVALID_ARGUMENT, NLS_NO_ELEMENT, 0);
+      weights_.reserve(m.n_vertices());
+      for (auto v : m.all_vertices()) weights_.push_back(m.property(linear_weights_, v));
+    }
     FlatMesh cur = in, next;
     // update_points = false: one level at a time, old vertices put back after each.
     const uint32_t per_call = update_points ? static_cast<uint32_t>(n) : 1u;
@@ -561,6 +579,7 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
     const nls_tags t = tags_.view();
     nls_status s = nlsubdiv::flat::run_levels(Scheme, flags, in, levels, out, element, fallbacks, tags_.empty() ? nullptr : &t,
                                               (Flags & NLS_SUBDIVIDE_MOBIUS) ? linear_weight_ : 0.0,
+                                              weights_.empty() ? nullptr : weights_.data(),
                                               pool_ ? pool_->executor() : nullptr);
     if (s != NLS_STATUS_OK) return this->fail(s, element, done + 1);
     this->out_.fallbacks += fallbacks;
@@ -597,6 +616,8 @@ class BulkSubdividerT : public SubdividerBaseT<MeshType, RealType> {
   uint32_t crease_method_ = NLS_CREASE_UNIFORM;
   double linear_weight_ = 0.0;
   std::shared_ptr<nlsubdiv::ThreadPool> pool_;  // shared by copies of the subdivider
+  OpenMesh::VPropHandleT<double> linear_weights_;
+  std::vector<double> weights_;
   nlsubdiv::flat::FlatTags tags_;
 };
 

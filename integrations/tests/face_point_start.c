@@ -31,7 +31,7 @@ static int level(const uint32_t *idx, double *out) {
     uint32_t scratch[128], out_off[13], out_idx[48];
     double spts[3 * 24];
     const nls_mesh_view mesh = {pos, 4, 0, off, 4, idx, 12};
-    const nls_subdivide_options options = {NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1, 0.0, NULL};
+    const nls_subdivide_options options = {NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1, 0.0, NULL, NULL};
     const nls_scratch s = {scratch, 128, spts, 24};
     const nls_mesh_buffers b = {out, 14, out_off, 12, out_idx, 48};
     nls_mesh_sizes written;

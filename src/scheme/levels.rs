@@ -10,8 +10,9 @@
 
 use super::mobius::MobiusOptions;
 use super::plan::{plan_with_topology, Plan};
-use super::step::step;
+use super::step::{step, step_weighted};
 use super::tags::{self, Sharpness, Tags};
+use super::weights::{self, VertexWeights};
 use super::{Options, Report, Scratch};
 #[cfg(doc)]
 use crate::error::Status;
@@ -80,11 +81,16 @@ impl Layout {
 /// [`Options::mobius`], the candidate scratch of the largest step (after the intermediate
 /// levels) is handed to every step and the steps' fallbacks are gathered. With `tags`, the
 /// sharpness values of the level stepped from and of the next alternate in two buffers after
-/// the levels' `u32` scratch ([`tags`]).
+/// the levels' `u32` scratch ([`tags`]). With per-vertex spectrum `weights` and
+/// [`Options::mobius`], the weights of each level written alternate in two buffers after the
+/// step scratch ([`weights`]: level `k + 1`'s carried from level `k`'s before step `k`,
+/// which blends with them).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn run(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
+    weights: Option<VertexWeights<'_>>,
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
     exec: &dyn Executor,
@@ -93,7 +99,7 @@ pub(super) fn run(
         u32s: scratch_u32,
         points: scratch_points,
     } = scratch;
-    let (p, input_counts) = plan_with_topology(mesh, opts, tags, scratch_u32)?;
+    let (p, input_counts) = plan_with_topology(mesh, opts, tags, weights, scratch_u32)?;
     let final_sizes = p.output();
     let mut report = Report::empty(final_sizes);
     out.check(&final_sizes)?;
@@ -106,14 +112,28 @@ pub(super) fn run(
     let (scheme, levels) = (opts.scheme, opts.levels);
     // A spectrum weight of 0 is the linear scheme (bit for bit: its steps are the linear
     // ones); between 0 and 1 each Möbius step blends with the linear positions.
-    let mobius = (opts.mobius && opts.spectrum > 0.0).then_some(MobiusOptions {
-        strict: opts.strict,
-        guard: !opts.literal,
-        spectrum: opts.spectrum,
-    });
+    // Per-vertex weights (Möbius only) replace the global one: each step then sees its
+    // level's weights (`step_weighted`).
+    let weights = weights.filter(|_| opts.mobius);
+    let mobius =
+        (opts.mobius && (opts.spectrum > 0.0 || weights.is_some())).then_some(MobiusOptions {
+            strict: opts.strict,
+            guard: !opts.literal,
+            spectrum: if weights.is_some() {
+                1.0
+            } else {
+                opts.spectrum
+            },
+        });
     let extra = match mobius {
-        Some(_) if opts.spectrum < 1.0 => cadd(p.mobius_step_points()?, p.spectrum_points()?)?,
+        Some(_) if opts.spectrum < 1.0 || weights.is_some() => {
+            cadd(p.mobius_step_points()?, p.spectrum_points()?)?
+        }
         Some(_) => p.mobius_step_points()?,
+        None => 0,
+    };
+    let weight_points = match weights {
+        Some(_) => weights::points_for(p.spectrum_points()?),
         None => 0,
     };
     if levels == 0 {
@@ -142,7 +162,10 @@ pub(super) fn run(
         .split_at_mut_checked(lay.points[0])
         .ok_or(internal())?;
     let (p_b, rest) = rest.split_at_mut_checked(lay.points[1]).ok_or(internal())?;
-    let step_scratch = rest.get_mut(..extra).ok_or(internal())?;
+    let (step_scratch, rest) = rest.split_at_mut_checked(extra).ok_or(internal())?;
+    let (w_a, rest) = rest.split_at_mut_checked(weight_points).ok_or(internal())?;
+    let w_b = rest.get_mut(..weight_points).ok_or(internal())?;
+    let mut bufs_w: [&mut [f64]; 2] = [w_a.as_flattened_mut(), w_b.as_flattened_mut()];
     // Slot 0 holds even levels, slot 1 odd levels; topology A even (or all), B odd.
     let mut bufs_t: [&mut [u32]; 2] = [t_a, t_b];
     let mut bufs_u: [&mut [u32]; 2] = [u_a, u_b];
@@ -199,31 +222,31 @@ pub(super) fn run(
             method: tags.method,
         };
         let sharp = tagged.then_some(&sharp);
+        // Weights of level k + 1 in buffer k % 2, carried from level k's (the caller's for
+        // k = 0, else the other buffer).
+        let [wa, wb] = &mut bufs_w;
+        let (w_in, w_out): (&[f64], &mut [f64]) = match (k, weights) {
+            (0, Some(w)) => (w.values(), &mut **wa),
+            (_, _) if k % 2 == 0 => (&**wb, &mut **wa),
+            _ => (&**wa, &mut **wb),
+        };
+        let mut one = |o: &mut MeshOut<'_>| match (mobius, weights) {
+            (Some(m), Some(given)) => {
+                weights::carry(scheme, &topo, w_in, w_out)?;
+                let w: &[f64] = w_out;
+                let w = w.get(..out_sizes.vertices).ok_or(internal())?;
+                let w = (w, given.of_linear());
+                step_weighted(scheme, m, w, sharp, &topo, o, step_scratch, crease, exec)
+            }
+            _ => step(scheme, mobius, sharp, &topo, o, step_scratch, crease, exec),
+        };
         let (written, r) = if k + 1 == levels {
-            step(
-                scheme,
-                mobius,
-                sharp,
-                &topo,
-                out,
-                step_scratch,
-                crease,
-                exec,
-            )?
+            one(out)?
         } else {
             let no = out_sizes.offsets()?;
             let (o, rest) = out_u.split_at_mut_checked(no).ok_or(internal())?;
             let mut step_out = MeshOut::new(&mut *out_p, o, rest);
-            step(
-                scheme,
-                mobius,
-                sharp,
-                &topo,
-                &mut step_out,
-                step_scratch,
-                crease,
-                exec,
-            )?
+            one(&mut step_out)?
         };
         report.fallbacks = report.fallbacks.saturating_add(r.fallbacks);
         if report.first_fallback_level == 0 && r.fallbacks > 0 {

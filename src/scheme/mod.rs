@@ -52,15 +52,20 @@ pub mod spherelike;
 mod step;
 mod subdivide;
 mod tags;
+mod weights;
 
 pub use crate::stencil::crease::CreaseMethod;
 pub use levels::MAX_LEVELS;
 pub use options::Options;
 pub use plan::{
-    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, Plan, ScratchSizes,
+    plan, plan_scratch_size, plan_scratch_size_tagged, plan_tagged, plan_weighted, Plan,
+    ScratchSizes,
 };
-pub use subdivide::{subdivide, subdivide_tagged, subdivide_with, Report, Scratch};
+pub use subdivide::{
+    subdivide, subdivide_tagged, subdivide_weighted, subdivide_with, Report, Scratch,
+};
 pub use tags::Tags;
+pub use weights::VertexWeights;
 
 pub(crate) use plan::plan_levels;
 pub(crate) use step::linear_with as step_linear_with;

@@ -50,7 +50,8 @@ pub struct Options {
     /// `w · (Möbius point) + (1 − w) · (linear point)` of that level's input. 1 (the default)
     /// is the Möbius result bit for bit (guarded or [`Options::literal`]), 0 the linear
     /// result bit for bit; continuous in `w` between. NaN or outside `[0, 1]` is
-    /// [`Status::InvalidArgument`]. Checked, and without effect, for the linear schemes.
+    /// [`Status::InvalidArgument`]. Checked, and without effect, for the linear schemes. A
+    /// weight per input vertex instead: [`subdivide_weighted`](super::subdivide_weighted).
     pub spectrum: f64,
 }
 

@@ -12,6 +12,7 @@
 use super::levels::Layout;
 use super::size::step_size;
 use super::tags::{self, Tags};
+use super::weights::VertexWeights;
 use super::{Options, Scheme, MAX_LEVELS};
 use crate::error::{Error, Result, Status};
 use crate::mesh::refine::LevelCounts;
@@ -61,8 +62,10 @@ pub struct Plan {
     ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
     ///   and the form's radius (two `f64`, three to a point) — with tags, at least the cut
     ///   level's positions, its step's output and candidates; with a
-    ///   spectrum weight below 1 ([`Options::spectrum`]), the linear positions of the
-    ///   largest level written.
+    ///   spectrum weight below 1 ([`Options::spectrum`]) or per-vertex weights
+    ///   ([`plan_weighted`]), the linear positions of the largest level written; with
+    ///   per-vertex weights also two buffers of one weight per vertex of the largest level
+    ///   written (three weights to a point).
     pub scratch: ScratchSizes,
     /// `u32` entries of one of the two sharpness buffers of a tagged mesh (one value per
     /// edge and per vertex of the largest level stepped from); 0 without tags.
@@ -149,7 +152,29 @@ pub fn plan_tagged(
     tags: &Tags<'_>,
     scratch_u32: &mut [u32],
 ) -> Result<Plan> {
-    plan_with_topology(mesh, opts, tags, scratch_u32).map(|(p, _)| p)
+    plan_with_topology(mesh, opts, tags, None, scratch_u32).map(|(p, _)| p)
+}
+
+/// [`plan_tagged`] with per-vertex weights of the Möbius–linear spectrum (seed 000 §7.2),
+/// the plan of [`subdivide_weighted`](super::subdivide_weighted) with the same arguments:
+/// `weights` holds a weight at every input vertex ([`VertexWeights`]; they replace
+/// [`Options::spectrum`]), `None` is [`plan_tagged`] exactly. With
+/// [`Options::mobius`] the point scratch also holds the linear positions of the largest
+/// level written and two buffers of the weights of the largest level written (three
+/// weights to a point). Checked, and without effect, for the linear schemes.
+///
+/// # Errors
+/// Those of [`plan_tagged`]; after [`Options`] (and before the mesh is validated):
+/// [`Status::InvalidArgument`] for weights that are not one per vertex (no element) or a
+/// weight that is NaN or outside `[0, 1]` (naming the first such vertex).
+pub fn plan_weighted(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    tags: &Tags<'_>,
+    weights: Option<VertexWeights<'_>>,
+    scratch_u32: &mut [u32],
+) -> Result<Plan> {
+    plan_with_topology(mesh, opts, tags, weights, scratch_u32).map(|(p, _)| p)
 }
 
 /// Validates `mesh` and `opts` and returns the exact sizes of every level and the exact
@@ -170,7 +195,7 @@ pub fn plan_tagged(
 /// mesh outside the sizes its squared distances can represent
 /// ([`crate::mesh::check_extent`]).
 pub fn plan(mesh: Mesh<'_>, opts: &Options, scratch_u32: &mut [u32]) -> Result<Plan> {
-    plan_with_topology(mesh, opts, &Tags::new(), scratch_u32).map(|(p, _)| p)
+    plan_with_topology(mesh, opts, &Tags::new(), None, scratch_u32).map(|(p, _)| p)
 }
 
 /// [`plan`], also returning the counts of the input's topology, which stays in
@@ -179,6 +204,7 @@ pub(super) fn plan_with_topology(
     mesh: Mesh<'_>,
     opts: &Options,
     tags: &Tags<'_>,
+    weights: Option<VertexWeights<'_>>,
     scratch_u32: &mut [u32],
 ) -> Result<(Plan, Counts)> {
     opts.check()?;
@@ -186,6 +212,8 @@ pub(super) fn plan_with_topology(
     if tagged && !opts.scheme.takes_tags() {
         return Err(Error::new(Status::TagsNotSupported));
     }
+    super::weights::check(weights, mesh.num_vertices())?;
+    let weighted = opts.mobius && weights.is_some();
     let need = plan_scratch_size_tagged(&mesh, tags)?;
     if scratch_u32.len() < need {
         return Err(Error::too_small(need));
@@ -200,8 +228,12 @@ pub(super) fn plan_with_topology(
     )?;
     // The plan's own scratch (topology and tag markers) is also the start of the call's.
     p.scratch.u32s = p.scratch.u32s.max(need);
-    if opts.mobius && opts.spectrum < 1.0 {
+    if opts.mobius && (opts.spectrum < 1.0 || weighted) {
         p.scratch.points = cadd(p.scratch.points, p.spectrum_points()?)?;
+    }
+    if weighted {
+        let w = super::weights::points_for(p.spectrum_points()?);
+        p.scratch.points = cadd(p.scratch.points, cmul(w, 2)?)?;
     }
     // The circle blend measures squared distances: outside this range they underflow or
     // overflow and the shape is lost (mesh/extent.rs).

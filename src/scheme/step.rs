@@ -6,6 +6,7 @@
 use super::mobius::{self, MobiusOptions, MobiusReport};
 use super::size::step_size;
 use super::tags::Sharpness;
+use super::weights::{self, Blend, Uniform};
 use super::{linear, linear_tagged, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::exec::{self, Executor};
@@ -39,7 +40,8 @@ pub(crate) fn step(
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
         (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts, exec, &[]),
         (Some(opts), Some(sh)) if opts.spectrum < 1.0 => {
-            mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, opts, exec)
+            let blend = Blend::Global(opts.spectrum);
+            mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, opts, blend, exec)
         }
         (Some(opts), Some(sh)) => {
             mobius::crease::step(scheme, topo, sh, out, crease, candidates, opts, exec)
@@ -47,10 +49,73 @@ pub(crate) fn step(
     }
 }
 
+/// [`step`] of the Möbius version with per-vertex spectrum weights (seed 000 §7.2,
+/// [`weights`]): `w` holds the weight of every output vertex of this step (of the linear
+/// result with `of_linear`). All 0 is the
+/// linear step and all 1 the Möbius step, exactly those (`mobius` with weight 1); otherwise
+/// both are computed and blended per vertex, the linear positions in the last output-size
+/// points of `candidates` (which holds the Möbius candidates and those points).
+///
+/// # Errors
+/// Those of [`step`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn step_weighted(
+    scheme: Scheme,
+    mobius: MobiusOptions,
+    (w, of_linear): (&[f64], bool),
+    sharp: Option<&Sharpness<'_>>,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    candidates: &mut [Point],
+    crease: &mut [u32],
+    exec: &dyn Executor,
+) -> Result<(MeshSizes, MobiusReport)> {
+    let full = MobiusOptions {
+        spectrum: 1.0,
+        ..mobius
+    };
+    let w = w
+        .get(..step_size(scheme, topo)?.vertices)
+        .ok_or(internal())?;
+    match weights::uniform(w, of_linear) {
+        Uniform::Zero => step(scheme, None, sharp, topo, out, candidates, crease, exec),
+        Uniform::One => step(
+            scheme,
+            Some(full),
+            sharp,
+            topo,
+            out,
+            candidates,
+            crease,
+            exec,
+        ),
+        Uniform::Mixed => match sharp {
+            Some(sh) => {
+                let blend = Blend::PerVertex(w, of_linear);
+                mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, full, blend, exec)
+            }
+            None => {
+                let n = w.len();
+                let split = candidates.len().checked_sub(n).ok_or(internal())?;
+                let (cand, lin) = candidates.split_at_mut_checked(split).ok_or(internal())?;
+                let (sizes, report) = mobius::step(scheme, topo, out, cand, full, exec, &[])?;
+                linear::positions(scheme, topo, lin, exec)?;
+                let pos = out.positions.get_mut(..n).ok_or(internal())?;
+                Blend::PerVertex(w, of_linear).apply(pos, lin)?;
+                if let Some(i) = exec::first_non_finite(exec, pos)? {
+                    return Err(Error::at(Status::NumericalFailure, i as u32));
+                }
+                Ok((sizes, report))
+            }
+        },
+    }
+}
+
 /// The Möbius–linear spectrum (seed 000 §7.2) with sharp features: the tagged Möbius step
-/// ([`mobius::crease`]) blended with the tagged linear step, `w · möbius + (1 − w) · linear`
-/// per output vertex, as the untagged step blends with the untagged linear rule. The linear
-/// positions take the last output-size points of `candidates`.
+/// ([`mobius::crease`]) blended with the tagged linear step by `blend` (`w · möbius + (1 − w)
+/// · linear` per output vertex, one global `w` or one per vertex), as the untagged step blends
+/// with the untagged linear rule. The linear positions take the last output-size points of
+/// `candidates`.
 #[allow(clippy::too_many_arguments)]
 fn mobius_tagged_spectrum(
     scheme: Scheme,
@@ -60,6 +125,7 @@ fn mobius_tagged_spectrum(
     crease: &mut [u32],
     candidates: &mut [Point],
     opts: MobiusOptions,
+    blend: Blend<'_>,
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     let n = step_size(scheme, topo)?.vertices;
@@ -74,11 +140,8 @@ fn mobius_tagged_spectrum(
         ..opts
     };
     let (sizes, report) = mobius::crease::step(scheme, topo, sh, out, crease, cand, full, exec)?;
-    let w = opts.spectrum;
     let pos = out.positions.get_mut(..n).ok_or(internal())?;
-    for (p, l) in pos.iter_mut().zip(lin.iter()) {
-        *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
-    }
+    blend.apply(pos, lin)?;
     if let Some(i) = first_non_finite(pos) {
         return Err(Error::at(Status::NumericalFailure, i as u32));
     }

@@ -3,6 +3,7 @@
 
 use super::levels::run;
 use super::tags::Tags;
+use super::weights::VertexWeights;
 use super::Options;
 #[cfg(doc)]
 use crate::error::Status;
@@ -97,7 +98,7 @@ pub fn subdivide(
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
-    run(mesh, opts, &Tags::new(), scratch, out, &Serial)
+    run(mesh, opts, &Tags::new(), None, scratch, out, &Serial)
 }
 
 /// [`subdivide`] with the passes of every step split into disjoint output ranges run by
@@ -114,7 +115,7 @@ pub fn subdivide_with(
     out: &mut MeshOut<'_>,
     exec: &dyn Executor,
 ) -> Result<Report> {
-    run(mesh, opts, &Tags::new(), scratch, out, exec)
+    run(mesh, opts, &Tags::new(), None, scratch, out, exec)
 }
 
 /// [`subdivide`] for a mesh with sharp-feature tags ([`Tags`]): Loop and Catmull–Clark,
@@ -135,5 +136,39 @@ pub fn subdivide_tagged(
     scratch: Scratch<'_>,
     out: &mut MeshOut<'_>,
 ) -> Result<Report> {
-    run(mesh, opts, tags, scratch, out, &Serial)
+    run(mesh, opts, tags, None, scratch, out, &Serial)
+}
+
+/// [`subdivide`] with everything a mesh may bring: sharp-feature tags (empty: none, as
+/// [`subdivide_tagged`]), per-vertex weights of the Möbius–linear spectrum, and an executor
+/// (as [`subdivide_with`]; [`Serial`](crate::exec::Serial) for the calling thread). Buffer
+/// sizes come from [`plan_weighted`](super::plan_weighted) with the same arguments.
+///
+/// `weights` (seed 000 §7.2, [`VertexWeights`]): with [`Options::mobius`], a weight in
+/// `[0, 1]` at every input vertex, of the Möbius result (`w`, [`VertexWeights::Mobius`]) or
+/// of the linear one (`u = 1 − w`, [`VertexWeights::Linear`]), replacing the global
+/// [`Options::spectrum`]. They are carried to every output vertex of every level like a
+/// vertex attribute (an old vertex keeps its weight, an edge point takes the mean of its
+/// edge's ends, a face point the mean of its corners, a Doo–Sabin corner point its parent
+/// vertex's weight; the mean is exact for equal weights) and every output vertex of every
+/// level is `w · (Möbius point) + (1 − w) · (linear point)` of that level's input. All 1 is
+/// the Möbius result bit for bit, all 0 the linear one, all equal to `w` the global weight
+/// `w`; an output vertex of weight exactly 0 or 1 takes the linear or the Möbius point of its
+/// level exactly; the result is continuous in the weights. `None` is the global weight,
+/// bit for bit. Checked, and without effect, for the linear schemes.
+///
+/// # Errors
+/// Those of [`plan_weighted`](super::plan_weighted) and [`subdivide`]; nothing is written
+/// before the weights are checked.
+#[allow(clippy::too_many_arguments)] // the input, its three optional companions, the buffers
+pub fn subdivide_weighted(
+    mesh: Mesh<'_>,
+    opts: &Options,
+    tags: &Tags<'_>,
+    weights: Option<VertexWeights<'_>>,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+    exec: &dyn Executor,
+) -> Result<Report> {
+    run(mesh, opts, tags, weights, scratch, out, exec)
 }

@@ -144,6 +144,39 @@ pub fn run_tagged(
     Ok((out, report))
 }
 
+/// The whole public path (`plan_weighted`, then `subdivide_weighted`) with tags, per-vertex
+/// spectrum weights and an executor, owned buffers of exactly the planned sizes, the output
+/// starting as NaN/`u32::MAX` as in [`run`].
+pub fn run_weighted(
+    m: &OwnedMesh,
+    opts: &Options,
+    tags: &scheme::Tags<'_>,
+    weights: Option<scheme::VertexWeights<'_>>,
+    exec: &dyn nlsubdiv::exec::Executor,
+) -> Result<(OwnedMesh, Report)> {
+    let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
+    let p = scheme::plan_weighted(m.view(), opts, tags, weights, &mut su)?;
+    let o = p.output();
+    su.resize(p.scratch.u32s, 0);
+    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; o.vertices],
+        offsets: vec![u32::MAX; o.faces + 1],
+        indices: vec![u32::MAX; o.indices],
+    };
+    let report = scheme::subdivide_weighted(
+        m.view(),
+        opts,
+        tags,
+        weights,
+        Scratch::new(&mut su, &mut sp),
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+        exec,
+    )?;
+    assert_eq!(report.sizes, o, "sizes written differ from the plan");
+    Ok((out, report))
+}
+
 /// One linear step of `s` ([`run`]).
 pub fn subdivide(s: Scheme, m: &OwnedMesh) -> Result<OwnedMesh> {
     run(m, &Options::new(s)).map(|(o, _)| o)

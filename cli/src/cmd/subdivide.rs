@@ -1,4 +1,5 @@
-//! `nlsubdiv subdivide --scheme NAME --levels N [--strict] [--literal] IN OUT`: `N` levels of a linear
+//! `nlsubdiv subdivide --scheme NAME --levels N [--strict] [--literal] [--spectrum W |
+//! --spectrum-weights FILE] IN OUT`: `N` levels of a linear
 //! or Möbius mesh scheme of the core, or of differential-space subdivision (seed 001,
 //! [`crate::differential`]), file to file.
 //!
@@ -81,6 +82,13 @@ pub struct Args {
     /// bit; docs/folds.md).
     #[arg(long, value_name = "W", default_value_t = 1.0, value_parser = parse_weight)]
     pub spectrum: f64,
+    /// mobius-*: per-vertex weights of the Möbius–linear spectrum from FILE, one number per
+    /// input vertex and line in the mesh's vertex order (`#` starts a comment), each the
+    /// weight of the Möbius result as for --spectrum, which they replace; carried to every
+    /// output vertex like a vertex attribute (an edge point takes the mean of its ends, a face
+    /// point the mean of its corners; docs/folds.md).
+    #[arg(long, value_name = "FILE")]
+    pub spectrum_weights: Option<PathBuf>,
     /// differential-dirmag: the first this many levels use DirMag (the paper: 1 or 2).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub dirmag_levels: u32,
@@ -163,10 +171,29 @@ pub fn run(args: &Args, ctx: &Ctx) -> CliResult<Exit> {
             scheme.name()
         )));
     }
+    let weights = match &args.spectrum_weights {
+        Some(path) if !scheme.mobius => {
+            return Err(crate::error::CliError::usage(format!(
+                "--spectrum-weights {}: the spectrum runs between a mobius-* scheme and its \
+                 linear version; {} is linear",
+                path.display(),
+                scheme.name()
+            )))
+        }
+        Some(path) if args.spectrum != 1.0 => {
+            return Err(crate::error::CliError::usage(format!(
+                "--spectrum-weights {}: give either --spectrum or --spectrum-weights",
+                path.display()
+            )))
+        }
+        Some(path) => Some(crate::spectrum_weights::read(path, l.mesh.num_vertices())?),
+        None => None,
+    };
     let mode = subdiv::Mode {
         strict: args.strict,
         literal: args.literal,
         spectrum: args.spectrum,
+        weights: weights.as_deref(),
         threads: args
             .threads
             .map_or_else(nlsubdiv_threads::Threads::available, |n| n as usize),
