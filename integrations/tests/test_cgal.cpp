@@ -646,6 +646,47 @@ static void named_parameters(itest::Tally& t) {
     else
       t.fail("SM3 linear_weight(1) Butterfly / Catmull-Clark");
   }
+  // vertex_linear_weight_map: per-vertex weights u of the linear result. Equal values =
+  // linear_weight of that value bit for bit; mixed values = the C ABI with the same array
+  // (Loop and Kobbelt, whose default paths are masks, take the bulk path then); NaN at a
+  // vertex = NLS_STATUS_INVALID_ARGUMENT naming it, mesh unchanged.
+  {
+    SM eq = oct, g = oct, mixed = oct, bad = oct, cm = cube;
+    auto wq = eq.add_property_map<SM::Vertex_index, double>("v:u", 0.3).first;
+    SM3::Mobius_Loop_subdivision(eq, NP::number_of_iterations(2).vertex_linear_weight_map(wq));
+    SM3::Mobius_Loop_subdivision(g, NP::number_of_iterations(2).linear_weight(0.3));
+    auto wm = mixed.add_property_map<SM::Vertex_index, double>("v:u", 0.0).first;
+    std::vector<double> u;
+    for (auto v : vertices(mixed)) {
+      wm[v] = (v.idx() % 3) / 2.0;
+      u.push_back(wm[v]);
+    }
+    SM3::Mobius_Loop_subdivision(mixed, NP::number_of_iterations(2).vertex_linear_weight_map(wm));
+    nlsubdiv::flat::FlatMesh o;
+    uint32_t el = 0, fb = 0;
+    const nls_status cs = nlsubdiv::flat::run_levels(NLS_SCHEME_LOOP, M, to_fm(oin), 2, o, el, fb, nullptr, 0.0, u.data());
+    auto wc = cm.add_property_map<SM::Vertex_index, double>("v:u", 0.0).first;
+    std::vector<double> uc;
+    for (auto v : vertices(cm)) {
+      wc[v] = (v.idx() % 2) * 0.75;
+      uc.push_back(wc[v]);
+    }
+    SM3::Mobius_Kobbelt_subdivision(cm, NP::number_of_iterations(2).vertex_linear_weight_map(wc));
+    nlsubdiv::flat::FlatMesh oc;
+    const nls_status ks = nlsubdiv::flat::run_levels(NLS_SCHEME_KOBBELT, M, to_fm(cin), 2, oc, el, fb, nullptr, 0.0, uc.data());
+    auto wb = bad.add_property_map<SM::Vertex_index, double>("v:u", 0.5).first;
+    wb[SM::Vertex_index(4)] = std::nan("");
+    bool consistent = false;
+    nc::Report rb = call_new(
+        [&](nc::Report& r) { SM3::Mobius_Loop_subdivision(bad, NP::number_of_iterations(2).vertex_linear_weight_map(wb).report(r)); },
+        &consistent);
+    if (flat_of(eq) == flat_of(g) && cs == NLS_STATUS_OK && exact(mixed, of_fm(o)) && !(flat_of(mixed) == flat_of(g)) &&
+        ks == NLS_STATUS_OK && exact(cm, of_fm(oc)) && consistent && rb.status == NLS_STATUS_INVALID_ARGUMENT && rb.element == 4 &&
+        flat_of(bad) == oin)
+      t.pass("SM3 vertex_linear_weight_map: equal = linear_weight bit for bit, mixed = C ABI linear_weights, NaN refused naming the vertex", 0);
+    else
+      t.fail("SM3 vertex_linear_weight_map: " + rb.message());
+  }
   // threads: the same bits for 1, 2, 3, 7 and the hardware's thread count, on the bulk path
   // and on the driver masks (Catmull-Clark's PQQ host), and the same refusal.
   {
@@ -687,46 +728,6 @@ static void named_parameters(itest::Tally& t) {
       t.pass("SM3 threads: 1, 2, 3, 7 and all threads give the same bits (bulk and driver masks); refusals unchanged", 0);
     else
       t.fail("SM3 threads:" + why + " " + rb.message());
-  // vertex_linear_weight_map: per-vertex weights u of the linear result. Equal values =
-  // linear_weight of that value bit for bit; mixed values = the C ABI with the same array
-  // (Loop and Kobbelt, whose default paths are masks, take the bulk path then); NaN at a
-  // vertex = NLS_STATUS_INVALID_ARGUMENT naming it, mesh unchanged.
-  {
-    SM eq = oct, g = oct, mixed = oct, bad = oct, cm = cube;
-    auto wq = eq.add_property_map<SM::Vertex_index, double>("v:u", 0.3).first;
-    SM3::Mobius_Loop_subdivision(eq, NP::number_of_iterations(2).vertex_linear_weight_map(wq));
-    SM3::Mobius_Loop_subdivision(g, NP::number_of_iterations(2).linear_weight(0.3));
-    auto wm = mixed.add_property_map<SM::Vertex_index, double>("v:u", 0.0).first;
-    std::vector<double> u;
-    for (auto v : vertices(mixed)) {
-      wm[v] = (v.idx() % 3) / 2.0;
-      u.push_back(wm[v]);
-    }
-    SM3::Mobius_Loop_subdivision(mixed, NP::number_of_iterations(2).vertex_linear_weight_map(wm));
-    nlsubdiv::flat::FlatMesh o;
-    uint32_t el = 0, fb = 0;
-    const nls_status cs = nlsubdiv::flat::run_levels(NLS_SCHEME_LOOP, M, to_fm(oin), 2, o, el, fb, nullptr, 0.0, u.data());
-    auto wc = cm.add_property_map<SM::Vertex_index, double>("v:u", 0.0).first;
-    std::vector<double> uc;
-    for (auto v : vertices(cm)) {
-      wc[v] = (v.idx() % 2) * 0.75;
-      uc.push_back(wc[v]);
-    }
-    SM3::Mobius_Kobbelt_subdivision(cm, NP::number_of_iterations(2).vertex_linear_weight_map(wc));
-    nlsubdiv::flat::FlatMesh oc;
-    const nls_status ks = nlsubdiv::flat::run_levels(NLS_SCHEME_KOBBELT, M, to_fm(cin), 2, oc, el, fb, nullptr, 0.0, uc.data());
-    auto wb = bad.add_property_map<SM::Vertex_index, double>("v:u", 0.5).first;
-    wb[SM::Vertex_index(4)] = std::nan("");
-    bool consistent = false;
-    nc::Report rb = call_new(
-        [&](nc::Report& r) { SM3::Mobius_Loop_subdivision(bad, NP::number_of_iterations(2).vertex_linear_weight_map(wb).report(r)); },
-        &consistent);
-    if (flat_of(eq) == flat_of(g) && cs == NLS_STATUS_OK && exact(mixed, of_fm(o)) && !(flat_of(mixed) == flat_of(g)) &&
-        ks == NLS_STATUS_OK && exact(cm, of_fm(oc)) && consistent && rb.status == NLS_STATUS_INVALID_ARGUMENT && rb.element == 4 &&
-        flat_of(bad) == oin)
-      t.pass("SM3 vertex_linear_weight_map: equal = linear_weight bit for bit, mixed = C ABI linear_weights, NaN refused naming the vertex", 0);
-    else
-      t.fail("SM3 vertex_linear_weight_map: " + rb.message());
   }
   // strict: an unreferenced vertex is accepted by default and refused in strict mode
   // (NLS_STATUS_INVALID_ARGUMENT naming it), mesh unchanged.

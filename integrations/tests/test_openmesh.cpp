@@ -690,6 +690,42 @@ static void spectrum_weight(itest::Tally& t) {
     t.fail("OpenMesh set_linear_weight(1) Catmull-Clark");
 }
 
+/// set_linear_weight_property: equal values = set_linear_weight of that value bit for bit,
+/// mixed values = the C ABI's linear_weights with the same array, a NaN refused naming its
+/// vertex (mesh unchanged), update_points = false refused.
+static void spectrum_weight_property(itest::Tally& t) {
+  const Tri oct = octahedron<Tri>();
+  const Flat in = flat_of(oct);
+  Tri eq = oct, g = oct, mixed = oct, bad = oct, keep = oct;
+  OpenMesh::VPropHandleT<double> u;
+  for (Tri* m : {&eq, &mixed, &bad, &keep}) m->add_property(u, "linear weight");
+  for (auto v : eq.vertices()) eq.property(u, v) = 0.3;
+  std::vector<double> uw;
+  for (auto v : mixed.vertices()) {
+    mixed.property(u, v) = (v.idx() % 3) / 2.0;
+    uw.push_back(mixed.property(u, v));
+  }
+  for (auto v : bad.vertices()) bad.property(u, v) = v.idx() == 4 ? std::nan("") : 0.5;
+  for (auto v : keep.vertices()) keep.property(u, v) = 0.5;
+  nom::MobiusLoopBulkT<Tri> a, b, c, d, e;
+  a.set_linear_weight_property(u);
+  b.set_linear_weight(0.3);
+  c.set_linear_weight_property(u);
+  d.set_linear_weight_property(u);
+  e.set_linear_weight_property(u);
+  const bool ok = a(eq, 2) && b(g, 2) && c(mixed, 2);
+  nlsubdiv::flat::FlatMesh want;
+  uint32_t el = 0, fb = 0;
+  const nls_status cs = nlsubdiv::flat::run_levels(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, to_fm(in), 2, want, el, fb, nullptr, 0.0, uw.data());
+  const bool refused = !d(bad, 2) && d.status() == NLS_STATUS_INVALID_ARGUMENT && d.element() == 4 && flat_of(bad) == in;
+  const bool one_by_one = !e(keep, 2, false) && e.status() == NLS_STATUS_INVALID_ARGUMENT && flat_of(keep) == in;
+  if (ok && cs == NLS_STATUS_OK && flat_of(eq) == flat_of(g) && flat_of(mixed) == of_fm(want) && !(flat_of(mixed) == flat_of(g)) &&
+      refused && one_by_one)
+    t.pass("OpenMesh set_linear_weight_property: equal = set_linear_weight, mixed = C ABI linear_weights, NaN refused naming the vertex", 0);
+  else
+    t.fail(std::string("OpenMesh set_linear_weight_property: ") + d.message());
+}
+
 /// `Sd` on `mesh0` (`levels` levels, linear weight `u`) on 2, 3, 7 and all threads, each
 /// subdivider called twice (its pool serves both calls), against one thread.
 template <class Sd, class M>
@@ -749,40 +785,6 @@ static void threads(itest::Tally& t) {
     t.pass("OpenMesh set_threads(3): a bad weight is refused as on one thread, mesh unchanged", 0);
   else
     t.fail(std::string("OpenMesh set_threads(3) refusal: ") + e.message());
-/// set_linear_weight_property: equal values = set_linear_weight of that value bit for bit,
-/// mixed values = the C ABI's linear_weights with the same array, a NaN refused naming its
-/// vertex (mesh unchanged), update_points = false refused.
-static void spectrum_weight_property(itest::Tally& t) {
-  const Tri oct = octahedron<Tri>();
-  const Flat in = flat_of(oct);
-  Tri eq = oct, g = oct, mixed = oct, bad = oct, keep = oct;
-  OpenMesh::VPropHandleT<double> u;
-  for (Tri* m : {&eq, &mixed, &bad, &keep}) m->add_property(u, "linear weight");
-  for (auto v : eq.vertices()) eq.property(u, v) = 0.3;
-  std::vector<double> uw;
-  for (auto v : mixed.vertices()) {
-    mixed.property(u, v) = (v.idx() % 3) / 2.0;
-    uw.push_back(mixed.property(u, v));
-  }
-  for (auto v : bad.vertices()) bad.property(u, v) = v.idx() == 4 ? std::nan("") : 0.5;
-  for (auto v : keep.vertices()) keep.property(u, v) = 0.5;
-  nom::MobiusLoopBulkT<Tri> a, b, c, d, e;
-  a.set_linear_weight_property(u);
-  b.set_linear_weight(0.3);
-  c.set_linear_weight_property(u);
-  d.set_linear_weight_property(u);
-  e.set_linear_weight_property(u);
-  const bool ok = a(eq, 2) && b(g, 2) && c(mixed, 2);
-  nlsubdiv::flat::FlatMesh want;
-  uint32_t el = 0, fb = 0;
-  const nls_status cs = nlsubdiv::flat::run_levels(NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS, to_fm(in), 2, want, el, fb, nullptr, 0.0, uw.data());
-  const bool refused = !d(bad, 2) && d.status() == NLS_STATUS_INVALID_ARGUMENT && d.element() == 4 && flat_of(bad) == in;
-  const bool one_by_one = !e(keep, 2, false) && e.status() == NLS_STATUS_INVALID_ARGUMENT && flat_of(keep) == in;
-  if (ok && cs == NLS_STATUS_OK && flat_of(eq) == flat_of(g) && flat_of(mixed) == of_fm(want) && !(flat_of(mixed) == flat_of(g)) &&
-      refused && one_by_one)
-    t.pass("OpenMesh set_linear_weight_property: equal = set_linear_weight, mixed = C ABI linear_weights, NaN refused naming the vertex", 0);
-  else
-    t.fail(std::string("OpenMesh set_linear_weight_property: ") + d.message());
 }
 
 /// Differential edits through vertex properties = the C ABI with the same arrays.
@@ -1132,8 +1134,8 @@ int main(int argc, char** argv) {
   feature_creases(t);
   openmesh_interfaces_and_messages(t);
   spectrum_weight(t);
-  threads(t);
   spectrum_weight_property(t);
+  threads(t);
   differential_edits(t);
   properties(t);
   for (const auto& w : t.worst) std::printf("  %-60s worst max_rel_dist %.3e\n", w.first.c_str(), w.second);
