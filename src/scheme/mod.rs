@@ -39,6 +39,7 @@
 //! with sharp features), `interpolating_tagged.rs` (Modified Butterfly and Kobbelt with sharp
 //! features).
 
+mod built;
 mod carry;
 mod interpolating_tagged;
 mod levels;
