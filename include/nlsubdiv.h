@@ -406,6 +406,11 @@ enum nls_status
      * The scheme or version does not take sharp-feature tags.
      */
     NLS_STATUS_TAGS_NOT_SUPPORTED = 34,
+    /**
+     * The scheme, or its Möbius form, is not compiled into this build of the library (its
+     * Cargo feature is off; `docs/firmware.md`, "Link only what you use").
+     */
+    NLS_STATUS_SCHEME_NOT_BUILT = 35,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
