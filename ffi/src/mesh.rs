@@ -846,7 +846,9 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 /// @return `NLS_STATUS_OK`, a validation error above, `NLS_STATUS_BUFFER_TOO_SMALL`,
 /// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme or flag bits, `NLS_SUBDIVIDE_MOBIUS` with
 /// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride),
-/// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
+/// `NLS_STATUS_SCHEME_NOT_BUILT` (the scheme, or with `NLS_SUBDIVIDE_MOBIUS` its Möbius form,
+/// is left out of this build of the library by its Cargo features; checked with the options,
+/// before the mesh is read), `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
 /// `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
 /// into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
 #[unsafe(no_mangle)]
@@ -1254,7 +1256,11 @@ mod tests {
                 assert_eq!(s, Status::SchemeNotBuilt, "scheme {code} flags {flags}");
                 assert_eq!(element, crate::curve::NLS_NO_ELEMENT);
                 assert_eq!(sizes, nls_mesh_sizes::default());
-                assert_eq!((rep.fallbacks, rep.guarded), (9, 9), "the report was written");
+                assert_eq!(
+                    (rep.fallbacks, rep.guarded),
+                    (9, 9),
+                    "the report was written"
+                );
                 assert!(op.iter().all(|&x| x == 7.0) && oo.iter().all(|&x| x == 7));
                 assert!(oi.iter().all(|&x| x == 7));
             }
