@@ -55,6 +55,27 @@ pub(crate) fn check(scheme: Scheme, mobius: bool) -> Result<()> {
     }
 }
 
+/// `scheme` itself when this build contains it ([`Scheme::is_built`]),
+/// [`Status::SchemeNotBuilt`] otherwise. Every arm returns a constant: in a build of one
+/// scheme the optimiser then knows the scheme wherever the result flows (its refinement
+/// pattern, its sizes, the dispatch of each step) and drops what the other schemes would
+/// need. The plan and the level loop take their scheme from here.
+pub(crate) fn narrow(scheme: Scheme) -> Result<Scheme> {
+    match scheme {
+        Scheme::Loop if cfg!(feature = "loop") => Ok(Scheme::Loop),
+        Scheme::CatmullClark if cfg!(feature = "catmull-clark") => Ok(Scheme::CatmullClark),
+        Scheme::ModifiedButterfly if cfg!(feature = "butterfly") => Ok(Scheme::ModifiedButterfly),
+        Scheme::Kobbelt if cfg!(feature = "kobbelt") => Ok(Scheme::Kobbelt),
+        Scheme::DooSabin if cfg!(feature = "doo-sabin") => Ok(Scheme::DooSabin),
+        Scheme::Simplest if cfg!(feature = "simplest") => Ok(Scheme::Simplest),
+        Scheme::Dual if cfg!(feature = "akleman") => Ok(Scheme::Dual),
+        Scheme::VertexInsertion if cfg!(feature = "akleman") => Ok(Scheme::VertexInsertion),
+        Scheme::DualTruncation if cfg!(feature = "akleman") => Ok(Scheme::DualTruncation),
+        Scheme::Spherelike if cfg!(feature = "spherelike") => Ok(Scheme::Spherelike),
+        _ => Err(not_built()),
+    }
+}
+
 /// The error of a dispatch arm left out of this build.
 pub(crate) const fn not_built() -> Error {
     Error::new(Status::SchemeNotBuilt)
