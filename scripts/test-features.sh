@@ -46,15 +46,20 @@ for c in "${combos[@]}"; do
     }
 done
 # The C ABI of a library built with only `loop`, from C (ffi_tests/features/loop_only.c; its
-# verified statuses go to $NLS_STATUS_LOG like those of every C suite). Its own target folder,
-# so that the release library of the other steps stays the default one.
+# verified statuses go to $NLS_STATUS_LOG like those of every C suite), under ASan+UBSan.
+# With `panic-never` the link also proves that no panic path is reachable in this build (as
+# the test-all step "panic-freedom link proof" does for the default one). Its own target
+# folder, so that the release library of the other steps stays the default one.
 loop_only_c() {
     local dir=target/features-loop
-    cargo build -q --locked --release -p nlsubdiv-ffi --no-default-features --features loop \
-        --target-dir "$dir" || return 1
+    cargo build -q --locked --release -p nlsubdiv-ffi --no-default-features \
+        --features loop,panic-never --target-dir "$dir" || return 1
     gcc -std=c99 -Wall -Wextra -Wpedantic -Werror -g -O1 -fsanitize=address,undefined \
         -fno-sanitize-recover=all -Iinclude -Iffi_tests ffi_tests/features/loop_only.c \
-        "$dir/release/libnlsubdiv.a" -lm -o "$dir/loop_only" || return 1
+        "$dir/release/libnlsubdiv.a" -Wl,--gc-sections -lm -o "$dir/loop_only" || {
+        echo "loop_only.c does not link (with panic-never: a panic path is reachable)"
+        return 1
+    }
     "$dir/loop_only"
 }
 check "C program against a loop-only libnlsubdiv.a" loop_only_c
