@@ -19,18 +19,7 @@ impl Scheme {
     /// Whether this build contains the scheme's linear rules (or, for
     /// [`Scheme::Spherelike`], its circle-blend rules): its Cargo feature is on.
     pub const fn is_built(self) -> bool {
-        match self {
-            Scheme::Loop => cfg!(feature = "loop"),
-            Scheme::CatmullClark => cfg!(feature = "catmull-clark"),
-            Scheme::ModifiedButterfly => cfg!(feature = "butterfly"),
-            Scheme::Kobbelt => cfg!(feature = "kobbelt"),
-            Scheme::DooSabin => cfg!(feature = "doo-sabin"),
-            Scheme::Simplest => cfg!(feature = "simplest"),
-            Scheme::Dual | Scheme::VertexInsertion | Scheme::DualTruncation => {
-                cfg!(feature = "akleman")
-            }
-            Scheme::Spherelike => cfg!(feature = "spherelike"),
-        }
+        narrow(self).is_ok()
     }
 
     /// Whether this build contains the scheme's canonical Möbius version: the scheme has one
@@ -55,12 +44,13 @@ pub(crate) fn check(scheme: Scheme, mobius: bool) -> Result<()> {
     }
 }
 
-/// `scheme` itself when this build contains it ([`Scheme::is_built`]),
-/// [`Status::SchemeNotBuilt`] otherwise. Every arm returns a constant: in a build of one
-/// scheme the optimiser then knows the scheme wherever the result flows (its refinement
-/// pattern, its sizes, the dispatch of each step) and drops what the other schemes would
-/// need. The plan and the level loop take their scheme from here.
-pub(crate) fn narrow(scheme: Scheme) -> Result<Scheme> {
+/// `scheme` itself when this build contains it (its Cargo feature is on),
+/// [`Status::SchemeNotBuilt`] otherwise: the table of which feature holds which scheme.
+/// Every arm returns a constant: in a build of one scheme the optimiser then knows the
+/// scheme wherever the result flows (its refinement pattern, its sizes, the dispatch of each
+/// step) and drops what the other schemes would need. The plan and the level loop take
+/// their scheme from here.
+pub(crate) const fn narrow(scheme: Scheme) -> Result<Scheme> {
     match scheme {
         Scheme::Loop if cfg!(feature = "loop") => Ok(Scheme::Loop),
         Scheme::CatmullClark if cfg!(feature = "catmull-clark") => Ok(Scheme::CatmullClark),
