@@ -10,8 +10,7 @@ use super::differential::{self, DifferentialBase};
 use super::polygon::check_finite;
 use super::{bspline, circle_blend, four_point, mobius};
 use super::{refined_size, refined_size_once, scratch_size, CurveScheme};
-use crate::error::Status;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Status};
 use crate::point::Point;
 
 /// Subdivides the curve `points` `levels` times with `scheme` into `out` and returns the
