@@ -1,11 +1,21 @@
 #!/usr/bin/env bash
-# The code-size table of docs/firmware.md: .text and .rodata of small Cortex-M4F images
+# The code-size tables of docs/firmware.md: .text and .rodata of small Cortex-M4F images
 # (c_examples/bare-metal's startup and linker script, newlib) that each call one path of
 # the library, at the Rust release profile's opt-level 3, "s" and "z" (LTO, one codegen
-# unit, panic = abort, as in Cargo.toml), linked with --gc-sections. Prints a Markdown table;
-# the staticlibs are cached in target/firmware/cargo-o<level>.
+# unit, panic = abort, as in Cargo.toml), linked with --gc-sections. Prints Markdown tables:
 #
-#   firmware/size.sh
+#  1. the library with its default features (every scheme): one image per path;
+#  2. one mesh scheme alone: the library built with only that scheme's Cargo feature
+#     (linear), and with it and `mobius` (Möbius), each image calling that scheme.
+#
+# Table 1 takes one library build per opt-level, table 2 fifteen (eight schemes linear,
+# seven Möbius: spherelike has no Möbius form), about 10 s each on two cores after the first;
+# the whole run takes about 10 minutes. The staticlibs are cached in
+# target/firmware/cargo-o<level> (cargo rebuilds only the ffi crate when the features
+# change) and copied to target/firmware/size/lib-<features>-o<level>.a.
+#
+#   firmware/size.sh                 # both tables
+#   firmware/size.sh loop kobbelt    # table 2 for these schemes only (and table 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -15,6 +25,7 @@ mkdir -p "$OUT"
 CPU="-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard"
 BARE=$ROOT/c_examples/bare-metal
 H=$ROOT/firmware/harness
+OPTS=(3 s z)
 
 probes=(baseline f4 curve mesh_linear mesh_mobius mesh_runtime all_exports)
 declare -A what=(
@@ -32,31 +43,74 @@ declare -A defs=(
     [all_exports]=-DPROBE_BASELINE
 )
 
+# Table 2: each scheme's Cargo feature, the scheme its image calls, and its name. The
+# `akleman` feature holds Akleman's three schemes; its image calls the dual.
+schemes=(loop catmull-clark butterfly kobbelt doo-sabin simplest akleman spherelike)
+[ $# -gt 0 ] && schemes=("$@")
+declare -A scode=(
+    [loop]=NLS_SCHEME_LOOP [catmull-clark]=NLS_SCHEME_CATMULL_CLARK
+    [butterfly]=NLS_SCHEME_MODIFIED_BUTTERFLY [kobbelt]=NLS_SCHEME_KOBBELT
+    [doo-sabin]=NLS_SCHEME_DOO_SABIN [simplest]=NLS_SCHEME_SIMPLEST [akleman]=NLS_SCHEME_DUAL
+    [spherelike]=NLS_SCHEME_SPHERELIKE
+)
+declare -A sname=(
+    [loop]="Loop" [catmull-clark]="Catmull–Clark" [butterfly]="Modified Butterfly"
+    [kobbelt]="Kobbelt" [doo-sabin]="Doo–Sabin" [simplest]="simplest"
+    [akleman]="Akleman (dual; the feature holds all three)" [spherelike]="spherelike"
+)
+
 # section SIZE_A_OUTPUT NAME: the size of section NAME in `size -A` output.
 section() { awk -v n="$2" '$1 == n { print $2 }' <<<"$1"; }
 
-declare -A text rodata
-for opt in 3 s z; do
-    dir=$ROOT/target/firmware/cargo-o$opt
+# library OPT FEATURES: builds libnlsubdiv.a at opt-level OPT with FEATURES ("default" for
+# the default features, else a comma-separated list without the defaults) and prints the
+# path of its copy.
+library() {
+    local opt=$1 features=$2 dir=$ROOT/target/firmware/cargo-o$1 flags=()
+    [ "$features" != default ] && flags=(--no-default-features --features "$features")
     CARGO_PROFILE_RELEASE_OPT_LEVEL=$opt cargo rustc -q --release --locked -p nlsubdiv-ffi \
-        --target thumbv7em-none-eabihf --target-dir "$dir" --crate-type staticlib
-    lib=$dir/thumbv7em-none-eabihf/release/libnlsubdiv.a
+        --target thumbv7em-none-eabihf --target-dir "$dir" --crate-type staticlib "${flags[@]}"
+    local copy=$OUT/lib-${features//,/+}-o$opt.a
+    cp "$dir/thumbv7em-none-eabihf/release/libnlsubdiv.a" "$copy"
+    echo "$copy"
+}
+
+# image NAME LIB DEFINES [LDFLAGS]: links the probe into $OUT/NAME.elf and prints the sizes
+# of .text and .rodata.
+image() {
+    # shellcheck disable=SC2086  # the defines and flags are words
+    arm-none-eabi-gcc $CPU -std=c99 -O2 -ffp-contract=off -ffunction-sections -fdata-sections \
+        -I"$ROOT/include" -I"$H" $3 "$ROOT/firmware/size/probe.c" "$H/calls.c" "$H/arena.c" \
+        "$BARE/startup.c" -nostartfiles -T "$BARE/link.ld" --specs=rdimon.specs -Wl,--gc-sections ${4:-} \
+        "$2" -lm -o "$OUT/$1.elf" 2>/dev/null
+    local sz
+    sz=$(arm-none-eabi-size -A "$OUT/$1.elf")
+    echo "$(section "$sz" .text) $(section "$sz" .rodata)"
+}
+
+declare -A text rodata
+for opt in "${OPTS[@]}"; do
+    lib=$(library "$opt" default)
     # every exported nls_ function kept as a root of --gc-sections
     keep=$(arm-none-eabi-nm -g --defined-only "$lib" 2>/dev/null | awk '$2 == "T" && $3 ~ /^nls_/ { printf " -Wl,--undefined=%s", $3 }')
     for p in "${probes[@]}"; do
         extra=""
         [ "$p" = all_exports ] && extra=$keep
-        # shellcheck disable=SC2086
-        arm-none-eabi-gcc $CPU -std=c99 -O2 -ffp-contract=off -ffunction-sections -fdata-sections \
-            -I"$ROOT/include" -I"$H" ${defs[$p]} "$ROOT/firmware/size/probe.c" "$H/calls.c" "$H/arena.c" \
-            "$BARE/startup.c" -nostartfiles -T "$BARE/link.ld" --specs=rdimon.specs -Wl,--gc-sections $extra \
-            "$lib" -lm -o "$OUT/$p-o$opt.elf" 2>/dev/null
-        sz=$(arm-none-eabi-size -A "$OUT/$p-o$opt.elf")
-        text[$p,$opt]=$(section "$sz" .text)
-        rodata[$p,$opt]=$(section "$sz" .rodata)
+        read -r text[$p,$opt] rodata[$p,$opt] < <(image "$p-o$opt" "$lib" "${defs[$p]}" "$extra")
+    done
+    for s in "${schemes[@]}"; do
+        lib=$(library "$opt" "$s")
+        read -r text[$s/linear,$opt] rodata[$s/linear,$opt] \
+            < <(image "$s-linear-o$opt" "$lib" "-DPROBE_MESH=0 -DPROBE_SCHEME=${scode[$s]}")
+        [ "$s" = spherelike ] && continue
+        lib=$(library "$opt" "$s,mobius")
+        read -r text[$s/mobius,$opt] rodata[$s/mobius,$opt] \
+            < <(image "$s-mobius-o$opt" "$lib" "-DPROBE_MESH=NLS_SUBDIVIDE_MOBIUS -DPROBE_SCHEME=${scode[$s]}")
     done
 done
 
+echo "Default features (every scheme); bytes, opt-level 3, \"s\" and \"z\":"
+echo
 echo "| image (Cortex-M4F) | .text o3 | .text s | .text z | .rodata o3 | .rodata s | .rodata z |"
 echo "|---|---:|---:|---:|---:|---:|---:|"
 for p in "${probes[@]}"; do
@@ -65,9 +119,31 @@ for p in "${probes[@]}"; do
 done
 echo
 echo "Library share (.text minus the baseline image's):"
+echo
 echo "| path | o3 | s | z |"
 echo "|---|---:|---:|---:|"
 for p in "${probes[@]:1}"; do
     printf "| %s | %d | %d | %d |\n" "${what[$p]}" $((text[$p,3]-text[baseline,3])) \
         $((text[$p,s]-text[baseline,s])) $((text[$p,z]-text[baseline,z]))
 done
+echo
+echo "One mesh scheme alone: the library built with only its feature (linear), or with it and"
+echo "\`mobius\` (Möbius); library share of .text (the image's minus the baseline's), bytes:"
+echo
+echo "| scheme (features) | linear o3 | linear s | linear z | Möbius o3 | Möbius s | Möbius z |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
+share() { # share KEY OPT
+    local t=${text[$1,$2]:-}
+    if [ -z "$t" ]; then echo "—"; else echo $((t - text[baseline,$2])); fi
+}
+for s in "${schemes[@]}"; do
+    features="\`$s\`"
+    [ "$s" != spherelike ] && features="\`$s\`, \`$s,mobius\`"
+    printf "| %s (%s) | %s | %s | %s | %s | %s | %s |\n" "${sname[$s]}" "$features" \
+        "$(share "$s/linear" 3)" "$(share "$s/linear" s)" "$(share "$s/linear" z)" \
+        "$(share "$s/mobius" 3)" "$(share "$s/mobius" s)" "$(share "$s/mobius" z)"
+done
+echo
+echo "Largest .rodata of a one-scheme image (bytes): $(for k in "${!rodata[@]}"; do
+    case $k in */*) echo "${rodata[$k]}" ;; esac
+done | sort -n | tail -1)"

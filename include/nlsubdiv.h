@@ -406,6 +406,11 @@ enum nls_status
      * The scheme or version does not take sharp-feature tags.
      */
     NLS_STATUS_TAGS_NOT_SUPPORTED = 34,
+    /**
+     * The scheme, or its Möbius form, is not compiled into this build of the library (its
+     * Cargo feature is off; `docs/firmware.md`, "Link only what you use").
+     */
+    NLS_STATUS_SCHEME_NOT_BUILT = 35,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -1003,6 +1008,8 @@ nls_status nls_curve_scratch_size(uint32_t scheme, size_t count, uint32_t closed
  * `NLS_STATUS_DEGENERATE_GEOMETRY`.
  *
  * Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `closed` not 0 or 1),
+ * `NLS_STATUS_SCHEME_NOT_BUILT` (a scheme this build of the library leaves out: its Cargo
+ * feature `curves`, and `mobius` for the Möbius schemes, was off),
  * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
  * `NLS_STATUS_TOO_FEW_POINTS`, `NLS_STATUS_BUFFER_TOO_SMALL`, `NLS_STATUS_ALIASING_BUFFERS`,
  * `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,
@@ -1078,7 +1085,9 @@ nls_status nls_mesh_plan_scratch_size(const struct nls_mesh_view *mesh, size_t *
  * `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride, a spectrum
  * weight NaN or outside [0, 1]: `linear_weight`, or one of `linear_weights`, which names its
  * vertex, before the mesh is validated),
- * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
+ * `NLS_STATUS_SCHEME_NOT_BUILT` (the scheme, or with `NLS_SUBDIVIDE_MOBIUS` its Möbius form,
+ * is left out of this build of the library by its Cargo features; checked with the options,
+ * before the mesh is read), `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
  * `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
  * into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
  */
@@ -1168,8 +1177,10 @@ nls_status nls_differential_default_options(struct nls_differential_options *out
  * `NLS_STATUS_UNSUPPORTED_FACE_TYPE` naming the first face that is not a triangle;
  * `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `dirmag_levels` not matching the scheme,
  * more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0, `strict` not 0
- * or 1, a bad stride); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite edit
- * value; `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose size the normal equations cannot
+ * or 1, a bad stride); `NLS_STATUS_SCHEME_NOT_BUILT` when this build of the library leaves
+ * out differential-space subdivision or the scheme of `options.scheme` (Cargo features
+ * `differential` and `butterfly`); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a
+ * non-finite edit value; `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose size the normal equations cannot
  * represent (largest bounding-box side below 1e-140, or a coordinate above 1e140);
  * `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NULL_PARAMETER`,
  * `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_ALIASING_BUFFERS` (also an out-pointer into a
@@ -1600,7 +1611,8 @@ nls_status nls_mesh_plan_scratch_size_tagged(const struct nls_mesh_view *mesh, c
  *
  * Errors, in this order: `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for
  * the structs; `NLS_STATUS_ALIASING_BUFFERS` for an out-pointer into a buffer of the call
- * (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`); the mesh's
+ * (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`, then
+ * `NLS_STATUS_SCHEME_NOT_BUILT` for a scheme or form left out of this build); the mesh's
  * pointers; `NLS_STATUS_INVALID_ARGUMENT` for an unknown crease method,
  * `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
  * pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then

@@ -197,6 +197,11 @@ fi
 # bare-metal example. A target whose tools are missing is reported SKIP by the script.
 step "firmware: same bits on x86_64, aarch64, Cortex-M4F, Cortex-M7, riscv32imac; M4F stack table" scripts/test-firmware.sh
 
+# --- Cargo features (scripts/test-features.sh, docs/firmware.md "Link only what you use") -------
+# The default build and builds that leave schemes out: clippy -D warnings, and in each the
+# schemes left out are SchemeNotBuilt through the Rust API and the C ABI.
+step "scheme features: default, loop+mobius, catmull-clark, loop, none build; left out is SCHEME_NOT_BUILT" scripts/test-features.sh
+
 # --- C examples -------------------------------------------------------------------------------
 c_examples() {
     local ex

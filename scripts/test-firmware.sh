@@ -78,8 +78,9 @@ run() {
 
 cases_of() { grep '^case ' "$OUT/$1/run.txt"; }
 
-# The bare-metal example: its own Makefile, the harness's M4F cargo directory (no rebuild),
-# exit status 0 when its results are on their circle and sphere.
+# The bare-metal example: its own Makefile, the harness's M4F cargo directory (cargo rebuilds
+# only the ffi crate, with the example's features: the schemes it calls), exit status 0 when
+# its results are on their circle and sphere.
 example() {
     local t0=$SECONDS lacking log=$OUT/example/run.txt
     lacking=$(missing example)

@@ -4,7 +4,7 @@
 //! `u32` codes, never reused. Codes 1–27 are the row numbers of their classes in the bad-input
 //! catalogue (`docs/bad-input-catalogue.md`), so that a number seen in a C host's log can be
 //! looked up there (a class that is accepted or reported with another class's status has no
-//! code of its own); 28–30 are numbered after the catalogue's rows.
+//! code of its own); 28 and above are numbered after the catalogue's rows.
 //!
 //! Both [`Status`] and [`Error`] are `#[non_exhaustive]`: a later version may add a status (a
 //! new code, never a changed one) or a field of the error without breaking callers, so a
@@ -84,11 +84,14 @@ pub enum Status {
     InvalidSharpness = 33,
     /// The scheme or version does not take sharp-feature tags.
     TagsNotSupported = 34,
+    /// The scheme, or its Möbius form, is not compiled into this build of the library (its
+    /// Cargo feature is off; `docs/firmware.md`, "Link only what you use").
+    SchemeNotBuilt = 35,
 }
 
 impl Status {
     /// Every status, in code order (private so that cbindgen does not export it).
-    const LIST: [Status; 29] = [
+    const LIST: [Status; 30] = [
         Status::Ok,
         Status::NullParameter,
         Status::MisalignedPointer,
@@ -118,6 +121,7 @@ impl Status {
         Status::RepeatedTag,
         Status::InvalidSharpness,
         Status::TagsNotSupported,
+        Status::SchemeNotBuilt,
     ];
 
     /// Every status, in code order.
@@ -186,6 +190,9 @@ impl Status {
             Status::RepeatedTag => c"the same edge or vertex is tagged twice",
             Status::InvalidSharpness => c"a tag's sharpness is NaN, negative or infinite",
             Status::TagsNotSupported => c"the scheme does not take sharp-feature tags",
+            Status::SchemeNotBuilt => {
+                c"the scheme or version is not compiled into this build of the library"
+            }
         }
     }
 }

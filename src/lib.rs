@@ -65,6 +65,18 @@
 //! let p = f4(on(0.0), on(0.5), on(1.0), on(1.5)).unwrap();
 //! assert!((p[0] * p[0] + p[1] * p[1] - 1.0).abs() < 1e-14);
 //! ```
+//!
+//! # Cargo features
+//!
+//! One per scheme family, all on by default: `loop`, `catmull-clark`, `butterfly`,
+//! `kobbelt`, `doo-sabin`, `simplest`, `akleman` (dual, vertex insertion, dual truncation),
+//! `spherelike`; `mobius` for the canonical Möbius forms of the schemes built (and the Möbius
+//! curve schemes); `curves` for [`curve::subdivide`]; `differential` for
+//! [`differential`] subdivision (it brings `loop`). The scheme is a run-time argument, so a
+//! firmware that calls one scheme builds with `default-features = false` and that scheme's
+//! features, and links it alone; a scheme or form left out is [`Status::SchemeNotBuilt`]
+//! from the plan and the call ([`Scheme::is_built`], `docs/firmware.md`, "Link only what you
+//! use"). Everything called by name (the primitives, the star rules) is in every build.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

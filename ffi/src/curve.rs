@@ -153,6 +153,8 @@ pub unsafe extern "C" fn nls_curve_scratch_size(
 /// `NLS_STATUS_DEGENERATE_GEOMETRY`.
 ///
 /// Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `closed` not 0 or 1),
+/// `NLS_STATUS_SCHEME_NOT_BUILT` (a scheme this build of the library leaves out: its Cargo
+/// feature `curves`, and `mobius` for the Möbius schemes, was off),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
 /// `NLS_STATUS_TOO_FEW_POINTS`, `NLS_STATUS_BUFFER_TOO_SMALL`, `NLS_STATUS_ALIASING_BUFFERS`,
 /// `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,

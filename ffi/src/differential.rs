@@ -243,8 +243,10 @@ unsafe fn edit_raw_spans(
 /// `NLS_STATUS_UNSUPPORTED_FACE_TYPE` naming the first face that is not a triangle;
 /// `NLS_STATUS_INVALID_ARGUMENT` (unknown scheme, `dirmag_levels` not matching the scheme,
 /// more than `NLS_MAX_LEVELS` levels, a tolerance that is not finite and ≥ 0, `strict` not 0
-/// or 1, a bad stride); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a non-finite edit
-/// value; `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose size the normal equations cannot
+/// or 1, a bad stride); `NLS_STATUS_SCHEME_NOT_BUILT` when this build of the library leaves
+/// out differential-space subdivision or the scheme of `options.scheme` (Cargo features
+/// `differential` and `butterfly`); `NLS_STATUS_NON_FINITE_INPUT` naming the vertex of a
+/// non-finite edit value; `NLS_STATUS_NUMERICAL_FAILURE` for a mesh whose size the normal equations cannot
 /// represent (largest bounding-box side below 1e-140, or a coordinate above 1e140);
 /// `NLS_STATUS_BUFFER_TOO_SMALL`; `NLS_STATUS_NULL_PARAMETER`,
 /// `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_ALIASING_BUFFERS` (also an out-pointer into a

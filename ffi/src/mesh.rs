@@ -868,7 +868,9 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 /// `NLS_SCHEME_SPHERELIKE`, more than `NLS_MAX_LEVELS` levels, a bad stride, a spectrum
 /// weight NaN or outside [0, 1]: `linear_weight`, or one of `linear_weights`, which names its
 /// vertex, before the mesh is validated),
-/// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
+/// `NLS_STATUS_SCHEME_NOT_BUILT` (the scheme, or with `NLS_SUBDIVIDE_MOBIUS` its Möbius form,
+/// is left out of this build of the library by its Cargo features; checked with the options,
+/// before the mesh is read), `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
 /// `NLS_STATUS_ALIASING_BUFFERS` (the scratch overlaps the mesh, or an out-pointer points
 /// into a buffer of the call or into the other out-pointer), `NLS_STATUS_FP_ENVIRONMENT`.
 #[unsafe(no_mangle)]
@@ -1171,6 +1173,145 @@ mod tests {
             face_count: off.len() - 1,
             indices: idx.as_ptr(),
             index_count: idx.len(),
+        }
+    }
+
+    /// A scheme or Möbius form left out of this build (the ffi crate's Cargo features, which
+    /// the core follows) is `NLS_STATUS_SCHEME_NOT_BUILT` from the plan and from the call,
+    /// `out_element` is `NLS_NO_ELEMENT` and nothing is written; every scheme built plans.
+    /// `scripts/test-features.sh` runs it in builds that leave schemes out.
+    #[test]
+    fn schemes_left_out_of_the_build_give_scheme_not_built() {
+        let feature_on = |code: u32| match code {
+            NLS_SCHEME_LOOP => cfg!(feature = "loop"),
+            NLS_SCHEME_CATMULL_CLARK => cfg!(feature = "catmull-clark"),
+            NLS_SCHEME_MODIFIED_BUTTERFLY => cfg!(feature = "butterfly"),
+            NLS_SCHEME_KOBBELT => cfg!(feature = "kobbelt"),
+            NLS_SCHEME_DOO_SABIN => cfg!(feature = "doo-sabin"),
+            NLS_SCHEME_SIMPLEST => cfg!(feature = "simplest"),
+            NLS_SCHEME_DUAL | NLS_SCHEME_VERTEX_INSERTION | NLS_SCHEME_DUAL_TRUNCATION => {
+                cfg!(feature = "akleman")
+            }
+            NLS_SCHEME_SPHERELIKE => cfg!(feature = "spherelike"),
+            _ => panic!("a scheme without a feature here: {code}"),
+        };
+        // The cube, and the octahedron for the triangle schemes, on the unit sphere.
+        let cube: Vec<f64> = (0..8)
+            .flat_map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+            .map(|x| (2.0 * x - 1.0) / 3f64.sqrt())
+            .collect();
+        let cube_off = [0u32, 4, 8, 12, 16, 20, 24];
+        let cube_idx = [
+            0u32, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
+        ];
+        let oct = [
+            1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+            -1.0,
+        ];
+        let oct_off = [0u32, 3, 6, 9, 12, 15, 18, 21, 24];
+        let oct_idx = [
+            0u32, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+        ];
+        let mut refused = 0;
+        for code in 0..=NLS_SCHEME_SPHERELIKE {
+            let m = if code == NLS_SCHEME_LOOP || code == NLS_SCHEME_MODIFIED_BUTTERFLY {
+                view(&oct, &oct_off, &oct_idx, 0)
+            } else {
+                view(&cube, &cube_off, &cube_idx, 0)
+            };
+            for flags in [0, NLS_SUBDIVIDE_MOBIUS] {
+                let mobius = flags != 0;
+                if mobius && code == NLS_SCHEME_SPHERELIKE {
+                    continue;
+                }
+                let built = feature_on(code) && (!mobius || cfg!(feature = "mobius"));
+                let o = nls_subdivide_options {
+                    scheme: code,
+                    flags,
+                    levels: 1,
+                    linear_weight: 0.0,
+                    executor: core::ptr::null(),
+                };
+                let mut su0 = 0usize;
+                let s = unsafe { nls_mesh_plan_scratch_size(&m, &mut su0) };
+                assert_eq!(s, Status::Ok);
+                let mut topo = vec![0u32; su0];
+                let mut plan = nls_plan::default();
+                let mut element = 7u32;
+                let s = unsafe {
+                    nls_mesh_plan(&m, &o, topo.as_mut_ptr(), su0, &mut plan, &mut element)
+                };
+                if built {
+                    assert_eq!(s, Status::Ok, "scheme {code} flags {flags}");
+                    continue;
+                }
+                refused += 1;
+                assert_eq!(s, Status::SchemeNotBuilt, "scheme {code} flags {flags}");
+                assert_eq!(element, crate::curve::NLS_NO_ELEMENT);
+                assert_eq!(plan, nls_plan::default(), "the plan was written");
+                // The call itself, with ample buffers: refused, nothing written.
+                let mut u32s = vec![0u32; 4096];
+                let mut pts = vec![0.0; 3 * 4096];
+                let (mut op, mut oo, mut oi) =
+                    (vec![7.0; 3 * 256], vec![7u32; 257], vec![7u32; 1024]);
+                let sc = nls_scratch {
+                    u32s: u32s.as_mut_ptr(),
+                    u32_capacity: 4096,
+                    points: pts.as_mut_ptr(),
+                    point_capacity: 4096,
+                };
+                let buf = nls_mesh_buffers {
+                    positions: op.as_mut_ptr(),
+                    vertex_capacity: 256,
+                    offsets: oo.as_mut_ptr(),
+                    face_capacity: 256,
+                    indices: oi.as_mut_ptr(),
+                    index_capacity: 1024,
+                };
+                let mut sizes = nls_mesh_sizes::default();
+                let mut rep = nls_subdivide_report {
+                    fallbacks: 9,
+                    first_fallback: 9,
+                    first_fallback_level: 9,
+                    guarded: 9,
+                    first_guarded: 9,
+                    first_guarded_level: 9,
+                };
+                element = 7;
+                let s = unsafe {
+                    nls_mesh_subdivide(&m, &o, &sc, &buf, &mut sizes, &mut rep, &mut element)
+                };
+                assert_eq!(s, Status::SchemeNotBuilt, "scheme {code} flags {flags}");
+                assert_eq!(element, crate::curve::NLS_NO_ELEMENT);
+                assert_eq!(sizes, nls_mesh_sizes::default());
+                assert_eq!(
+                    (rep.fallbacks, rep.guarded),
+                    (9, 9),
+                    "the report was written"
+                );
+                assert!(op.iter().all(|&x| x == 7.0) && oo.iter().all(|&x| x == 7));
+                assert!(oi.iter().all(|&x| x == 7));
+            }
+        }
+        let text = unsafe { core::ffi::CStr::from_ptr(crate::nls_status_str(35)) };
+        assert!(text
+            .to_str()
+            .unwrap()
+            .contains("not compiled into this build"));
+        if cfg!(all(
+            feature = "loop",
+            feature = "catmull-clark",
+            feature = "butterfly",
+            feature = "kobbelt",
+            feature = "doo-sabin",
+            feature = "simplest",
+            feature = "akleman",
+            feature = "spherelike",
+            feature = "mobius"
+        )) {
+            assert_eq!(refused, 0);
+        } else {
+            assert!(refused > 0);
         }
     }
 

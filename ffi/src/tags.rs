@@ -222,7 +222,8 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size_tagged(
 ///
 /// Errors, in this order: `NLS_STATUS_NULL_PARAMETER` / `NLS_STATUS_MISALIGNED_POINTER` for
 /// the structs; `NLS_STATUS_ALIASING_BUFFERS` for an out-pointer into a buffer of the call
-/// (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`); the mesh's
+/// (the tag arrays included); the options (`NLS_STATUS_INVALID_ARGUMENT`, then
+/// `NLS_STATUS_SCHEME_NOT_BUILT` for a scheme or form left out of this build); the mesh's
 /// pointers; `NLS_STATUS_INVALID_ARGUMENT` for an unknown crease method,
 /// `NLS_STATUS_SIZE_OVERFLOW` for a tag count above `UINT32_MAX − 1`, the tag arrays'
 /// pointers; a tag array that overlaps the scratch (`NLS_STATUS_ALIASING_BUFFERS`); then

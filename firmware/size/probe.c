@@ -33,14 +33,19 @@ int main(void) {
     }
 #elif defined(PROBE_MESH)
     {
-        /* PROBE_MESH: the scheme and flags as constants (one scheme's path) or, with
-         * PROBE_RUNTIME, read at run time (any scheme) */
+        /* PROBE_MESH: the flags, and PROBE_SCHEME the scheme (Loop unless given), as
+         * constants (one scheme's path) or, with PROBE_RUNTIME, read at run time (any
+         * scheme). The library still receives them as run-time arguments: what it links
+         * depends on the schemes it was built with (its Cargo features), not on these. */
         const fw_mesh m = {TRI_P, 4, TRI_O, 4, TRI_I, 12};
         fw_mesh_result r;
 #if defined(PROBE_RUNTIME)
         s = fw_mesh_subdivide(runtime_scheme, runtime_flags, 1, &m, &r);
 #else
-        s = fw_mesh_subdivide(NLS_SCHEME_LOOP, PROBE_MESH, 1, &m, &r);
+#if !defined(PROBE_SCHEME)
+#define PROBE_SCHEME NLS_SCHEME_LOOP
+#endif
+        s = fw_mesh_subdivide(PROBE_SCHEME, PROBE_MESH, 1, &m, &r);
 #endif
         out[0] = r.positions ? r.positions[0] : 0;
     }

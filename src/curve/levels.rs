@@ -10,10 +10,7 @@ use super::differential::{self, DifferentialBase};
 use super::polygon::check_finite;
 use super::{bspline, circle_blend, four_point, mobius};
 use super::{refined_size, refined_size_once, scratch_size, CurveScheme};
-use crate::error::{Error, Result};
-// The errors the documentation names.
-#[cfg(doc)]
-use crate::error::Status;
+use crate::error::{Error, Result, Status};
 use crate::point::Point;
 
 /// Subdivides the curve `points` `levels` times with `scheme` into `out` and returns the
@@ -21,7 +18,9 @@ use crate::point::Point;
 /// output order, the buffers and the errors.
 ///
 /// # Errors
-/// [`Status::TooFewPoints`], [`Status::SizeOverflow`], [`Status::BufferTooSmall`] (`out`
+/// [`Status::SchemeNotBuilt`] first, for a scheme this build does not contain
+/// ([`CurveScheme::is_built`]); [`Status::TooFewPoints`], [`Status::SizeOverflow`],
+/// [`Status::BufferTooSmall`] (`out`
 /// below [`refined_size`], then `scratch` below [`scratch_size`]), [`Status::NonFiniteInput`]
 /// (element = point index), [`Status::DegenerateGeometry`] and [`Status::NumericalFailure`]
 /// (element = input point starting the segment at fault).
@@ -33,6 +32,9 @@ pub fn subdivide(
     out: &mut [Point],
     scratch: &mut [Point],
 ) -> Result<usize> {
+    if !scheme.is_built() {
+        return Err(Error::new(Status::SchemeNotBuilt));
+    }
     let n = points.len();
     let total = refined_size(n, closed, levels)?;
     let need_scratch = scratch_size(scheme, n, closed, levels)?;
@@ -50,7 +52,7 @@ pub fn subdivide(
         }
         return Ok(total);
     }
-    match driver(scheme) {
+    match driver(scheme)? {
         Driver::Local(rule) => {
             run_levels(rule, Level0::Input(points), closed, out, scratch, levels)?
         }
@@ -69,17 +71,29 @@ enum Driver {
     Differential(DifferentialBase),
 }
 
-/// The driver of `scheme`.
-fn driver(scheme: CurveScheme) -> Driver {
-    match scheme {
-        CurveScheme::FourPoint => Driver::Local(four_point::refine_level),
-        CurveScheme::BSpline => Driver::Local(bspline::refine_level),
-        CurveScheme::MobiusInterpolating => Driver::Local(mobius::refine_interpolating_level),
-        CurveScheme::MobiusApproximating => Driver::Local(mobius::refine_approximating_level),
-        CurveScheme::CircleBlend => Driver::Local(circle_blend::refine_level),
-        CurveScheme::DifferentialFourPoint => Driver::Differential(DifferentialBase::FourPoint),
-        CurveScheme::DifferentialBSpline => Driver::Differential(DifferentialBase::BSpline),
-    }
+/// The driver of `scheme`, when this build contains it ([`CurveScheme::is_built`]): an arm
+/// of a scheme left out has a constant `false` guard, so the optimiser removes it and the
+/// linker its rule.
+fn driver(scheme: CurveScheme) -> Result<Driver> {
+    let (curves, mobius) = (cfg!(feature = "curves"), cfg!(feature = "mobius"));
+    Ok(match scheme {
+        CurveScheme::FourPoint if curves => Driver::Local(four_point::refine_level),
+        CurveScheme::BSpline if curves => Driver::Local(bspline::refine_level),
+        CurveScheme::MobiusInterpolating if curves && mobius => {
+            Driver::Local(mobius::refine_interpolating_level)
+        }
+        CurveScheme::MobiusApproximating if curves && mobius => {
+            Driver::Local(mobius::refine_approximating_level)
+        }
+        CurveScheme::CircleBlend if curves => Driver::Local(circle_blend::refine_level),
+        CurveScheme::DifferentialFourPoint if curves => {
+            Driver::Differential(DifferentialBase::FourPoint)
+        }
+        CurveScheme::DifferentialBSpline if curves => {
+            Driver::Differential(DifferentialBase::BSpline)
+        }
+        _ => return Err(Error::new(Status::SchemeNotBuilt)),
+    })
 }
 
 /// One level of a local rule: reads a polygon, writes exactly its refined size. The

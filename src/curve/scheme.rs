@@ -78,6 +78,18 @@ impl CurveScheme {
         CurveScheme::ALL.iter().copied().find(|s| s.name() == name)
     }
 
+    /// Whether this build contains the scheme: the crate's `curves` feature, and `mobius` too
+    /// for the two Möbius schemes. [`subdivide`](super::subdivide) refuses the others with
+    /// [`Status::SchemeNotBuilt`](crate::Status::SchemeNotBuilt), and the optimiser drops
+    /// their rules from its dispatch.
+    pub const fn is_built(self) -> bool {
+        let mobius = matches!(
+            self,
+            CurveScheme::MobiusInterpolating | CurveScheme::MobiusApproximating
+        );
+        cfg!(feature = "curves") && (!mobius || cfg!(feature = "mobius"))
+    }
+
     /// Whether the scheme keeps the old points (bit for bit) at the even output indices.
     pub const fn is_interpolating(self) -> bool {
         matches!(

@@ -68,6 +68,8 @@ pub fn subdivide_with(
     report: &mut DifferentialReport,
     exec: &dyn Executor,
 ) -> Result<MeshSizes> {
+    // First, and a constant without the feature: the optimiser then drops the method.
+    opts.stencil.check_built()?;
     let plan = {
         let need = plan_scratch_size(&mesh)?;
         let s = scratch_u32.get_mut(..need).ok_or(Error::too_small(need))?;

@@ -34,6 +34,26 @@ impl Stencil {
             Stencil::ModifiedButterfly => Scheme::ModifiedButterfly,
         }
     }
+
+    /// Whether this build contains differential-space subdivision with this stencil: the
+    /// crate's `differential` feature and the stencil's scheme ([`Scheme::is_built`]; normal
+    /// editing steps with Loop, which the `differential` feature brings). Without it,
+    /// [`plan`](super::plan()) and [`subdivide`](super::subdivide) return
+    /// [`Status::SchemeNotBuilt`](crate::Status::SchemeNotBuilt) before reading anything,
+    /// and the optimiser drops the method from the build.
+    pub const fn is_built(self) -> bool {
+        cfg!(feature = "differential") && self.scheme().is_built()
+    }
+
+    /// [`Status::SchemeNotBuilt`](crate::Status::SchemeNotBuilt) unless
+    /// [`Stencil::is_built`].
+    pub(super) fn check_built(self) -> crate::Result<()> {
+        if self.is_built() {
+            Ok(())
+        } else {
+            Err(crate::Error::new(crate::Status::SchemeNotBuilt))
+        }
+    }
 }
 
 /// Options of [`plan`](super::plan()) and [`subdivide`](super::subdivide).

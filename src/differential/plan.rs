@@ -118,7 +118,9 @@ pub fn plan_scratch_size(mesh: &Mesh<'_>) -> Result<usize> {
 /// Validates `mesh` (triangles only) and `opts` and plans the call.
 ///
 /// # Errors
-/// Validation errors of [`Topology::build`]; [`Status::UnsupportedFaceType`] naming the first
+/// [`Status::SchemeNotBuilt`] first, when this build does not contain differential-space
+/// subdivision with the stencil ([`Stencil::is_built`](super::Stencil::is_built));
+/// validation errors of [`Topology::build`]; [`Status::UnsupportedFaceType`] naming the first
 /// face that is not a triangle; [`Status::InvalidArgument`] for more than [`MAX_LEVELS`]
 /// levels or a bad tolerance, and for an edit slice whose length is not the vertex count
 /// (naming the first index without a partner);
@@ -131,6 +133,7 @@ pub fn plan(
     opts: &DifferentialOptions<'_>,
     scratch: &mut [u32],
 ) -> Result<DifferentialPlan> {
+    opts.stencil.check_built()?;
     let ok = |t: f64| t.is_finite() && t >= 0.0;
     if opts.levels > MAX_LEVELS || !ok(opts.solve.tolerance) || !ok(opts.solve.coarse_tolerance) {
         return Err(Error::new(Status::InvalidArgument));

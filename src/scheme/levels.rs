@@ -109,7 +109,8 @@ pub(super) fn run(
     if scratch_points.len() < p.scratch.points {
         return Err(Error::too_small(p.scratch.points));
     }
-    let (scheme, levels) = (opts.scheme, opts.levels);
+    // The scheme as this build knows it (a constant in a build of one scheme).
+    let (scheme, levels) = (super::built::narrow(opts.scheme)?, opts.levels);
     // A spectrum weight of 0 is the linear scheme (bit for bit: its steps are the linear
     // ones); between 0 and 1 each Möbius step blends with the linear positions.
     // Per-vertex weights (Möbius only) replace the global one: each step then sees its

@@ -33,19 +33,24 @@ pub(crate) fn positions(
 ) -> Result<()> {
     let nv = topo.num_vertices();
     let ne = topo.num_edges();
+    // The arms of the schemes this build contains (`super::built`; the plan refuses the
+    // others first): an arm left out has a constant `false` guard, removed by the optimiser.
     match scheme {
-        Scheme::CatmullClark => {
+        Scheme::CatmullClark if cfg!(feature = "catmull-clark") => {
             let mut pts = FacePts::new();
             for f in 0..topo.num_faces() as u32 {
                 face_points_into(topo, f, &mut pts)?;
                 set(pos, nv + ne + f as usize, catmull_clark::face_point(&pts)?)?;
             }
         }
-        Scheme::Loop => {}
-        Scheme::ModifiedButterfly => {
+        Scheme::Loop if cfg!(feature = "loop") => {}
+        Scheme::ModifiedButterfly if cfg!(feature = "butterfly") => {
             return interpolating_tagged::butterfly_positions(topo, sharp, pos)
         }
-        Scheme::Kobbelt => return interpolating_tagged::kobbelt_positions(topo, sharp, pos),
+        Scheme::Kobbelt if cfg!(feature = "kobbelt") => {
+            return interpolating_tagged::kobbelt_positions(topo, sharp, pos)
+        }
+        _ if scheme.takes_tags() => return Err(super::built::not_built()),
         _ => return Err(Error::new(Status::TagsNotSupported)),
     }
     for e in 0..ne as u32 {

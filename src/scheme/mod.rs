@@ -30,7 +30,8 @@
 //! # Where things are
 //!
 //! The public path: `options.rs` ([`Options`]), `plan.rs` ([`plan`], [`Plan`],
-//! [`ScratchSizes`]), `subdivide.rs` ([`subdivide`], [`Scratch`], [`Report`]). Behind it:
+//! [`ScratchSizes`]), `subdivide.rs` ([`subdivide`], [`Scratch`], [`Report`]), `built.rs`
+//! (which schemes this build contains: the Cargo features, [`Scheme::is_built`]). Behind it:
 //! `levels.rs` (the level loop and where it keeps the levels in the scratch), `step.rs` (one
 //! step on a built topology, the one function every level goes through), `size.rs` (the
 //! exact sizes of one step), `linear.rs` (the linear position rules), `spherelike.rs`,
@@ -39,6 +40,7 @@
 //! with sharp features), `interpolating_tagged.rs` (Modified Butterfly and Kobbelt with sharp
 //! features).
 
+mod built;
 mod carry;
 mod interpolating_tagged;
 mod levels;

@@ -106,13 +106,14 @@ impl Options {
     }
 
     /// [`Status::InvalidArgument`] for more than [`MAX_LEVELS`] levels, the Möbius version
-    /// of a scheme without one, or a spectrum weight that is NaN or outside `[0, 1]`;
-    /// checked before the mesh is read.
+    /// of a scheme without one, or a spectrum weight that is NaN or outside `[0, 1]`; then
+    /// [`Status::SchemeNotBuilt`] for a scheme or Möbius version this build does not contain
+    /// ([`Scheme::is_built`], [`Scheme::is_mobius_built`]); checked before the mesh is read.
     pub(crate) fn check(&self) -> crate::Result<()> {
         let w_ok = self.spectrum >= 0.0 && self.spectrum <= 1.0;
         if self.levels > MAX_LEVELS || (self.mobius && !self.scheme.has_mobius_form()) || !w_ok {
             return Err(crate::Error::new(crate::Status::InvalidArgument));
         }
-        Ok(())
+        super::built::check(self.scheme, self.mobius)
     }
 }

@@ -219,7 +219,7 @@ pub(super) fn plan_with_topology(
         return Err(Error::too_small(need));
     }
     let (mut p, counts) = levels_plan(
-        opts.scheme,
+        super::built::narrow(opts.scheme)?,
         opts.mobius,
         mesh,
         opts.levels,
@@ -252,6 +252,7 @@ pub(crate) fn plan_levels(
     levels: usize,
     scratch: &mut [u32],
 ) -> Result<Plan> {
+    let scheme = super::built::narrow(scheme)?;
     levels_plan(scheme, false, mesh, levels, scratch, None).map(|(p, _)| p)
 }
 

@@ -3,6 +3,7 @@
 //! spherelike ([`super::spherelike`]) or canonical Möbius ([`super::mobius`]). [`step`] is
 //! the one entry the level loop ([`super::levels`]) goes through.
 
+use super::built::{self, not_built};
 use super::mobius::{self, MobiusOptions, MobiusReport};
 use super::size::step_size;
 use super::tags::Sharpness;
@@ -23,7 +24,9 @@ use crate::point::{self, Point};
 /// scratch is `crease`; `candidates` then holds its points).
 ///
 /// # Errors
-/// Those of [`linear`], [`mobius::step`] and [`mobius::crease::step`].
+/// [`Status::SchemeNotBuilt`] for a scheme or Möbius version this build does not contain
+/// ([`super::built`]; the plan refuses it first); those of [`linear`], [`mobius::step`] and
+/// [`mobius::crease::step`].
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn step(
     scheme: Scheme,
@@ -35,6 +38,9 @@ pub(crate) fn step(
     crease: &mut [u32],
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
+    // A constant `false` without the `mobius` feature: the optimiser then drops every Möbius
+    // arm below, and with them the whole Möbius machinery.
+    built::check(scheme, mobius.is_some())?;
     match (mobius, sharp) {
         (None, None) => linear_with(scheme, topo, out, exec).map(|s| (s, MobiusReport::default())),
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
@@ -188,14 +194,57 @@ pub(crate) fn linear_with(
     out.check(&sizes)?;
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
-    match scheme {
-        Scheme::Spherelike => spherelike::positions(topo, pos, exec)?,
-        _ => linear::positions(scheme, topo, pos, exec)?,
-    }
+    positions(scheme, topo, pos, exec)?;
     if let Some(i) = exec::first_non_finite(exec, pos)? {
         return Err(Error::at(Status::NumericalFailure, i as u32));
     }
     Ok(sizes)
+}
+
+/// The positions of one step of `scheme`'s linear rules ([`linear::positions`]) or, for
+/// [`Scheme::Spherelike`], its circle-blend rules (seed 003 §3), when this build contains
+/// the scheme ([`super::built`]); [`Status::SchemeNotBuilt`] otherwise. The one dispatch
+/// of the non-Möbius rules on the scheme: each arm passes its scheme as a constant, so the
+/// rules of the schemes left out are not reached from any call (`linear.rs` dispatches
+/// again inside) and a build of a few schemes links the rules of those alone.
+pub(super) fn positions(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    pos: &mut [Point],
+    exec: &dyn Executor,
+) -> Result<()> {
+    // An arm of a scheme left out has a constant `false` guard: the optimiser removes it.
+    match scheme {
+        Scheme::Loop if cfg!(feature = "loop") => linear::positions(Scheme::Loop, topo, pos, exec),
+        Scheme::CatmullClark if cfg!(feature = "catmull-clark") => {
+            linear::positions(Scheme::CatmullClark, topo, pos, exec)
+        }
+        Scheme::ModifiedButterfly if cfg!(feature = "butterfly") => {
+            linear::positions(Scheme::ModifiedButterfly, topo, pos, exec)
+        }
+        Scheme::Kobbelt if cfg!(feature = "kobbelt") => {
+            linear::positions(Scheme::Kobbelt, topo, pos, exec)
+        }
+        Scheme::DooSabin if cfg!(feature = "doo-sabin") => {
+            linear::positions(Scheme::DooSabin, topo, pos, exec)
+        }
+        Scheme::Simplest if cfg!(feature = "simplest") => {
+            linear::positions(Scheme::Simplest, topo, pos, exec)
+        }
+        Scheme::Dual if cfg!(feature = "akleman") => {
+            linear::positions(Scheme::Dual, topo, pos, exec)
+        }
+        Scheme::VertexInsertion if cfg!(feature = "akleman") => {
+            linear::positions(Scheme::VertexInsertion, topo, pos, exec)
+        }
+        Scheme::DualTruncation if cfg!(feature = "akleman") => {
+            linear::positions(Scheme::DualTruncation, topo, pos, exec)
+        }
+        Scheme::Spherelike if cfg!(feature = "spherelike") => {
+            spherelike::positions(topo, pos, exec)
+        }
+        _ => Err(not_built()),
+    }
 }
 
 /// The index of the first point with a NaN or infinite coordinate. A branch-free pass first

@@ -165,6 +165,7 @@ pub(crate) fn step(
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
         return Err(Error::new(Status::InvalidArgument));
     }
+    super::built::check(scheme, true)?;
     let sizes = super::size::step_size(scheme, topo)?;
     out.check(&sizes)?;
     let nv = topo.num_vertices();
@@ -197,18 +198,33 @@ pub(crate) fn step(
     let form = (trust, centre, radius);
     let mut d = Driver::new(topo, pos, edge_c, face_c, form, opts, exec);
     d.corners = corners;
+    // A driver is reached only when this build contains its scheme and the Möbius forms
+    // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the
+    // optimiser removes it and the linker the driver.
+    let mobius = cfg!(feature = "mobius");
     match scheme {
-        Scheme::Loop => drivers::loop_scheme::run(&mut d)?,
-        Scheme::CatmullClark => drivers::catmull_clark::run(&mut d)?,
-        Scheme::ModifiedButterfly => drivers::butterfly::run(&mut d)?,
-        Scheme::Kobbelt => drivers::kobbelt::run(&mut d)?,
-        Scheme::DooSabin => drivers::doo_sabin::run(&mut d)?,
-        Scheme::Simplest => drivers::simplest::run(&mut d)?,
-        Scheme::Dual => drivers::akleman::dual(&mut d)?,
-        Scheme::VertexInsertion => drivers::akleman::vertex_insertion(&mut d)?,
-        Scheme::DualTruncation => drivers::akleman::dual_truncation(&mut d)?,
+        Scheme::Loop if mobius && cfg!(feature = "loop") => drivers::loop_scheme::run(&mut d)?,
+        Scheme::CatmullClark if mobius && cfg!(feature = "catmull-clark") => {
+            drivers::catmull_clark::run(&mut d)?
+        }
+        Scheme::ModifiedButterfly if mobius && cfg!(feature = "butterfly") => {
+            drivers::butterfly::run(&mut d)?
+        }
+        Scheme::Kobbelt if mobius && cfg!(feature = "kobbelt") => drivers::kobbelt::run(&mut d)?,
+        Scheme::DooSabin if mobius && cfg!(feature = "doo-sabin") => {
+            drivers::doo_sabin::run(&mut d)?
+        }
+        Scheme::Simplest if mobius && cfg!(feature = "simplest") => drivers::simplest::run(&mut d)?,
+        Scheme::Dual if mobius && cfg!(feature = "akleman") => drivers::akleman::dual(&mut d)?,
+        Scheme::VertexInsertion if mobius && cfg!(feature = "akleman") => {
+            drivers::akleman::vertex_insertion(&mut d)?
+        }
+        Scheme::DualTruncation if mobius && cfg!(feature = "akleman") => {
+            drivers::akleman::dual_truncation(&mut d)?
+        }
         // No Möbius form (refused above).
         Scheme::Spherelike => return Err(Error::new(Status::InvalidArgument)),
+        _ => return Err(super::built::not_built()),
     }
     let report = d.report;
     if blend {
@@ -245,7 +261,7 @@ fn spectrum_blend(
     exec: &dyn Executor,
 ) -> Result<()> {
     let lin = scratch.get_mut(..pos.len()).ok_or(internal())?;
-    super::linear::positions(scheme, topo, lin, exec)?;
+    super::step::positions(scheme, topo, lin, exec)?;
     for (p, l) in pos.iter_mut().zip(lin.iter()) {
         *p = point::add(point::scale(*p, w), point::scale(*l, 1.0 - w));
     }

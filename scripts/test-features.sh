@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The Cargo features of nlsubdiv and nlsubdiv-ffi (one per scheme family, `mobius`,
+# `differential`, `curves`; docs/firmware.md, "Link only what you use"): every combination
+# the documentation names builds without a warning (clippy -D warnings, library and tests),
+# and in each one the scheme and form tests pass: what is built computes, what is left out
+# is SchemeNotBuilt through the Rust API (tests/scheme_features.rs) and the C ABI (the ffi
+# unit test schemes_left_out_of_the_build_give_scheme_not_built), and from C against a
+# library built with only `loop` (ffi_tests/features/loop_only.c).
+#
+# Debug builds (a few seconds each after the first); the last line is
+# "test-features: N passed, M failed".
+#
+#   scripts/test-features.sh
+set -uo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+passed=0; failed=0
+
+# The combinations: the default, and builds that leave schemes out.
+combos=(
+    ""
+    "--no-default-features --features loop,mobius"
+    "--no-default-features --features catmull-clark"
+    "--no-default-features --features loop"
+    "--no-default-features"
+)
+
+check() { # check WHAT COMMAND...
+    local what=$1; shift
+    if "$@"; then
+        passed=$((passed+1)); echo "ok    $what"
+    else
+        failed=$((failed+1)); echo "FAIL  $what"
+    fi
+}
+
+for c in "${combos[@]}"; do
+    # shellcheck disable=SC2086  # the flags are words
+    {
+        name=${c:-default features}
+        check "clippy nlsubdiv ($name)" cargo clippy -q --locked -p nlsubdiv --lib --tests $c -- -D warnings
+        check "clippy nlsubdiv-ffi ($name)" cargo clippy -q --locked -p nlsubdiv-ffi --lib --tests $c -- -D warnings
+        check "tests/scheme_features.rs ($name)" cargo test -q --locked -p nlsubdiv --test scheme_features $c
+        check "C ABI: schemes left out ($name)" cargo test -q --locked -p nlsubdiv-ffi --lib $c \
+            schemes_left_out_of_the_build_give_scheme_not_built
+    }
+done
+# The C ABI of a library built with only `loop`, from C (ffi_tests/features/loop_only.c; its
+# verified statuses go to $NLS_STATUS_LOG like those of every C suite), under ASan+UBSan.
+# With `panic-never` the link also proves that no panic path is reachable in this build (as
+# the test-all step "panic-freedom link proof" does for the default one). Its own target
+# folder, so that the release library of the other steps stays the default one.
+loop_only_c() {
+    local dir=target/features-loop
+    cargo build -q --locked --release -p nlsubdiv-ffi --no-default-features \
+        --features loop,panic-never --target-dir "$dir" || return 1
+    gcc -std=c99 -Wall -Wextra -Wpedantic -Werror -g -O1 -fsanitize=address,undefined \
+        -fno-sanitize-recover=all -Iinclude -Iffi_tests ffi_tests/features/loop_only.c \
+        "$dir/release/libnlsubdiv.a" -Wl,--gc-sections -lm -o "$dir/loop_only" || {
+        echo "loop_only.c does not link (with panic-never: a panic path is reachable)"
+        return 1
+    }
+    "$dir/loop_only"
+}
+check "C program against a loop-only libnlsubdiv.a" loop_only_c
+
+echo "test-features: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
