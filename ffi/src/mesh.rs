@@ -1231,6 +1231,7 @@ mod tests {
                     levels: 1,
                     linear_weight: 0.0,
                     executor: core::ptr::null(),
+                    linear_weights: core::ptr::null(),
                 };
                 let mut su0 = 0usize;
                 let s = unsafe { nls_mesh_plan_scratch_size(&m, &mut su0) };
