@@ -269,8 +269,8 @@ fn blend_quadruplets(face: &Face<'_>, p: &mut Blended) -> Result<()> {
     Ok(())
 }
 
-/// Step 3: the quadruplets in chain order, as `(quadruplet start i, (rounded key, tie-break))`,
-/// sorted stably with an insertion sort (`d` is small, and the sort must be stable and
+/// Step 3: the quadruplet starts `i` in chain order, sorted stably by `(rounded key,
+/// tie-break)` with an insertion sort (`d` is small, and the sort must be stable and
 /// panic-free). The tie-break is the id of `v_i` when given, else 0 (face order).
 #[inline(never)]
 fn sort_by_key(face: &Face<'_>, p: &[(Point, i64)], order: &mut Order) -> Result<()> {
