@@ -614,3 +614,78 @@ fn dual_truncation_positions(
     })
     .map(|_| ())
 }
+
+#[cfg(test)]
+mod tests {
+    //! The walking rules against the slice forms of [`crate::stencil`] on gathered arrays
+    //! (the public tier-1 rules, the reference): the same bits at every valence, including
+    //! 3, where the spokes next to the line's neighbour wrap onto each other.
+    use super::*;
+    use crate::mesh::{topology_scratch_size, Mesh};
+    use arrayvec::ArrayVec;
+
+    /// A bipyramid over an `N`-gon, with irregular coordinates: apexes of valence `N`, the
+    /// equator of valence 4.
+    fn bipyramid<const N: usize>(
+        pos: &mut ArrayVec<Point, 16>,
+        offs: &mut ArrayVec<u32, 32>,
+        idx: &mut ArrayVec<u32, 96>,
+    ) {
+        for i in 0..N {
+            let t = 2.0 * core::f64::consts::PI * i as f64 / N as f64 + 0.1 * (i * i) as f64;
+            pos.push([libm::cos(t), libm::sin(t), 0.05 * i as f64]);
+        }
+        pos.push([0.1, -0.2, 1.3]);
+        pos.push([-0.15, 0.05, -0.9]);
+        let (top, bottom) = (N as u32, N as u32 + 1);
+        offs.push(0);
+        for i in 0..N as u32 {
+            let j = (i + 1) % N as u32;
+            idx.extend([i, j, top]);
+            offs.push(idx.len() as u32);
+            idx.extend([j, i, bottom]);
+            offs.push(idx.len() as u32);
+        }
+    }
+
+    fn check<const N: usize>() {
+        let (mut pos, mut offs, mut idx) = (ArrayVec::new(), ArrayVec::new(), ArrayVec::new());
+        bipyramid::<N>(&mut pos, &mut offs, &mut idx);
+        let mesh = Mesh::new(&pos, &offs, &idx);
+        let mut scratch = [0u32; 1024];
+        let need = topology_scratch_size(pos.len(), idx.len()).unwrap();
+        let topo = Topology::build(mesh, &mut scratch[..need]).unwrap();
+        for v in 0..pos.len() as u32 {
+            let spokes = topo.spokes(v).unwrap();
+            let q: ArrayVec<Point, 16> = spokes
+                .iter()
+                .map(|s| topo.position(s.neighbour).unwrap())
+                .collect();
+            let d: ArrayVec<Point, 16> = spokes
+                .iter()
+                .map(|s| topo.position(apex(&topo, s.half_edge).unwrap()).unwrap())
+                .collect();
+            for (j, s) in spokes.iter().enumerate() {
+                let reference = kobbelt::virtual_point(&q, &d, j).unwrap();
+                let walked = kobbelt_beyond(&topo, v, s.neighbour).unwrap();
+                assert_eq!(walked.map(f64::to_bits), reference.map(f64::to_bits));
+                let from_j: ArrayVec<Point, 16> =
+                    (0..q.len()).map(|k| q[(j + k) % q.len()]).collect();
+                let reference = butterfly::zorin_stencil(topo.position(v).unwrap(), &from_j);
+                let walked = butterfly_zorin(&topo, v, s.neighbour).unwrap();
+                assert_eq!(
+                    walked.map(f64::to_bits),
+                    reference.unwrap().map(f64::to_bits)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn walked_stars_equal_the_slice_rules() {
+        check::<3>();
+        check::<4>();
+        check::<5>();
+        check::<7>();
+    }
+}
