@@ -633,18 +633,19 @@ mod tests {
     ) {
         for i in 0..N {
             let t = 2.0 * core::f64::consts::PI * i as f64 / N as f64 + 0.1 * (i * i) as f64;
-            pos.push([libm::cos(t), libm::sin(t), 0.05 * i as f64]);
+            pos.try_push([libm::cos(t), libm::sin(t), 0.05 * i as f64])
+                .unwrap();
         }
-        pos.push([0.1, -0.2, 1.3]);
-        pos.push([-0.15, 0.05, -0.9]);
+        pos.try_extend_from_slice(&[[0.1, -0.2, 1.3], [-0.15, 0.05, -0.9]])
+            .unwrap();
         let (top, bottom) = (N as u32, N as u32 + 1);
-        offs.push(0);
+        offs.try_push(0).unwrap();
         for i in 0..N as u32 {
             let j = (i + 1) % N as u32;
-            idx.extend([i, j, top]);
-            offs.push(idx.len() as u32);
-            idx.extend([j, i, bottom]);
-            offs.push(idx.len() as u32);
+            for face in [[i, j, top], [j, i, bottom]] {
+                idx.try_extend_from_slice(&face).unwrap();
+                offs.try_push(idx.len() as u32).unwrap();
+            }
         }
     }
 
