@@ -12,7 +12,9 @@
 #
 # Each run must end with "harness: N cases, P passed, 0 failed", and its case lines (one
 # output hash per case) must equal the x86_64 ones. The M4F run also measures each case's
-# stack high-water mark; the table per entry point goes to target/firmware/stack-m4f.md.
+# stack high-water mark; the table per entry point goes to target/firmware/stack-m4f.md, and
+# every entry point listed in firmware/stack-bounds.txt must be in the run and within its
+# bound (the "stack" check, counted like a target).
 #
 # A target whose tools are missing is SKIPPED (scripts/setup.sh installs them); nothing is
 # installed here. The last line is "test-firmware: N passed, M failed, K skipped" (one per
@@ -27,6 +29,7 @@ mkdir -p "$OUT"
 export PATH="$HOME/.cargo/bin:$PATH"
 t_start=$SECONDS
 passed=0; failed=0; skipped=0
+m4f_ok=0
 
 # have_std TRIPLE: the Rust standard library for TRIPLE is installed (rustup target add).
 have_std() {
@@ -127,6 +130,7 @@ check() {
         [ "$(cases_of "$t" | wc -l)" -gt 0 ] || problems+=("no case lines")
     fi
     if [ ${#problems[@]} -eq 0 ]; then
+        [ "$t" = m4f ] && m4f_ok=1
         echo "PASS  $t ($((SECONDS-t0)) s): ${closing#harness: }; $( [ "$t" = x86_64 ] && echo "reference" || echo "case hashes identical to x86_64")"
         passed=$((passed+1)); return 0
     fi
@@ -153,6 +157,31 @@ stack_table() {
     sed 's/^/      /' "$table"
 }
 
+# The stack bounds of firmware/stack-bounds.txt against this invocation's M4F run: each listed
+# entry point's largest high-water mark must be at most its bound, and it must have run.
+stack_bounds() {
+    local log=$OUT/m4f/run.txt bounds=firmware/stack-bounds.txt over
+    [ "$m4f_ok" -eq 1 ] || return 0
+    over=$(grep '^stack ' "$log" | sed 's/^stack //' | awk -F'\t' '
+        NR == FNR { if ($0 !~ /^#/ && NF == 2) { bound[$1] = $2; order[++k] = $1 } next }
+        { if (!($1 in max) || $3 + 0 > max[$1]) max[$1] = $3 + 0 }
+        END {
+            for (i = 1; i <= k; i++) {
+                e = order[i]
+                if (!(e in max)) printf "%s: not in the run\n", e
+                else if (max[e] < 0 || max[e] > bound[e]) printf "%s: %d bytes, bound %d\n", e, max[e], bound[e]
+            }
+        }' "$bounds" -)
+    if [ -z "$over" ]; then
+        echo "PASS  stack: $(grep -c $'^[^#].*\t' "$bounds") entry points within their bounds ($bounds)"
+        passed=$((passed+1))
+    else
+        echo "FAIL  stack: over the bounds of $bounds:"
+        echo "$over" | sed 's/^/      /'
+        failed=$((failed+1))
+    fi
+}
+
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
 # The reference first: every other target is compared with it.
@@ -166,6 +195,7 @@ for t in "${targets[@]}"; do
     fi
 done
 stack_table
+stack_bounds
 echo "test-firmware: $((SECONDS-t_start)) s"
 echo "test-firmware: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

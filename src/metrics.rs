@@ -5,8 +5,6 @@
 //! (Lemma 3.2), and the cross-ratios `cr[v, u_{i−1}, u_i, u_{i+1}]` of one star are all
 //! conjugated by the same rotation under a Möbius map (§3.2).
 
-use arrayvec::ArrayVec;
-
 use crate::error::{Error, Result, Status};
 use crate::point::{cross, div, dot, norm, sub, Point};
 use crate::quat::{cross_ratio, tangent_polygon_vertex, Quat};
@@ -45,17 +43,17 @@ pub fn quad_planarity(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
     dist / mean
 }
 
-fn star_tangent_polygon(v: Point, ring: &[Point]) -> Result<ArrayVec<Point, MAX_VALENCE>> {
-    if ring.len() > MAX_VALENCE {
-        return Err(Error::new(Status::ValenceTooHigh));
-    }
-    let mut t = ArrayVec::new();
-    for (i, u) in ring.iter().enumerate() {
-        let ti = tangent_polygon_vertex(v, *u).map_err(|e| e.with_element(i as u32))?;
-        t.try_push(ti)
-            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
-    }
-    Ok(t)
+/// Vertex `i mod n` of the star's tangent polygon (Eq. (2)), computed where it is read rather
+/// than held in an array: the stack does not grow with the valence (`docs/firmware.md`).
+fn tangent_vertex(v: Point, ring: &[Point], i: usize) -> Result<Point> {
+    let k = i
+        .checked_rem(ring.len())
+        .ok_or(Error::new(Status::TooFewPoints))?;
+    let u = ring
+        .get(k)
+        .copied()
+        .ok_or(Error::new(Status::InvalidArgument))?;
+    tangent_polygon_vertex(v, u).map_err(|e| e.with_element(k as u32))
 }
 
 /// The discrete Willmore energy of the star `v ring…`: the root mean square of the planarity
@@ -69,16 +67,23 @@ fn star_tangent_polygon(v: Point, ring: &[Point]) -> Result<ArrayVec<Point, MAX_
 /// [`Status::ValenceTooHigh`]; [`Status::NumericalFailure`] when the energy overflows
 /// (neighbours at wildly different scales).
 pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
-    let t = star_tangent_polygon(v, ring)?;
-    let n = t.len();
+    let n = ring.len();
+    if n > MAX_VALENCE {
+        return Err(Error::new(Status::ValenceTooHigh));
+    }
+    // Every tangent-polygon vertex first, so the error reported is the first neighbour's in
+    // ring order, whatever the valence.
+    for i in 0..n {
+        tangent_vertex(v, ring, i)?;
+    }
     if n < 4 {
         return Ok(0.0);
     }
     let count = if closed { n } else { n - 3 };
     let mut sum = 0.0;
     for i in 0..count {
-        let q = |k: usize| t.get((i + k) % n).copied().unwrap_or_default();
-        let p = quad_planarity(q(0), q(1), q(2), q(3));
+        let q = |k: usize| tangent_vertex(v, ring, i + k);
+        let p = quad_planarity(q(0)?, q(1)?, q(2)?, q(3)?);
         sum += p * p;
     }
     let energy = libm::sqrt(sum / count as f64);
@@ -111,21 +116,25 @@ pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> 
         return Err(Error::new(Status::ValenceTooHigh));
     }
     let at = |i: usize| ring.get(i % n).copied().unwrap_or_default();
-    let mut crs: ArrayVec<Quat, MAX_VALENCE> = ArrayVec::new();
+    // The cross-ratios in ring order, each compared with the one before as it comes (and the
+    // last with the first of a closed star): the same sum, in the same order, as over an
+    // array of them, with no array (the stack does not grow with the valence).
     let (first, last) = if closed { (0, n) } else { (1, n - 1) };
+    let mut sum = 0.0;
+    let mut ends: Option<(Quat, Quat)> = None;
     for i in first..last {
         let cr = cross_ratio(v, at(i + n - 1), at(i), at(i + 1))
             .map_err(|e| e.with_element(i as u32))?;
-        crs.try_push(cr)
-            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+        ends = Some(match ends {
+            None => (cr, cr),
+            Some((first_cr, prev)) => {
+                sum += (cr - prev).norm_sq();
+                (first_cr, cr)
+            }
+        });
     }
-    let m = crs.len();
-    let pairs = if closed { m } else { m.saturating_sub(1) };
-    let mut sum = 0.0;
-    for i in 0..pairs {
-        let a = crs.get(i).copied().unwrap_or_default();
-        let b = crs.get((i + 1) % m).copied().unwrap_or_default();
-        sum += (b - a).norm_sq();
+    if let (true, Some((first_cr, last_cr))) = (closed, ends) {
+        sum += (first_cr - last_cr).norm_sq();
     }
     if sum.is_finite() {
         Ok(sum)
@@ -137,6 +146,7 @@ pub fn mobius_regularity(v: Point, ring: &[Point], closed: bool) -> Result<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use arrayvec::ArrayVec;
 
     fn regular_ring(n: usize, z: f64) -> ArrayVec<Point, 16> {
         (0..n)

@@ -52,9 +52,10 @@ static uint32_t buffers_of(const nls_plan *plan, fw_mesh_result *out, nls_scratc
     return NLS_STATUS_OK;
 }
 
-/* nls_mesh_plan_scratch_size (the input's topology), nls_mesh_plan, nls_mesh_subdivide. */
-uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
-                           fw_mesh_result *out) {
+/* nls_mesh_plan_scratch_size (the input's topology), nls_mesh_plan, nls_mesh_subdivide; their
+ * _tagged forms when `tags` is not NULL. */
+static uint32_t mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
+                               const nls_tags *tags, fw_mesh_result *out) {
     nls_mesh_view view = view_of(m);
     nls_subdivide_options options;
     nls_plan plan;
@@ -71,14 +72,16 @@ uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, con
     options.scheme = scheme;
     options.flags = flags;
     options.levels = levels;
-    s = nls_mesh_plan_scratch_size(&view, &topo_u32);
+    s = tags ? nls_mesh_plan_scratch_size_tagged(&view, tags, &topo_u32) : nls_mesh_plan_scratch_size(&view, &topo_u32);
     if (s != NLS_STATUS_OK) return s;
     if ((topo = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
-    s = nls_mesh_plan(&view, &options, topo, topo_u32, &plan, &out->element);
+    s = tags ? nls_mesh_plan_tagged(&view, &options, tags, topo, topo_u32, &plan, &out->element)
+             : nls_mesh_plan(&view, &options, topo, topo_u32, &plan, &out->element);
     if (s != NLS_STATUS_OK) return s;
     s = buffers_of(&plan, out, &scratch, &buffers);
     if (s != NLS_STATUS_OK) return s;
-    s = nls_mesh_subdivide(&view, &options, &scratch, &buffers, &written, &report, &out->element);
+    s = tags ? nls_mesh_subdivide_tagged(&view, &options, tags, &scratch, &buffers, &written, &report, &out->element)
+             : nls_mesh_subdivide(&view, &options, &scratch, &buffers, &written, &report, &out->element);
     if (s != NLS_STATUS_OK) return s;
     out->vertex_count = written.vertex_count;
     out->face_count = written.face_count;
@@ -87,6 +90,24 @@ uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, con
     out->first_fallback = report.first_fallback;
     out->first_fallback_level = report.first_fallback_level;
     return s;
+}
+
+uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
+                           fw_mesh_result *out) {
+    return mesh_subdivide(scheme, flags, levels, m, NULL, out);
+}
+
+uint32_t fw_mesh_subdivide_tagged(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
+                                  const fw_tags *t, fw_mesh_result *out) {
+    nls_tags tags;
+    tags.crease_vertices = t->crease_vertices;
+    tags.crease_sharpness = t->crease_sharpness;
+    tags.crease_count = t->crease_count;
+    tags.corner_vertices = t->corner_vertices;
+    tags.corner_sharpness = t->corner_sharpness;
+    tags.corner_count = t->corner_count;
+    tags.method = t->method;
+    return mesh_subdivide(scheme, flags, levels, m, &tags, out);
 }
 
 uint32_t fw_curve_subdivide(uint32_t scheme, const double *points, size_t count, uint32_t closed,

@@ -39,6 +39,22 @@ typedef struct fw_mesh_result {
 uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *mesh,
                            fw_mesh_result *out);
 
+/* Sharp-feature tags (nls_tags field for field): crease edges as vertex pairs with their
+ * sharpness, corner vertices with theirs, the crease method (NLS_CREASE_*). */
+typedef struct fw_tags {
+    const uint32_t *crease_vertices;
+    const double *crease_sharpness;
+    size_t crease_count;
+    const uint32_t *corner_vertices;
+    const double *corner_sharpness;
+    size_t corner_count;
+    uint32_t method;
+} fw_tags;
+
+/* fw_mesh_subdivide with sharp-feature tags (the _tagged plan and subdivide calls). */
+uint32_t fw_mesh_subdivide_tagged(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *mesh,
+                                  const fw_tags *tags, fw_mesh_result *out);
+
 typedef struct fw_curve_result {
     double *points;
     size_t count;

@@ -78,6 +78,48 @@ static void one(size_t k, const fw_named_mesh *m, int mobius, uint32_t levels, u
     fw_case_end(s, expected);
 }
 
+/* The tagged rules (Loop, Catmull–Clark: OpenSubdiv's creases, corners and darts; Modified
+ * Butterfly, Kobbelt: interpolating creases) on mesh `m`: the first face's first two edges
+ * tagged semi-sharp and its third corner a semi-sharp corner, so that both levels run the
+ * crease, corner and fractional blend rules. */
+static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32_t levels) {
+    char name[96], entry[64];
+    const uint32_t *f = &m->mesh.indices[m->mesh.offsets[0]];
+    const uint32_t creases[4] = {f[0], f[1], f[1], f[2]}, corners[1] = {f[2]};
+    static const double crease_sharpness[2] = {1.5, 3.0}, corner_sharpness[1] = {0.5};
+    fw_tags tags = {creases, crease_sharpness, 2, corners, corner_sharpness, 1, method};
+    fw_mesh_result r;
+    fw_hash *h;
+    uint32_t s;
+    snprintf(name, sizeof name, "mesh/%s/tagged_%s/%s/L%u", SCHEMES[k].name,
+             method == NLS_CREASE_CHAIKIN ? "chaikin" : "uniform", m->name, (unsigned)levels);
+    snprintf(entry, sizeof entry, "mesh %s tagged (linear)", SCHEMES[k].name);
+    h = fw_case_begin(entry, name);
+    s = fw_mesh_subdivide_tagged(SCHEMES[k].scheme, 0, levels, &m->mesh, &tags, &r);
+    if (s == NLS_STATUS_OK) {
+        hash_mesh(h, &r);
+        fw_check(r.offsets[0] == 0 && r.offsets[r.face_count] == r.index_count, "malformed output offsets");
+        if (SCHEMES[k].interpolating)
+            fw_check(r.vertex_count >= m->mesh.vertex_count &&
+                         fw_same_bits(r.positions, m->mesh.positions, 3 * m->mesh.vertex_count),
+                     "an interpolating scheme moved an old vertex");
+        /* Loop and Catmull–Clark, one level: f[1] lies on two sharp edges (1.5 and 3.0, both
+         * still sharp after the step), so its vertex point is the cubic B-spline crease rule
+         * 3/4 v + 1/8 (f[0] + f[2]) (OpenSubdiv's crease mask), bit for bit */
+        if (!SCHEMES[k].interpolating && levels == 1) {
+            const double *v = &m->mesh.positions[3 * f[1]], *a = &m->mesh.positions[3 * f[0]],
+                         *b = &m->mesh.positions[3 * f[2]];
+            double crease[3];
+            size_t c;
+            for (c = 0; c < 3; c++) crease[c] = 0.75 * v[c] + 0.125 * (a[c] + b[c]);
+            fw_check(fw_same_bits(&r.positions[3 * f[1]], crease, 3), "a crease vertex is not the crease rule");
+        }
+    } else {
+        fw_hash_u32(h, r.element);
+    }
+    fw_case_end(s, NLS_STATUS_OK);
+}
+
 void fw_cases_meshes(void) {
     size_t k, i;
     int mobius;
@@ -89,6 +131,16 @@ void fw_cases_meshes(void) {
                 for (levels = 1; levels <= 2; levels++)
                     if (accepts(SCHEMES[k].faces, fw_meshes[i].faces))
                         one(k, &fw_meshes[i], mobius, levels, NLS_STATUS_OK);
+    /* sharp-feature tags: the four schemes that take them, both crease methods */
+    for (levels = 1; levels <= 2; levels++) {
+        uint32_t method;
+        for (method = NLS_CREASE_UNIFORM; method <= NLS_CREASE_CHAIKIN; method++) {
+            one_tagged(0, &fw_meshes[1], method, levels); /* Loop, octa */
+            one_tagged(1, &fw_meshes[2], method, levels); /* Catmull–Clark, cube */
+            one_tagged(2, &fw_meshes[1], method, levels); /* Modified Butterfly, octa */
+            one_tagged(3, &fw_meshes[2], method, levels); /* Kobbelt, cube */
+        }
+    }
     /* documented errors: Loop on quads; spherelike has no Möbius form */
     one(0, &fw_meshes[2], 0, 1, NLS_STATUS_UNSUPPORTED_FACE_TYPE);
     one(SCHEME_COUNT - 1, &fw_meshes[2], 1, 1, NLS_STATUS_INVALID_ARGUMENT);

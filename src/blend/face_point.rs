@@ -79,10 +79,22 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
     face_point_ordered(Face::new(vertices, candidates, Some(ids))?)
 }
 
-/// The four steps of the chain (module docs).
+/// F4 points and sort keys of a face's quadruplets, in face order.
+type Blended = ArrayVec<(Point, i64), MAX_FACE_SIZE>;
+
+/// Quadruplet indices in chain order (`u8`: a face has at most [`MAX_FACE_SIZE`] corners).
+type Order = ArrayVec<u8, MAX_FACE_SIZE>;
+const _: () = assert!(MAX_FACE_SIZE <= 256);
+
+/// The four steps of the chain (module docs). The two working arrays live in this frame
+/// and are filled in place; each step is out of line, so the frames of F4 (step 2) and of F6
+/// (step 4) are never on the stack together with each other or with a second copy of the
+/// arrays (`docs/firmware.md`, "Stack").
 fn face_point_ordered(face: Face<'_>) -> Result<Point> {
-    let p = blend_quadruplets(&face)?;
-    let order = sort_by_key(&face, &p)?;
+    let mut p = Blended::new();
+    blend_quadruplets(&face, &mut p)?;
+    let mut order = Order::new();
+    sort_by_key(&face, &p, &mut order)?;
     chain(&face, &p, &order)
 }
 
@@ -200,9 +212,10 @@ fn failure_rank(status: Status) -> u8 {
 /// The quadruplets are evaluated in face order, so the first failing one depends on where the
 /// face starts: every one is evaluated and the failure reported is the one of
 /// [`failure_rank`] (then the first), the same for every start.
-fn blend_quadruplets(face: &Face<'_>) -> Result<ArrayVec<(Point, i64), MAX_FACE_SIZE>> {
+#[inline(never)]
+fn blend_quadruplets(face: &Face<'_>, p: &mut Blended) -> Result<()> {
     let (d, h) = (face.d, face.h);
-    let mut p: ArrayVec<(Point, i64), MAX_FACE_SIZE> = ArrayVec::new();
+    p.clear();
     for _ in 0..d {
         p.try_push(([0.0; 3], 0))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
@@ -253,26 +266,33 @@ fn blend_quadruplets(face: &Face<'_>) -> Result<ArrayVec<(Point, i64), MAX_FACE_
     if let Some(e) = failure {
         return Err(e);
     }
-    Ok(p)
+    Ok(())
 }
 
-/// Step 3: the quadruplets in chain order, as `(quadruplet start i, (rounded key, tie-break))`,
-/// sorted stably with an insertion sort (`d` is small, and the sort must be stable and
+/// Step 3: the quadruplet starts `i` in chain order, sorted stably by `(rounded key,
+/// tie-break)` with an insertion sort (`d` is small, and the sort must be stable and
 /// panic-free). The tie-break is the id of `v_i` when given, else 0 (face order).
-fn sort_by_key(
-    face: &Face<'_>,
-    p: &[(Point, i64)],
-) -> Result<ArrayVec<(usize, (i64, u32)), MAX_FACE_SIZE>> {
-    let mut order: ArrayVec<(usize, (i64, u32)), MAX_FACE_SIZE> = ArrayVec::new();
-    for (i, &(_, key)) in p.iter().enumerate() {
+#[inline(never)]
+fn sort_by_key(face: &Face<'_>, p: &[(Point, i64)], order: &mut Order) -> Result<()> {
+    // The sort key of quadruplet `i`: (rounded key, tie-break), compared lexicographically.
+    let key = |i: u8| -> Result<(i64, u32)> {
+        let k = p
+            .get(usize::from(i))
+            .ok_or(Error::new(Status::InvalidArgument))?
+            .1;
+        Ok((k, face.id(usize::from(i))?))
+    };
+    order.clear();
+    for i in 0..p.len() {
+        let i = u8::try_from(i).map_err(|_| Error::new(Status::ValenceTooHigh))?;
         order
-            .try_push((i, (key, face.id(i)?)))
+            .try_push(i)
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;
         let mut j = order.len() - 1;
         while j > 0 {
             // Swap through `get_mut` on the pair: `slice::swap` keeps a bounds-check panic.
             match order.get_mut(j - 1..=j) {
-                Some([prev, cur]) if prev.1 > cur.1 => {
+                Some([prev, cur]) if key(*prev)? > key(*cur)? => {
                     core::mem::swap(prev, cur);
                     j -= 1;
                 }
@@ -280,24 +300,25 @@ fn sort_by_key(
             }
         }
     }
-    Ok(order)
+    Ok(())
 }
 
 /// Step 4: `v_f = p_1`, then `v_f := F6(a_{l−1}, v_f, d_{l−1}, a_l, p_l, d_l)` along `order`,
 /// each chain `(a_l, d_l)` of an even face oriented by [`oriented_start`].
-fn chain(face: &Face<'_>, p: &[(Point, i64)], order: &[(usize, (i64, u32))]) -> Result<Point> {
+#[inline(never)]
+fn chain(face: &Face<'_>, p: &[(Point, i64)], order: &[u8]) -> Result<Point> {
     let h = face.h;
     let point = |i: usize| {
         p.get(i)
             .map(|x| x.0)
             .ok_or(Error::new(Status::InvalidArgument))
     };
-    let mut it = order.iter();
-    let first = it.next().ok_or(Error::new(Status::TooFewPoints))?.0;
+    let mut it = order.iter().map(|&i| usize::from(i));
+    let first = it.next().ok_or(Error::new(Status::TooFewPoints))?;
     let mut vf = point(first)?;
     let mut prev = first;
     let (mut a_prev, mut d_prev) = (face.vertex(first)?, face.vertex(first + h)?);
-    for &(i, _) in it {
+    for i in it {
         let p = point(i)?;
         if face.is_even() && h > 0 && i % h == prev % h {
             // The reversed partner of the previous chain: F6(a, b, c, c, e, a), which is

@@ -7,7 +7,7 @@ use arrayvec::ArrayVec;
 
 use super::Topology;
 use crate::error::{Error, Result, Status};
-use crate::point::Point;
+use crate::point::{add, Point};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// Points of a vertex ring, one per spoke.
@@ -48,6 +48,30 @@ pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts)
             .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
     }
     Ok(())
+}
+
+/// The number of `v`'s neighbours and the sum of their positions, counter-clockwise from
+/// the star's first spoke and left to right ([`crate::point::sum`] of [`ring_points`]):
+/// the linear rules that read a ring only through its sum take this, with no array.
+pub(crate) fn ring_sum(topo: &Topology<'_, '_>, v: u32) -> Result<(usize, Point)> {
+    let mut n = 0;
+    let mut s = [0.0; 3];
+    for spoke in topo.star(v) {
+        s = add(s, topo.position(spoke.neighbour)?);
+        n += 1;
+    }
+    Ok((n, s))
+}
+
+/// The number of corners of face `f` and the sum of their positions, in face order and left
+/// to right ([`crate::point::sum`] of [`face_points`]).
+pub(crate) fn face_sum(topo: &Topology<'_, '_>, f: u32) -> Result<(usize, Point)> {
+    let corners = topo.face_vertices(f)?;
+    let mut s = [0.0; 3];
+    for &v in corners {
+        s = add(s, topo.position(v)?);
+    }
+    Ok((corners.len(), s))
 }
 
 /// The other boundary neighbour of boundary vertex `v` (not `other`): the next point along

@@ -10,18 +10,22 @@
 //! vertex and edge points, then face points), each pass split into disjoint output ranges
 //! ([`crate::exec`]); a rule that needs face or edge points reads them back from the output
 //! buffer of an earlier pass. Within a pass the output order is the error order.
+//!
+//! No rule here holds a neighbourhood in an array: each one walks the star or the face and
+//! accumulates what the rule reads (sums, the few points next to a given spoke) in the
+//! rule's own order, through the streaming forms of [`crate::stencil`], which give the same
+//! bits as the slice forms. The stack a driver needs is therefore a few hundred bytes
+//! whatever the valence or face size (`docs/firmware.md`, "Stack").
 
 use super::carry::{append_isolated, boundary_vertices};
 use super::Scheme;
-use crate::error::{Error, Result, Status};
+use crate::error::Result;
 use crate::exec::{pass, Executor};
-use crate::mesh::gather::{
-    apex, boundary_beyond, face_points_into, ring_points_into, FacePts, Ring,
-};
+use crate::mesh::gather::{apex, boundary_beyond, face_sum, ring_sum};
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::point::Point;
+use crate::point::{add, Point};
 use crate::stencil::{
-    akleman, butterfly, catmull_clark, doo_sabin, kobbelt, loop_scheme, simplest,
+    akleman, butterfly, catmull_clark, centroid_of_sum, doo_sabin, kobbelt, loop_scheme, simplest,
 };
 
 /// Writes the positions of one step of the linear `scheme` on `topo` into `pos` (the sizes of
@@ -80,7 +84,6 @@ fn loop_vertices(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Re
     let r = topo.raw();
     let mesh = topo.mesh();
     let position = |v: u32| mesh.position(v).ok_or(internal());
-    let mut ring = Ring::new();
     for (v, out) in (first as u32..).zip(out.iter_mut()) {
         let p = position(v)?;
         let start = get(r.vert_he, v as usize)?;
@@ -90,19 +93,20 @@ fn loop_vertices(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Re
             let (b0, b1) = topo.boundary_neighbours(v)?;
             loop_scheme::vertex_boundary(p, position(b0)?, position(b1)?)
         } else {
-            // The interior star from its first spoke (`Topology::star`): h -> twin(prev(h)).
-            ring.clear();
+            // The interior star from its first spoke (`Topology::star`): h -> twin(prev(h)),
+            // the ring summed as it is walked.
+            let n = get(r.valence, v as usize)? as usize;
+            let mut ring = [0.0; 3];
             let mut h = start;
-            for _ in 0..get(r.valence, v as usize)? {
+            for _ in 0..n {
                 let (next, prev, _) = r.next_prev_face(h)?;
-                ring.try_push(position(get(r.indices, next as usize)?)?)
-                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+                ring = add(ring, position(get(r.indices, next as usize)?)?);
                 h = get(r.twin, prev as usize)?;
             }
             if h != start {
                 return Err(internal());
             }
-            loop_scheme::vertex_interior(p, &ring)?
+            loop_scheme::vertex_interior_sum(p, n, ring)?
         };
     }
     Ok(())
@@ -185,7 +189,8 @@ fn catmull_clark_faces(topo: &Topology<'_, '_>, first: usize, out: &mut [Point])
             *out = catmull_clark::face_point(&pts)?;
         }
     } else {
-        let mut pts = FacePts::new();
+        // The face point is the centroid (`catmull_clark::face_point`), summed as the face
+        // is walked.
         let offsets = r.offsets.get(first..).ok_or(internal())?;
         if offsets.len() <= out.len() {
             return Err(internal());
@@ -194,11 +199,12 @@ fn catmull_clark_faces(topo: &Topology<'_, '_>, first: usize, out: &mut [Point])
             let &[a, b] = w else {
                 return Err(internal());
             };
-            pts.clear();
-            for &v in r.indices.get(a as usize..b as usize).ok_or(internal())? {
-                pts.try_push(position(v)?).map_err(|_| internal())?;
+            let corners = r.indices.get(a as usize..b as usize).ok_or(internal())?;
+            let mut sum = [0.0; 3];
+            for &v in corners {
+                sum = add(sum, position(v)?);
             }
-            *out = catmull_clark::face_point(&pts)?;
+            *out = centroid_of_sum(sum, corners.len())?;
         }
     }
     Ok(())
@@ -244,8 +250,6 @@ fn catmull_clark_vertices(
     let r = topo.raw();
     let mesh = topo.mesh();
     let position = |v: u32| mesh.position(v).ok_or(internal());
-    let mut ring = Ring::new();
-    let mut faces = Ring::new();
     for (v, out) in (first as u32..).zip(out.iter_mut()) {
         let p = position(v)?;
         let start = get(r.vert_he, v as usize)?;
@@ -256,23 +260,22 @@ fn catmull_clark_vertices(
             catmull_clark::vertex_boundary(p, position(b0)?, position(b1)?)
         } else {
             // The interior star, counter-clockwise from its first spoke (`Topology::star`):
-            // h -> twin(prev(h)), one spoke per neighbour.
-            ring.clear();
-            faces.clear();
+            // h -> twin(prev(h)), one spoke per neighbour; the ring and the face points
+            // summed as it is walked.
+            let n = get(r.valence, v as usize)? as usize;
+            let mut ring = [0.0; 3];
+            let mut faces = [0.0; 3];
             let mut h = start;
-            for _ in 0..get(r.valence, v as usize)? {
+            for _ in 0..n {
                 let (next, prev, f) = r.next_prev_face(h)?;
-                ring.try_push(position(get(r.indices, next as usize)?)?)
-                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
-                faces
-                    .try_push(get(fpos, f as usize)?)
-                    .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+                ring = add(ring, position(get(r.indices, next as usize)?)?);
+                faces = add(faces, get(fpos, f as usize)?);
                 h = get(r.twin, prev as usize)?;
             }
             if h != start {
                 return Err(internal());
             }
-            catmull_clark::vertex_interior(p, &ring, &faces)?
+            catmull_clark::vertex_interior_sums(p, n, ring, faces)?
         };
     }
     Ok(())
@@ -295,20 +298,21 @@ fn butterfly_across(topo: &Topology<'_, '_>, g: u32, z: u32) -> Result<Point> {
     }
 }
 
-/// Zorin's stencil of interior vertex `v` for its edge to `other` (ring starts at `other`).
+/// Zorin's stencil of interior vertex `v` for its edge to `other` (ring starts at `other`):
+/// the star walked twice, once to find `other`, then from it around (no ring array).
 pub(crate) fn butterfly_zorin(topo: &Topology<'_, '_>, v: u32, other: u32) -> Result<Point> {
-    let spokes = topo.spokes(v)?;
-    let j = spokes
-        .iter()
+    let n = topo.valence(v)?;
+    let j = topo
+        .star(v)
         .position(|s| s.neighbour == other)
         .ok_or(internal())?;
-    let mut ring = Ring::new();
-    for k in 0..spokes.len() {
-        let s = spokes.get((j + k) % spokes.len()).ok_or(internal())?;
-        ring.try_push(topo.position(s.neighbour)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
-    }
-    butterfly::zorin_stencil(topo.position(v)?, &ring).map_err(|e| e.with_element(v))
+    let ring = topo
+        .star(v)
+        .chain(topo.star(v))
+        .skip(j)
+        .take(n)
+        .map(|s| topo.position(s.neighbour));
+    butterfly::zorin_stencil_of(topo.position(v)?, n, ring).map_err(|e| e.with_element(v))
 }
 
 /// The old vertices, then the edge points, in one pass over the output.
@@ -385,20 +389,47 @@ pub(crate) fn kobbelt_beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Re
     if topo.is_boundary_vertex(v)? {
         return Ok(kobbelt::extrapolate(pv, topo.position(toward)?));
     }
-    let spokes = topo.spokes(v)?;
-    let j = spokes
-        .iter()
+    // The star walked twice: once to find `toward` (spoke j), then to sum the neighbours
+    // q_i and the diagonals d_i and keep the few next to q_j (no ring arrays).
+    let n = topo.valence(v)?;
+    let j = topo
+        .star(v)
         .position(|s| s.neighbour == toward)
         .ok_or(internal())?;
-    let mut q = Ring::new();
-    let mut d = Ring::new();
-    for s in &spokes {
-        q.try_push(topo.position(s.neighbour)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
-        d.try_push(topo.position(apex(topo, s.half_edge)?)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+    let at = |k: isize| (j as isize + k).rem_euclid(n.max(1) as isize) as usize;
+    let mut parts = kobbelt::VirtualParts {
+        n,
+        ring_sum: [0.0; 3],
+        diagonal_sum: [0.0; 3],
+        near_q: [[0.0; 3]; 3],
+        opposite: [0.0; 3],
+        near_d: [[0.0; 3]; 4],
+    };
+    let mut count = 0;
+    for (i, s) in topo.star(v).enumerate() {
+        let q = topo.position(s.neighbour)?;
+        let d = topo.position(apex(topo, s.half_edge)?)?;
+        parts.ring_sum = add(parts.ring_sum, q);
+        parts.diagonal_sum = add(parts.diagonal_sum, d);
+        for (k, slot) in (-1..=1).zip(parts.near_q.iter_mut()) {
+            if i == at(k) {
+                *slot = q;
+            }
+        }
+        if i == at(2) {
+            parts.opposite = q;
+        }
+        for (k, slot) in (-2..=1).zip(parts.near_d.iter_mut()) {
+            if i == at(k) {
+                *slot = d;
+            }
+        }
+        count += 1;
     }
-    kobbelt::virtual_point(&q, &d, j).map_err(|e| e.with_element(v))
+    if count != n || n == 0 {
+        return Err(internal());
+    }
+    Ok(parts.point())
 }
 
 /// The Kobbelt edge point of edge `e`: the 4-point rule on the two endpoints and the points
@@ -476,12 +507,13 @@ fn doo_sabin_positions(
     let nh = topo.num_half_edges();
     let (corners, _) = pos.split_at_mut_checked(nh).ok_or(internal())?;
     pass(exec, corners, |start, out, _| {
-        let mut pts = FacePts::new();
         let end = start + out.len();
         let mut h = start;
         while h < end {
             let f = topo.face(h as u32)?;
-            face_points_into(topo, f, &mut pts)?;
+            // The corners read from the mesh by the rule, in its order (no face array).
+            let face = topo.face_vertices(f)?;
+            let corner = |c: usize| topo.position(get(face, c)?);
             let r = topo.face_half_edges(f)?;
             let first = r.start as usize;
             let stop = (r.end as usize).min(end);
@@ -489,7 +521,8 @@ fn doo_sabin_positions(
                 return Err(internal());
             }
             for k in h..stop {
-                set(out, k - start, doo_sabin::corner_point(&pts, k - first)?)?;
+                let p = doo_sabin::corner_point_by(face.len(), k - first, corner)?;
+                set(out, k - start, p)?;
             }
             h = stop;
         }
@@ -509,12 +542,11 @@ fn simplest_positions(topo: &Topology<'_, '_>, pos: &mut [Point]) -> Result<()> 
     append_isolated(topo, pos, ne + topo.num_boundary_vertices())
 }
 
+/// The face centroids (`akleman::face_point`, summed as each face is walked).
 fn face_centroids(topo: &Topology<'_, '_>, pos: &mut [Point], start: usize) -> Result<()> {
-    let mut pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
-        face_points_into(topo, f, &mut pts)?;
-        let c = akleman::face_point(&pts)?;
-        set(pos, start + f as usize, c)?;
+        let (n, sum) = face_sum(topo, f)?;
+        set(pos, start + f as usize, centroid_of_sum(sum, n)?)?;
     }
     Ok(())
 }
@@ -550,12 +582,12 @@ fn vertex_insertion_positions(
     .map(|_| ())
 }
 
-/// The centroids of faces `first..first + out.len()`.
+/// The centroids of faces `first..first + out.len()` (`akleman::face_point`, summed as each
+/// face is walked).
 fn centroid_range(topo: &Topology<'_, '_>, first: usize, out: &mut [Point]) -> Result<()> {
-    let mut pts = FacePts::new();
     for (f, out) in (first as u32..).zip(out.iter_mut()) {
-        face_points_into(topo, f, &mut pts)?;
-        *out = akleman::face_point(&pts)?;
+        let (n, sum) = face_sum(topo, f)?;
+        *out = centroid_of_sum(sum, n)?;
     }
     Ok(())
 }
@@ -569,17 +601,92 @@ fn dual_truncation_positions(
     let nv = topo.num_vertices();
     pass(exec, pos, |start, out, _| {
         let (vpos, fpos) = split_chunk(start, out, nv)?;
-        let mut ring = Ring::new();
         for (v, out) in (start as u32..).zip(vpos.iter_mut()) {
             let p = topo.position(v)?;
             *out = if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
                 p
             } else {
-                ring_points_into(topo, v, &mut ring)?;
-                akleman::truncated_vertex(p, &ring)?
+                let (n, sum) = ring_sum(topo, v)?;
+                akleman::truncated_vertex_sum(p, n, sum)?
             };
         }
         centroid_range(topo, start.saturating_sub(nv), fpos)
     })
     .map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    //! The walking rules against the slice forms of [`crate::stencil`] on gathered arrays
+    //! (the public tier-1 rules, the reference): the same bits at every valence, including
+    //! 3, where the spokes next to the line's neighbour wrap onto each other.
+    use super::*;
+    use crate::mesh::{topology_scratch_size, Mesh};
+    use arrayvec::ArrayVec;
+
+    /// A bipyramid over an `N`-gon, with irregular coordinates: apexes of valence `N`, the
+    /// equator of valence 4.
+    fn bipyramid<const N: usize>(
+        pos: &mut ArrayVec<Point, 16>,
+        offs: &mut ArrayVec<u32, 32>,
+        idx: &mut ArrayVec<u32, 96>,
+    ) {
+        for i in 0..N {
+            let t = 2.0 * core::f64::consts::PI * i as f64 / N as f64 + 0.1 * (i * i) as f64;
+            pos.try_push([libm::cos(t), libm::sin(t), 0.05 * i as f64])
+                .unwrap();
+        }
+        pos.try_extend_from_slice(&[[0.1, -0.2, 1.3], [-0.15, 0.05, -0.9]])
+            .unwrap();
+        let (top, bottom) = (N as u32, N as u32 + 1);
+        offs.try_push(0).unwrap();
+        for i in 0..N as u32 {
+            let j = (i + 1) % N as u32;
+            for face in [[i, j, top], [j, i, bottom]] {
+                idx.try_extend_from_slice(&face).unwrap();
+                offs.try_push(idx.len() as u32).unwrap();
+            }
+        }
+    }
+
+    fn check<const N: usize>() {
+        let (mut pos, mut offs, mut idx) = (ArrayVec::new(), ArrayVec::new(), ArrayVec::new());
+        bipyramid::<N>(&mut pos, &mut offs, &mut idx);
+        let mesh = Mesh::new(&pos, &offs, &idx);
+        let mut scratch = [0u32; 1024];
+        let need = topology_scratch_size(pos.len(), idx.len()).unwrap();
+        let topo = Topology::build(mesh, &mut scratch[..need]).unwrap();
+        for v in 0..pos.len() as u32 {
+            let spokes = topo.spokes(v).unwrap();
+            let q: ArrayVec<Point, 16> = spokes
+                .iter()
+                .map(|s| topo.position(s.neighbour).unwrap())
+                .collect();
+            let d: ArrayVec<Point, 16> = spokes
+                .iter()
+                .map(|s| topo.position(apex(&topo, s.half_edge).unwrap()).unwrap())
+                .collect();
+            for (j, s) in spokes.iter().enumerate() {
+                let reference = kobbelt::virtual_point(&q, &d, j).unwrap();
+                let walked = kobbelt_beyond(&topo, v, s.neighbour).unwrap();
+                assert_eq!(walked.map(f64::to_bits), reference.map(f64::to_bits));
+                let from_j: ArrayVec<Point, 16> =
+                    (0..q.len()).map(|k| q[(j + k) % q.len()]).collect();
+                let reference = butterfly::zorin_stencil(topo.position(v).unwrap(), &from_j);
+                let walked = butterfly_zorin(&topo, v, s.neighbour).unwrap();
+                assert_eq!(
+                    walked.map(f64::to_bits),
+                    reference.unwrap().map(f64::to_bits)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn walked_stars_equal_the_slice_rules() {
+        check::<3>();
+        check::<4>();
+        check::<5>();
+        check::<7>();
+    }
 }

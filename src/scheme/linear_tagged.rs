@@ -14,11 +14,11 @@ use super::interpolating_tagged;
 use super::tags::Sharpness;
 use super::Scheme;
 use crate::error::{Error, Result, Status};
-use crate::mesh::gather::{apex, face_points_into, FacePts, Ring};
+use crate::mesh::gather::{apex, face_sum};
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::point::{lin2, midpoint, Point};
+use crate::point::{add, lin2, midpoint, Point};
 use crate::stencil::crease::{self, VertexRule};
-use crate::stencil::{catmull_clark, crease_vertex, loop_scheme};
+use crate::stencil::{catmull_clark, centroid_of_sum, crease_vertex, loop_scheme};
 use crate::MAX_VALENCE;
 use arrayvec::ArrayVec;
 
@@ -37,10 +37,10 @@ pub(crate) fn positions(
     // others first): an arm left out has a constant `false` guard, removed by the optimiser.
     match scheme {
         Scheme::CatmullClark if cfg!(feature = "catmull-clark") => {
-            let mut pts = FacePts::new();
+            // The centroid (`catmull_clark::face_point`), summed as the face is walked.
             for f in 0..topo.num_faces() as u32 {
-                face_points_into(topo, f, &mut pts)?;
-                set(pos, nv + ne + f as usize, catmull_clark::face_point(&pts)?)?;
+                let (n, sum) = face_sum(topo, f)?;
+                set(pos, nv + ne + f as usize, centroid_of_sum(sum, n)?)?;
             }
         }
         Scheme::Loop if cfg!(feature = "loop") => {}
@@ -166,27 +166,27 @@ fn rule_point(
 }
 
 /// The smooth rule at an interior vertex (a boundary vertex is never smooth: its boundary
-/// edges are sharp).
+/// edges are sharp). The ring and the face points are summed as the star is walked, in the
+/// rules' order (no arrays).
 fn smooth_vertex(scheme: Scheme, topo: &Topology<'_, '_>, v: u32, pos: &[Point]) -> Result<Point> {
     let p = topo.position(v)?;
-    let mut ring = Ring::new();
-    let mut faces = Ring::new();
+    let mut n = 0;
+    let mut ring = [0.0; 3];
+    let mut faces = [0.0; 3];
     let base = topo.num_vertices() + topo.num_edges();
     for s in topo.star(v) {
         if s.face == NONE {
             return Err(internal());
         }
-        ring.try_push(topo.position(s.neighbour)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+        ring = add(ring, topo.position(s.neighbour)?);
         if scheme == Scheme::CatmullClark {
-            faces
-                .try_push(get(pos, base + s.face as usize)?)
-                .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
+            faces = add(faces, get(pos, base + s.face as usize)?);
         }
+        n += 1;
     }
     match scheme {
-        Scheme::Loop => loop_scheme::vertex_interior(p, &ring),
-        _ => catmull_clark::vertex_interior(p, &ring, &faces),
+        Scheme::Loop => loop_scheme::vertex_interior_sum(p, n, ring),
+        _ => catmull_clark::vertex_interior_sums(p, n, ring, faces),
     }
 }
 

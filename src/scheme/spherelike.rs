@@ -67,12 +67,9 @@
 use crate::curve::circle_blend;
 use crate::error::{Error, Result, Status};
 use crate::exec::{pass, Executor};
-use crate::mesh::gather::{boundary_beyond, face_points};
+use crate::mesh::gather::boundary_beyond;
 use crate::mesh::{get, internal, Topology, NONE};
 use crate::point::Point;
-use crate::MAX_FACE_SIZE;
-
-use arrayvec::ArrayVec;
 
 /// Relative tolerance on squared distances under which two candidates of the odd-valence
 /// rule count as equally far (`farthest`).
@@ -152,24 +149,22 @@ fn beyond(topo: &Topology<'_, '_>, v: u32, toward: u32) -> Result<Option<Point>>
     if topo.is_boundary_vertex(v)? {
         return Ok(None);
     }
-    let spokes = topo.spokes(v)?;
-    let n = spokes.len();
-    let j = spokes
-        .iter()
+    // The star is walked, not gathered: once to find `toward` (spoke j), then to the spoke
+    // the rule reads (no array of spokes, so the stack does not grow with the valence).
+    let n = topo.valence(v)?;
+    let j = topo
+        .star(v)
         .position(|s| s.neighbour == toward)
         .ok_or(internal())?;
+    let spoke = |k: usize| -> Result<crate::mesh::Spoke> {
+        let k = k.checked_rem(n).ok_or(internal())?;
+        topo.star(v).nth(k).ok_or(internal())
+    };
     if n % 2 == 0 {
-        let s = (j + n / 2)
-            .checked_rem(n)
-            .and_then(|k| spokes.get(k))
-            .ok_or(internal())?;
-        return topo.position(s.neighbour).map(Some);
+        return topo.position(spoke(j + n / 2)?.neighbour).map(Some);
     }
     // The central face lies between spokes j + (n−1)/2 and j + (n+1)/2.
-    let s = (j + n.saturating_sub(1) / 2)
-        .checked_rem(n)
-        .and_then(|k| spokes.get(k))
-        .ok_or(internal())?;
+    let s = spoke(j + n.saturating_sub(1) / 2)?;
     let f = s.face;
     if f == NONE {
         return Err(internal());
@@ -186,20 +181,27 @@ fn farthest(topo: &Topology<'_, '_>, v: u32, f: u32) -> Result<Point> {
     let corners = topo.face_vertices(f)?;
     let k = corners.iter().position(|&c| c == v).ok_or(internal())?;
     let m = corners.len();
-    let mut cand: ArrayVec<(f64, Point), MAX_FACE_SIZE> = ArrayVec::new();
-    for i in 1..m {
-        let c = get(corners, (k + i).checked_rem(m).ok_or(internal())?)?;
-        let p = topo.position(c)?;
-        let d = [p[0] - pv[0], p[1] - pv[1], p[2] - pv[2]];
-        cand.try_push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2], p))
-            .map_err(|_| internal())?;
+    // The candidates counter-clockwise after `v`, walked twice (the largest squared
+    // distance, then the first within the tolerance of it) rather than held in an array.
+    let candidates = || {
+        (1..m).map(move |i| -> Result<(f64, Point)> {
+            let c = get(corners, (k + i).checked_rem(m).ok_or(internal())?)?;
+            let p = topo.position(c)?;
+            let d = [p[0] - pv[0], p[1] - pv[1], p[2] - pv[2]];
+            Ok((d[0] * d[0] + d[1] * d[1] + d[2] * d[2], p))
+        })
+    };
+    let mut max = 0.0_f64;
+    for c in candidates() {
+        max = max.max(c?.0);
     }
-    let max = cand.iter().fold(0.0_f64, |a, (d, _)| a.max(*d));
-    let pick = cand
-        .iter()
-        .find(|(d, _)| *d >= max - TIE_TOLERANCE * max)
-        .ok_or(Error::new(Status::DegenerateGeometry))?;
-    Ok(pick.1)
+    for c in candidates() {
+        let (d, p) = c?;
+        if d >= max - TIE_TOLERANCE * max {
+            return Ok(p);
+        }
+    }
+    Err(Error::new(Status::DegenerateGeometry))
 }
 
 /// The edge point of the edge of half-edge `h`, read back from the output.
@@ -255,8 +257,8 @@ fn face_point(topo: &Topology<'_, '_>, pos: &[Point], f: u32) -> Result<Point> {
         }
     } else {
         count = n;
-        let corners = face_points(topo, f)?;
-        for (i, &c) in corners.iter().enumerate() {
+        for (i, &v) in topo.face_vertices(f)?.iter().enumerate() {
+            let c = topo.position(v)?;
             let b = he(i + n.saturating_sub(1) / 2)?;
             let p = segment_point(None, c, ep(topo, pos, b)?, across(topo, pos, b)?)?;
             sum = [sum[0] + p[0], sum[1] + p[1], sum[2] + p[2]];

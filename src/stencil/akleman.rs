@@ -21,9 +21,9 @@
 //!   boundary edges are kept (their triangle `(a, b, c_f)`), so the boundary curve is
 //!   unchanged.
 
-use super::centroid;
+use super::{centroid, centroid_of_sum};
 use crate::error::Result;
-use crate::point::{lin2, midpoint, Point};
+use crate::point::{lin2, midpoint, sum, Point};
 
 /// The truncation parameter `t = 1/3` of dual truncation.
 pub const TRUNCATION: f64 = 1.0 / 3.0;
@@ -41,7 +41,21 @@ pub fn face_point(face: &[Point]) -> Result<Point> {
 /// # Errors
 /// [`crate::Status::TooFewPoints`] for an empty ring.
 pub fn truncated_vertex(v: Point, ring: &[Point]) -> Result<Point> {
-    Ok(lin2(1.0 - TRUNCATION, v, TRUNCATION, centroid(ring)?))
+    truncated_vertex_sum(v, ring.len(), sum(ring))
+}
+
+/// [`truncated_vertex`] from the ring's valence `n` and its sum (left to right, as
+/// [`sum`]): the same bits without an array of ring points.
+///
+/// # Errors
+/// [`crate::Status::TooFewPoints`] for `n = 0`.
+pub(crate) fn truncated_vertex_sum(v: Point, n: usize, ring_sum: Point) -> Result<Point> {
+    Ok(lin2(
+        1.0 - TRUNCATION,
+        v,
+        TRUNCATION,
+        centroid_of_sum(ring_sum, n)?,
+    ))
 }
 
 /// The dual's point on a boundary edge `(a, b)`: its midpoint.

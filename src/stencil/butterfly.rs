@@ -79,7 +79,20 @@ pub fn zorin_weight(n: usize, j: usize) -> f64 {
 /// [`Status::TooFewPoints`] for a ring of fewer than 3 points;
 /// [`Status::ValenceTooHigh`] above [`MAX_VALENCE`].
 pub fn zorin_stencil(v: Point, ring: &[Point]) -> Result<Point> {
-    let n = ring.len();
+    zorin_stencil_of(v, ring.len(), ring.iter().map(|&q| Ok(q)))
+}
+
+/// [`zorin_stencil`] of a ring of `n` points given one at a time, from the edge's other
+/// endpoint on: the drivers walk the star (no array of ring points) and get the same bits.
+///
+/// # Errors
+/// Those of [`zorin_stencil`]; [`Status::InvalidArgument`] when `ring` does not give exactly
+/// `n` points; any error of `ring`.
+pub(crate) fn zorin_stencil_of(
+    v: Point,
+    n: usize,
+    ring: impl Iterator<Item = Result<Point>>,
+) -> Result<Point> {
     if n < 3 {
         return Err(Error::new(Status::TooFewPoints));
     }
@@ -88,10 +101,15 @@ pub fn zorin_stencil(v: Point, ring: &[Point]) -> Result<Point> {
     }
     let mut acc = [0.0; 3];
     let mut wsum = 0.0;
-    for (j, &q) in ring.iter().enumerate() {
+    let mut count = 0;
+    for (j, q) in ring.enumerate() {
         let w = zorin_weight(n, j);
         wsum += w;
-        acc = add(acc, scale(q, w));
+        acc = add(acc, scale(q?, w));
+        count += 1;
+    }
+    if count != n {
+        return Err(Error::new(Status::InvalidArgument));
     }
     let c = if n <= 4 { 0.75 } else { 1.0 - wsum };
     Ok(add(scale(v, c), acc))

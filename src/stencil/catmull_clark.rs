@@ -42,12 +42,30 @@ pub fn vertex_interior(v: Point, ring: &[Point], faces: &[Point]) -> Result<Poin
     if faces.len() != n {
         return Err(Error::new(Status::InvalidArgument));
     }
+    vertex_interior_sums(v, n, sum(ring), sum(faces))
+}
+
+/// [`vertex_interior`] from the valence `n` and the sums of the ring and of the face points
+/// (each left to right, as [`crate::point::sum`]): the drivers accumulate both while walking
+/// the star, with no arrays, and get the same bits.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for `n = 0`.
+pub(crate) fn vertex_interior_sums(
+    v: Point,
+    n: usize,
+    ring_sum: Point,
+    face_sum: Point,
+) -> Result<Point> {
+    if n == 0 {
+        return Err(Error::new(Status::TooFewPoints));
+    }
     let nf = n as f64;
     Ok(lin2(
         (nf - 2.0) / nf,
         v,
         1.0 / (nf * nf),
-        add(sum(ring), sum(faces)),
+        add(ring_sum, face_sum),
     ))
 }
 

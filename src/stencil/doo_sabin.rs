@@ -29,7 +29,25 @@ pub fn weight(n: usize, k: usize) -> f64 {
 /// [`Status::TooFewPoints`] for an empty face; [`Status::InvalidArgument`] for `i` out of
 /// range.
 pub fn corner_point(face: &[Point], i: usize) -> Result<Point> {
-    let n = face.len();
+    corner_point_by(face.len(), i, |c| {
+        face.get(c)
+            .copied()
+            .ok_or(Error::new(Status::InvalidArgument))
+    })
+}
+
+/// [`corner_point`] of corner `i` of an n-gon whose corner `c` is `corner(c)`: the drivers
+/// read the corners straight from the mesh (no array of face points), in the same order and
+/// with the same bits.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for `n = 0`; [`Status::InvalidArgument`] for `i` out of range;
+/// any error of `corner`.
+pub(crate) fn corner_point_by(
+    n: usize,
+    i: usize,
+    mut corner: impl FnMut(usize) -> Result<Point>,
+) -> Result<Point> {
     if n == 0 {
         return Err(Error::new(Status::TooFewPoints));
     }
@@ -38,11 +56,7 @@ pub fn corner_point(face: &[Point], i: usize) -> Result<Point> {
     }
     let mut acc = [0.0; 3];
     for k in 0..n {
-        let p = face
-            .get((i + k) % n)
-            .copied()
-            .ok_or(Error::new(Status::InvalidArgument))?;
-        acc = add(acc, scale(p, weight(n, k)));
+        acc = add(acc, scale(corner((i + k) % n)?, weight(n, k)));
     }
     Ok(acc)
 }

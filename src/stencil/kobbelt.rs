@@ -86,22 +86,54 @@ pub fn virtual_point(ring: &[Point], diagonals: &[Point], j: usize) -> Result<Po
     if diagonals.len() != n || j >= n {
         return Err(Error::new(Status::InvalidArgument));
     }
-    if n == 4 {
-        return cyclic(ring, j, 2);
+    let q = |k: isize| cyclic(ring, j, k);
+    let d = |k: isize| cyclic(diagonals, j, k);
+    Ok(VirtualParts {
+        n,
+        ring_sum: sum(ring),
+        diagonal_sum: sum(diagonals),
+        near_q: [q(-1)?, q(0)?, q(1)?],
+        opposite: q(2)?,
+        near_d: [d(-2)?, d(-1)?, d(0)?, d(1)?],
     }
-    let nf = n as f64;
-    let wh = W_HAT;
-    let near_q = add(
-        add(cyclic(ring, j, -1)?, cyclic(ring, j, 0)?),
-        cyclic(ring, j, 1)?,
-    );
-    let near_d = add(
-        add(cyclic(diagonals, j, -2)?, cyclic(diagonals, j, -1)?),
-        add(cyclic(diagonals, j, 0)?, cyclic(diagonals, j, 1)?),
-    );
-    let q_part = sub(scale(sum(ring), 4.0 / nf), near_q);
-    let d_part = sub(scale(near_d, wh), scale(sum(diagonals), 4.0 * wh / nf));
-    Ok(add(q_part, d_part))
+    .point())
+}
+
+/// What [`virtual_point`] reads of a star with the line's neighbour `q_j`: a driver gathers
+/// these in one walk around the star (no arrays of ring and diagonal points) and gets the
+/// same bits.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct VirtualParts {
+    /// The valence (≥ 1).
+    pub(crate) n: usize,
+    /// `Σ q_i`, left to right from the star's first spoke (as [`sum`]).
+    pub(crate) ring_sum: Point,
+    /// `Σ d_i`, likewise.
+    pub(crate) diagonal_sum: Point,
+    /// `q_{j−1}, q_j, q_{j+1}` (indices mod n).
+    pub(crate) near_q: [Point; 3],
+    /// `q_{j+2}`: the virtual point at valence 4.
+    pub(crate) opposite: Point,
+    /// `d_{j−2}, d_{j−1}, d_j, d_{j+1}`.
+    pub(crate) near_d: [Point; 4],
+}
+
+impl VirtualParts {
+    /// The virtual point (module docs).
+    pub(crate) fn point(&self) -> Point {
+        if self.n == 4 {
+            return self.opposite;
+        }
+        let nf = self.n as f64;
+        let wh = W_HAT;
+        let [q0, q1, q2] = self.near_q;
+        let [d0, d1, d2, d3] = self.near_d;
+        let near_q = add(add(q0, q1), q2);
+        let near_d = add(add(d0, d1), add(d2, d3));
+        let q_part = sub(scale(self.ring_sum, 4.0 / nf), near_q);
+        let d_part = sub(scale(near_d, wh), scale(self.diagonal_sum, 4.0 * wh / nf));
+        add(q_part, d_part)
+    }
 }
 
 #[cfg(test)]

@@ -22,12 +22,21 @@ pub fn alpha(n: usize) -> f64 {
 /// # Errors
 /// [`Status::TooFewPoints`] for an empty ring.
 pub fn vertex_interior(v: Point, ring: &[Point]) -> Result<Point> {
-    let n = ring.len();
+    vertex_interior_sum(v, ring.len(), sum(ring))
+}
+
+/// [`vertex_interior`] from the ring's valence `n` and its sum ([`crate::point::sum`]'s
+/// left-to-right order): the drivers accumulate the sum while walking the star, with no
+/// array of ring points, and get the same bits.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for `n = 0`.
+pub(crate) fn vertex_interior_sum(v: Point, n: usize, ring_sum: Point) -> Result<Point> {
     if n == 0 {
         return Err(Error::new(Status::TooFewPoints));
     }
     let a = alpha(n);
-    Ok(lin2(1.0 - a, v, a / n as f64, sum(ring)))
+    Ok(lin2(1.0 - a, v, a / n as f64, ring_sum))
 }
 
 /// Interior edge point `3/8 (a + b) + 1/8 (c + d)`, `c`, `d` the opposite vertices of the two

@@ -28,10 +28,20 @@ use crate::point::{add, lin2, scale, sum, Point};
 /// # Errors
 /// [`Status::TooFewPoints`] for an empty slice.
 pub fn centroid(points: &[Point]) -> Result<Point> {
-    if points.is_empty() {
+    centroid_of_sum(sum(points), points.len())
+}
+
+/// [`centroid`] from the sum of `n` points (left to right, as [`sum`]): the drivers
+/// accumulate it while walking a face or a star, with no array of points, and get the same
+/// bits.
+///
+/// # Errors
+/// [`Status::TooFewPoints`] for `n = 0`.
+pub(crate) fn centroid_of_sum(s: Point, n: usize) -> Result<Point> {
+    if n == 0 {
         return Err(Error::new(Status::TooFewPoints));
     }
-    Ok(scale(sum(points), 1.0 / points.len() as f64))
+    Ok(scale(s, 1.0 / n as f64))
 }
 
 /// The crease (boundary) vertex rule of the cubic B-spline, `3/4 v + 1/8 (b0 + b1)`: the
