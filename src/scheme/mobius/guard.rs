@@ -32,9 +32,10 @@ use super::driver::Driver;
 use super::edges::LinearEdge;
 use super::form::{present, FacePts, Frame, Spokes};
 use super::memo::StarForm;
+use super::slots::first_slot;
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
-use super::vertex_pass::Star;
+use super::vertex_pass::{Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
 use crate::mesh::{get, internal, set, Topology, NONE};
@@ -82,7 +83,7 @@ pub(super) struct Outputs {
     pub(super) faces: Option<usize>,
 }
 
-impl Driver<'_, '_, '_, '_> {
+impl Part<'_, '_, '_> {
     /// Step 1 (module docs): the spread and candidate-position terms of the trust of `star`,
     /// from its ring's images `ring` and its edge candidates `normalised` (spoke order,
     /// normalised frame, not yet mapped back). Interior stars in the canonical frame only;
@@ -97,21 +98,20 @@ impl Driver<'_, '_, '_, '_> {
             return Ok(());
         }
         if star.boundary {
-            return set(self.trust, star.v as usize, EXEMPT);
+            return self.set_trust(star.v, EXEMPT, None);
         }
-        if let Some(cf) = star.form.canonical() {
-            set(self.centre, star.v as usize, cf.c)?;
-            set(self.radius, star.v as usize, cf.r)?;
-        }
+        let form = star.form.canonical().map(|cf| (cf.c, cf.r));
         let mut tau = spread_trust(ring);
         for (c, e) in ring.iter().zip(normalised.iter()) {
             if present(e) {
                 tau = tau.min(position_trust(*e, *c));
             }
         }
-        set(self.trust, star.v as usize, tau)
+        self.set_trust(star.v, tau, form)
     }
+}
 
+impl Driver<'_, '_, '_, '_> {
     /// Step 3 (module docs): lowers the trust of both end stars of every interior edge
     /// between two interior stars to the F4-angle term of the blend of their candidates
     /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
@@ -125,7 +125,10 @@ impl Driver<'_, '_, '_, '_> {
             if t == NONE {
                 continue;
             }
-            let (ca, cb) = (get(self.edge_c, h as usize)?, get(self.edge_c, t as usize)?);
+            let (ca, cb) = (
+                get(self.edge_c, self.slot(h)?)?,
+                get(self.edge_c, self.slot(t)?)?,
+            );
             if !present(&ca) || !present(&cb) {
                 continue;
             }
@@ -147,10 +150,11 @@ impl Driver<'_, '_, '_, '_> {
     /// form `m_τ`, in vertex order, after counting the output vertices `out` says the star
     /// changes (or refusing the first in strict mode). Whether any star was evaluated (the
     /// drivers then blend again). Without the guard, nothing.
-    pub(super) fn guarded_pass(
+    pub(super) fn guarded_pass<B>(
         &mut self,
         out: Outputs,
-        mut rule: impl FnMut(&mut Self, &mut Star<'_, Spectrum>) -> Result<()>,
+        mut b: B,
+        rule: impl Fn(&mut Part<'_, '_, '_>, &mut Star<'_, Spectrum>, &mut B) -> Result<()>,
     ) -> Result<bool> {
         if !self.guard {
             return Ok(false);
@@ -181,15 +185,17 @@ impl Driver<'_, '_, '_, '_> {
                 continue;
             };
             self.count_guarded(v, &spokes, out)?;
+            let slot = first_slot(topo, self.slots, v)?.ok_or(internal())?;
             let cf = form.form();
             let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
             let mut star = Star {
                 v,
                 boundary,
+                slot,
                 spokes: &spokes,
                 form: &mut frame,
             };
-            rule(self, &mut star)?;
+            rule(&mut self.whole(), &mut star, &mut b)?;
             any = true;
         }
         Ok(any)
@@ -236,37 +242,6 @@ impl Driver<'_, '_, '_, '_> {
                     self.guarded(start + s.face as usize)?;
                 }
             }
-        }
-        Ok(())
-    }
-
-    /// Keeps the edge candidates `normalised[j]` (frame of `star`, spoke order) mapped back
-    /// with the star's frame, for every spoke that has an outgoing half-edge and a candidate.
-    pub(super) fn keep_edges_from<F: Frame>(
-        &mut self,
-        star: &Star<'_, F>,
-        normalised: &[Point],
-    ) -> Result<()> {
-        for (s, c) in star.spokes.iter().zip(normalised.iter()) {
-            if s.half_edge != NONE && present(c) {
-                if let Ok(b) = star.form.back(*c) {
-                    if present(&b) {
-                        set(self.edge_c, s.half_edge as usize, b)?;
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Writes the vertex point `normalised` (frame of `star`) mapped back, when it exists.
-    pub(super) fn keep_vertex_from<F: Frame>(
-        &mut self,
-        star: &Star<'_, F>,
-        normalised: Option<Point>,
-    ) -> Result<()> {
-        if let Some(q) = normalised.and_then(|p| star.form.back(p).ok()) {
-            set(self.pos, star.v as usize, q)?;
         }
         Ok(())
     }
