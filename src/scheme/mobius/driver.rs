@@ -49,18 +49,18 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
-    /// A driver with every candidate [`MISSING`]; `form` holds the per-vertex trust, centres
-    /// and radii of the fold guard.
+    /// A driver with every candidate [`MISSING`]; `cands` holds the edge and face candidates
+    /// and their slots (`slots.rs`), `form` the per-vertex trust, centres and radii of the
+    /// fold guard.
     pub(super) fn new(
         topo: &'t Topology<'m, 's>,
         pos: &'o mut [Point],
-        edge_c: &'o mut [Point],
-        face_c: &'o mut [Point],
-        slots: &'o [f64],
+        cands: (&'o mut [Point], &'o mut [Point], &'o [f64]),
         form: (&'o mut [f64], &'o mut [Point], &'o mut [f64]),
         opts: MobiusOptions,
         exec: &'o dyn Executor,
     ) -> Self {
+        let (edge_c, face_c, slots) = cands;
         let (trust, centre, radius) = form;
         for c in edge_c.iter_mut().chain(face_c.iter_mut()) {
             *c = MISSING;

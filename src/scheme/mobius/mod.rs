@@ -201,7 +201,7 @@ pub(crate) fn step(
     let slot_map = rest.get_mut(..nh).ok_or(internal())?;
     slots::write(topo, slot_map)?;
     let form = (trust, centre, radius);
-    let mut d = Driver::new(topo, pos, edge_c, face_c, slot_map, form, opts, exec);
+    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
     d.corners = corners;
     match scheme {
         Scheme::Loop => drivers::loop_scheme::run(&mut d)?,

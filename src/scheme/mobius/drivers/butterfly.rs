@@ -22,7 +22,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     copy_old(topo, d.pos)?;
-    d.vertex_pass(false, Bufs::new, |p, star, b| star_rule(p, star, b))?;
+    d.vertex_pass(false, Bufs::new, star_rule)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
     // The boundary curves before the blends: the audit reads every output point of the
     // step, and the blends may run twice (their fallbacks are rewound, these stay).
@@ -42,7 +42,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: None,
         };
-        if d.guarded_pass(out, Bufs::new(), |p, star, b| star_rule(p, star, b))? {
+        if d.guarded_pass(out, Bufs::new(), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
             d.blend_edges_toward_linear(nv, &linear)?;

@@ -25,7 +25,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // pass below, which maps each face into the corner's form once.
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
-    d.vertex_pass(true, Bufs::new, |p, star, b| star_rule(p, star, b))?;
+    d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
         let mut ring = Ring::new();
         let mut faces = Ring::new();
@@ -67,7 +67,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: Some(fp0),
         };
-        if d.guarded_pass(out, Bufs::new(), |p, star, b| star_rule(p, star, b))? {
+        if d.guarded_pass(out, Bufs::new(), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;

@@ -19,7 +19,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     d.clear_vertex_points()?;
-    d.vertex_pass(true, Bufs::new, |p, star, b| star_rule(p, star, b))?;
+    d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
         loop_scheme::vertex_interior(p, &ring_points(t, v)?)
     })?;
@@ -51,7 +51,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: None,
         };
-        if d.guarded_pass(out, Bufs::new(), |p, star, b| star_rule(p, star, b))? {
+        if d.guarded_pass(out, Bufs::new(), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
         }
