@@ -2,7 +2,10 @@
 //! range is split into at most [`MAX_CHUNKS`] disjoint, contiguous chunks ([`Chunk`]), and an
 //! [`Executor`] supplied by the caller runs one task per chunk, in any order, on any thread.
 //! The core itself stays single-threaded ([`Serial`] runs the chunks one after the other);
-//! the std layers (`threads/`, the command, the C ABI) bring the threads.
+//! the std layers (`threads/`, the command, the C ABI) bring the threads. A pass that
+//! writes several arrays (the Möbius vertex pass: vertex points, per-vertex values and
+//! candidate slots of a vertex range) hands each chunk its disjoint sub-slice of every
+//! array instead of one output range.
 //!
 //! Every value a task writes depends only on its output index and on what earlier passes
 //! wrote, never on the chunk boundaries, so the output is bit-identical for every thread
@@ -38,7 +41,7 @@ use crate::point::Point;
 pub const MAX_CHUNKS: usize = 64;
 
 /// One chunk of a pass: a contiguous range of the pass's output (or, for a pass that
-/// writes several arrays, the chunk's share of each: [`parts`]) and the task's result.
+/// writes several arrays, the chunk's share of each) and the task's result.
 /// Opaque: an [`Executor`] only hands it to the task.
 pub struct Chunk<'a> {
     /// The index of `out[0]` in the pass's output.
