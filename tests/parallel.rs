@@ -256,7 +256,8 @@ fn mobius_vertex_ranges_around_isolated_vertices() {
 }
 
 /// Shared meshes on which the fold guard re-evaluates stars (`tests/mesh_fold_guard.rs`):
-/// the guarded counts and firsts and the output are the serial run's for every chunking.
+/// the guarded counts and firsts and the output are the serial run's for every chunking (the
+/// re-evaluation is split into vertex ranges too); in strict mode, the serial run's refusal.
 #[test]
 fn guarded_meshes_every_chunking() {
     let test = "parallel::guarded_meshes_every_chunking";
@@ -280,6 +281,8 @@ fn guarded_meshes_every_chunking() {
         let (_, r) = run(&m, &opts).unwrap();
         assert!(r.guarded > 0, "{s:?} {name}: the guard changes nothing");
         assert!(same_everywhere(&m, &opts, &format!("{name} {s:?}")));
+        let strict = opts.strict(true);
+        assert!(!same_everywhere(&m, &strict, &format!("{name} {s:?} strict")));
     }
 }
 

@@ -118,6 +118,92 @@ fn split_off<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
     Ok(a)
 }
 
+/// The arrays a vertex-range pass writes, whole: the vertex points (`V` of them, or none),
+/// the fold guard's per-vertex values (`V` each, or none), the candidate slots (`H` each).
+pub(super) struct Arrays<'a> {
+    pub(super) pos: &'a mut [Point],
+    pub(super) trust: &'a mut [f64],
+    pub(super) centre: &'a mut [Point],
+    pub(super) radius: &'a mut [f64],
+    pub(super) edge_c: &'a mut [Point],
+    pub(super) face_c: &'a mut [Point],
+}
+
+/// The first `n` elements of `*s`, or none when `*s` is empty (an array the pass does not
+/// write).
+fn split_per_vertex<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
+    let n = if s.is_empty() { 0 } else { n };
+    split_off(s, n)
+}
+
+impl<'a, 'm, 's> Part<'a, 'm, 's> {
+    /// One part over every vertex and slot.
+    pub(super) fn whole(topo: &'a Topology<'m, 's>, guard: bool, a: Arrays<'a>) -> Self {
+        Part {
+            topo,
+            guard,
+            v0: 0,
+            v1: topo.num_vertices(),
+            k0: 0,
+            pos: a.pos,
+            trust: a.trust,
+            centre: a.centre,
+            radius: a.radius,
+            edge_c: a.edge_c,
+            face_c: a.face_c,
+        }
+    }
+
+    /// `a` split into the `k` vertex ranges of [`crate::exec::chunk_range`] and the slot
+    /// ranges of their stars (`slots.rs`).
+    pub(super) fn ranges(
+        topo: &'a Topology<'m, 's>,
+        slots: &[f64],
+        guard: bool,
+        k: usize,
+        a: Arrays<'a>,
+    ) -> Result<ArrayVec<Self, MAX_CHUNKS>> {
+        let nv = topo.num_vertices();
+        let Arrays {
+            mut pos,
+            mut trust,
+            mut centre,
+            mut radius,
+            mut edge_c,
+            mut face_c,
+        } = a;
+        let mut ranges = ArrayVec::new();
+        let mut k0 = 0;
+        for i in 0..k {
+            let (v0, v1) = chunk_range(nv, k, i);
+            let k1 = slot_at_or_after(topo, slots, v1)?;
+            let nk = k1.checked_sub(k0).ok_or(internal())?;
+            let n = v1 - v0;
+            let part = Part {
+                topo,
+                guard,
+                v0,
+                v1,
+                k0,
+                pos: split_per_vertex(&mut pos, n)?,
+                trust: split_per_vertex(&mut trust, n)?,
+                centre: split_per_vertex(&mut centre, n)?,
+                radius: split_per_vertex(&mut radius, n)?,
+                edge_c: split_off(&mut edge_c, nk)?,
+                face_c: split_off(&mut face_c, nk)?,
+            };
+            ranges.try_push(part).map_err(|_| internal())?;
+            k0 = k1;
+        }
+        Ok(ranges)
+    }
+
+    /// The vertices of this part.
+    pub(super) fn vertices(&self) -> core::ops::Range<u32> {
+        self.v0 as u32..self.v1 as u32
+    }
+}
+
 impl Part<'_, '_, '_> {
     /// The index of vertex `v` in this part's per-vertex slices.
     #[inline(always)]
@@ -261,21 +347,28 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         retarget(self.topo, v, form, spokes)
     }
 
-    /// A part spanning every vertex and every slot (the guard's re-evaluation, serial).
-    pub(super) fn whole(&mut self) -> Part<'_, 'm, 's> {
-        Part {
-            topo: self.topo,
-            guard: self.guard,
-            v0: 0,
-            v1: self.topo.num_vertices(),
-            k0: 0,
-            pos: self.pos,
-            trust: self.trust,
-            centre: self.centre,
-            radius: self.radius,
+    /// The arrays of the vertex pass: with the vertex points of the first `V` outputs when
+    /// `vertex_points`, with the fold guard's per-vertex values when `guard_values`.
+    pub(super) fn arrays(&mut self, vertex_points: bool, guard_values: bool) -> Result<Arrays<'_>> {
+        let nv = self.topo.num_vertices();
+        let pos: &mut [Point] = if vertex_points {
+            self.pos.get_mut(..nv).ok_or(internal())?
+        } else {
+            &mut []
+        };
+        let (trust, centre, radius): (&mut [f64], &mut [Point], &mut [f64]) = if guard_values {
+            (self.trust, self.centre, self.radius)
+        } else {
+            (&mut [], &mut [], &mut [])
+        };
+        Ok(Arrays {
+            pos,
+            trust,
+            centre,
+            radius,
             edge_c: self.edge_c,
             face_c: self.face_c,
-        }
+        })
     }
 
     /// Runs `rule` on the star of every vertex that has a canonical form (module docs), with
@@ -311,11 +404,9 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         };
         let nv = topo.num_vertices();
         let k = chunk_count(self.exec, nv);
+        let guard = self.guard;
         if k <= 1 {
-            let mut part = self.whole();
-            if !vertex_points {
-                part.pos = &mut [];
-            }
+            let mut part = Part::whole(topo, guard, self.arrays(vertex_points, true)?);
             return run(&mut part, &mut Tally::new());
         }
         self.split_vertex_pass(k, vertex_points, &run)
@@ -325,43 +416,9 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
     /// a small stack frame).
     #[inline(never)]
     fn split_vertex_pass(&mut self, k: usize, vertex_points: bool, run: &PartFn<'_>) -> Result<()> {
-        let topo = self.topo;
-        let slots = self.slots;
-        let nv = topo.num_vertices();
-        let mut pos: &mut [Point] = if vertex_points {
-            self.pos.get_mut(..nv).ok_or(internal())?
-        } else {
-            &mut []
-        };
-        let mut trust: &mut [f64] = self.trust;
-        let mut centre: &mut [Point] = self.centre;
-        let mut radius: &mut [f64] = self.radius;
-        let mut edge_c: &mut [Point] = self.edge_c;
-        let mut face_c: &mut [Point] = self.face_c;
-        let mut ranges = ArrayVec::<Part<'_, '_, '_>, MAX_CHUNKS>::new();
-        let mut k0 = 0;
-        for i in 0..k {
-            let (v0, v1) = chunk_range(nv, k, i);
-            let k1 = slot_at_or_after(topo, slots, v1)?;
-            let nk = k1.checked_sub(k0).ok_or(internal())?;
-            let n = v1 - v0;
-            let part = Part {
-                topo,
-                guard: self.guard,
-                v0,
-                v1,
-                k0,
-                pos: split_off(&mut pos, if vertex_points { n } else { 0 })?,
-                trust: split_off(&mut trust, n)?,
-                centre: split_off(&mut centre, n)?,
-                radius: split_off(&mut radius, n)?,
-                edge_c: split_off(&mut edge_c, nk)?,
-                face_c: split_off(&mut face_c, nk)?,
-            };
-            ranges.try_push(part).map_err(|_| internal())?;
-            k0 = k1;
-        }
-        parts(self.exec, &mut ranges, |p| p.v1 - p.v0, run)?;
+        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+        let mut ranges = Part::ranges(topo, slots, guard, k, self.arrays(vertex_points, true)?)?;
+        parts(exec, &mut ranges, |p| p.v1 - p.v0, run)?;
         Ok(())
     }
 

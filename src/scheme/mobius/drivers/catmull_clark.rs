@@ -67,7 +67,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: Some(fp0),
         };
-        if d.guarded_pass(out, Bufs::new(), star_rule)? {
+        if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
