@@ -282,7 +282,11 @@ fn guarded_meshes_every_chunking() {
         assert!(r.guarded > 0, "{s:?} {name}: the guard changes nothing");
         assert!(same_everywhere(&m, &opts, &format!("{name} {s:?}")));
         let strict = opts.strict(true);
-        assert!(!same_everywhere(&m, &strict, &format!("{name} {s:?} strict")));
+        assert!(!same_everywhere(
+            &m,
+            &strict,
+            &format!("{name} {s:?} strict")
+        ));
     }
 }
 

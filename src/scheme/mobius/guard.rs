@@ -40,7 +40,7 @@ use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
-use crate::exec::{chunk_count, parts, Tally, MAX_CHUNKS};
+use crate::exec::{chunk_count, parts, pass, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
 use crate::point::{lin2, Point};
@@ -357,27 +357,32 @@ impl Driver<'_, '_, '_, '_> {
     /// (seed 000 §4.3), which no blend corrects. The weight `τ²` rather than `τ` is measured
     /// (fertility, 2 levels: 60 folded edges with `τ`, 58 with `τ²`, linear 59). The edges
     /// changed are those the guarded pass counted (`Outputs::edges`); nothing changes where
-    /// every star is trusted.
+    /// every star is trusted. One pass over the edges, split into edge ranges
+    /// ([`crate::exec`]): an edge point depends only on itself and the trust.
     pub(super) fn blend_edges_toward_linear(
         &mut self,
         start: usize,
         linear: &LinearEdge<'_>,
     ) -> Result<()> {
         let topo = self.topo;
-        for e in 0..topo.num_edges() as u32 {
-            let h = topo.edge_half_edge(e)?;
-            if topo.twin(h)? == NONE {
-                continue;
+        let trust: &[f64] = self.trust;
+        let ne = topo.num_edges();
+        let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
+        pass(self.exec, out, |first, out, _| {
+            for (e, o) in (first as u32..).zip(out.iter_mut()) {
+                let h = topo.edge_half_edge(e)?;
+                if topo.twin(h)? == NONE {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                let tau = get(trust, a as usize)?.min(get(trust, b as usize)?);
+                if tau < 1.0 {
+                    let w = tau * tau;
+                    *o = lin2(w, *o, 1.0 - w, linear(topo, e)?);
+                }
             }
-            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-            let tau = get(self.trust, a as usize)?.min(get(self.trust, b as usize)?);
-            if tau < 1.0 {
-                let w = tau * tau;
-                let k = start + e as usize;
-                let p = lin2(w, get(self.pos, k)?, 1.0 - w, linear(topo, e)?);
-                set(self.pos, k, p)?;
-            }
-        }
+            Ok(())
+        })?;
         Ok(())
     }
 }
