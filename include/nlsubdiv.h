@@ -515,8 +515,9 @@ typedef struct nls_subdivide_options {
      * thread; with tags the executor is checked but the tagged rules run on the calling
      * thread).
      * What is split: the positions of the linear and spherelike rules, the Möbius vertex
-     * pass (the canonical forms and the rules in them, by vertex ranges), blends and vertex
-     * points, the finiteness checks; the rest of a level is serial (`docs/architecture.md`).
+     * pass and the fold guard's re-evaluation (the canonical forms and the rules in them,
+     * by vertex ranges), blends and vertex points, the finiteness checks; the rest of a
+     * level is serial (`docs/architecture.md`).
      */
     const struct nls_executor *executor;
 } nls_subdivide_options;
