@@ -545,14 +545,15 @@ static void test_bad_arguments(void) {
         CHECK_STATUS(flat_plan(NLS_SCHEME_SPHERELIKE, NLS_SUBDIVIDE_MOBIUS, 1, MESH, x.su, 512, &plan, NULL),
                      NLS_STATUS_INVALID_ARGUMENT);
         CHECK(plan.scratch_u32 == 777 && plan.scratch_points == 777);
-        /* the pyramid: 6 vertices, 20 corners; Möbius: two candidates per corner, and per
-         * vertex the kept canonical form's centre (6 points) and the fold guard's trust and
-         * the form's radius, three values to a point (4 points) */
+        /* the pyramid: 6 vertices, 20 corners; Möbius: two candidates per corner, per
+         * vertex the kept canonical form's centre (6 points), then the fold guard's trust
+         * and the form's radius per vertex and the candidates' slot per corner, three
+         * values to a point (ceil(32 / 3) = 11 points) */
         CHECK_STATUS(nls_mesh_plan_scratch_size(&v, &su), NLS_STATUS_OK);
         CHECK(su == 4 * 20 + 3 * 6);
         CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1, MESH, x.su, su, &plan, NULL),
                      NLS_STATUS_OK);
-        CHECK(plan.scratch_u32 == su && plan.scratch_points == 40 + 6 + 4);
+        CHECK(plan.scratch_u32 == su && plan.scratch_points == 40 + 6 + 11);
         CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_STRICT, 1, MESH, x.su, su, &plan, NULL),
                      NLS_STATUS_OK);
         CHECK(plan.scratch_points == 0);

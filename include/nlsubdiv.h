@@ -519,9 +519,10 @@ typedef struct nls_subdivide_options {
      * `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged` (planning runs on the calling
      * thread; with tags the executor is checked but the tagged rules run on the calling
      * thread).
-     * What is split: the positions of the linear and spherelike rules, the Möbius blends and
-     * vertex points, the finiteness checks; the rest of a level is serial
-     * (`docs/architecture.md`).
+     * What is split: the positions of the linear and spherelike rules, the Möbius vertex
+     * pass and the fold guard's re-evaluation (the canonical forms and the rules in them,
+     * by vertex ranges), blends and vertex points, the finiteness checks; the rest of a
+     * level is serial (`docs/architecture.md`).
      */
     const struct nls_executor *executor;
     /**

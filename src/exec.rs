@@ -2,7 +2,10 @@
 //! range is split into at most [`MAX_CHUNKS`] disjoint, contiguous chunks ([`Chunk`]), and an
 //! [`Executor`] supplied by the caller runs one task per chunk, in any order, on any thread.
 //! The core itself stays single-threaded ([`Serial`] runs the chunks one after the other);
-//! the std layers (`threads/`, the command, the C ABI) bring the threads.
+//! the std layers (`threads/`, the command, the C ABI) bring the threads. A pass that
+//! writes several arrays (the Möbius vertex pass: vertex points, per-vertex values and
+//! candidate slots of a vertex range) hands each chunk its disjoint sub-slice of every
+//! array instead of one output range.
 //!
 //! Every value a task writes depends only on its output index and on what earlier passes
 //! wrote, never on the chunk boundaries, so the output is bit-identical for every thread
@@ -37,27 +40,42 @@ use crate::point::Point;
 /// The largest number of chunks one pass is split into.
 pub const MAX_CHUNKS: usize = 64;
 
-/// One chunk of a pass: a contiguous range of the pass's output and the task's result.
+/// One chunk of a pass: a contiguous range of the pass's output (or, for a pass that
+/// writes several arrays, the chunk's share of each) and the task's result.
 /// Opaque: an [`Executor`] only hands it to the task.
-#[derive(Debug)]
 pub struct Chunk<'a> {
     /// The index of `out[0]` in the pass's output.
     start: usize,
     out: &'a mut [Point],
+    /// The chunk's share of a pass over several arrays, with its work ([`parts`]); `None`
+    /// for a pass over `out`.
+    part: Option<&'a mut (dyn RunPart + Send + Sync + 'a)>,
+    /// The number of elements (output points, or the part's own count).
+    len: usize,
     /// What the task returned; an internal error until the task has run (an executor that
     /// skips a chunk gives an error, never a silently unwritten range).
     result: Result<Tally>,
 }
 
+impl core::fmt::Debug for Chunk<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Chunk")
+            .field("start", &self.start)
+            .field("len", &self.len)
+            .field("result", &self.result)
+            .finish_non_exhaustive()
+    }
+}
+
 impl Chunk<'_> {
     /// The number of output elements of this chunk (for an executor that balances work).
     pub fn len(&self) -> usize {
-        self.out.len()
+        self.len
     }
 
     /// Whether the chunk has no output element.
     pub fn is_empty(&self) -> bool {
-        self.out.is_empty()
+        self.len == 0
     }
 }
 
@@ -133,7 +151,7 @@ where
     F: Fn(usize, &mut [Point], &mut Tally) -> Result<()> + Sync,
 {
     let n = out.len();
-    let k = exec.chunks(n).clamp(1, MAX_CHUNKS).min(n.max(1));
+    let k = chunk_count(exec, n);
     if k <= 1 {
         let mut t = Tally::new();
         f(0, out, &mut t)?;
@@ -157,6 +175,8 @@ fn split_pass(exec: &dyn Executor, out: &mut [Point], k: usize, f: &RangeFn<'_>)
             .try_push(Chunk {
                 start,
                 out: c,
+                part: None,
+                len,
                 result: Err(internal()),
             })
             .map_err(|_| internal())?;
@@ -165,6 +185,97 @@ fn split_pass(exec: &dyn Executor, out: &mut [Point], k: usize, f: &RangeFn<'_>)
     let task = |c: &mut Chunk<'_>| {
         let mut t = Tally::new();
         c.result = f(c.start, c.out, &mut t).map(|()| t);
+    };
+    exec.run(&mut chunks, &task);
+    let mut total = Tally::new();
+    for c in &chunks {
+        total = total.merge(c.result?);
+    }
+    Ok(total)
+}
+
+/// The number of chunks a pass of `len` elements is split into by `exec`: what
+/// [`Executor::chunks`] wants, clamped to `1..=`[`MAX_CHUNKS`] and to `len` ([`pass`] and
+/// [`parts`] split the same way).
+pub(crate) fn chunk_count(exec: &dyn Executor, len: usize) -> usize {
+    exec.chunks(len).clamp(1, MAX_CHUNKS).min(len.max(1))
+}
+
+/// The element range `[start, end)` of chunk `i` of `k` over `len` elements: the ranges of
+/// [`pass`] (`chunks_mut` of `len.div_ceil(k)`), possibly empty at the end.
+pub(crate) fn chunk_range(len: usize, k: usize, i: usize) -> (usize, usize) {
+    let size = len.div_ceil(k.max(1)).max(1);
+    let start = size.saturating_mul(i).min(len);
+    (start, start.saturating_add(size).min(len))
+}
+
+/// The work of one chunk of a pass over several arrays: its share of each array and the
+/// function that fills them ([`parts`]).
+pub(crate) trait RunPart {
+    /// Runs the chunk's work; its tally.
+    fn run(&mut self) -> Result<Tally>;
+}
+
+/// One part bound to the pass's function.
+struct Bound<'f, 'p, P, F> {
+    part: &'p mut P,
+    f: &'f F,
+}
+
+impl<P, F> RunPart for Bound<'_, '_, P, F>
+where
+    F: Fn(&mut P, &mut Tally) -> Result<()>,
+{
+    fn run(&mut self) -> Result<Tally> {
+        let mut t = Tally::new();
+        (self.f)(self.part, &mut t).map(|()| t)
+    }
+}
+
+/// Runs `f(part, tally)` on every part through `exec` and combines the results as [`pass`]
+/// does: the tallies merged, or the error of the lowest part that failed. For a pass whose
+/// chunks write several arrays (each part holds its disjoint sub-slices, made by the caller
+/// with [`chunk_count`] and [`chunk_range`]); `len(part)` is its element count for the
+/// executor. One part runs inline.
+pub(crate) fn parts<P, F>(
+    exec: &dyn Executor,
+    parts: &mut [P],
+    len: impl Fn(&P) -> usize,
+    f: F,
+) -> Result<Tally>
+where
+    P: Send + Sync,
+    F: Fn(&mut P, &mut Tally) -> Result<()> + Sync,
+{
+    if let [one] = parts {
+        let mut t = Tally::new();
+        f(one, &mut t)?;
+        return Ok(t);
+    }
+    let mut bound = ArrayVec::<Bound<'_, '_, P, F>, MAX_CHUNKS>::new();
+    let mut sizes = ArrayVec::<usize, MAX_CHUNKS>::new();
+    for p in parts.iter_mut() {
+        sizes.try_push(len(p)).map_err(|_| internal())?;
+        bound
+            .try_push(Bound { part: p, f: &f })
+            .map_err(|_| internal())?;
+    }
+    let mut chunks = ArrayVec::<Chunk<'_>, MAX_CHUNKS>::new();
+    for (i, (b, n)) in bound.iter_mut().zip(sizes.iter()).enumerate() {
+        chunks
+            .try_push(Chunk {
+                start: i,
+                out: &mut [],
+                part: Some(b),
+                len: *n,
+                result: Err(internal()),
+            })
+            .map_err(|_| internal())?;
+    }
+    let task = |c: &mut Chunk<'_>| {
+        if let Some(p) = c.part.as_mut() {
+            c.result = p.run();
+        }
     };
     exec.run(&mut chunks, &task);
     let mut total = Tally::new();

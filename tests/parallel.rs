@@ -3,6 +3,9 @@
 //! bits, the report and the errors of [`nlsubdiv::subdivide_with`] equal the serial
 //! [`nlsubdiv::subdivide`]'s for 1, 2, 3, 7 and 16 threads, odd chunkings (more chunks than
 //! threads, one chunk per output element on small levels) and chunks run in reverse order.
+//! The Möbius vertex pass is one of the split passes (its vertex ranges write disjoint slot
+//! ranges of the candidates); meshes with isolated vertices, ears, fallbacks and stars the
+//! fold guard re-evaluates are among the cases.
 #![allow(
     clippy::indexing_slicing,
     clippy::unwrap_used,
@@ -229,6 +232,146 @@ fn large_levels_every_chunking() {
     for s in [Scheme::CatmullClark, Scheme::DooSabin] {
         let opts = Options::new(s).mobius(true).levels(2);
         assert!(same_everywhere(&m, &opts, &format!("Möbius {s:?}")));
+    }
+}
+
+/// `m` with isolated vertices (no face) at the front, in the middle and at the end of the
+/// vertex order: a vertex range then owns no candidate slot, or its slots start after
+/// isolated vertices.
+fn with_isolated(m: &OwnedMesh) -> OwnedMesh {
+    let mid = (m.positions.len() / 2) as u32;
+    let mut positions = vec![[9.0, 9.0, 9.0]];
+    for (i, p) in m.positions.iter().enumerate() {
+        if i as u32 == mid {
+            positions.push([-9.0, 9.0, 9.0]);
+        }
+        positions.push(*p);
+    }
+    positions.push([9.0, -9.0, 9.0]);
+    let indices = m
+        .indices
+        .iter()
+        .map(|&v| v + 1 + u32::from(v >= mid))
+        .collect();
+    OwnedMesh {
+        positions,
+        offsets: m.offsets.clone(),
+        indices,
+    }
+}
+
+/// The Möbius vertex pass on vertex ranges that own no star, or whose stars' candidates
+/// start after isolated vertices; with ears (grid corners) and degenerate stars (fallbacks).
+#[test]
+fn mobius_vertex_ranges_around_isolated_vertices() {
+    let mut flat = quad_grid(6, 6);
+    flat.positions[30] = flat.positions[31];
+    let meshes = [
+        (
+            "quad grid",
+            with_isolated(&jitter(&quad_grid(5, 4), 0.05, 1)),
+        ),
+        ("tri grid", with_isolated(&jitter(&tri_grid(4, 5), 0.05, 2))),
+        ("fan", with_isolated(&fan(7))),
+        ("coincident", with_isolated(&flat)),
+    ];
+    let mut ok = 0;
+    let mut fallbacks = 0;
+    for (name, m) in &meshes {
+        for s in Scheme::ALL {
+            if !s.has_mobius_form() {
+                continue;
+            }
+            for (mode, opts) in [
+                ("guarded", Options::new(s).mobius(true).levels(2)),
+                ("literal", Options::new(s).mobius(true).literal(true)),
+                ("strict", Options::new(s).mobius(true).strict(true)),
+            ] {
+                let what = format!("{name} {s:?} Möbius {mode}");
+                if same_everywhere(m, &opts, &what) {
+                    ok += 1;
+                    fallbacks += run(m, &opts).unwrap().1.fallbacks;
+                }
+            }
+        }
+    }
+    assert!(ok > 40, "only {ok} cases succeeded");
+    assert!(fallbacks > 0, "no case had a fallback");
+}
+
+/// Shared meshes on which the fold guard re-evaluates stars (`tests/mesh_fold_guard.rs`):
+/// the guarded counts and firsts and the output are the serial run's for every chunking (the
+/// re-evaluation is split into vertex ranges too); in strict mode, the serial run's refusal.
+#[test]
+fn guarded_meshes_every_chunking() {
+    let test = "parallel::guarded_meshes_every_chunking";
+    let Some(dir) = shared_meshes(test) else {
+        return;
+    };
+    for (s, name) in [
+        (Scheme::ModifiedButterfly, "pawn_tri"),
+        (Scheme::CatmullClark, "spot_quad"),
+        (Scheme::Loop, "bunny"),
+    ] {
+        let path = dir.join(format!("{name}.off"));
+        let Ok(m) = read_off(&path) else {
+            skip(
+                test,
+                &format!("{} not readable; not checked", path.display()),
+            );
+            continue;
+        };
+        let opts = Options::new(s).mobius(true);
+        let (_, r) = run(&m, &opts).unwrap();
+        assert!(r.guarded > 0, "{s:?} {name}: the guard changes nothing");
+        assert!(same_everywhere(&m, &opts, &format!("{name} {s:?}")));
+        let strict = opts.strict(true);
+        assert!(!same_everywhere(
+            &m,
+            &strict,
+            &format!("{name} {s:?} strict")
+        ));
+    }
+}
+
+/// Records the element count of every pass an executor is handed.
+struct Census {
+    chunks: usize,
+    passes: std::sync::Mutex<Vec<usize>>,
+}
+
+impl Executor for Census {
+    fn chunks(&self, _len: usize) -> usize {
+        self.chunks
+    }
+
+    fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+        let n = chunks.iter().map(|c| c.len()).sum();
+        self.passes.lock().unwrap().push(n);
+        chunks.iter_mut().for_each(task);
+    }
+}
+
+/// The Möbius vertex pass itself is split: a literal Loop step on a closed mesh hands the
+/// executor two passes over the `V` vertices (the vertex pass and the completion of the
+/// vertex points), then the `E` edge blends and the finiteness check; Catmull–Clark also
+/// the face blends.
+#[test]
+fn the_vertex_pass_is_split() {
+    let m = jitter(&tri_torus(6, 5), 0.03, 4);
+    let (nv, nf) = (m.positions.len(), m.num_faces());
+    let ne = m.indices.len() / 2;
+    for (s, passes) in [
+        (Scheme::Loop, vec![nv, nv, ne, nv + ne]),
+        (Scheme::CatmullClark, vec![nv, nv, nf, ne, nv + ne + nf]),
+    ] {
+        let census = Census {
+            chunks: 3,
+            passes: std::sync::Mutex::new(Vec::new()),
+        };
+        let opts = Options::new(s).mobius(true).literal(true);
+        run_with(&m, &opts, &census).unwrap();
+        assert_eq!(census.passes.into_inner().unwrap(), passes, "{s:?}");
     }
 }
 

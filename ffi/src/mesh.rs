@@ -176,9 +176,10 @@ pub struct nls_subdivide_options {
     /// `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged` (planning runs on the calling
     /// thread; with tags the executor is checked but the tagged rules run on the calling
     /// thread).
-    /// What is split: the positions of the linear and spherelike rules, the Möbius blends and
-    /// vertex points, the finiteness checks; the rest of a level is serial
-    /// (`docs/architecture.md`).
+    /// What is split: the positions of the linear and spherelike rules, the Möbius vertex
+    /// pass and the fold guard's re-evaluation (the canonical forms and the rules in them,
+    /// by vertex ranges), blends and vertex points, the finiteness checks; the rest of a
+    /// level is serial (`docs/architecture.md`).
     pub executor: *const nls_executor,
     /// NULL (the default, and what a zero-initialised struct holds): every vertex takes
     /// `linear_weight`. Otherwise, with `NLS_SUBDIVIDE_MOBIUS`, `mesh.vertex_count` doubles:
@@ -1350,9 +1351,9 @@ mod tests {
         };
         assert_eq!(s, Status::Ok);
         // Points: two candidates per corner (4 corners), and per vertex the kept form's
-        // centre (4) and the fold guard's trust and the form's radius (⌈8 / 3⌉ = 3: three
-        // values to a point).
-        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 3));
+        // centre (4), then the fold guard's trust and the form's radius per vertex and the
+        // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point).
+        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 4));
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {

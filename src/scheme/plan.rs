@@ -60,7 +60,8 @@ pub struct Plan {
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and,
     ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
-    ///   and the form's radius (two `f64`, three to a point) — with tags, at least the cut
+    ///   and the form's radius (two `f64`), and per corner the slot of its candidates (one
+    ///   `f64`; `f64` values three to a point) — with tags, at least the cut
     ///   level's positions, its step's output and candidates; with a
     ///   spectrum weight below 1 ([`Options::spectrum`]) or per-vertex weights
     ///   ([`plan_weighted`]), the linear positions of the largest level written; with
@@ -93,7 +94,8 @@ impl Plan {
     }
 
     /// The candidate points of the largest Möbius step: two per corner of the largest level
-    /// stepped from, and per vertex a point and two `f64` for the fold guard
+    /// stepped from and an `f64` per corner for their slots, and per vertex a point and two
+    /// `f64` for the fold guard
     /// ([`super::mobius::candidate_points`]; 0 for zero levels); with tags, at least the
     /// points of the largest tagged step ([`Plan::crease`]).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {

@@ -4,9 +4,11 @@
 //! Candidates live per half-edge: half-edge `h` starts at the vertex whose canonical form
 //! produced them (seed 000 §4.1 step 3), so each slot has exactly one writer and the blends
 //! (step 4) read the candidates of an edge's two ends, or of a face's corners, by
-//! half-edge.
+//! half-edge. The slots are in vertex-major order (`slots.rs`), so that a vertex range
+//! owns a contiguous range of them.
 
 use super::form::MISSING;
+use super::slots::slot_of;
 use super::{MobiusOptions, MobiusReport};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::exec::{Executor, Tally};
@@ -18,10 +20,14 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     pub(super) topo: &'t Topology<'m, 's>,
     /// The output positions of the step (the sizes of the scheme's pattern).
     pub(super) pos: &'o mut [Point],
-    /// Per half-edge `h`: the candidate of `edge(h)` from the form of `origin(h)`.
+    /// At slot `slot(h)` of half-edge `h`: the candidate of `edge(h)` from the form of
+    /// `origin(h)`.
     pub(super) edge_c: &'o mut [Point],
-    /// Per half-edge (corner) `h`: the candidate of `face(h)` from the form of `origin(h)`.
+    /// At slot `slot(h)` of half-edge (corner) `h`: the candidate of `face(h)` from the form
+    /// of `origin(h)`.
     pub(super) face_c: &'o mut [Point],
+    /// Per half-edge: its slot in `edge_c` and `face_c` (`slots.rs`).
+    pub(super) slots: &'o [f64],
     /// Per vertex: the fold guard's trust in its star (`trust.rs`), 1 where the paper's
     /// rules are kept.
     pub(super) trust: &'o mut [f64],
@@ -43,17 +49,18 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
-    /// A driver with every candidate [`MISSING`]; `form` holds the per-vertex trust, centres
-    /// and radii of the fold guard.
+    /// A driver with every candidate [`MISSING`]; `cands` holds the edge and face candidates
+    /// and their slots (`slots.rs`), `form` the per-vertex trust, centres and radii of the
+    /// fold guard.
     pub(super) fn new(
         topo: &'t Topology<'m, 's>,
         pos: &'o mut [Point],
-        edge_c: &'o mut [Point],
-        face_c: &'o mut [Point],
+        cands: (&'o mut [Point], &'o mut [Point], &'o [f64]),
         form: (&'o mut [f64], &'o mut [Point], &'o mut [f64]),
         opts: MobiusOptions,
         exec: &'o dyn Executor,
     ) -> Self {
+        let (edge_c, face_c, slots) = cands;
         let (trust, centre, radius) = form;
         for c in edge_c.iter_mut().chain(face_c.iter_mut()) {
             *c = MISSING;
@@ -69,6 +76,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             pos,
             edge_c,
             face_c,
+            slots,
             trust,
             centre,
             radius,
@@ -78,6 +86,12 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             exec,
             corners: &[],
         }
+    }
+
+    /// The slot of half-edge `h` in `edge_c` and `face_c`.
+    #[inline(always)]
+    pub(super) fn slot(&self, h: u32) -> Result<usize> {
+        slot_of(self.slots, h)
     }
 
     /// Adds the fallbacks a pass counted ([`crate::exec::pass`]) to the report.

@@ -68,7 +68,7 @@ impl Driver<'_, '_, '_, '_> {
                     .face_centroid(topo, f, &mut pts)
                     .and_then(|c| form.back(c))
                 {
-                    set(self.face_c, h as usize, c)?;
+                    set(self.face_c, self.slot(h)?, c)?;
                 }
             }
         }

@@ -8,6 +8,7 @@ use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
 use super::form::{present, MISSING};
+use super::slots::slot_of;
 use crate::blend::f4_hinted;
 use crate::error::Result;
 use crate::exec::pass;
@@ -44,12 +45,13 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let ne = topo.num_edges();
         let edge_c: &[Point] = self.edge_c;
+        let slots: &[f64] = self.slots;
         let corners: &[u32] = self.corners;
         let strict = self.strict;
         let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
         let t = pass(self.exec, out, |first, out, tally| {
             let mut f = |k: usize| chunk_fallback(strict, tally, start + k);
-            blend_edge_range(topo, edge_c, corners, first, out, &mut f, linear)
+            blend_edge_range(topo, (edge_c, slots), corners, first, out, &mut f, linear)
         })?;
         self.add_fallbacks(t);
         Ok(())
@@ -61,7 +63,7 @@ impl Driver<'_, '_, '_, '_> {
 #[allow(clippy::too_many_arguments)]
 fn blend_edge_range(
     topo: &Topology<'_, '_>,
-    edge_c: &[Point],
+    (edge_c, slots): (&[Point], &[f64]),
     corners: &[u32],
     first: usize,
     out: &mut [Point],
@@ -93,7 +95,10 @@ fn blend_edge_range(
             // alone where it has one (unless it is a corner too): a corner is no smooth
             // point, and its sector's form extrapolates one (docs/creases.md).
             let corner = |v: u32| corners.get(v as usize).is_some_and(|&c| c != 0);
-            let (mut ca, mut cb) = (get(edge_c, h as usize)?, get(edge_c, t as usize)?);
+            let (mut ca, mut cb) = (
+                get(edge_c, slot_of(slots, h)?)?,
+                get(edge_c, slot_of(slots, t)?)?,
+            );
             if corner(va) && !corner(vb) && present(&cb) {
                 ca = MISSING;
             } else if corner(vb) && !corner(va) && present(&ca) {

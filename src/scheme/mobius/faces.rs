@@ -5,6 +5,7 @@
 
 use super::driver::{chunk_fallback, Driver};
 use super::form::{present, FacePts};
+use super::slots::slot_of;
 use crate::blend;
 use crate::error::Result;
 use crate::exec::pass;
@@ -20,6 +21,7 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let nf = topo.num_faces();
         let face_c: &[Point] = self.face_c;
+        let slots: &[f64] = self.slots;
         let strict = self.strict;
         let out = self.pos.get_mut(start..start + nf).ok_or(internal())?;
         let t = pass(self.exec, out, |first, out, tally| {
@@ -30,7 +32,7 @@ impl Driver<'_, '_, '_, '_> {
                 cands.clear();
                 for h in topo.face_half_edges(f)? {
                     cands
-                        .try_push(get(face_c, h as usize)?)
+                        .try_push(get(face_c, slot_of(slots, h)?)?)
                         .map_err(|_| internal())?;
                 }
                 let p = if cands.iter().all(present) {

@@ -28,15 +28,19 @@
 //! Möbius-invariant. A mesh without a distrusted star gets the paper's output bit for bit
 //! (steps 4–6 do nothing).
 
-use super::driver::Driver;
+use arrayvec::ArrayVec;
+
+use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
 use super::form::{present, FacePts, Frame, Spokes};
 use super::memo::StarForm;
+use super::slots::first_slot;
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
-use super::vertex_pass::Star;
+use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
+use crate::exec::{chunk_count, parts, pass, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
 use crate::point::{lin2, Point};
@@ -82,7 +86,7 @@ pub(super) struct Outputs {
     pub(super) faces: Option<usize>,
 }
 
-impl Driver<'_, '_, '_, '_> {
+impl Part<'_, '_, '_> {
     /// Step 1 (module docs): the spread and candidate-position terms of the trust of `star`,
     /// from its ring's images `ring` and its edge candidates `normalised` (spoke order,
     /// normalised frame, not yet mapped back). Interior stars in the canonical frame only;
@@ -97,21 +101,20 @@ impl Driver<'_, '_, '_, '_> {
             return Ok(());
         }
         if star.boundary {
-            return set(self.trust, star.v as usize, EXEMPT);
+            return self.set_trust(star.v, EXEMPT, None);
         }
-        if let Some(cf) = star.form.canonical() {
-            set(self.centre, star.v as usize, cf.c)?;
-            set(self.radius, star.v as usize, cf.r)?;
-        }
+        let form = star.form.canonical().map(|cf| (cf.c, cf.r));
         let mut tau = spread_trust(ring);
         for (c, e) in ring.iter().zip(normalised.iter()) {
             if present(e) {
                 tau = tau.min(position_trust(*e, *c));
             }
         }
-        set(self.trust, star.v as usize, tau)
+        self.set_trust(star.v, tau, form)
     }
+}
 
+impl Driver<'_, '_, '_, '_> {
     /// Step 3 (module docs): lowers the trust of both end stars of every interior edge
     /// between two interior stars to the F4-angle term of the blend of their candidates
     /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
@@ -125,7 +128,10 @@ impl Driver<'_, '_, '_, '_> {
             if t == NONE {
                 continue;
             }
-            let (ca, cb) = (get(self.edge_c, h as usize)?, get(self.edge_c, t as usize)?);
+            let (ca, cb) = (
+                get(self.edge_c, self.slot(h)?)?,
+                get(self.edge_c, self.slot(t)?)?,
+            );
             if !present(&ca) || !present(&cb) {
                 continue;
             }
@@ -144,18 +150,20 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// Steps 4 and 5 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
-    /// form `m_τ`, in vertex order, after counting the output vertices `out` says the star
-    /// changes (or refusing the first in strict mode). Whether any star was evaluated (the
-    /// drivers then blend again). Without the guard, nothing.
-    pub(super) fn guarded_pass(
+    /// form `m_τ`, after counting the output vertices `out` says the star changes (or
+    /// refusing the first in strict mode), with buffers from `bufs` (one set per chunk).
+    /// Whether any star was evaluated (the drivers then blend again). Without the guard,
+    /// nothing. The re-evaluation is split into vertex ranges as the vertex pass is: the
+    /// trust is only read by then, and a star writes only its own vertex point and slots.
+    pub(super) fn guarded_pass<B>(
         &mut self,
         out: Outputs,
-        mut rule: impl FnMut(&mut Self, &mut Star<'_, Spectrum>) -> Result<()>,
+        bufs: impl Fn() -> B + Sync,
+        rule: impl Fn(&mut Part<'_, '_, '_>, &mut Star<'_, Spectrum>, &mut B) -> Result<()> + Sync,
     ) -> Result<bool> {
         if !self.guard {
             return Ok(false);
         }
-        let mut any = false;
         let topo = self.topo;
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
@@ -171,28 +179,107 @@ impl Driver<'_, '_, '_, '_> {
                 set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
             }
         }
-        for v in 0..topo.num_vertices() as u32 {
-            let tau = get(self.trust, v as usize)?;
-            if tau >= 1.0 {
-                continue;
+        let (slots, strict) = (self.slots, self.strict);
+        let run = |g: &mut Guarded<'_, '_, '_>, tally: &mut Tally| -> Result<()> {
+            let mut form = StarForm::blank();
+            let mut spokes = Spokes::new();
+            let mut b = bufs();
+            for v in g.part.vertices() {
+                let tau = get(g.trust, v as usize)?;
+                if tau >= 1.0 {
+                    continue;
+                }
+                // Only interior stars with a form are ever distrusted (`trust_star`).
+                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes)? else {
+                    continue;
+                };
+                count_guarded(topo, g.trust, v, &spokes, out, strict, tally)?;
+                let slot = first_slot(topo, slots, v)?.ok_or(internal())?;
+                let cf = form.form();
+                let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
+                let mut star = Star {
+                    v,
+                    boundary,
+                    slot,
+                    spokes: &spokes,
+                    form: &mut frame,
+                };
+                rule(&mut g.part, &mut star, &mut b)?;
+                g.any = true;
             }
-            // Only interior stars with a form are ever distrusted (`trust_star`).
-            let Some(boundary) = self.retarget(v, &mut form, &mut spokes)? else {
-                continue;
+            Ok(())
+        };
+        let k = chunk_count(self.exec, topo.num_vertices());
+        let (t, any) = if k <= 1 {
+            let trust: &[f64] = self.trust;
+            let a = Arrays {
+                pos: self.pos,
+                trust: &mut [],
+                centre: &mut [],
+                radius: &mut [],
+                edge_c: self.edge_c,
+                face_c: self.face_c,
             };
-            self.count_guarded(v, &spokes, out)?;
-            let cf = form.form();
-            let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
-            let mut star = Star {
-                v,
-                boundary,
-                spokes: &spokes,
-                form: &mut frame,
+            let mut g = Guarded {
+                part: Part::whole(topo, self.guard, a),
+                trust,
+                any: false,
             };
-            rule(self, &mut star)?;
-            any = true;
+            let mut t = Tally::new();
+            run(&mut g, &mut t)?;
+            (t, g.any)
+        } else {
+            self.split_guarded_pass(k, out.vertex, &run)?
+        };
+        let r = &mut self.report;
+        let merged = Tally {
+            count: r.guarded,
+            first: r.first_guarded,
         }
+        .merge(t);
+        r.guarded = merged.count;
+        r.first_guarded = merged.first;
         Ok(any)
+    }
+
+    /// The re-evaluation of [`Driver::guarded_pass`] in `k ≥ 2` vertex ranges (out of line:
+    /// the serial path keeps a small stack frame): the guarded tally and whether any star was
+    /// evaluated.
+    #[inline(never)]
+    fn split_guarded_pass(
+        &mut self,
+        k: usize,
+        vertex_points: bool,
+        run: &GuardedFn<'_>,
+    ) -> Result<(Tally, bool)> {
+        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+        let trust: &[f64] = self.trust;
+        let nv = topo.num_vertices();
+        let pos: &mut [Point] = if vertex_points {
+            self.pos.get_mut(..nv).ok_or(internal())?
+        } else {
+            &mut []
+        };
+        let a = Arrays {
+            pos,
+            trust: &mut [],
+            centre: &mut [],
+            radius: &mut [],
+            edge_c: self.edge_c,
+            face_c: self.face_c,
+        };
+        let mut ranges = ArrayVec::<Guarded<'_, '_, '_>, MAX_CHUNKS>::new();
+        for part in Part::ranges(topo, slots, guard, k, a)? {
+            ranges
+                .try_push(Guarded {
+                    part,
+                    trust,
+                    any: false,
+                })
+                .map_err(|_| internal())?;
+        }
+        let t = parts(exec, &mut ranges, |g| g.part.vertices().len(), run)?;
+        Ok((t, ranges.iter().any(|g| g.any)))
     }
 
     /// Keeps the fallbacks the blends of the paper's candidates counted out of the report
@@ -202,74 +289,63 @@ impl Driver<'_, '_, '_, '_> {
         self.report.fallbacks = before.fallbacks;
         self.report.first_fallback = before.first_fallback;
     }
+}
 
-    /// Counts the output vertices a distrusted star `v` changes: its vertex point, the points
-    /// of its interior edges (once per edge: at the lower distrusted end), the points of its
-    /// faces (once per face: at the first distrusted corner in face order).
-    fn count_guarded(&mut self, v: u32, spokes: &Spokes, out: Outputs) -> Result<()> {
-        let topo = self.topo;
-        let distrusted = |d: &Self, u: u32| -> Result<bool> { Ok(get(d.trust, u as usize)? < 1.0) };
-        if out.vertex {
-            self.guarded(v as usize)?;
+/// One vertex range of the guard's re-evaluation: its share of the arrays, the trust of every
+/// vertex (read only), whether a star of the range was evaluated.
+struct Guarded<'a, 'm, 's> {
+    part: Part<'a, 'm, 's>,
+    trust: &'a [f64],
+    any: bool,
+}
+
+/// The work of one vertex range of the guard's re-evaluation.
+type GuardedFn<'f> = dyn Fn(&mut Guarded<'_, '_, '_>, &mut Tally) -> Result<()> + Sync + 'f;
+
+/// Counts, in `tally`, the output vertices a distrusted star `v` changes: its vertex point,
+/// the points of its interior edges (once per edge: at the lower distrusted end), the points
+/// of its faces (once per face: at the first distrusted corner in face order); in strict mode
+/// the first is refused (the guard is a fallback toward the linear rule, so it shares the
+/// fallback's status).
+fn count_guarded(
+    topo: &Topology<'_, '_>,
+    trust: &[f64],
+    v: u32,
+    spokes: &Spokes,
+    out: Outputs,
+    strict: bool,
+    tally: &mut Tally,
+) -> Result<()> {
+    let distrusted = |u: u32| -> Result<bool> { Ok(get(trust, u as usize)? < 1.0) };
+    if out.vertex {
+        chunk_fallback(strict, tally, v as usize)?;
+    }
+    for s in spokes.iter() {
+        if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+            continue;
         }
+        if !distrusted(s.neighbour)? || v < s.neighbour {
+            chunk_fallback(strict, tally, out.edges + s.edge as usize)?;
+        }
+    }
+    if let Some(start) = out.faces {
         for s in spokes.iter() {
-            if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+            if s.face == NONE {
                 continue;
             }
-            if !distrusted(self, s.neighbour)? || v < s.neighbour {
-                self.guarded(out.edges + s.edge as usize)?;
-            }
-        }
-        if let Some(start) = out.faces {
-            for s in spokes.iter() {
-                if s.face == NONE {
-                    continue;
-                }
-                let mut first = NONE;
-                for &u in topo.face_vertices(s.face)? {
-                    if distrusted(self, u)? {
-                        first = u;
-                        break;
-                    }
-                }
-                if first == v {
-                    self.guarded(start + s.face as usize)?;
+            let mut first = NONE;
+            for &u in topo.face_vertices(s.face)? {
+                if distrusted(u)? {
+                    first = u;
+                    break;
                 }
             }
-        }
-        Ok(())
-    }
-
-    /// Keeps the edge candidates `normalised[j]` (frame of `star`, spoke order) mapped back
-    /// with the star's frame, for every spoke that has an outgoing half-edge and a candidate.
-    pub(super) fn keep_edges_from<F: Frame>(
-        &mut self,
-        star: &Star<'_, F>,
-        normalised: &[Point],
-    ) -> Result<()> {
-        for (s, c) in star.spokes.iter().zip(normalised.iter()) {
-            if s.half_edge != NONE && present(c) {
-                if let Ok(b) = star.form.back(*c) {
-                    if present(&b) {
-                        set(self.edge_c, s.half_edge as usize, b)?;
-                    }
-                }
+            if first == v {
+                chunk_fallback(strict, tally, start + s.face as usize)?;
             }
         }
-        Ok(())
     }
-
-    /// Writes the vertex point `normalised` (frame of `star`) mapped back, when it exists.
-    pub(super) fn keep_vertex_from<F: Frame>(
-        &mut self,
-        star: &Star<'_, F>,
-        normalised: Option<Point>,
-    ) -> Result<()> {
-        if let Some(q) = normalised.and_then(|p| star.form.back(p).ok()) {
-            set(self.pos, star.v as usize, q)?;
-        }
-        Ok(())
-    }
+    Ok(())
 }
 
 impl Driver<'_, '_, '_, '_> {
@@ -281,27 +357,32 @@ impl Driver<'_, '_, '_, '_> {
     /// (seed 000 §4.3), which no blend corrects. The weight `τ²` rather than `τ` is measured
     /// (fertility, 2 levels: 60 folded edges with `τ`, 58 with `τ²`, linear 59). The edges
     /// changed are those the guarded pass counted (`Outputs::edges`); nothing changes where
-    /// every star is trusted.
+    /// every star is trusted. One pass over the edges, split into edge ranges
+    /// ([`crate::exec`]): an edge point depends only on itself and the trust.
     pub(super) fn blend_edges_toward_linear(
         &mut self,
         start: usize,
         linear: &LinearEdge<'_>,
     ) -> Result<()> {
         let topo = self.topo;
-        for e in 0..topo.num_edges() as u32 {
-            let h = topo.edge_half_edge(e)?;
-            if topo.twin(h)? == NONE {
-                continue;
+        let trust: &[f64] = self.trust;
+        let ne = topo.num_edges();
+        let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
+        pass(self.exec, out, |first, out, _| {
+            for (e, o) in (first as u32..).zip(out.iter_mut()) {
+                let h = topo.edge_half_edge(e)?;
+                if topo.twin(h)? == NONE {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                let tau = get(trust, a as usize)?.min(get(trust, b as usize)?);
+                if tau < 1.0 {
+                    let w = tau * tau;
+                    *o = lin2(w, *o, 1.0 - w, linear(topo, e)?);
+                }
             }
-            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-            let tau = get(self.trust, a as usize)?.min(get(self.trust, b as usize)?);
-            if tau < 1.0 {
-                let w = tau * tau;
-                let k = start + e as usize;
-                let p = lin2(w, get(self.pos, k)?, 1.0 - w, linear(topo, e)?);
-                set(self.pos, k, p)?;
-            }
-        }
+            Ok(())
+        })?;
         Ok(())
     }
 }

@@ -45,7 +45,8 @@
 //!   [`doo_sabin_star`] (`rules/`, one file per scheme);
 //! * steps 1–3 per vertex: `form.rs` (the canonical form of a star given by points and the
 //!   conventions of the normalised frame), `memo.rs` (the form of a mesh vertex with a memo
-//!   of canonical images), `vertex_pass.rs` (the pass every driver runs), `ears.rs`
+//!   of canonical images), `vertex_pass.rs` (the pass every driver runs, split into
+//!   vertex ranges), `slots.rs` (the vertex-major slots of the candidates), `ears.rs`
 //!   (substitute forms for ears);
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
 //!   (boundary curves, closed or open between corners);
@@ -69,6 +70,7 @@ mod form;
 mod guard;
 mod memo;
 mod rules;
+mod slots;
 mod spectrum;
 mod trust;
 mod vertex_pass;
@@ -124,14 +126,16 @@ impl Default for MobiusReport {
 
 /// The candidate points one step needs on a level of `num_vertices` vertices and
 /// `num_corners` corners (= half-edges): an edge candidate and a face candidate per
-/// half-edge, then per vertex the centre of its canonical form (a point) and the fold
-/// guard's trust and the form's radius (two `f64`, three to a point).
+/// half-edge, then per vertex the centre of its canonical form (a point), then per vertex
+/// the fold guard's trust and the form's radius and per half-edge its candidates' slot
+/// (`slots.rs`), `f64` values three to a point.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
 pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Result<usize> {
     num_vertices
         .checked_mul(2)
+        .and_then(|f| f.checked_add(num_corners))
         .and_then(|f| f.checked_add(2))
         .map(|f| f / 3)
         .and_then(|f| f.checked_add(num_vertices))
@@ -194,9 +198,11 @@ pub(crate) fn step(
         .as_flattened_mut()
         .split_at_mut_checked(nv)
         .ok_or(internal())?;
-    let radius = rest.get_mut(..nv).ok_or(internal())?;
+    let (radius, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
+    let slot_map = rest.get_mut(..nh).ok_or(internal())?;
+    slots::write(topo, slot_map)?;
     let form = (trust, centre, radius);
-    let mut d = Driver::new(topo, pos, edge_c, face_c, form, opts, exec);
+    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
     d.corners = corners;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the

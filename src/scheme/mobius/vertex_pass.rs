@@ -1,19 +1,29 @@
-//! The per-vertex pass of every Möbius driver (seed 000 §4.1 steps 1–3): for each vertex in
-//! index order, the canonical form of its star ([`StarForm`]), the images of its 1-ring (and
-//! of whatever else the scheme's rule reads), the scheme's rule in that form, the results
-//! mapped back and kept as candidates for the blends, or as vertex points.
+//! The per-vertex pass of every Möbius driver (seed 000 §4.1 steps 1–3): for each vertex,
+//! the canonical form of its star ([`StarForm`]), the images of its 1-ring (and of whatever
+//! else the scheme's rule reads), the scheme's rule in that form, the results mapped back and
+//! kept as candidates for the blends, or as vertex points.
 //!
 //! Isolated vertices, *ears* (boundary vertices with one face, whose form sends the opposite
 //! corner of a quad to infinity: their contributions come from another corner's form,
 //! [`super::ears`]) and stars without a canonical form are skipped; what they would have
 //! given takes its linear rule later, counted as a fallback.
+//!
+//! The pass is split into vertex ranges ([`crate::exec::parts`]). A star writes only its own
+//! vertex's values and the candidates of its own half-edges, whose slots are contiguous and
+//! follow the vertex order (`slots.rs`), so each range owns a [`Part`]: disjoint sub-slices
+//! of every array the pass writes. Each chunk re-targets its own [`StarForm`] (the memo only
+//! ever caches bit-identical images), so no value depends on the chunking; the lowest failing
+//! chunk's error is the serial first error.
+
+use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
 use super::form::{present, FacePts, Frame, Ring, Spokes, MISSING};
 use super::memo::StarForm;
+use super::slots::{first_slot, slot_at_or_after};
 use crate::error::Result;
-use crate::exec::pass;
-use crate::mesh::{internal, set, Topology, NONE};
+use crate::exec::{chunk_count, chunk_range, parts, pass, Tally, MAX_CHUNKS};
+use crate::mesh::{internal, Topology, NONE};
 use crate::point::Point;
 
 /// One vertex star with the frame its rules are evaluated in (its canonical form, or the
@@ -23,6 +33,9 @@ pub(super) struct Star<'p, F: Frame = StarForm> {
     pub(super) v: u32,
     /// Whether `v` lies on the boundary (its star is open).
     pub(super) boundary: bool,
+    /// The slot of the candidates of the star's first spoke (`slots.rs`); spoke `j`'s is
+    /// `slot + j`.
+    pub(super) slot: usize,
     /// The spokes of `v`, counter-clockwise from the star's first spoke
     /// ([`Topology::star`]).
     pub(super) spokes: &'p Spokes,
@@ -74,7 +87,243 @@ impl<F: Frame> Star<'_, F> {
     }
 }
 
-impl Driver<'_, '_, '_, '_> {
+/// One vertex range's share of what the vertex pass writes: the vertex points and the fold
+/// guard's per-vertex values of vertices `v0..v1`, and the candidate slots `k0..` of their
+/// stars. The guard's re-evaluation writes through a part spanning every vertex.
+pub(super) struct Part<'a, 'm, 's> {
+    pub(super) topo: &'a Topology<'m, 's>,
+    /// Whether the fold guard runs (its trust is measured in the paper's pass).
+    pub(super) guard: bool,
+    v0: usize,
+    v1: usize,
+    k0: usize,
+    /// The vertex points of `v0..v1` (empty for a pass that writes none).
+    pos: &'a mut [Point],
+    trust: &'a mut [f64],
+    centre: &'a mut [Point],
+    radius: &'a mut [f64],
+    edge_c: &'a mut [Point],
+    face_c: &'a mut [Point],
+}
+
+/// The work of one vertex range of the vertex pass.
+type PartFn<'f> = dyn Fn(&mut Part<'_, '_, '_>, &mut Tally) -> Result<()> + Sync + 'f;
+
+/// The first `n` elements of `*s`, which keeps the rest.
+fn split_off<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
+    let (a, b) = core::mem::take(s)
+        .split_at_mut_checked(n)
+        .ok_or(internal())?;
+    *s = b;
+    Ok(a)
+}
+
+/// The arrays a vertex-range pass writes, whole: the vertex points (`V` of them, or none),
+/// the fold guard's per-vertex values (`V` each, or none), the candidate slots (`H` each).
+pub(super) struct Arrays<'a> {
+    pub(super) pos: &'a mut [Point],
+    pub(super) trust: &'a mut [f64],
+    pub(super) centre: &'a mut [Point],
+    pub(super) radius: &'a mut [f64],
+    pub(super) edge_c: &'a mut [Point],
+    pub(super) face_c: &'a mut [Point],
+}
+
+/// The first `n` elements of `*s`, or none when `*s` is empty (an array the pass does not
+/// write).
+fn split_per_vertex<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
+    let n = if s.is_empty() { 0 } else { n };
+    split_off(s, n)
+}
+
+impl<'a, 'm, 's> Part<'a, 'm, 's> {
+    /// One part over every vertex and slot.
+    pub(super) fn whole(topo: &'a Topology<'m, 's>, guard: bool, a: Arrays<'a>) -> Self {
+        Part {
+            topo,
+            guard,
+            v0: 0,
+            v1: topo.num_vertices(),
+            k0: 0,
+            pos: a.pos,
+            trust: a.trust,
+            centre: a.centre,
+            radius: a.radius,
+            edge_c: a.edge_c,
+            face_c: a.face_c,
+        }
+    }
+
+    /// `a` split into the `k` vertex ranges of [`crate::exec::chunk_range`] and the slot
+    /// ranges of their stars (`slots.rs`).
+    pub(super) fn ranges(
+        topo: &'a Topology<'m, 's>,
+        slots: &[f64],
+        guard: bool,
+        k: usize,
+        a: Arrays<'a>,
+    ) -> Result<ArrayVec<Self, MAX_CHUNKS>> {
+        let nv = topo.num_vertices();
+        let Arrays {
+            mut pos,
+            mut trust,
+            mut centre,
+            mut radius,
+            mut edge_c,
+            mut face_c,
+        } = a;
+        let mut ranges = ArrayVec::new();
+        let mut k0 = 0;
+        for i in 0..k {
+            let (v0, v1) = chunk_range(nv, k, i);
+            let k1 = slot_at_or_after(topo, slots, v1)?;
+            let nk = k1.checked_sub(k0).ok_or(internal())?;
+            let n = v1 - v0;
+            let part = Part {
+                topo,
+                guard,
+                v0,
+                v1,
+                k0,
+                pos: split_per_vertex(&mut pos, n)?,
+                trust: split_per_vertex(&mut trust, n)?,
+                centre: split_per_vertex(&mut centre, n)?,
+                radius: split_per_vertex(&mut radius, n)?,
+                edge_c: split_off(&mut edge_c, nk)?,
+                face_c: split_off(&mut face_c, nk)?,
+            };
+            ranges.try_push(part).map_err(|_| internal())?;
+            k0 = k1;
+        }
+        Ok(ranges)
+    }
+
+    /// The vertices of this part.
+    pub(super) fn vertices(&self) -> core::ops::Range<u32> {
+        self.v0 as u32..self.v1 as u32
+    }
+}
+
+impl Part<'_, '_, '_> {
+    /// The index of vertex `v` in this part's per-vertex slices.
+    #[inline(always)]
+    fn vertex(&self, v: u32) -> Result<usize> {
+        let v = v as usize;
+        if v < self.v0 || v >= self.v1 {
+            return Err(internal());
+        }
+        Ok(v - self.v0)
+    }
+
+    /// The index of the candidate of spoke `j` of `star` in this part's candidate slices.
+    #[inline(always)]
+    fn spoke<F: Frame>(&self, star: &Star<'_, F>, j: usize) -> Result<usize> {
+        (star.slot + j).checked_sub(self.k0).ok_or(internal())
+    }
+
+    /// Writes the vertex point of `v`.
+    pub(super) fn set_vertex(&mut self, v: u32, p: Point) -> Result<()> {
+        let i = self.vertex(v)?;
+        *self.pos.get_mut(i).ok_or(internal())? = p;
+        Ok(())
+    }
+
+    /// Writes the edge candidate of spoke `j` of `star` (which has an outgoing half-edge).
+    pub(super) fn set_edge<F: Frame>(
+        &mut self,
+        star: &Star<'_, F>,
+        j: usize,
+        p: Point,
+    ) -> Result<()> {
+        let i = self.spoke(star, j)?;
+        *self.edge_c.get_mut(i).ok_or(internal())? = p;
+        Ok(())
+    }
+
+    /// Writes the fold guard's values of vertex `v`: its trust and, when given, the centre
+    /// and radius of its canonical form.
+    pub(super) fn set_trust(&mut self, v: u32, tau: f64, form: Option<(Point, f64)>) -> Result<()> {
+        let i = self.vertex(v)?;
+        if let Some((c, r)) = form {
+            *self.centre.get_mut(i).ok_or(internal())? = c;
+            *self.radius.get_mut(i).ok_or(internal())? = r;
+        }
+        *self.trust.get_mut(i).ok_or(internal())? = tau;
+        Ok(())
+    }
+
+    /// Keeps the face candidates of a star: `centroids[j]` (in the form, from
+    /// [`Star::face_centroids`]) mapped back, for every face that has one.
+    pub(super) fn keep_face_candidates<F: Frame>(
+        &mut self,
+        star: &Star<'_, F>,
+        centroids: &[Point],
+    ) -> Result<()> {
+        for (j, (s, c)) in star.spokes.iter().zip(centroids.iter()).enumerate() {
+            if s.face != NONE && present(c) {
+                if let Ok(b) = star.form.back(*c) {
+                    let i = self.spoke(star, j)?;
+                    *self.face_c.get_mut(i).ok_or(internal())? = b;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Keeps the edge candidates `normalised[j]` (frame of `star`, spoke order) mapped back
+    /// with the star's frame, for every spoke that has an outgoing half-edge and a candidate.
+    pub(super) fn keep_edges_from<F: Frame>(
+        &mut self,
+        star: &Star<'_, F>,
+        normalised: &[Point],
+    ) -> Result<()> {
+        for (j, (s, c)) in star.spokes.iter().zip(normalised.iter()).enumerate() {
+            if s.half_edge != NONE && present(c) {
+                if let Ok(b) = star.form.back(*c) {
+                    if present(&b) {
+                        self.set_edge(star, j, b)?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the vertex point `normalised` (frame of `star`) mapped back, when it exists.
+    pub(super) fn keep_vertex_from<F: Frame>(
+        &mut self,
+        star: &Star<'_, F>,
+        normalised: Option<Point>,
+    ) -> Result<()> {
+        if let Some(q) = normalised.and_then(|p| star.form.back(p).ok()) {
+            self.set_vertex(star.v, q)?;
+        }
+        Ok(())
+    }
+}
+
+/// Re-targets `form` to the canonical form of a non-ear, non-isolated vertex; `None` (and
+/// `form` holds no form) when `v` is isolated or an ear or its form does not exist
+/// (degenerate star), else whether `v` lies on the boundary. With a form, `spokes` holds
+/// `v`'s star.
+#[inline(always)]
+pub(super) fn retarget(
+    topo: &Topology<'_, '_>,
+    v: u32,
+    form: &mut StarForm,
+    spokes: &mut Spokes,
+) -> Result<Option<bool>> {
+    // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
+    let h = topo.vertex_half_edge(v)?;
+    let boundary = h != NONE && topo.twin(h)? == NONE;
+    if h == NONE || (boundary && topo.valence(v)? == 2) {
+        form.clear();
+        return Ok(None);
+    }
+    Ok(form.reset(topo, v, boundary, spokes)?.then_some(boundary))
+}
+
+impl<'m, 's> Driver<'_, 'm, 's, '_> {
     /// Re-targets `form` to the canonical form of a non-ear, non-isolated vertex; `false`
     /// (and `form` holds no form) when `v` is isolated or an ear or its form does not exist
     /// (degenerate star). With a form, `spokes` holds `v`'s star.
@@ -87,7 +336,7 @@ impl Driver<'_, '_, '_, '_> {
         Ok(self.retarget(v, form, spokes)?.is_some())
     }
 
-    /// [`Driver::local_into`], returning with a form whether `v` lies on the boundary.
+    /// [`retarget`] on this step's topology.
     #[inline(always)]
     pub(super) fn retarget(
         &self,
@@ -95,56 +344,81 @@ impl Driver<'_, '_, '_, '_> {
         form: &mut StarForm,
         spokes: &mut Spokes,
     ) -> Result<Option<bool>> {
-        let topo = self.topo;
-        // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
-        let h = topo.vertex_half_edge(v)?;
-        let boundary = h != NONE && topo.twin(h)? == NONE;
-        if h == NONE || (boundary && topo.valence(v)? == 2) {
-            form.clear();
-            return Ok(None);
-        }
-        Ok(form.reset(topo, v, boundary, spokes)?.then_some(boundary))
+        retarget(self.topo, v, form, spokes)
     }
 
-    /// Runs `rule` on the star of every vertex that has a canonical form, in vertex order
-    /// (module docs).
-    #[inline(always)]
-    pub(super) fn vertex_pass(
-        &mut self,
-        mut rule: impl FnMut(&mut Self, &mut Star<'_>) -> Result<()>,
-    ) -> Result<()> {
-        let topo = self.topo;
-        let mut form = StarForm::blank();
-        let mut spokes = Spokes::new();
-        for v in 0..topo.num_vertices() as u32 {
-            let Some(boundary) = self.retarget(v, &mut form, &mut spokes)? else {
-                continue;
-            };
-            let mut star = Star {
-                v,
-                boundary,
-                spokes: &spokes,
-                form: &mut form,
-            };
-            rule(self, &mut star)?;
-        }
-        Ok(())
+    /// The arrays of the vertex pass: with the vertex points of the first `V` outputs when
+    /// `vertex_points`, with the fold guard's per-vertex values when `guard_values`.
+    pub(super) fn arrays(&mut self, vertex_points: bool, guard_values: bool) -> Result<Arrays<'_>> {
+        let nv = self.topo.num_vertices();
+        let pos: &mut [Point] = if vertex_points {
+            self.pos.get_mut(..nv).ok_or(internal())?
+        } else {
+            &mut []
+        };
+        let (trust, centre, radius): (&mut [f64], &mut [Point], &mut [f64]) = if guard_values {
+            (self.trust, self.centre, self.radius)
+        } else {
+            (&mut [], &mut [], &mut [])
+        };
+        Ok(Arrays {
+            pos,
+            trust,
+            centre,
+            radius,
+            edge_c: self.edge_c,
+            face_c: self.face_c,
+        })
     }
 
-    /// Keeps the face candidates of a star: `centroids[j]` (in the form, from
-    /// [`Star::face_centroids`]) mapped back, for every face that has one.
-    pub(super) fn keep_face_candidates<F: Frame>(
+    /// Runs `rule` on the star of every vertex that has a canonical form (module docs), with
+    /// buffers from `bufs` (one set per chunk); `vertex_points` when the rule writes the
+    /// vertex points of the first `V` outputs. Split into vertex ranges by the executor.
+    pub(super) fn vertex_pass<B>(
         &mut self,
-        star: &Star<'_, F>,
-        centroids: &[Point],
+        vertex_points: bool,
+        bufs: impl Fn() -> B + Sync,
+        rule: impl Fn(&mut Part<'_, '_, '_>, &mut Star<'_>, &mut B) -> Result<()> + Sync,
     ) -> Result<()> {
-        for (s, c) in star.spokes.iter().zip(centroids.iter()) {
-            if present(c) {
-                if let Ok(b) = star.form.back(*c) {
-                    set(self.face_c, s.half_edge as usize, b)?;
-                }
+        let topo = self.topo;
+        let slots = self.slots;
+        let run = |part: &mut Part<'_, '_, '_>, _: &mut Tally| -> Result<()> {
+            let mut form = StarForm::blank();
+            let mut spokes = Spokes::new();
+            let mut b = bufs();
+            for v in part.v0 as u32..part.v1 as u32 {
+                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes)? else {
+                    continue;
+                };
+                let slot = first_slot(topo, slots, v)?.ok_or(internal())?;
+                let mut star = Star {
+                    v,
+                    boundary,
+                    slot,
+                    spokes: &spokes,
+                    form: &mut form,
+                };
+                rule(part, &mut star, &mut b)?;
             }
+            Ok(())
+        };
+        let nv = topo.num_vertices();
+        let k = chunk_count(self.exec, nv);
+        let guard = self.guard;
+        if k <= 1 {
+            let mut part = Part::whole(topo, guard, self.arrays(vertex_points, true)?);
+            return run(&mut part, &mut Tally::new());
         }
+        self.split_vertex_pass(k, vertex_points, &run)
+    }
+
+    /// [`Driver::vertex_pass`] in `k ≥ 2` vertex ranges (out of line: the serial path keeps
+    /// a small stack frame).
+    #[inline(never)]
+    fn split_vertex_pass(&mut self, k: usize, vertex_points: bool, run: &PartFn<'_>) -> Result<()> {
+        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+        let mut ranges = Part::ranges(topo, slots, guard, k, self.arrays(vertex_points, true)?)?;
+        parts(exec, &mut ranges, |p| p.v1 - p.v0, run)?;
         Ok(())
     }
 

@@ -17,12 +17,14 @@ use crate::stencil::akleman;
 /// substitute's) blended into face points at `start + f`.
 fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
     let topo = d.topo;
-    let mut fc = Ring::new();
-    let mut pts = FacePts::new();
-    d.vertex_pass(|d, star| {
-        star.face_centroids(topo, &mut fc, &mut pts)?;
-        d.keep_face_candidates(star, &fc)
-    })?;
+    d.vertex_pass(
+        false,
+        || (Ring::new(), FacePts::new()),
+        |p, star, (fc, pts)| {
+            star.face_centroids(topo, fc, pts)?;
+            p.keep_face_candidates(star, fc)
+        },
+    )?;
     d.ear_face_candidates()?;
     d.blend_faces(start)
 }
@@ -68,12 +70,10 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
     let topo = d.topo;
     face_points(d, topo.num_vertices())?;
     d.clear_vertex_points()?;
-    let mut ring = Ring::new();
-    d.vertex_pass(|d, star| {
-        if !star.boundary && star.ring_images(topo, &mut ring)? {
-            if let Ok(q) = akleman::truncated_vertex(ORIGIN, &ring).and_then(|t| star.form.back(t))
-            {
-                set(d.pos, star.v as usize, q)?;
+    d.vertex_pass(true, Ring::new, |p, star, ring| {
+        if !star.boundary && star.ring_images(topo, ring)? {
+            if let Ok(q) = akleman::truncated_vertex(ORIGIN, ring).and_then(|t| star.form.back(t)) {
+                p.set_vertex(star.v, q)?;
             }
         }
         Ok(())

@@ -9,7 +9,7 @@ use super::super::driver::Driver;
 use super::super::form::{Frame, Ring, MISSING};
 use super::super::guard::Outputs;
 use super::super::rules::butterfly_star_in_form;
-use super::super::vertex_pass::Star;
+use super::super::vertex_pass::{Part, Star};
 use crate::error::Result;
 use crate::mesh::{internal, Topology, NONE};
 use crate::point::Point;
@@ -22,9 +22,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     copy_old(topo, d.pos)?;
-    let mut ring = Ring::new();
-    let mut cands = [MISSING; MAX_VALENCE];
-    d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    d.vertex_pass(false, Bufs::new, star_rule)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
     // The boundary curves before the blends: the audit reads every output point of the
     // step, and the blends may run twice (their fallbacks are rewound, these stay).
@@ -44,7 +42,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: None,
         };
-        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))? {
+        if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
             d.blend_edges_toward_linear(nv, &linear)?;
@@ -56,12 +54,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 /// The Butterfly candidates of one star in its frame (the canonical form, or the guard's
 /// `m_τ`), measured for the guard's trust while still in the frame, then mapped back.
 fn star_rule<F: Frame>(
-    d: &mut Driver<'_, '_, '_, '_>,
+    p: &mut Part<'_, '_, '_>,
     star: &mut Star<'_, F>,
-    ring: &mut Ring,
-    cands: &mut [Point; MAX_VALENCE],
+    b: &mut Bufs,
 ) -> Result<()> {
-    let topo = d.topo;
+    let (ring, cands) = (&mut b.ring, &mut b.cands);
+    let topo = p.topo;
     star.ring_images(topo, ring)?;
     let n = star.spokes.len();
     for (j, (s, c)) in star.spokes.iter().zip(cands.iter_mut()).enumerate() {
@@ -77,6 +75,21 @@ fn star_rule<F: Frame>(
         }
     }
     let cands = cands.get(..n).ok_or(internal())?;
-    d.trust_star(star, ring, cands)?;
-    d.keep_edges_from(star, cands)
+    p.trust_star(star, ring, cands)?;
+    p.keep_edges_from(star, cands)
+}
+
+/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
+struct Bufs {
+    ring: Ring,
+    cands: [Point; MAX_VALENCE],
+}
+
+impl Bufs {
+    fn new() -> Bufs {
+        Bufs {
+            ring: Ring::new(),
+            cands: [MISSING; MAX_VALENCE],
+        }
+    }
 }

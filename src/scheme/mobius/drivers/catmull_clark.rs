@@ -9,7 +9,7 @@ use super::super::driver::Driver;
 use super::super::form::{FacePts, Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
 use super::super::rules::catmull_clark_star_in_form;
-use super::super::vertex_pass::Star;
+use super::super::vertex_pass::{Part, Star};
 use crate::error::Result;
 use crate::mesh::gather::face_points;
 use crate::mesh::{internal, Topology};
@@ -25,13 +25,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // pass below, which maps each face into the corner's form once.
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
-    let mut b = Bufs {
-        ring: Ring::new(),
-        fc: Ring::new(),
-        pts: FacePts::new(),
-        cands: [MISSING; MAX_VALENCE],
-    };
-    d.vertex_pass(|d, star| star_rule(d, star, &mut b))?;
+    d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
         let mut ring = Ring::new();
         let mut faces = Ring::new();
@@ -73,7 +67,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: Some(fp0),
         };
-        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut b))? {
+        if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
@@ -82,7 +76,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     Ok(())
 }
 
-/// The buffers of [`star_rule`], one set per step.
+/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
 struct Bufs {
     ring: Ring,
     fc: Ring,
@@ -90,23 +84,34 @@ struct Bufs {
     cands: [Point; MAX_VALENCE],
 }
 
+impl Bufs {
+    fn new() -> Bufs {
+        Bufs {
+            ring: Ring::new(),
+            fc: Ring::new(),
+            pts: FacePts::new(),
+            cands: [MISSING; MAX_VALENCE],
+        }
+    }
+}
+
 /// The Catmull–Clark rules of one star in its frame (the canonical form, or the guard's
 /// `m_τ`): the canonical centroids of the faces after each spoke and the images of the
 /// neighbours ([`MISSING`] when unavailable), the face candidates, edge candidates (measured
 /// for the guard's trust while still in the frame) and the vertex point, mapped back.
 fn star_rule<F: Frame>(
-    d: &mut Driver<'_, '_, '_, '_>,
+    p: &mut Part<'_, '_, '_>,
     star: &mut Star<'_, F>,
     b: &mut Bufs,
 ) -> Result<()> {
-    let topo = d.topo;
+    let topo = p.topo;
     star.face_centroids(topo, &mut b.fc, &mut b.pts)?;
-    d.keep_face_candidates(star, &b.fc)?;
+    p.keep_face_candidates(star, &b.fc)?;
     star.ring_images(topo, &mut b.ring)?;
     let vertex =
         catmull_clark_star_in_form(&b.ring, &b.fc, !star.boundary, &Normalised, &mut b.cands)?;
     let cands = b.cands.get(..b.ring.len()).ok_or(internal())?;
-    d.trust_star(star, &b.ring, cands)?;
-    d.keep_edges_from(star, cands)?;
-    d.keep_vertex_from(star, vertex)
+    p.trust_star(star, &b.ring, cands)?;
+    p.keep_edges_from(star, cands)?;
+    p.keep_vertex_from(star, vertex)
 }

@@ -3,43 +3,52 @@
 //! corner point that cannot be computed takes the linear rule, counted as a fallback.
 
 use super::super::driver::Driver;
-use super::super::form::{present, FacePts, Spokes, MISSING};
+use super::super::form::{present, FacePts, Spokes};
 use super::super::memo::StarForm;
 use super::super::rules::doo_sabin_corner_in_form;
+use super::super::slots::slot_of;
 use crate::error::Result;
+use crate::exec::pass;
 use crate::mesh::gather::face_points_into;
-use crate::mesh::{get, set, NONE};
-use crate::point;
+use crate::mesh::{get, internal, set, NONE};
+use crate::point::{self, Point};
 use crate::scheme::carry::append_isolated;
 use crate::stencil::doo_sabin;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let nh = topo.num_half_edges();
-    for p in d.pos.iter_mut().take(nh) {
-        *p = MISSING;
-    }
-    // One canonical form per vertex: all its corners.
-    let mut pts = FacePts::new();
-    d.vertex_pass(|d, star| {
-        for s in star.spokes.iter() {
+    // One canonical form per vertex: all its corners, kept in the edge candidates' slots
+    // (the vertex pass writes slots, split into vertex ranges), then moved to the corners'
+    // output points (split into corner ranges).
+    d.vertex_pass(false, FacePts::new, |p, star, pts| {
+        for (j, s) in star.spokes.iter().enumerate() {
             if s.face == NONE {
                 continue;
             }
             let i = (s.half_edge - topo.face_half_edges(s.face)?.start) as usize;
             let form = &mut *star.form;
             let q = form
-                .face(topo, s.face, &mut pts)
-                .and_then(|()| doo_sabin_corner_in_form(&pts, i, form));
+                .face(topo, s.face, pts)
+                .and_then(|()| doo_sabin_corner_in_form(pts, i, form));
             if let Ok(q) = q {
-                set(d.pos, s.half_edge as usize, q)?;
+                p.set_edge(star, j, q)?;
             }
+        }
+        Ok(())
+    })?;
+    let (edge_c, slots): (&[Point], &[f64]) = (d.edge_c, d.slots);
+    let out = d.pos.get_mut(..nh).ok_or(internal())?;
+    pass(d.exec, out, |first, out, _| {
+        for (h, o) in (first as u32..).zip(out.iter_mut()) {
+            *o = get(edge_c, slot_of(slots, h)?)?;
         }
         Ok(())
     })?;
     // Ears in a substitute's form; anything still missing takes the linear rule.
     let mut form = StarForm::blank();
     let mut spokes = Spokes::new();
+    let mut pts = FacePts::new();
     let mut linear_pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
         // The face's own corners only when one of its corner points is missing (rare).

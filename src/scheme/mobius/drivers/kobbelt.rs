@@ -29,35 +29,45 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 /// `h`'s edge candidate.
 fn points_beyond(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    let mut ring = Ring::new();
-    let mut diagonals = Ring::new();
-    d.vertex_pass(|d, star| {
-        // The images of the neighbours and, for a closed star, of the diagonals.
-        let mut complete = true;
-        ring.clear();
-        diagonals.clear();
-        for s in star.spokes {
-            let form = &mut *star.form;
-            let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
-            ring.try_push(q).map_err(|_| internal())?;
-            complete &= present(&q);
-            if !star.boundary {
-                let c = apex(topo, s.half_edge)
-                    .and_then(|a| form.canon(topo, a))
-                    .unwrap_or(MISSING);
-                diagonals.try_push(c).map_err(|_| internal())?;
-                complete &= present(&c);
+    d.vertex_pass(
+        false,
+        || (Ring::new(), Ring::new()),
+        |p, star, (ring, diagonals)| {
+            // The images of the neighbours and, for a closed star, of the diagonals.
+            let mut complete = true;
+            ring.clear();
+            diagonals.clear();
+            for s in star.spokes {
+                let form = &mut *star.form;
+                let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
+                ring.try_push(q).map_err(|_| internal())?;
+                complete &= present(&q);
+                if !star.boundary {
+                    let c = apex(topo, s.half_edge)
+                        .and_then(|a| form.canon(topo, a))
+                        .unwrap_or(MISSING);
+                    diagonals.try_push(c).map_err(|_| internal())?;
+                    complete &= present(&c);
+                }
             }
-        }
-        let form = &*star.form;
-        for (j, s) in star.spokes.iter().enumerate() {
-            let p = kobbelt_beyond_in_form(&ring, &diagonals, !star.boundary, complete, j, form);
-            if let (Some(p), true) = (p, s.half_edge != NONE) {
-                set(d.edge_c, s.half_edge as usize, p)?;
+            for j in 0..star.spokes.len() {
+                let q = kobbelt_beyond_in_form(
+                    ring,
+                    diagonals,
+                    !star.boundary,
+                    complete,
+                    j,
+                    &*star.form,
+                );
+                if let (Some(q), true) =
+                    (q, star.spokes.get(j).is_some_and(|s| s.half_edge != NONE))
+                {
+                    p.set_edge(star, j, q)?;
+                }
             }
-        }
-        Ok(())
-    })?;
+            Ok(())
+        },
+    )?;
     Ok(())
 }
 
@@ -153,7 +163,7 @@ fn face_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
 /// The point beyond the origin of half-edge `h` on the line from its far end, as the vertex
 /// pass left it; `None` when the origin has no form.
 fn beyond_of(d: &Driver<'_, '_, '_, '_>, h: u32) -> Result<Option<Point>> {
-    let c = get(d.edge_c, h as usize)?;
+    let c = get(d.edge_c, d.slot(h)?)?;
     Ok(present(&c).then_some(c))
 }
 

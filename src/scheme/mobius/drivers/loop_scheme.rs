@@ -7,7 +7,7 @@ use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
 use super::super::rules::loop_star_in_form;
-use super::super::vertex_pass::Star;
+use super::super::vertex_pass::{Part, Star};
 use crate::error::Result;
 use crate::mesh::gather::{apex, ring_points};
 use crate::mesh::{internal, Topology};
@@ -19,9 +19,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     d.clear_vertex_points()?;
-    let mut ring = Ring::new();
-    let mut cands = [MISSING; MAX_VALENCE];
-    d.vertex_pass(|d, star| star_rule(d, star, &mut ring, &mut cands))?;
+    d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
         loop_scheme::vertex_interior(p, &ring_points(t, v)?)
     })?;
@@ -53,7 +51,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: nv,
             faces: None,
         };
-        if d.guarded_pass(out, |d, star| star_rule(d, star, &mut ring, &mut cands))? {
+        if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
         }
@@ -65,19 +63,34 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 /// vertex point and the edge candidates, measured for the guard's trust while still in the
 /// frame, then mapped back. A star whose ring is not all in the frame gives nothing.
 fn star_rule<F: Frame>(
-    d: &mut Driver<'_, '_, '_, '_>,
+    p: &mut Part<'_, '_, '_>,
     star: &mut Star<'_, F>,
-    ring: &mut Ring,
-    cands: &mut [Point; MAX_VALENCE],
+    b: &mut Bufs,
 ) -> Result<()> {
-    if !star.ring_images(d.topo, ring)? {
+    let (ring, cands) = (&mut b.ring, &mut b.cands);
+    if !star.ring_images(p.topo, ring)? {
         return Ok(());
     }
     // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
     let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
     let n = ring.len();
     let cands = cands.get(..n).ok_or(internal())?;
-    d.trust_star(star, ring, cands)?;
-    d.keep_edges_from(star, cands)?;
-    d.keep_vertex_from(star, vertex)
+    p.trust_star(star, ring, cands)?;
+    p.keep_edges_from(star, cands)?;
+    p.keep_vertex_from(star, vertex)
+}
+
+/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
+struct Bufs {
+    ring: Ring,
+    cands: [Point; MAX_VALENCE],
+}
+
+impl Bufs {
+    fn new() -> Bufs {
+        Bufs {
+            ring: Ring::new(),
+            cands: [MISSING; MAX_VALENCE],
+        }
+    }
 }

@@ -6,28 +6,32 @@
 use super::super::driver::Driver;
 use super::super::form::{MapBack, ORIGIN};
 use crate::error::Result;
-use crate::mesh::{set, Topology, NONE};
+use crate::mesh::{Topology, NONE};
 use crate::point::{midpoint, Point};
 use crate::scheme::carry::{append_isolated, boundary_vertices};
 use crate::stencil::simplest;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    d.vertex_pass(|d, star| {
-        for s in star.spokes.iter() {
-            if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
-                continue;
+    d.vertex_pass(
+        false,
+        || (),
+        |p, star, ()| {
+            for (j, s) in star.spokes.iter().enumerate() {
+                if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
+                    continue;
+                }
+                let form = &mut *star.form;
+                if let Ok(c) = form
+                    .canon(topo, s.neighbour)
+                    .and_then(|b| form.back(simplest::edge_point(ORIGIN, b)))
+                {
+                    p.set_edge(star, j, c)?;
+                }
             }
-            let form = &mut *star.form;
-            if let Ok(c) = form
-                .canon(topo, s.neighbour)
-                .and_then(|b| form.back(simplest::edge_point(ORIGIN, b)))
-            {
-                set(d.edge_c, s.half_edge as usize, c)?;
-            }
-        }
-        Ok(())
-    })?;
+            Ok(())
+        },
+    )?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let (a, b) = t.edge_vertices(e)?;
         Ok(simplest::edge_point(t.position(a)?, d.topo.position(b)?))
