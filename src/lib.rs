@@ -92,6 +92,7 @@ pub mod mobius;
 pub mod point;
 pub mod quat;
 pub mod scheme;
+mod sqrt;
 pub mod stencil;
 
 pub use error::{Error, Result, Status, NO_ELEMENT};

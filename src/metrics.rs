@@ -86,7 +86,7 @@ pub fn willmore_energy(v: Point, ring: &[Point], closed: bool) -> Result<f64> {
         let p = quad_planarity(q(0)?, q(1)?, q(2)?, q(3)?);
         sum += p * p;
     }
-    let energy = libm::sqrt(sum / count as f64);
+    let energy = crate::sqrt::sqrt(sum / count as f64);
     if energy.is_finite() {
         Ok(energy)
     } else {

@@ -78,7 +78,7 @@ pub fn cross(a: Point, b: Point) -> Point {
 /// below ~1e-154. For rules whose inputs are known to be in range (normals, unit vectors).
 #[inline]
 pub fn norm_unscaled(a: Point) -> f64 {
-    libm::sqrt(dot(a, a))
+    crate::sqrt::sqrt(dot(a, a))
 }
 
 /// `|a|`, computed without overflow or underflow of the squares: `√(a·a)` while the sum of
@@ -89,7 +89,7 @@ pub fn norm_unscaled(a: Point) -> f64 {
 pub fn norm(a: Point) -> f64 {
     let n = dot(a, a);
     if n.is_finite() && n > NORM_SAFE_MIN {
-        return libm::sqrt(n);
+        return crate::sqrt::sqrt(n);
     }
     norm_scaled(a)
 }
@@ -106,7 +106,7 @@ fn norm_scaled(a: Point) -> f64 {
     }
     // Divide (rather than multiply by 1/m, which overflows for subnormal m).
     let s = div(a, m);
-    m * libm::sqrt(dot(s, s))
+    m * crate::sqrt::sqrt(dot(s, s))
 }
 
 /// The distance `|a − b|` ([`norm`] of the difference).

@@ -60,7 +60,7 @@ impl Frame {
             }
         }
         let size = if max_sq.is_finite() && max_sq > SIZE_BY_SQUARES_MIN {
-            libm::sqrt(max_sq)
+            crate::sqrt::sqrt(max_sq)
         } else {
             let mut size: f64 = 0.0;
             for (i, p) in points.iter().enumerate() {

@@ -90,7 +90,7 @@ pub(super) fn sqrt_snapped_with_abs(q: Quat, r: f64, n: Point, snap: bool) -> Op
         // The negative-real test, then the lower half-space root, with |Im q| computed once.
         let vi = q.abs_im();
         if vi <= NEGATIVE_REAL_TOLERANCE * r {
-            let t = libm::sqrt(r);
+            let t = crate::sqrt::sqrt(r);
             return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
         }
         return q.sqrt_given(r, vi);

@@ -271,7 +271,7 @@ mod tests {
     #[test]
     fn quarter_circle_midpoint() {
         let s = arc_midpoint([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
-        let h = libm::sqrt(0.5);
+        let h = crate::sqrt::sqrt(0.5);
         assert!(distance(s, [h, h, 0.0]) < 1e-15, "{s:?}");
         // Three quarters of a circle: tangent (0, −1) at (1, 0), chord to (0, 1).
         let s = arc_midpoint([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0]).unwrap();

@@ -83,7 +83,7 @@ pub(crate) fn finite(p: Point, element: usize) -> Result<Point> {
 pub(crate) fn norm(a: Point) -> f64 {
     let s = dot(a, a);
     if s.is_finite() && s >= 1e-280 {
-        libm::sqrt(s)
+        crate::sqrt::sqrt(s)
     } else {
         crate::point::norm(a)
     }

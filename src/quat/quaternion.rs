@@ -98,7 +98,7 @@ impl Quat {
         // nor enters the subnormal range; otherwise scale by the largest component first.
         let n = self.norm_sq();
         if n.is_finite() && n > SAFE_MIN {
-            return libm::sqrt(n);
+            return crate::sqrt::sqrt(n);
         }
         self.abs_scaled()
     }
@@ -119,7 +119,7 @@ impl Quat {
         }
         // Divide (rather than multiply by 1/m, which overflows for subnormal m).
         let s = Quat::new(self.w / m, self.x / m, self.y / m, self.z / m);
-        m * libm::sqrt(s.norm_sq())
+        m * crate::sqrt::sqrt(s.norm_sq())
     }
 
     /// `|Im q|`.
@@ -211,18 +211,18 @@ impl Quat {
         }
         if vi == 0.0 {
             if self.w >= 0.0 {
-                return Some(Quat::real(libm::sqrt(self.w)));
+                return Some(Quat::real(crate::sqrt::sqrt(self.w)));
             }
             return None;
         }
         if self.w >= 0.0 {
             // Re √q = √((r + w)/2) is accurate; Im = v / (2 Re).
-            let s = libm::sqrt(0.5 * (r + self.w));
+            let s = crate::sqrt::sqrt(0.5 * (r + self.w));
             Some(Quat::from_parts(s, point::div(self.im(), 2.0 * s)))
         } else {
             // |Im √q| = √((r − w)/2) is accurate; Re = |v| / (2 |Im|).
             let n = point::div(self.im(), vi);
-            let t = libm::sqrt(0.5 * (r - self.w));
+            let t = crate::sqrt::sqrt(0.5 * (r - self.w));
             Some(Quat::from_parts(vi / (2.0 * t), point::scale(n, t)))
         }
     }
@@ -235,9 +235,9 @@ impl Quat {
     pub(crate) fn sqrt_upper(self, r: f64) -> Option<Quat> {
         if self.w >= 0.0 && self.is_finite() {
             if self.x == 0.0 && self.y == 0.0 && self.z == 0.0 {
-                return Some(Quat::real(libm::sqrt(self.w)));
+                return Some(Quat::real(crate::sqrt::sqrt(self.w)));
             }
-            let s = libm::sqrt(0.5 * (r + self.w));
+            let s = crate::sqrt::sqrt(0.5 * (r + self.w));
             return Some(Quat::from_parts(s, point::div(self.im(), 2.0 * s)));
         }
         self.sqrt_given(r, self.abs_im())
@@ -249,7 +249,7 @@ impl Quat {
         match self.sqrt() {
             Some(s) => Some(s),
             None if self.is_finite() => {
-                let t = libm::sqrt(-self.w);
+                let t = crate::sqrt::sqrt(-self.w);
                 Some(Quat::new(0.0, axis[0] * t, axis[1] * t, axis[2] * t))
             }
             None => None,
@@ -481,7 +481,7 @@ mod tests {
     fn polar_form() {
         let q = Quat::new(1.0, 0.0, 1.0, 0.0);
         let (r, th, n) = q.polar();
-        assert!((r - libm::sqrt(2.0)).abs() < 1e-15);
+        assert!((r - crate::sqrt::sqrt(2.0)).abs() < 1e-15);
         assert!((th - core::f64::consts::FRAC_PI_4).abs() < 1e-15);
         assert_eq!(n, Some([0.0, 1.0, 0.0]));
     }

@@ -230,7 +230,7 @@ impl System<'_> {
             let d = sub(*bi, *yi);
             s = [s[0] + d[0] * d[0], s[1] + d[1] * d[1], s[2] + d[2] * d[2]];
         }
-        Ok(libm::sqrt(s[0] + s[1] + s[2]))
+        Ok(crate::sqrt::sqrt(s[0] + s[1] + s[2]))
     }
 }
 

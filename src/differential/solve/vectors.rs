@@ -29,7 +29,7 @@ pub(super) fn dots(a: &[Point], b: &[Point]) -> [f64; 3] {
 #[inline]
 pub(super) fn frob(a: &[Point]) -> f64 {
     let d = dots(a, a);
-    libm::sqrt(d[0] + d[1] + d[2])
+    crate::sqrt::sqrt(d[0] + d[1] + d[2])
 }
 
 /// `a / b` per coordinate, 0 where the quotient is not finite (a breakdown of CG on one

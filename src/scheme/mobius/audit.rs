@@ -77,7 +77,7 @@ fn area(corners: &[Point]) -> Option<Point> {
 /// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
 fn cos_between(m: Point, n: Point) -> f64 {
     let d = dot(m, m) * dot(n, n);
-    let c = dot(m, n) / libm::sqrt(d);
+    let c = dot(m, n) / crate::sqrt::sqrt(d);
     if d > 0.0 && c.is_finite() {
         c
     } else {
@@ -224,12 +224,12 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
 /// measured.
 fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
     let n = newell(fan);
-    let nn = libm::sqrt(dot(n, n));
+    let nn = crate::sqrt::sqrt(dot(n, n));
     let mut least = f64::INFINITY;
     for (i, e) in fan.iter().enumerate() {
         let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
         let (p, q) = (sub(*e, centre), sub(next, centre));
-        let s = dot(cross(p, q), n) / (nn * libm::sqrt(dot(p, p) * dot(q, q)));
+        let s = dot(cross(p, q), n) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
         least = least.min(if s.is_finite() { s } else { -1.0 });
     }
     least

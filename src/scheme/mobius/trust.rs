@@ -116,7 +116,7 @@ pub(super) fn f4_trust(a: Point, ea: Point, eb: Point, b: Point) -> f64 {
     if re >= 0.0 || 4.0 * re * re <= p2 || !(p2 > 0.0 && p2.is_finite()) {
         return 1.0;
     }
-    let cos = re / libm::sqrt(p2);
+    let cos = re / crate::sqrt::sqrt(p2);
     ramp(libm::acos(cos.max(-1.0)), RHO_DISTRUSTED, RHO_TRUSTED)
 }
 
@@ -167,7 +167,7 @@ pub(super) fn sphericity(tangents: &[Point], c: Point) -> f64 {
         off = off.max(h * h / nn);
         spread = spread.max(dot(d, d));
     }
-    let planarity = libm::sqrt(off / spread);
+    let planarity = crate::sqrt::sqrt(off / spread);
     if planarity <= PLANAR {
         1.0
     } else if planarity < NOT_PLANAR {
@@ -196,7 +196,7 @@ mod tests {
         assert_eq!(at(1.0), 1.0);
         assert_eq!(at(4.0), 1.0);
         assert_eq!(at(8.0), 0.0);
-        assert!((at(libm::sqrt(32.0)) - 0.5).abs() < 1e-12);
+        assert!((at(crate::sqrt::sqrt(32.0)) - 0.5).abs() < 1e-12);
         assert_eq!(at(f64::INFINITY), 0.0);
         assert_eq!(spread_trust(&[[0.0; 3], [1.0, 0.0, 0.0]]), 0.0);
     }
