@@ -85,6 +85,30 @@ pub fn run(m: &OwnedMesh, opts: &Options) -> Result<(OwnedMesh, Report)> {
     run_with(m, opts, &nlsubdiv::exec::Serial)
 }
 
+/// Runs `subdivide` (one of the public entry points) on buffers of exactly the sizes `plan`
+/// asked for: the plan's scratch `su` grown to its `u32` count, a point scratch and an output
+/// starting as NaN/`u32::MAX`. Checks that the report's sizes are the planned ones.
+fn run_planned(
+    p: &scheme::Plan,
+    mut su: Vec<u32>,
+    subdivide: impl FnOnce(Scratch<'_>, &mut MeshOut<'_>) -> Result<Report>,
+) -> Result<(OwnedMesh, Report)> {
+    let o = p.output();
+    su.resize(p.scratch.u32s, 0);
+    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
+    let mut out = OwnedMesh {
+        positions: vec![[f64::NAN; 3]; o.vertices],
+        offsets: vec![u32::MAX; o.faces + 1],
+        indices: vec![u32::MAX; o.indices],
+    };
+    let report = subdivide(
+        Scratch::new(&mut su, &mut sp),
+        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+    )?;
+    assert_eq!(report.sizes, o, "sizes written differ from the plan");
+    Ok((out, report))
+}
+
 /// [`run`] through [`scheme::subdivide_with`] with the executor `exec`.
 pub fn run_with(
     m: &OwnedMesh,
@@ -97,23 +121,9 @@ pub fn run_with(
         p.scratch.u32s >= su.len(),
         "the plan's scratch is below its own"
     );
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let report = scheme::subdivide_with(
-        m.view(),
-        opts,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        exec,
-    )?;
-    assert_eq!(report.sizes, o, "sizes written differ from the plan");
-    Ok((out, report))
+    run_planned(&p, su, |scratch, out| {
+        scheme::subdivide_with(m.view(), opts, scratch, out, exec)
+    })
 }
 
 /// The tagged public path (`plan_tagged`, then `subdivide_tagged`) with owned buffers of
@@ -125,23 +135,9 @@ pub fn run_tagged(
 ) -> Result<(OwnedMesh, Report)> {
     let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
     let p = scheme::plan_tagged(m.view(), opts, tags, &mut su)?;
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let report = scheme::subdivide_tagged(
-        m.view(),
-        opts,
-        tags,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-    )?;
-    assert_eq!(report.sizes, o, "sizes written differ from the plan");
-    Ok((out, report))
+    run_planned(&p, su, |scratch, out| {
+        scheme::subdivide_tagged(m.view(), opts, tags, scratch, out)
+    })
 }
 
 /// The whole public path (`plan_weighted`, then `subdivide_weighted`) with tags, per-vertex
@@ -156,25 +152,9 @@ pub fn run_weighted(
 ) -> Result<(OwnedMesh, Report)> {
     let mut su = vec![0u32; scheme::plan_scratch_size_tagged(&m.view(), tags)?];
     let p = scheme::plan_weighted(m.view(), opts, tags, weights, &mut su)?;
-    let o = p.output();
-    su.resize(p.scratch.u32s, 0);
-    let mut sp = vec![[0.0f64; 3]; p.scratch.points];
-    let mut out = OwnedMesh {
-        positions: vec![[f64::NAN; 3]; o.vertices],
-        offsets: vec![u32::MAX; o.faces + 1],
-        indices: vec![u32::MAX; o.indices],
-    };
-    let report = scheme::subdivide_weighted(
-        m.view(),
-        opts,
-        tags,
-        weights,
-        Scratch::new(&mut su, &mut sp),
-        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
-        exec,
-    )?;
-    assert_eq!(report.sizes, o, "sizes written differ from the plan");
-    Ok((out, report))
+    run_planned(&p, su, |scratch, out| {
+        scheme::subdivide_weighted(m.view(), opts, tags, weights, scratch, out, exec)
+    })
 }
 
 /// One linear step of `s` ([`run`]).
