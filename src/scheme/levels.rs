@@ -270,7 +270,7 @@ pub(super) fn run(
             let idx = out_u.get(no..no + out_sizes.indices).ok_or(internal())?;
             let pts: &[Point] = out_p;
             let child = Mesh::new(pts.get(..out_sizes.vertices).ok_or(internal())?, offs, idx);
-            let child = child_topology(&topo, pattern, child, out_t)?;
+            let child = child_topology(&topo, pattern, child, out_t, exec)?;
             if let Some(sh) = sharp {
                 tags::carry(&topo, sh, &child, out_s)?;
             }

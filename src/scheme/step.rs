@@ -11,7 +11,7 @@ use super::weights::{self, Blend, Uniform};
 use super::{linear, linear_tagged, spherelike, Scheme};
 use crate::error::{Error, Result, Status};
 use crate::exec::{self, Executor};
-use crate::mesh::refine::write_pattern;
+use crate::mesh::refine::{write_pattern, write_pattern_with};
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
 
@@ -192,7 +192,7 @@ pub(crate) fn linear_with(
 ) -> Result<MeshSizes> {
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
-    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    write_pattern_with(scheme.pattern(), topo, out.offsets, out.indices, exec)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     positions(scheme, topo, pos, exec)?;
     if let Some(i) = exec::first_non_finite(exec, pos)? {

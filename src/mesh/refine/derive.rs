@@ -33,7 +33,10 @@
 //! the old vertices' arrays); each derivation lives with its pattern, and
 //! [`super::child_topology`] dispatches.
 
+use arrayvec::ArrayVec;
+
 use crate::error::Result;
+use crate::exec::{self, Executor, MAX_CHUNKS};
 use crate::mesh::topology::{Raw, Regions};
 use crate::mesh::{get, internal, set, Topology, NONE};
 
@@ -52,6 +55,80 @@ pub(super) fn check_eq(a: u32, b: u32) -> Result<()> {
 #[inline]
 pub(super) fn next_fast(par: &Raw<'_, '_>, h: u32) -> Result<u32> {
     Ok(par.next_prev_face(h)?.0)
+}
+
+/// A range of parent faces `[faces.0, faces.1)` and the child's `twin` and `face_of`
+/// entries of the child half-edges made from those faces, from child half-edge `first` on
+/// (what one chunk of [`face_spans`] writes).
+#[derive(Debug)]
+pub(super) struct FaceSpan<'a> {
+    pub(super) faces: (usize, usize),
+    pub(super) first: usize,
+    pub(super) twin: &'a mut [u32],
+    pub(super) face_of: &'a mut [u32],
+}
+
+/// Runs `f` on the parent faces in the chunks of `exec`. A child half-edge's twin and face
+/// depend only on the parent face it comes from, and the child half-edges of parent face
+/// `f` start at `child_he(f)` (increasing in `f`), so the chunks write disjoint ranges of
+/// `r.twin` and `r.face_of` and the arrays are the same for every executor. One chunk runs
+/// inline, without building the chunk list.
+pub(super) fn face_spans<F>(
+    nf: usize,
+    r: &mut Regions<'_>,
+    child_he: impl Fn(usize) -> Result<usize>,
+    exec: &dyn Executor,
+    f: F,
+) -> Result<()>
+where
+    F: Fn(&mut FaceSpan<'_>) -> Result<()> + Sync,
+{
+    let k = exec::chunk_count(exec, nf);
+    if k <= 1 {
+        return f(&mut FaceSpan {
+            faces: (0, nf),
+            first: 0,
+            twin: &mut *r.twin,
+            face_of: &mut *r.face_of,
+        });
+    }
+    split_face_spans(nf, r, &child_he, exec, k, &f)
+}
+
+/// [`face_spans`] in `k ≥ 2` chunks (out of line: the one-chunk path keeps a small stack
+/// frame).
+#[inline(never)]
+fn split_face_spans(
+    nf: usize,
+    r: &mut Regions<'_>,
+    child_he: &dyn Fn(usize) -> Result<usize>,
+    exec: &dyn Executor,
+    k: usize,
+    f: &(dyn Fn(&mut FaceSpan<'_>) -> Result<()> + Sync),
+) -> Result<()> {
+    let (mut twin, mut face_of): (&mut [u32], &mut [u32]) = (&mut *r.twin, &mut *r.face_of);
+    let mut spans = ArrayVec::<FaceSpan<'_>, MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (f0, f1) = exec::chunk_range(nf, k, i);
+        let (h0, h1) = (child_he(f0)?, child_he(f1)?);
+        let len = h1.checked_sub(h0).ok_or(internal())?;
+        let (t, rest_t) = core::mem::take(&mut twin)
+            .split_at_mut_checked(len)
+            .ok_or(internal())?;
+        let (o, rest_o) = core::mem::take(&mut face_of)
+            .split_at_mut_checked(len)
+            .ok_or(internal())?;
+        (twin, face_of) = (rest_t, rest_o);
+        spans
+            .try_push(FaceSpan {
+                faces: (f0, f1),
+                first: h0,
+                twin: t,
+                face_of: o,
+            })
+            .map_err(|_| internal())?;
+    }
+    exec::parts(exec, &mut spans, |s| s.faces.1 - s.faces.0, |s, _| f(s)).map(|_| ())
 }
 
 /// Writes the first group of child edges (module docs): for every parent edge `e`, the
@@ -126,14 +203,17 @@ pub(super) fn old_vertices(
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use crate::error::Error;
-    use crate::mesh::refine::{child_topology, derivable, pattern_size, write_pattern, Pattern};
+    use crate::exec::{Chunk, Executor, Serial};
+    use crate::mesh::refine::{
+        child_topology, derivable, pattern_size, write_pattern, write_pattern_with, Pattern,
+    };
     use crate::mesh::{topology_scratch_size, Mesh, Topology};
     use crate::point::Point;
     use arrayvec::ArrayVec;
 
     /// `u32` and point arenas the levels of one test are carved from (no allocation in the
     /// core, not even in its tests): every level keeps its buffers while the next is built.
-    const ARENA_U32: usize = 1 << 16;
+    const ARENA_U32: usize = 1 << 17;
     const ARENA_POINTS: usize = 1 << 12;
 
     /// Takes the first `n` elements of `*arena`, leaving the rest there.
@@ -141,6 +221,17 @@ mod tests {
         let (head, rest) = core::mem::take(arena).split_at_mut(n);
         *arena = rest;
         head
+    }
+
+    /// `k` chunks per pass, run last to first.
+    struct Reverse(usize);
+    impl Executor for Reverse {
+        fn chunks(&self, _len: usize) -> usize {
+            self.0
+        }
+        fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+            chunks.iter_mut().rev().for_each(task);
+        }
     }
 
     /// Every array and count of two topologies of the same mesh.
@@ -209,12 +300,29 @@ mod tests {
             sd.fill(0xdead_beef);
             let sb = take(&mut arena_u32, need);
             assert_eq!(
-                child_topology(&topo, pattern, child, &mut short[..need - 1]).unwrap_err(),
+                child_topology(&topo, pattern, child, &mut short[..need - 1], &Serial).unwrap_err(),
                 Error::too_small(need)
             );
-            let derived = child_topology(&topo, pattern, child, sd).unwrap();
+            let derived = child_topology(&topo, pattern, child, sd, &Serial).unwrap();
             let built = Topology::build(child, sb).unwrap();
             assert_same(&derived, &built, (pattern, k));
+            // In 3 and 7 chunks run in reverse order: the same faces and arrays.
+            for chunks in [3, 7] {
+                let exec = Reverse(chunks);
+                let (o2, i2) = (take(&mut arena_u32, o.len()), take(&mut arena_u32, i.len()));
+                o2.fill(0xdead_beef);
+                i2.fill(0xdead_beef);
+                write_pattern_with(pattern, &topo, o2, i2, &exec).unwrap();
+                assert_eq!(
+                    (&*o2, &*i2),
+                    (o, i),
+                    "{pattern:?} level {k}, {chunks} chunks"
+                );
+                let sc = take(&mut arena_u32, need);
+                sc.fill(0xdead_beef);
+                let chunked = child_topology(&topo, pattern, child, sc, &exec).unwrap();
+                assert_same(&chunked, &built, (pattern, k));
+            }
             topo = derived;
         }
     }
@@ -302,9 +410,9 @@ mod tests {
         let child = Mesh::new(&p[..sz.vertices], o, i);
         let mut s2 = [0u32; 512];
         let s2 = &mut s2[..topology_scratch_size(sz.vertices, sz.indices).unwrap()];
-        assert!(child_topology(&topo, Pattern::Split1To4, child, s2).is_err());
-        assert!(child_topology(&topo, Pattern::Quads, child, s2).is_err());
-        assert!(child_topology(&topo, Pattern::Dual, child, s2).is_err());
+        assert!(child_topology(&topo, Pattern::Split1To4, child, s2, &Serial).is_err());
+        assert!(child_topology(&topo, Pattern::Quads, child, s2, &Serial).is_err());
+        assert!(child_topology(&topo, Pattern::Dual, child, s2, &Serial).is_err());
         assert!(!derivable(Pattern::CornerCut) && derivable(Pattern::Quads));
     }
 }

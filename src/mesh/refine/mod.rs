@@ -56,9 +56,12 @@ mod vertex_insertion;
 
 pub(crate) use counts::LevelCounts;
 
+use arrayvec::ArrayVec;
+
 use super::topology::Counts;
-use super::{get, idx, internal, Mesh, MeshSizes, Topology};
+use super::{get, idx, internal, set, Mesh, MeshSizes, Topology};
 use crate::error::{Error, Result, Status};
+use crate::exec::{self, Executor, Serial, MAX_CHUNKS};
 use crate::{MAX_FACE_SIZE, MAX_VALENCE};
 
 /// A refinement pattern (connectivity of one step; see the module table).
@@ -134,6 +137,21 @@ pub fn write_pattern(
     offsets: &mut [u32],
     indices: &mut [u32],
 ) -> Result<MeshSizes> {
+    write_pattern_with(pattern, topo, offsets, indices, &Serial)
+}
+
+/// [`write_pattern`] with the faces of [`Pattern::Split1To4`] and [`Pattern::Quads`] written
+/// in parent-face ranges run by `exec` ([`crate::exec`]): every output face of these patterns
+/// is a function of one parent face, at an output position known from the parent's offsets,
+/// so the ranges are disjoint and the result is the same for every executor. The other
+/// patterns are written on the calling thread (their output positions are running counts).
+pub(crate) fn write_pattern_with(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+    exec: &dyn Executor,
+) -> Result<MeshSizes> {
     let sizes = pattern_size(pattern, topo)?;
     if offsets.len() < sizes.offsets()? {
         return Err(Error::too_small(sizes.offsets()?));
@@ -147,8 +165,11 @@ pub fn write_pattern(
         f: topo.num_faces() as u32,
     };
     match pattern {
-        Pattern::Split1To4 => split_1to4::write(topo, n, offsets, indices)?,
-        Pattern::Quads => quads::write(topo, n, offsets, indices)?,
+        Pattern::Split1To4 | Pattern::Quads => {
+            write_face_ranges(pattern, topo, n, offsets, indices, exec)?;
+            // The closing offset (each range writes the offsets of its own faces).
+            set(offsets, sizes.faces, idx(sizes.indices)?)?;
+        }
         Pattern::CornerCut => corner_cut::write(topo, n, &sizes, offsets, indices)?,
         Pattern::MidEdge => mid_edge::write(topo, n, &sizes, offsets, indices)?,
         Pattern::Dual => dual::write(topo, n, &sizes, offsets, indices)?,
@@ -164,6 +185,103 @@ pub fn write_pattern(
     }
     let _ = get(offsets, sizes.faces)?;
     Ok(sizes)
+}
+
+/// A range of parent faces `[faces.0, faces.1)` and the output's offsets and indices from
+/// the first output face and corner of that range on (what one chunk of
+/// [`write_face_ranges`] writes).
+#[derive(Debug)]
+pub(super) struct Span<'a> {
+    faces: (usize, usize),
+    offsets: &'a mut [u32],
+    indices: &'a mut [u32],
+}
+
+/// Where the output of parent face `f` starts in `pattern` ([`Pattern::Split1To4`] or
+/// [`Pattern::Quads`]): its first output face and first output corner.
+fn first_output(pattern: Pattern, topo: &Topology<'_, '_>, f: usize) -> Result<(usize, usize)> {
+    match pattern {
+        Pattern::Split1To4 => Ok(split_1to4::first_output(f)),
+        _ => quads::first_output(topo, f),
+    }
+}
+
+/// The faces of one [`Span`] of `pattern`.
+fn write_span(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    n: Parent,
+    s: &mut Span<'_>,
+) -> Result<()> {
+    match pattern {
+        Pattern::Split1To4 => split_1to4::write_faces(topo, n, s.faces, s.offsets, s.indices),
+        _ => quads::write_faces(topo, n, s.faces, s.offsets, s.indices),
+    }
+}
+
+/// The faces of [`Pattern::Split1To4`] or [`Pattern::Quads`] in the parent-face chunks of
+/// `exec` (one chunk: inline, without building the chunk list).
+fn write_face_ranges(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    n: Parent,
+    offsets: &mut [u32],
+    indices: &mut [u32],
+    exec: &dyn Executor,
+) -> Result<()> {
+    let nf = topo.num_faces();
+    let k = exec::chunk_count(exec, nf);
+    if k <= 1 {
+        let mut all = Span {
+            faces: (0, nf),
+            offsets,
+            indices,
+        };
+        return write_span(pattern, topo, n, &mut all);
+    }
+    split_face_ranges(pattern, topo, n, offsets, indices, exec, k)
+}
+
+/// [`write_face_ranges`] in `k ≥ 2` chunks (out of line: the one-chunk path keeps a small
+/// stack frame).
+#[inline(never)]
+fn split_face_ranges(
+    pattern: Pattern,
+    topo: &Topology<'_, '_>,
+    n: Parent,
+    mut offsets: &mut [u32],
+    mut indices: &mut [u32],
+    exec: &dyn Executor,
+    k: usize,
+) -> Result<()> {
+    let nf = topo.num_faces();
+    let mut spans = ArrayVec::<Span<'_>, MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (f0, f1) = exec::chunk_range(nf, k, i);
+        let (o0, i0) = first_output(pattern, topo, f0)?;
+        let (o1, i1) = first_output(pattern, topo, f1)?;
+        let (o, rest_o) = core::mem::take(&mut offsets)
+            .split_at_mut_checked(o1.checked_sub(o0).ok_or(internal())?)
+            .ok_or(internal())?;
+        let (x, rest_i) = core::mem::take(&mut indices)
+            .split_at_mut_checked(i1.checked_sub(i0).ok_or(internal())?)
+            .ok_or(internal())?;
+        (offsets, indices) = (rest_o, rest_i);
+        spans
+            .try_push(Span {
+                faces: (f0, f1),
+                offsets: o,
+                indices: x,
+            })
+            .map_err(|_| internal())?;
+    }
+    exec::parts(
+        exec,
+        &mut spans,
+        |s| s.faces.1 - s.faces.0,
+        |s, _| write_span(pattern, topo, n, s),
+    )
+    .map(|_| ())
 }
 
 impl LevelCounts {
@@ -195,7 +313,8 @@ pub(crate) fn derivable(pattern: Pattern) -> bool {
 
 /// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that [`write_pattern`]
 /// wrote from `parent`, in `scratch` ([`crate::mesh::topology_scratch_size`] of the child): the
-/// same arrays as [`Topology::build`] on `mesh` (`derive.rs`).
+/// same arrays as [`Topology::build`] on `mesh` (`derive.rs`), for every executor `exec`
+/// (the per-face part runs in its chunks).
 ///
 /// # Errors
 /// [`Status::BufferTooSmall`] with the needed length; an internal error when `mesh` is not
@@ -205,10 +324,11 @@ pub(crate) fn child_topology<'m2, 's2>(
     pattern: Pattern,
     mesh: Mesh<'m2>,
     scratch: &'s2 mut [u32],
+    exec: &dyn Executor,
 ) -> Result<Topology<'m2, 's2>> {
     let counts: Counts = match pattern {
-        Pattern::Quads => quads::derive(parent, &mesh, scratch)?,
-        Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch)?,
+        Pattern::Quads => quads::derive(parent, &mesh, scratch, exec)?,
+        Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch, exec)?,
         _ => return Err(internal()),
     };
     Topology::from_parts(mesh, scratch, counts)

@@ -4,9 +4,10 @@
 //! `F` face points.
 
 use super::counts::{some, LevelCounts};
-use super::derive::{check_eq, next_fast, old_vertices, spoke_edges};
+use super::derive::{check_eq, face_spans, next_fast, old_vertices, spoke_edges};
 use super::Parent;
 use crate::error::Result;
+use crate::exec::Executor;
 use crate::mesh::topology::{regions, Counts};
 use crate::mesh::{
     cadd, cmul, get, idx, internal, set, Mesh, MeshSizes, Topology, MAX_COUNT, NONE,
@@ -28,18 +29,23 @@ pub(super) fn size(topo: &Topology<'_, '_>) -> Result<MeshSizes> {
     })
 }
 
-/// The faces (module docs) without a call per corner: corner `h` of face `f` is
-/// quad `h` = `(v, E(h), F(f), E(prev h))`, corners `4h..4h + 4`.
-pub(super) fn write(
+/// The faces (module docs) of the parent faces `faces` without a call per corner: corner
+/// `h` of face `f` is quad `h` = `(v, E(h), F(f), E(prev h))`, corners `4h..4h + 4`.
+/// `offsets` and `indices` are the output's entries from those of the range's first face on
+/// ([`super::Span`]); the closing offset of the last face is the caller's.
+pub(super) fn write_faces(
     topo: &Topology<'_, '_>,
     n: Parent,
+    faces: (usize, usize),
     offsets: &mut [u32],
     indices: &mut [u32],
 ) -> Result<()> {
     let (nv, ne) = (n.v, n.e);
     let r = topo.raw();
-    let nh = r.indices.len();
-    for (f, w) in r.offsets.windows(2).enumerate() {
+    let (f0, f1) = faces;
+    let parent_offsets = r.offsets.get(f0..=f1).ok_or(internal())?;
+    let h0 = *parent_offsets.first().ok_or(internal())? as usize;
+    for (f, w) in (f0..).zip(parent_offsets.windows(2)) {
         let &[a, b] = w else {
             return Err(internal());
         };
@@ -48,7 +54,11 @@ pub(super) fn write(
         let corners = r.indices.get(a..b).ok_or(internal())?;
         let edges = r.edge_of.get(a..b).ok_or(internal())?;
         let mut prev = nv + *edges.last().ok_or(internal())?;
-        let out = indices.get_mut(4 * a..4 * b).ok_or(internal())?;
+        let (a0, b0) = (a.checked_sub(h0), b.checked_sub(h0));
+        let (Some(a0), Some(b0)) = (a0, b0) else {
+            return Err(internal());
+        };
+        let out = indices.get_mut(4 * a0..4 * b0).ok_or(internal())?;
         for ((q, &v), &e) in out.chunks_exact_mut(4).zip(corners).zip(edges) {
             let cur = nv + e;
             if let [q0, q1, q2, q3] = q {
@@ -57,11 +67,21 @@ pub(super) fn write(
             prev = cur;
         }
     }
-    let offs = offsets.get_mut(..nh + 1).ok_or(internal())?;
-    for (h, o) in offs.iter_mut().enumerate() {
+    let h1 = *parent_offsets.last().ok_or(internal())? as usize;
+    let offs = offsets
+        .get_mut(..h1.checked_sub(h0).ok_or(internal())?)
+        .ok_or(internal())?;
+    for (h, o) in (h0..).zip(offs.iter_mut()) {
         *o = idx(4 * h)?;
     }
     Ok(())
+}
+
+/// Where the output of parent face `f` starts: its first quad and first corner (the quads
+/// are numbered by the parent's corners).
+pub(super) fn first_output(topo: &Topology<'_, '_>, f: usize) -> Result<(usize, usize)> {
+    let h = get(topo.raw().offsets, f)? as usize;
+    Ok((h, 4 * h))
 }
 
 /// The counts of the next level. Edge points: interior valence 4, boundary 3; face points
@@ -90,6 +110,7 @@ pub(super) fn derive(
     parent: &Topology<'_, '_>,
     mesh: &Mesh<'_>,
     scratch: &mut [u32],
+    exec: &dyn Executor,
 ) -> Result<Counts> {
     let par = parent.raw();
     let (nv, ne, nf, nh) = (
@@ -114,39 +135,46 @@ pub(super) fn derive(
     let indices = par.indices;
     let (new_offsets, new_indices) = (mesh.offsets, mesh.indices);
     check_eq(get(new_offsets, 0)?, 0)?;
-    for f in 0..nf {
-        let a = get(offsets, f)?;
-        let b = get(offsets, f + 1)?;
-        let fp = nv32 + ne32 + f as u32;
-        for h in a..b {
-            let nx = if h + 1 == b { a } else { h + 1 };
-            let p = if h == a { b - 1 } else { h - 1 };
-            let t = get(par.twin, h as usize)?;
-            let tp = get(par.twin, p as usize)?;
-            let q = 4 * h as usize;
-            let across = if t == NONE {
-                NONE
-            } else {
-                4 * next_fast(&par, t)? + 3
-            };
-            let back = if tp == NONE { NONE } else { 4 * tp };
-            let Some([t0, t1, t2, t3]) = r.twin.get_mut(q..q + 4) else {
-                return Err(internal());
-            };
-            (*t0, *t1, *t2, *t3) = (across, 4 * nx + 2, 4 * p + 1, back);
-            for s in r.face_of.get_mut(q..q + 4).ok_or(internal())? {
-                *s = h;
+    // Twins and faces of the child half-edges, by parent face (corner h of the parent is
+    // child half-edges 4h..4h + 4), in the chunks of `exec`.
+    let child_he = |f: usize| Ok(4 * get(offsets, f)? as usize);
+    face_spans(nf, &mut r, child_he, exec, |s| {
+        for f in s.faces.0..s.faces.1 {
+            let a = get(offsets, f)?;
+            let b = get(offsets, f + 1)?;
+            let fp = nv32 + ne32 + f as u32;
+            for h in a..b {
+                let nx = if h + 1 == b { a } else { h + 1 };
+                let p = if h == a { b - 1 } else { h - 1 };
+                let t = get(par.twin, h as usize)?;
+                let tp = get(par.twin, p as usize)?;
+                let q = 4 * h as usize;
+                let across = if t == NONE {
+                    NONE
+                } else {
+                    4 * next_fast(&par, t)? + 3
+                };
+                let back = if tp == NONE { NONE } else { 4 * tp };
+                let ql = q.checked_sub(s.first).ok_or(internal())?;
+                let Some([t0, t1, t2, t3]) = s.twin.get_mut(ql..ql + 4) else {
+                    return Err(internal());
+                };
+                (*t0, *t1, *t2, *t3) = (across, 4 * nx + 2, 4 * p + 1, back);
+                for x in s.face_of.get_mut(ql..ql + 4).ok_or(internal())? {
+                    *x = h;
+                }
+                let Some(&[c0, c1, c2, c3]) = new_indices.get(q..q + 4) else {
+                    return Err(internal());
+                };
+                check_eq(c0, get(indices, h as usize)?)?;
+                check_eq(c1, nv32 + get(par.edge_of, h as usize)?)?;
+                check_eq(c2, fp)?;
+                check_eq(c3, nv32 + get(par.edge_of, p as usize)?)?;
+                check_eq(get(new_offsets, h as usize + 1)?, 4 * h + 4)?;
             }
-            let Some(&[c0, c1, c2, c3]) = new_indices.get(q..q + 4) else {
-                return Err(internal());
-            };
-            check_eq(c0, get(indices, h as usize)?)?;
-            check_eq(c1, nv32 + get(par.edge_of, h as usize)?)?;
-            check_eq(c2, fp)?;
-            check_eq(c3, nv32 + get(par.edge_of, p as usize)?)?;
-            check_eq(get(new_offsets, h as usize + 1)?, 4 * h + 4)?;
         }
-    }
+        Ok(())
+    })?;
     // Edges (v, E): v -> E is 4h, E -> dest(h) is 4 next(h) + 3.
     let mut id = spoke_edges(
         parent,

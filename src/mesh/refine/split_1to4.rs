@@ -4,9 +4,10 @@
 //! `E` edge points.
 
 use super::counts::{some, LevelCounts};
-use super::derive::{check_eq, old_vertices, spoke_edges};
+use super::derive::{check_eq, face_spans, old_vertices, spoke_edges};
 use super::Parent;
 use crate::error::{Error, Result, Status};
+use crate::exec::Executor;
 use crate::mesh::topology::{regions, Counts};
 use crate::mesh::{
     cadd, cmul, get, idx, internal, set, Mesh, MeshSizes, Topology, MAX_COUNT, NONE,
@@ -31,20 +32,24 @@ pub(super) fn size(topo: &Topology<'_, '_>) -> Result<MeshSizes> {
     })
 }
 
-/// The faces (module docs) without a call per face: triangle `f` (corners `3f..3f + 3`,
-/// every face a triangle) is faces `4f..4f + 4`, corners `12f..12f + 12`.
-pub(super) fn write(
+/// The faces (module docs) of the parent triangles `faces` without a call per face:
+/// triangle `f` (corners `3f..3f + 3`, every face a triangle) is faces `4f..4f + 4`,
+/// corners `12f..12f + 12`. `offsets` and `indices` are the output's entries from those of
+/// the range's first face on ([`super::Span`]); the closing offset of the last face is the
+/// caller's.
+pub(super) fn write_faces(
     topo: &Topology<'_, '_>,
     n: Parent,
+    faces: (usize, usize),
     offsets: &mut [u32],
     indices: &mut [u32],
 ) -> Result<()> {
     let nv = n.v;
     let r = topo.raw();
-    let nf = r.offsets.len().saturating_sub(1);
-    let corners = r.indices.get(..3 * nf).ok_or(internal())?;
-    let edges = r.edge_of.get(..3 * nf).ok_or(internal())?;
-    let out = indices.get_mut(..12 * nf).ok_or(internal())?;
+    let (f0, f1) = faces;
+    let corners = r.indices.get(3 * f0..3 * f1).ok_or(internal())?;
+    let edges = r.edge_of.get(3 * f0..3 * f1).ok_or(internal())?;
+    let out = indices.get_mut(..12 * (f1 - f0)).ok_or(internal())?;
     for ((q, c), e) in out
         .chunks_exact_mut(12)
         .zip(corners.chunks_exact(3))
@@ -60,16 +65,22 @@ pub(super) fn write(
         }
     }
     // Every face a triangle (checked by `pattern_size`): face f is corners 3f..3f + 3.
-    for (f, w) in r.offsets.windows(2).enumerate() {
+    let parent_offsets = r.offsets.get(f0..=f1).ok_or(internal())?;
+    for (f, w) in (f0..).zip(parent_offsets.windows(2)) {
         if w != [3 * f as u32, 3 * f as u32 + 3] {
             return Err(internal());
         }
     }
-    let offs = offsets.get_mut(..4 * nf + 1).ok_or(internal())?;
-    for (k, o) in offs.iter_mut().enumerate() {
+    let offs = offsets.get_mut(..4 * (f1 - f0)).ok_or(internal())?;
+    for (k, o) in (4 * f0..).zip(offs.iter_mut()) {
         *o = idx(3 * k)?;
     }
     Ok(())
+}
+
+/// Where the output of parent triangle `f` starts: its first face and first corner.
+pub(super) fn first_output(f: usize) -> (usize, usize) {
+    (4 * f, 12 * f)
 }
 
 /// The counts of the next level. Edge points: interior valence 6, boundary 4; old vertices
@@ -100,6 +111,7 @@ pub(super) fn derive(
     parent: &Topology<'_, '_>,
     mesh: &Mesh<'_>,
     scratch: &mut [u32],
+    exec: &dyn Executor,
 ) -> Result<Counts> {
     let par = parent.raw();
     let (nv, ne, nf, nh) = (
@@ -130,41 +142,56 @@ pub(super) fn derive(
     let next = |h: u32| if h % 3 == 2 { h - 2 } else { h + 1 };
     let prev = |h: u32| if h % 3 == 0 { h + 2 } else { h - 1 };
     check_eq(get(new_offsets, 0)?, 0)?;
-    for f in 0..nf as u32 {
-        check_eq(get(par.offsets, f as usize + 1)?, 3 * f + 3)?;
-        for i in 0..3u32 {
-            let h = 3 * f + i;
-            let (nx, p) = (next(h), prev(h));
-            let t = get(par.twin, h as usize)?;
-            let tp = get(par.twin, p as usize)?;
-            let q = big_a(h) as usize;
-            let c = big_c(h) as usize;
-            let across = if t == NONE { NONE } else { big_a(next(t)) + 2 };
-            let back = if tp == NONE { NONE } else { big_a(tp) };
-            let Some([t0, t1, t2]) = r.twin.get_mut(q..q + 3) else {
-                return Err(internal());
-            };
-            (*t0, *t1, *t2) = (across, big_c(p), back);
-            set(r.twin, c, big_a(nx) + 1)?;
-            for s in r.face_of.get_mut(q..q + 3).ok_or(internal())? {
-                *s = 4 * f + i;
+    // Twins and faces of the child half-edges, by parent triangle (triangle f is child
+    // half-edges 12f..12f + 12), in the chunks of `exec`.
+    face_spans(
+        nf,
+        &mut r,
+        |f| Ok(12 * f),
+        exec,
+        |s| {
+            for f in s.faces.0 as u32..s.faces.1 as u32 {
+                check_eq(get(par.offsets, f as usize + 1)?, 3 * f + 3)?;
+                for i in 0..3u32 {
+                    let h = 3 * f + i;
+                    let (nx, p) = (next(h), prev(h));
+                    let t = get(par.twin, h as usize)?;
+                    let tp = get(par.twin, p as usize)?;
+                    let q = big_a(h) as usize;
+                    let c = big_c(h) as usize;
+                    let (Some(ql), Some(cl)) = (q.checked_sub(s.first), c.checked_sub(s.first))
+                    else {
+                        return Err(internal());
+                    };
+                    let across = if t == NONE { NONE } else { big_a(next(t)) + 2 };
+                    let back = if tp == NONE { NONE } else { big_a(tp) };
+                    let Some([t0, t1, t2]) = s.twin.get_mut(ql..ql + 3) else {
+                        return Err(internal());
+                    };
+                    (*t0, *t1, *t2) = (across, big_c(p), back);
+                    set(s.twin, cl, big_a(nx) + 1)?;
+                    for x in s.face_of.get_mut(ql..ql + 3).ok_or(internal())? {
+                        *x = 4 * f + i;
+                    }
+                    set(s.face_of, cl, 4 * f + 3)?;
+                    let Some(&[c0, c1, c2]) = new_indices.get(q..q + 3) else {
+                        return Err(internal());
+                    };
+                    let eh = nv32 + get(par.edge_of, h as usize)?;
+                    check_eq(c0, get(indices, h as usize)?)?;
+                    check_eq(c1, eh)?;
+                    check_eq(c2, nv32 + get(par.edge_of, p as usize)?)?;
+                    check_eq(get(new_indices, c)?, eh)?;
+                    check_eq(
+                        get(new_offsets, (4 * f + i) as usize + 1)?,
+                        12 * f + 3 * i + 3,
+                    )?;
+                }
+                check_eq(get(new_offsets, 4 * f as usize + 4)?, 12 * f + 12)?;
             }
-            set(r.face_of, c, 4 * f + 3)?;
-            let Some(&[c0, c1, c2]) = new_indices.get(q..q + 3) else {
-                return Err(internal());
-            };
-            let eh = nv32 + get(par.edge_of, h as usize)?;
-            check_eq(c0, get(indices, h as usize)?)?;
-            check_eq(c1, eh)?;
-            check_eq(c2, nv32 + get(par.edge_of, p as usize)?)?;
-            check_eq(get(new_indices, c)?, eh)?;
-            check_eq(
-                get(new_offsets, (4 * f + i) as usize + 1)?,
-                12 * f + 3 * i + 3,
-            )?;
-        }
-        check_eq(get(new_offsets, 4 * f as usize + 4)?, 12 * f + 12)?;
-    }
+            Ok(())
+        },
+    )?;
     // Edges (v, E): v -> E is A(h), E -> dest(h) is A(next h) + 2.
     let mut id = spoke_edges(parent, &mut r, |h| Ok(big_a(h)), |h| Ok(big_a(next(h)) + 2))?;
     // Edges (E(e), E(e')) with e < e' in parent-edge order, sorted by e' (at most four:

@@ -80,7 +80,7 @@ pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star
 use super::Scheme;
 use crate::error::{Error, Result, Status, NO_ELEMENT};
 use crate::exec::{self, Executor};
-use crate::mesh::refine::write_pattern;
+use crate::mesh::refine::write_pattern_with;
 use crate::mesh::{internal, MeshOut, MeshSizes, Topology};
 use crate::point::{self, Point};
 use driver::Driver;
@@ -188,7 +188,7 @@ pub(crate) fn step(
     // `split_at_mut_checked`, not `split_at_mut`: the length is checked above, but the
     // panicking form would link a panic path into every export (the link proof refuses it).
     let (scratch, linear_pos) = scratch.split_at_mut_checked(candidates).ok_or(internal())?;
-    write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;
+    write_pattern_with(scheme.pattern(), topo, out.offsets, out.indices, exec)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
     let (edge_c, rest) = scratch.split_at_mut_checked(nh).ok_or(internal())?;
