@@ -6,7 +6,8 @@
 //! what makes the blend and the choice of axis on the negative reals Möbius-equivariant.
 
 use super::frame::{
-    self, max_of, normalised, pair_squares, Normalised, DIFFERENCES_MAX_SQ, DIFFERENCES_MIN_SQ,
+    self, dist_sq, max_of, normalised, pair_squares, pair_squares_bound, Normalised,
+    DIFFERENCES_MAX_SQ, DIFFERENCES_MIN_SQ,
 };
 use super::roots::{imaginary_axis, plane_normal, sqrt_with_lazy_axis};
 use super::solve::solve_by_difference;
@@ -51,6 +52,27 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
         // meets this whenever a quadruplet's F4 is reused.)
         return Ok(b);
     }
+    // The common case without the 15 pair squares: if `|b − e|²` is at least the lower end of
+    // the difference range, the bounding box's bound (`pair_squares_bound`, at least the
+    // largest pair square) at most the upper end, and `|b − e|²` above the coincidence
+    // tolerance times the bound (so above it times the largest pair: a product with a
+    // positive constant rounds monotonically), then the careful path below takes the
+    // difference range and passes the rule `b = e`: it runs the formula on `pts`, as here.
+    let be = dist_sq(b, e);
+    let bound = pair_squares_bound(&pts);
+    if be >= DIFFERENCES_MIN_SQ
+        && bound <= DIFFERENCES_MAX_SQ
+        && be > COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * bound
+    {
+        return f6_formula(pts).and_then(|p| frame::to_world(None, p));
+    }
+    f6_careful(pts)
+}
+
+/// [`f6`] on finite points with the largest pair square computed: the difference range or the
+/// normalised frame (`frame.rs`), then the rule `b = e → b` or the formula.
+fn f6_careful(pts: [Point; 6]) -> Result<Point> {
+    let b = pts[1];
     let sq = pair_squares(&pts);
     let max_sq = max_of(&sq);
     let (found, frame) = if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
@@ -74,12 +96,19 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
 /// F6 on six finite points with pairwise squares `sq` (pairs in lexicographic order) whose
 /// largest is `max_sq`, in world or normalised-frame coordinates: `None` for the rule
 /// `b = e → b`, else the solved point.
-fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<Option<Point>> {
+fn f6_in(pts: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<Option<Point>> {
     // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
     let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
     if be <= COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq {
         return Ok(None);
     }
+    f6_formula(pts).map(Some)
+}
+
+/// The formula of [`f6`] on six finite points (world or normalised-frame coordinates) with
+/// `b ≠ e`: the cross-ratios, their roots and the solve of Eq. (3).
+#[inline(always)]
+fn f6_formula([a, b, c, d, e, f]: [Point; 6]) -> Result<Point> {
     let degenerate = Error::new(Status::DegenerateGeometry);
     // X = cr[e, a, b, d] = q_ea q_ab⁻¹ q_bd q_de⁻¹ and Y = cr[e, a, b, f] share the prefix
     // (a − e)(b − a)⁻¹, which is also the M of the solve; Z = cr[e, c, b, f].
@@ -107,7 +136,7 @@ fn f6_in([a, b, c, d, e, f]: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<O
     let r = sx.inverse().ok_or(degenerate)? * y * sz.inverse().ok_or(degenerate)?;
     let sr = sqrt_with_lazy_axis(r, r.abs(), &mut axis, find).ok_or(degenerate)?;
     let chi = -(sx * sr);
-    solve_by_difference(cx.prefix, b, e, chi).map(Some)
+    solve_by_difference(cx.prefix, b, e, chi)
 }
 
 #[cfg(test)]
@@ -156,6 +185,76 @@ mod tests {
             (Ok(None), Ok(None)) => true,
             (Err(p), Err(q)) => p.status == q.status,
             _ => false,
+        }
+    }
+
+    /// Bitwise equality of two results of `f6`.
+    fn same_point(p: Result<Point>, q: Result<Point>) -> bool {
+        same(p.map(Some), q.map(Some))
+    }
+
+    #[test]
+    fn f6_shortcut_is_the_careful_path_bit_for_bit() {
+        // `f6` decides from the bounding box where `f6_careful` takes the largest of the 15
+        // pair squares. Random chains at scales around both ends of the difference range
+        // (diameters 1e-100 and 1e100, where the bound and the largest pair straddle an end),
+        // with `b − e` around the coincidence tolerance (1e-13 of the diameter), and far out.
+        let mut state = 5;
+        let (mut shortcut, mut careful, mut coincident) = (0, 0, 0);
+        let scaled = |p: Point, s: f64| p.map(|x| x * s);
+        for i in 0..60_000u64 {
+            let mut pts: [Point; 6] = lcg_points(&mut state);
+            let s = [1.0, 1e-100, 2e-100, 0.6e100, 1e100, 1e150, 1e-160][(i % 7) as usize];
+            pts = pts.map(|p| scaled(p, s));
+            if i % 3 == 1 {
+                // b − e of 0.3 to 3 times the tolerance of the chain's extent.
+                let t = (0.3 + (i % 11) as f64 * 0.27) * COINCIDENT_TOLERANCE * s;
+                pts[4] = [pts[1][0] + t, pts[1][1], pts[1][2]];
+            }
+            if i % 13 == 0 {
+                // Coordinates far from the origin, small spread: the subtractions round.
+                pts = pts.map(|p| [p[0] + 3e7 * s, p[1] - 1e7 * s, p[2]]);
+            }
+            let [a, b, c, d, e, f] = pts;
+            let fast = f6(a, b, c, d, e, f);
+            let slow = f6_careful(pts);
+            assert!(
+                same_point(fast, slow),
+                "{pts:?}: {:?} vs {:?}",
+                fast.ok(),
+                slow.ok()
+            );
+            let bound = pair_squares_bound(&pts);
+            let be = dist_sq(b, e);
+            if be >= DIFFERENCES_MIN_SQ
+                && bound <= DIFFERENCES_MAX_SQ
+                && be > COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * bound
+            {
+                shortcut += 1;
+            } else {
+                careful += 1;
+            }
+            if slow.is_ok_and(|p| p == b) {
+                coincident += 1;
+            }
+        }
+        // Both branches and the rule `b = e` are exercised.
+        assert!(
+            shortcut > 10_000 && careful > 10_000,
+            "{shortcut} / {careful}"
+        );
+        assert!(coincident > 1_000, "{coincident}");
+    }
+
+    #[test]
+    fn pair_squares_bound_bounds_every_pair() {
+        let mut state = 3;
+        for i in 0..20_000u64 {
+            let s = libm::ldexp(1.0, (i % 41) as i32 * 50 - 1000);
+            let pts: [Point; 6] = lcg_points(&mut state);
+            let pts = pts.map(|p| p.map(|x| x * s + 1e3 * s));
+            let sq: [f64; 15] = pair_squares(&pts);
+            assert!(max_of(&sq) <= pair_squares_bound(&pts), "{pts:?}");
         }
     }
 
