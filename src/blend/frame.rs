@@ -23,7 +23,7 @@ pub(super) struct Frame {
 
 /// `|p − q|²` as [`norm`] forms it (so that its square root is `norm(sub(p, q))` bit for bit).
 #[inline]
-fn dist_sq(p: Point, q: Point) -> f64 {
+pub(super) fn dist_sq(p: Point, q: Point) -> f64 {
     Quat::from_point(sub(p, q)).norm_sq()
 }
 
@@ -100,6 +100,30 @@ pub(super) fn pair_squares<const N: usize, const M: usize>(p: &[Point; N]) -> [f
         }
     }
     out
+}
+
+/// An upper bound of every [`pair_squares`] entry of finite points: [`dist_sq`] of the corners
+/// of their bounding box. Every operation of [`dist_sq`] is correctly rounded and so monotone
+/// in each argument: a coordinate difference is at most the box's extent before rounding, so
+/// also after, and the same holds for its square and the sums, in the same order. Six points
+/// take 15 squared distances but only one here: F6 compares this bound instead of the largest
+/// pair where that decides the same way (`f6`). `+∞` when the extent overflows.
+#[inline(always)]
+pub(super) fn pair_squares_bound<const N: usize>(p: &[Point; N]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for q in p {
+        for ((&x, l), h) in q.iter().zip(&mut lo).zip(&mut hi) {
+            // Finite inputs, no NaN: the comparisons are `min` and `max`.
+            if x < *l {
+                *l = x;
+            }
+            if x > *h {
+                *h = x;
+            }
+        }
+    }
+    dist_sq(hi, lo)
 }
 
 /// Squared diameters between which the blends work on the input coordinates themselves:

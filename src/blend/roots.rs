@@ -61,13 +61,8 @@ pub(super) fn plane_normal(a: Point, b: Point, c: Point) -> Point {
 /// Lemma A.1: for cospherical points every cross-ratio starting at the same point has its
 /// imaginary part along one axis). A component across `n` below `1e-12 |q|` is dropped; larger
 /// ones are kept, so nothing changes for points that are not cospherical.
-#[inline(always)]
-pub(super) fn sqrt_snapped(q: Quat, n: Point, snap: bool) -> Option<Quat> {
-    sqrt_snapped_with_abs(q, q.abs(), n, snap)
-}
-
-/// [`sqrt_snapped`] with `r = q.abs()` computed by the caller (F4 has it from the
-/// noncircularity). `|Im q|` is needed only for a negative real part (the negative-real test
+///
+/// `r = q.abs()` is computed by the caller (F4 has it from the noncircularity). `|Im q|` is needed only for a negative real part (the negative-real test
 /// and the root's lower half-space formula); with `Re q ≥ 0` the root reads only whether
 /// `Im q` is zero, which is whether its three components are (`abs_im` is zero exactly
 /// then), so the common case takes two square roots fewer. The same bits as computing both
@@ -94,6 +89,27 @@ pub(super) fn sqrt_snapped_with_abs(q: Quat, r: f64, n: Point, snap: bool) -> Op
             return Some(Quat::new(0.0, n[0] * t, n[1] * t, n[2] * t));
         }
         return q.sqrt_given(r, vi);
+    }
+    q.sqrt_upper(r)
+}
+
+/// [`sqrt_snapped_with_abs`] with the axis found only when it is read: `axis` is filled from
+/// `find` on the first root of a quaternion with negative real part and reused after. With
+/// `Re q ≥ 0` (or NaN) [`sqrt_snapped_with_abs`] reads neither the axis nor `snap` and is
+/// [`Quat::sqrt_upper`], so this gives the same bits while F6 skips its axis search
+/// ([`imaginary_axis`], three norms and six divisions) in the common case where all of its
+/// roots are taken in the right half-space (seed 000 §4.4.2). `find` returns the axis and
+/// whether to snap to it.
+#[inline(always)]
+pub(super) fn sqrt_with_lazy_axis(
+    q: Quat,
+    r: f64,
+    axis: &mut Option<(Point, bool)>,
+    find: impl FnOnce() -> (Point, bool),
+) -> Option<Quat> {
+    if q.w < 0.0 {
+        let (n, snap) = *axis.get_or_insert_with(find);
+        return sqrt_snapped_with_abs(q, r, n, snap);
     }
     q.sqrt_upper(r)
 }
