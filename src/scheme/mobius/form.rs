@@ -14,6 +14,7 @@ use crate::error::{Error, Result, Status};
 use crate::mesh::{Spoke, Topology};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
+use crate::stencil::centroid_of_sum;
 use crate::MAX_VALENCE;
 
 pub(super) use crate::mesh::gather::{FacePts, Ring};
@@ -57,13 +58,18 @@ pub(super) trait Frame: MapBack {
     /// The image of vertex `u` (the centre goes to [`ORIGIN`]).
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point>;
 
-    /// The centroid of face `f`'s corners taken in the frame; `pts` is scratch.
-    fn face_centroid(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<Point>;
+    /// The centroid of face `f`'s corners taken in the frame: their images summed as the
+    /// face is walked ([`crate::stencil::centroid`] of the images bit for bit, with no array
+    /// of a face's points on the stack); the first failing image's error.
+    #[inline(always)]
+    fn face_centroid(&mut self, topo: &Topology<'_, '_>, f: u32) -> Result<Point> {
+        let corners = topo.face_vertices(f)?;
+        let mut s = ORIGIN;
+        for &u in corners {
+            s = point::add(s, self.image(topo, u)?);
+        }
+        centroid_of_sum(s, corners.len())
+    }
 }
 
 /// An identity [`MapBack`]: a rule *in form* run with it leaves its results in the
