@@ -10,7 +10,7 @@
 
 use arrayvec::ArrayVec;
 
-use crate::error::{Error, Result, Status};
+use crate::error::Result;
 use crate::mesh::{Spoke, Topology};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
@@ -110,13 +110,16 @@ pub(super) const fn interior_spoke(closed: bool, j: usize, n: usize) -> bool {
 
 /// The canonical form of the star `v ring…` and the ring's images in its normalised frame
 /// ([`MISSING`] for a neighbour the form sends to infinity).
+///
+/// The images are made in place from the tangent polygon the form was made of (one array of
+/// the ring's length on the stack, not two): with a form, every `T_i` exists, and
+/// [`CanonicalForm::to_normalised`] of `ring[i]` is `normalised_from_tangent(T_i)` bit for
+/// bit.
 pub(super) fn star_form(v: Point, ring: &[Point], closed: bool) -> Result<(CanonicalForm, Ring)> {
-    let cf = CanonicalForm::new(v, ring, kind_of(closed))?;
     let mut images = Ring::new();
-    for u in ring {
-        images
-            .try_push(cf.to_normalised(*u).unwrap_or(MISSING))
-            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    let cf = CanonicalForm::new_with_tangents(v, ring, kind_of(closed), &mut images)?;
+    for t in images.iter_mut() {
+        *t = cf.normalised_from_tangent(*t).unwrap_or(MISSING);
     }
     Ok((cf, images))
 }

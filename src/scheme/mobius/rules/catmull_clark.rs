@@ -9,9 +9,9 @@ use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, O
 use super::StarFaces;
 use crate::error::{Error, Result};
 use crate::mesh::{get, internal, set};
-use crate::point::Point;
-use crate::stencil::{catmull_clark, centroid};
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+use crate::point::{self, Point};
+use crate::stencil::{catmull_clark, centroid_of_sum};
+use crate::MAX_VALENCE;
 
 /// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of the
 /// neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when not
@@ -101,16 +101,19 @@ pub fn catmull_clark_star(
     let mut centroids: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
     for j in 0..n {
         let c = if j < nf {
-            let mut pts: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            // The images summed as the face is walked: `centroid` of them bit for bit, with
+            // no array of the face's points on the stack.
+            let corners = faces.face(j)?;
+            let mut sum = ORIGIN;
             let mut ok = true;
-            for p in faces.face(j)? {
+            for p in corners {
                 match cf.to_normalised(*p) {
-                    Ok(q) => pts.try_push(q).map_err(|_| internal())?,
+                    Ok(q) => sum = point::add(sum, q),
                     Err(_) => ok = false,
                 }
             }
             if ok {
-                centroid(&pts)?
+                centroid_of_sum(sum, corners.len())?
             } else {
                 MISSING
             }
