@@ -73,7 +73,7 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
 /// [`crate::Status::BufferTooSmall`] for short candidate buffers;
 /// [`crate::Status::InvalidArgument`] when the number of faces does not fit the ring;
 /// [`crate::Status::BadOffsets`], [`crate::Status::FaceTooSmall`],
-/// [`crate::Status::ValenceTooHigh`] (more than [`MAX_FACE_SIZE`] corners) naming the face;
+/// [`crate::Status::ValenceTooHigh`] (more than [`crate::MAX_FACE_SIZE`] corners) naming the face;
 /// the errors of [`crate::mobius::CanonicalForm::new`]; [`crate::Status::NonFiniteInput`]
 /// and [`crate::Status::InvalidArgument`] (a face that does not contain `v`) naming the face.
 /// Unlike [`super::loop_star`], a neighbour sent to infinity only removes the rules that use
