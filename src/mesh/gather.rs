@@ -16,31 +16,7 @@ pub(crate) type Ring = ArrayVec<Point, MAX_VALENCE>;
 /// Points of one face, in face order.
 pub(crate) type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
 
-/// Positions of `v`'s neighbours, counter-clockwise.
-pub(crate) fn ring_points(topo: &Topology<'_, '_>, v: u32) -> Result<Ring> {
-    let mut r = Ring::new();
-    ring_points_into(topo, v, &mut r)?;
-    Ok(r)
-}
-
-/// [`ring_points`] into a reused buffer (no 3 KB array returned per vertex).
-pub(crate) fn ring_points_into(topo: &Topology<'_, '_>, v: u32, r: &mut Ring) -> Result<()> {
-    r.clear();
-    for s in topo.star(v) {
-        r.try_push(topo.position(s.neighbour)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, v))?;
-    }
-    Ok(())
-}
-
-/// Positions of the corners of face `f`, in face order.
-pub(crate) fn face_points(topo: &Topology<'_, '_>, f: u32) -> Result<FacePts> {
-    let mut r = FacePts::new();
-    face_points_into(topo, f, &mut r)?;
-    Ok(r)
-}
-
-/// [`face_points`] into a reused buffer.
+/// Positions of the corners of face `f`, in face order, into a reused buffer.
 pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts) -> Result<()> {
     r.clear();
     for &v in topo.face_vertices(f)? {
@@ -51,7 +27,7 @@ pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts)
 }
 
 /// The number of `v`'s neighbours and the sum of their positions, counter-clockwise from
-/// the star's first spoke and left to right ([`crate::point::sum`] of [`ring_points`]):
+/// the star's first spoke and left to right ([`crate::point::sum`] of the ring's points):
 /// the linear rules that read a ring only through its sum take this, with no array.
 pub(crate) fn ring_sum(topo: &Topology<'_, '_>, v: u32) -> Result<(usize, Point)> {
     let mut n = 0;
@@ -64,7 +40,7 @@ pub(crate) fn ring_sum(topo: &Topology<'_, '_>, v: u32) -> Result<(usize, Point)
 }
 
 /// The number of corners of face `f` and the sum of their positions, in face order and left
-/// to right ([`crate::point::sum`] of [`face_points`]).
+/// to right ([`crate::point::sum`] of the face's points).
 pub(crate) fn face_sum(topo: &Topology<'_, '_>, f: u32) -> Result<(usize, Point)> {
     let corners = topo.face_vertices(f)?;
     let mut s = [0.0; 3];

@@ -7,7 +7,7 @@
 //! of ears only takes its linear rule, counted as a fallback (docs/DECISIONS.md).
 
 use super::driver::Driver;
-use super::form::{FacePts, MapBack, Spokes};
+use super::form::{Frame, MapBack, Spokes};
 use super::memo::StarForm;
 use crate::error::Result;
 use crate::mesh::{get, set, NONE};
@@ -51,7 +51,6 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
-        let mut pts = FacePts::new();
         for f in 0..topo.num_faces() as u32 {
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
                 let v = topo.origin(h)?;
@@ -64,10 +63,7 @@ impl Driver<'_, '_, '_, '_> {
                 if !self.local_into(u, &mut form, &mut spokes)? {
                     continue;
                 }
-                if let Ok(c) = form
-                    .face_centroid(topo, f, &mut pts)
-                    .and_then(|c| form.back(c))
-                {
+                if let Ok(c) = form.face_centroid(topo, f).and_then(|c| form.back(c)) {
                     set(self.face_c, self.slot(h)?, c)?;
                 }
             }

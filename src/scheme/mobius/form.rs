@@ -10,10 +10,11 @@
 
 use arrayvec::ArrayVec;
 
-use crate::error::{Error, Result, Status};
+use crate::error::Result;
 use crate::mesh::{Spoke, Topology};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
+use crate::stencil::centroid_of_sum;
 use crate::MAX_VALENCE;
 
 pub(super) use crate::mesh::gather::{FacePts, Ring};
@@ -57,13 +58,18 @@ pub(super) trait Frame: MapBack {
     /// The image of vertex `u` (the centre goes to [`ORIGIN`]).
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point>;
 
-    /// The centroid of face `f`'s corners taken in the frame; `pts` is scratch.
-    fn face_centroid(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<Point>;
+    /// The centroid of face `f`'s corners taken in the frame: their images summed as the
+    /// face is walked ([`crate::stencil::centroid`] of the images bit for bit, with no array
+    /// of a face's points on the stack); the first failing image's error.
+    #[inline(always)]
+    fn face_centroid(&mut self, topo: &Topology<'_, '_>, f: u32) -> Result<Point> {
+        let corners = topo.face_vertices(f)?;
+        let mut s = ORIGIN;
+        for &u in corners {
+            s = point::add(s, self.image(topo, u)?);
+        }
+        centroid_of_sum(s, corners.len())
+    }
 }
 
 /// An identity [`MapBack`]: a rule *in form* run with it leaves its results in the
@@ -104,13 +110,16 @@ pub(super) const fn interior_spoke(closed: bool, j: usize, n: usize) -> bool {
 
 /// The canonical form of the star `v ring…` and the ring's images in its normalised frame
 /// ([`MISSING`] for a neighbour the form sends to infinity).
+///
+/// The images are made in place from the tangent polygon the form was made of (one array of
+/// the ring's length on the stack, not two): with a form, every `T_i` exists, and
+/// [`CanonicalForm::to_normalised`] of `ring[i]` is `normalised_from_tangent(T_i)` bit for
+/// bit.
 pub(super) fn star_form(v: Point, ring: &[Point], closed: bool) -> Result<(CanonicalForm, Ring)> {
-    let cf = CanonicalForm::new(v, ring, kind_of(closed))?;
     let mut images = Ring::new();
-    for u in ring {
-        images
-            .try_push(cf.to_normalised(*u).unwrap_or(MISSING))
-            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
+    let cf = CanonicalForm::new_with_tangents(v, ring, kind_of(closed), &mut images)?;
+    for t in images.iter_mut() {
+        *t = cf.normalised_from_tangent(*t).unwrap_or(MISSING);
     }
     Ok((cf, images))
 }

@@ -32,7 +32,7 @@ use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
-use super::form::{present, FacePts, Frame, Spokes};
+use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
 use super::slots::first_slot;
 use super::spectrum::Spectrum;
@@ -44,7 +44,6 @@ use crate::exec::{chunk_count, parts, pass, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
 use crate::point::{lin2, Point};
-use crate::stencil::centroid;
 
 /// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
 /// F4-angle term ([`Driver::trust_edges`]) can tell it from an interior star without a
@@ -60,19 +59,6 @@ impl Frame for Spectrum {
 
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         self.to(topo.position(u)?)
-    }
-
-    fn face_centroid(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<Point> {
-        pts.clear();
-        for &u in topo.face_vertices(f)? {
-            pts.try_push(self.image(topo, u)?).map_err(|_| internal())?;
-        }
-        centroid(pts)
     }
 }
 
@@ -165,20 +151,7 @@ impl Driver<'_, '_, '_, '_> {
             return Ok(false);
         }
         let topo = self.topo;
-        let mut form = StarForm::blank();
-        let mut spokes = Spokes::new();
-        // Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
-        // before anything is counted: the counts read the neighbours' final trust.
-        for v in 0..topo.num_vertices() as u32 {
-            let tau = get(self.trust, v as usize)?;
-            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
-                continue;
-            }
-            if spokes.len() >= 4 {
-                let s = sphericity(form.tangents(), form.centre());
-                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
-            }
-        }
+        self.spherical_trust()?;
         let (slots, strict) = (self.slots, self.strict);
         let run = |g: &mut Guarded<'_, '_, '_>, tally: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
@@ -240,6 +213,26 @@ impl Driver<'_, '_, '_, '_> {
         r.guarded = merged.count;
         r.first_guarded = merged.first;
         Ok(any)
+    }
+
+    /// Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
+    /// before anything is counted: the counts read the neighbours' final trust. Out of line,
+    /// so that its star form is off the stack before the re-evaluation makes its own.
+    #[inline(never)]
+    fn spherical_trust(&mut self) -> Result<()> {
+        let mut form = StarForm::blank();
+        let mut spokes = Spokes::new();
+        for v in 0..self.topo.num_vertices() as u32 {
+            let tau = get(self.trust, v as usize)?;
+            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
+                continue;
+            }
+            if spokes.len() >= 4 {
+                let s = sphericity(form.tangents(), form.centre());
+                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
+            }
+        }
+        Ok(())
     }
 
     /// The re-evaluation of [`Driver::guarded_pass`] in `k ≥ 2` vertex ranges (out of line:

@@ -3,7 +3,7 @@
 //! faces around the vertex and (Butterfly, Kobbelt) parts of the 2-ring into the form, and
 //! several rules read the same vertex, so each image is computed once per form.
 //!
-//! One [`StarForm`] lives per driver loop and is re-targeted per vertex: it is about 10 KB
+//! One [`StarForm`] lives per driver loop and is re-targeted per vertex: it is about 5 KB
 //! (the memo and the tangent polygon), and a fresh one per vertex would be moved several
 //! times per vertex (measured with callgrind: those copies cost half of Möbius
 //! Catmull–Clark's instructions).
@@ -13,7 +13,6 @@ use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
-use crate::stencil::centroid;
 
 /// A vertex's canonical form with a small cache of mapped points of its neighbourhood.
 pub(super) struct StarForm {
@@ -30,15 +29,19 @@ pub(super) struct StarForm {
     tangents: Ring,
 }
 
-/// Slots of [`StarForm::memo`]: at least twice the vertices a driver maps in one star (the
-/// 1-ring and the faces' other corners; Butterfly's wings) for the usual valences.
-const MEMO_SLOTS: usize = 256;
+/// Slots of [`StarForm::memo`] (`2^MEMO_BITS`): at least twice the vertices a driver maps
+/// in one star (the 1-ring and the faces' other corners; Butterfly's wings) for the usual
+/// valences. 32 bytes a slot, on the stack of every pass that holds a form: 64 slots keep
+/// it at 2 KiB (docs/firmware.md, "Stack"); a larger star only evicts more often, and an
+/// evicted image is recomputed bit for bit.
+const MEMO_BITS: u32 = 6;
+const MEMO_SLOTS: usize = 1 << MEMO_BITS;
 
 /// The memo slot of vertex `u`: Fibonacci hashing, whose top bits spread the nearby ids of
 /// one star over the table.
 #[inline]
 fn memo_slot(u: u32) -> usize {
-    (u.wrapping_mul(0x9E37_79B9) >> 24) as usize
+    (u.wrapping_mul(0x9E37_79B9) >> (32 - MEMO_BITS)) as usize
 }
 
 /// [`Topology::spokes_into`] spoke for spoke, walked on the topology's arrays: one
@@ -223,18 +226,6 @@ impl StarForm {
         }
         Ok(())
     }
-
-    /// The centroid of face `f` taken in the canonical form (normalised frame); `pts` is
-    /// scratch.
-    pub(super) fn face_centroid(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<Point> {
-        self.face(topo, f, pts)?;
-        centroid(pts)
-    }
 }
 
 impl MapBack for StarForm {
@@ -254,16 +245,6 @@ impl Frame for StarForm {
     #[inline(always)]
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         self.canon(topo, u)
-    }
-
-    #[inline(always)]
-    fn face_centroid(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<Point> {
-        StarForm::face_centroid(self, topo, f, pts)
     }
 }
 

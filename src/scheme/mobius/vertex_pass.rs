@@ -18,7 +18,7 @@
 use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
-use super::form::{present, FacePts, Frame, Ring, Spokes, MISSING};
+use super::form::{present, Frame, Ring, Spokes, MISSING};
 use super::memo::StarForm;
 use super::slots::{first_slot, slot_at_or_after};
 use crate::error::Result;
@@ -64,22 +64,18 @@ impl<F: Frame> Star<'_, F> {
     }
 
     /// The centroids, taken in the form, of the faces after each spoke into `centroids`
-    /// ([`MISSING`] after the last spoke of an open star and where a corner is at infinity);
-    /// `pts` is scratch.
+    /// ([`MISSING`] after the last spoke of an open star and where a corner is at infinity).
     pub(super) fn face_centroids(
         &mut self,
         topo: &Topology<'_, '_>,
         centroids: &mut Ring,
-        pts: &mut FacePts,
     ) -> Result<()> {
         centroids.clear();
         for s in self.spokes {
             let c = if s.face == NONE {
                 MISSING
             } else {
-                self.form
-                    .face_centroid(topo, s.face, pts)
-                    .unwrap_or(MISSING)
+                self.form.face_centroid(topo, s.face).unwrap_or(MISSING)
             };
             centroids.try_push(c).map_err(|_| internal())?;
         }

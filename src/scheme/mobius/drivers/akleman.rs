@@ -5,10 +5,10 @@
 //! rule. Layouts are the linear schemes'.
 
 use super::super::driver::Driver;
-use super::super::form::{FacePts, MapBack, Ring, ORIGIN};
+use super::super::form::{MapBack, Ring, ORIGIN};
 use crate::blend::f4;
 use crate::error::Result;
-use crate::mesh::gather::ring_points;
+use crate::mesh::gather::ring_sum;
 use crate::mesh::{set, NONE};
 use crate::scheme::carry::{append_isolated, boundary_vertices, copy_old};
 use crate::stencil::akleman;
@@ -17,14 +17,10 @@ use crate::stencil::akleman;
 /// substitute's) blended into face points at `start + f`.
 fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
     let topo = d.topo;
-    d.vertex_pass(
-        false,
-        || (Ring::new(), FacePts::new()),
-        |p, star, (fc, pts)| {
-            star.face_centroids(topo, fc, pts)?;
-            p.keep_face_candidates(star, fc)
-        },
-    )?;
+    d.vertex_pass(false, Ring::new, |p, star, fc| {
+        star.face_centroids(topo, fc)?;
+        p.keep_face_candidates(star, fc)
+    })?;
     d.ear_face_candidates()?;
     d.blend_faces(start)
 }
@@ -79,6 +75,7 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         Ok(())
     })?;
     d.finish_vertex_points(true, |t, v, p| {
-        akleman::truncated_vertex(p, &ring_points(t, v)?)
+        let (n, ring) = ring_sum(t, v)?;
+        akleman::truncated_vertex_sum(p, n, ring)
     })
 }

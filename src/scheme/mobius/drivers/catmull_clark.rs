@@ -6,15 +6,15 @@
 
 use super::super::audit::Children;
 use super::super::driver::Driver;
-use super::super::form::{FacePts, Frame, Normalised, Ring, MISSING};
+use super::super::form::{Frame, Normalised, Ring, MISSING};
 use super::super::guard::Outputs;
 use super::super::rules::catmull_clark_star_in_form;
 use super::super::vertex_pass::{Part, Star};
 use crate::error::Result;
-use crate::mesh::gather::face_points;
+use crate::mesh::gather::face_sum;
 use crate::mesh::{internal, Topology};
-use crate::point::Point;
-use crate::stencil::{catmull_clark, centroid};
+use crate::point::{add, Point};
+use crate::stencil::{catmull_clark, centroid_of_sum};
 use crate::MAX_VALENCE;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
@@ -27,24 +27,23 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.clear_vertex_points()?;
     d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
-        let mut ring = Ring::new();
-        let mut faces = Ring::new();
+        // The ring and the face points summed as the star is walked, as the linear scheme
+        // does (no arrays of points on the stack; the same bits as the slice form).
+        let (mut n, mut ring, mut faces) = (0, [0.0; 3], [0.0; 3]);
         for s in t.star(v) {
-            ring.try_push(t.position(s.neighbour)?)
-                .map_err(|_| internal())?;
-            faces
-                .try_push(centroid(&face_points(t, s.face)?)?)
-                .map_err(|_| internal())?;
+            ring = add(ring, t.position(s.neighbour)?);
+            faces = add(faces, face_centroid(t, s.face)?);
+            n += 1;
         }
-        catmull_clark::vertex_interior(p, &ring, &faces)
+        catmull_clark::vertex_interior_sums(p, n, ring, faces)
     })?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(catmull_clark::edge_interior(
             t.position(t.origin(h)?)?,
             t.position(t.dest(h)?)?,
-            centroid(&face_points(t, t.face(h)?)?)?,
-            centroid(&face_points(t, t.face(t.twin(h)?)?)?)?,
+            face_centroid(t, t.face(h)?)?,
+            face_centroid(t, t.face(t.twin(h)?)?)?,
         ))
     };
     // The boundary curves before the blends: the audit reads every output point of the
@@ -76,11 +75,17 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     Ok(())
 }
 
+/// The centroid of face `f`'s corners (the linear face point), summed as the face is walked:
+/// [`crate::stencil::centroid`] of its points bit for bit, with no array of points.
+fn face_centroid(t: &Topology<'_, '_>, f: u32) -> Result<Point> {
+    let (n, s) = face_sum(t, f)?;
+    centroid_of_sum(s, n)
+}
+
 /// The buffers of [`star_rule`], one set per chunk of the vertex pass.
 struct Bufs {
     ring: Ring,
     fc: Ring,
-    pts: FacePts,
     cands: [Point; MAX_VALENCE],
 }
 
@@ -89,7 +94,6 @@ impl Bufs {
         Bufs {
             ring: Ring::new(),
             fc: Ring::new(),
-            pts: FacePts::new(),
             cands: [MISSING; MAX_VALENCE],
         }
     }
@@ -105,7 +109,7 @@ fn star_rule<F: Frame>(
     b: &mut Bufs,
 ) -> Result<()> {
     let topo = p.topo;
-    star.face_centroids(topo, &mut b.fc, &mut b.pts)?;
+    star.face_centroids(topo, &mut b.fc)?;
     p.keep_face_candidates(star, &b.fc)?;
     star.ring_images(topo, &mut b.ring)?;
     let vertex =

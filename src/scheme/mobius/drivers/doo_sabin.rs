@@ -46,6 +46,16 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         Ok(())
     })?;
     // Ears in a substitute's form; anything still missing takes the linear rule.
+    missing_corners(d)?;
+    append_isolated(topo, d.pos, nh)
+}
+
+/// The corner points the vertex pass left missing: an ear's in a substitute's form, any other
+/// by the linear rule, counted as a fallback. Out of line, so that its star form and face
+/// arrays are off the stack while the vertex pass runs (docs/firmware.md, "Stack").
+#[inline(never)]
+fn missing_corners(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
     let mut form = StarForm::blank();
     let mut spokes = Spokes::new();
     let mut pts = FacePts::new();
@@ -82,5 +92,5 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             set(d.pos, h as usize, q)?;
         }
     }
-    append_isolated(topo, d.pos, nh)
+    Ok(())
 }

@@ -9,7 +9,7 @@ use super::super::guard::Outputs;
 use super::super::rules::loop_star_in_form;
 use super::super::vertex_pass::{Part, Star};
 use crate::error::Result;
-use crate::mesh::gather::{apex, ring_points};
+use crate::mesh::gather::{apex, ring_sum};
 use crate::mesh::{internal, Topology};
 use crate::point::Point;
 use crate::stencil::loop_scheme;
@@ -21,7 +21,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.clear_vertex_points()?;
     d.vertex_pass(true, Bufs::new, star_rule)?;
     d.finish_vertex_points(false, |t, v, p| {
-        loop_scheme::vertex_interior(p, &ring_points(t, v)?)
+        // The ring's sum as the star is walked (no 3 KB array of ring points on the stack).
+        let (n, ring) = ring_sum(t, v)?;
+        loop_scheme::vertex_interior_sum(p, n, ring)
     })?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;

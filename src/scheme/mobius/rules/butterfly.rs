@@ -18,7 +18,6 @@ use crate::error::{Error, Result, Status};
 use crate::mesh::set;
 use crate::point::Point;
 use crate::stencil::butterfly;
-use crate::MAX_VALENCE;
 
 /// `p[(j + k) mod n]` for a signed offset `k`, [`MISSING`] for an empty ring.
 fn cyc(p: &[Point], j: usize, k: isize) -> Point {
@@ -46,15 +45,13 @@ pub(in crate::scheme::mobius) fn butterfly_star_in_form(
     let n = images.len();
     let o = ORIGIN;
     if closed && n != 6 {
-        let mut rot = [MISSING; MAX_VALENCE];
-        let r = rot.get_mut(..n)?;
-        for (k, slot) in r.iter_mut().enumerate() {
-            *slot = cyc(images, j, k as isize);
-        }
-        if !r.iter().all(present) {
+        // The ring rotated to start at spoke `j`, read in place (no rotated copy on the
+        // stack): `zorin_stencil` of the rotated ring bit for bit.
+        let rotated = |k: usize| cyc(images, j, k as isize);
+        if !(0..n).all(|k| present(&rotated(k))) {
             return None;
         }
-        return butterfly::zorin_stencil(o, r).ok();
+        return butterfly::zorin_stencil_of(o, n, (0..n).map(|k| Ok(rotated(k)))).ok();
     }
     if neighbour_irregular {
         return None;

@@ -9,9 +9,9 @@ use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, O
 use super::StarFaces;
 use crate::error::{Error, Result};
 use crate::mesh::{get, internal, set};
-use crate::point::Point;
-use crate::stencil::{catmull_clark, centroid};
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+use crate::point::{self, Point};
+use crate::stencil::{catmull_clark, centroid_of_sum};
+use crate::MAX_VALENCE;
 
 /// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of the
 /// neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when not
@@ -73,7 +73,7 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
 /// [`crate::Status::BufferTooSmall`] for short candidate buffers;
 /// [`crate::Status::InvalidArgument`] when the number of faces does not fit the ring;
 /// [`crate::Status::BadOffsets`], [`crate::Status::FaceTooSmall`],
-/// [`crate::Status::ValenceTooHigh`] (more than [`MAX_FACE_SIZE`] corners) naming the face;
+/// [`crate::Status::ValenceTooHigh`] (more than [`crate::MAX_FACE_SIZE`] corners) naming the face;
 /// the errors of [`crate::mobius::CanonicalForm::new`]; [`crate::Status::NonFiniteInput`]
 /// and [`crate::Status::InvalidArgument`] (a face that does not contain `v`) naming the face.
 /// Unlike [`super::loop_star`], a neighbour sent to infinity only removes the rules that use
@@ -101,16 +101,19 @@ pub fn catmull_clark_star(
     let mut centroids: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
     for j in 0..n {
         let c = if j < nf {
-            let mut pts: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
+            // The images summed as the face is walked: `centroid` of them bit for bit, with
+            // no array of the face's points on the stack.
+            let corners = faces.face(j)?;
+            let mut sum = ORIGIN;
             let mut ok = true;
-            for p in faces.face(j)? {
+            for p in corners {
                 match cf.to_normalised(*p) {
-                    Ok(q) => pts.try_push(q).map_err(|_| internal())?,
+                    Ok(q) => sum = point::add(sum, q),
                     Err(_) => ok = false,
                 }
             }
             if ok {
-                centroid(&pts)?
+                centroid_of_sum(sum, corners.len())?
             } else {
                 MISSING
             }
