@@ -17,6 +17,11 @@ use crate::point::Point;
 use crate::stencil::{catmull_clark, centroid};
 use crate::MAX_VALENCE;
 
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`): one ring, measured (`docs/folds.md` section 8: with two rings,
+/// polycastle_quad folds 4 edges at level 1 where the linear scheme folds none).
+const RINGS: u8 = 1;
+
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let nv = topo.num_vertices();
@@ -26,7 +31,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
     d.vertex_pass(true, Bufs::new, star_rule)?;
-    d.finish_vertex_points(false, |t, v, p| {
+    let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         let mut ring = Ring::new();
         let mut faces = Ring::new();
         for s in t.star(v) {
@@ -37,7 +42,8 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                 .map_err(|_| internal())?;
         }
         catmull_clark::vertex_interior(p, &ring, &faces)
-    })?;
+    };
+    d.finish_vertex_points(false, linear_vertex)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(catmull_clark::edge_interior(
@@ -66,11 +72,13 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             vertex: true,
             edges: nv,
             faces: Some(fp0),
+            rings: RINGS,
         };
         if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
+            d.blend_toward_linear(out, &linear_vertex, &linear)?;
         }
     }
     Ok(())
