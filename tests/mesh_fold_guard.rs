@@ -154,6 +154,50 @@ fn the_default_folds_no_more_than_the_linear_scheme() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
+/// Meshes beyond the study where the Möbius points of distrusted stars, even in the fully
+/// interpolated frame, folded more than the linear scheme until the blend toward the linear
+/// rule (`docs/folds.md` section 8, step 7): epcot's valence-12 "crown" stars, cow's thin
+/// triangles, camelhead's open boundary, polycastle_quad's 90° blocks. Asserted at every
+/// level from 1, where these folds started.
+const BEYOND: [(Scheme, &str); 4] = [
+    (Scheme::Loop, "epcot"),
+    (Scheme::Loop, "cow"),
+    (Scheme::Loop, "camelhead"),
+    (Scheme::CatmullClark, "polycastle_quad"),
+];
+
+#[test]
+fn the_default_folds_no_more_than_the_linear_scheme_beyond_the_study() {
+    const TEST: &str =
+        "mesh_fold_guard::the_default_folds_no_more_than_the_linear_scheme_beyond_the_study";
+    let Some(dir) = shared_meshes(TEST) else {
+        return;
+    };
+    let mut failures = Vec::new();
+    for (s, name) in BEYOND {
+        let path = dir.join(format!("{name}.off"));
+        let Ok(m) = read_off(&path) else {
+            skip(
+                TEST,
+                &format!("{} not readable; row {s:?} {name}", path.display()),
+            );
+            continue;
+        };
+        let (lin, _) = chain(s, &m, 3, Options::new(s));
+        let (def, reports) = chain(s, &m, 3, Options::new(s).mobius(true));
+        // The rows are only a test of the fallback if the guard acts on them.
+        assert!(reports[0].guarded > 0, "{s:?} {name}: nothing guarded");
+        for level in 1..=3 {
+            let (d, l) = (def[level - 1], lin[level - 1]);
+            println!("{s:?} {name} level {level}: folded edges default {d}, linear {l}");
+            if d > l {
+                failures.push(format!("{s:?} {name} L{level}: {d} > linear {l}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
 /// A Möbius map that keeps the mesh bounded: an inversion in a sphere centred 1.65–2 mesh
 /// radii from the centroid, then a rotation and a translation (deterministic).
 fn mobius_map(m: &OwnedMesh, seed: u64) -> MobiusMap {

@@ -18,20 +18,21 @@
 //!    sphericity (`trust::sphericity`: on a sphere the paper's rules keep the sphere and
 //!    commute with every Möbius map);
 //! 5. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
-//!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]); the
-//!    output vertices this changes are counted (or refused in strict mode);
+//!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]);
 //! 6. when step 5 evaluated any star, the blends again, on the guarded candidates, and the
-//!    boundary curves.
+//!    boundary curves;
+//! 7. every point near a distrusted star moves toward the linear rule's point by `1 − τ²`
+//!    (`toward_linear.rs`), so that a fully distrusted element is the linear rule; these
+//!    points are counted (or the first refused in strict mode).
 //!
 //! The trust is decided on the paper's candidates and output only (steps 1–3), never on
 //! re-evaluated ones, so it does not depend on the order of the stars and stays
 //! Möbius-invariant. A mesh without a distrusted star gets the paper's output bit for bit
-//! (steps 4–6 do nothing).
+//! (steps 4–7 do nothing).
 
 use arrayvec::ArrayVec;
 
-use super::driver::{chunk_fallback, Driver};
-use super::edges::LinearEdge;
+use super::driver::Driver;
 use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
 use super::slots::first_slot;
@@ -40,10 +41,10 @@ use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
-use crate::exec::{chunk_count, parts, pass, Tally, MAX_CHUNKS};
+use crate::exec::{chunk_count, parts, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
-use crate::point::{lin2, Point};
+use crate::point::Point;
 
 /// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
 /// F4-angle term ([`Driver::trust_edges`]) can tell it from an interior star without a
@@ -62,14 +63,16 @@ impl Frame for Spectrum {
     }
 }
 
-/// Which output vertices a scheme computes from a star's frame, for counting what the guard
-/// changes: the vertex point (`vertex`), the edge points at `edges + e`, the face points at
-/// `faces + f` (`None`: no face points).
+/// Which output vertices a scheme computes from a star's frame, which the guard moves toward
+/// the linear rule and counts (`toward_linear.rs`): the vertex point (`vertex`), the edge
+/// points at `edges + e`, the face points at `faces + f` (`None`: no face points), and how many
+/// rings around a distrusted star that reaches (`rings`, measured per scheme).
 #[derive(Clone, Copy)]
 pub(super) struct Outputs {
     pub(super) vertex: bool,
     pub(super) edges: usize,
     pub(super) faces: Option<usize>,
+    pub(super) rings: u8,
 }
 
 impl Part<'_, '_, '_> {
@@ -136,8 +139,8 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// Steps 4 and 5 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
-    /// form `m_τ`, after counting the output vertices `out` says the star changes (or
-    /// refusing the first in strict mode), with buffers from `bufs` (one set per chunk).
+    /// form `m_τ`, with buffers from `bufs` (one set per chunk); the points this changes are
+    /// counted by the blend toward the linear rule that follows (step 7).
     /// Whether any star was evaluated (the drivers then blend again). Without the guard,
     /// nothing. The re-evaluation is split into vertex ranges as the vertex pass is: the
     /// trust is only read by then, and a star writes only its own vertex point and slots.
@@ -151,9 +154,11 @@ impl Driver<'_, '_, '_, '_> {
             return Ok(false);
         }
         let topo = self.topo;
-        self.spherical_trust()?;
-        let (slots, strict) = (self.slots, self.strict);
-        let run = |g: &mut Guarded<'_, '_, '_>, tally: &mut Tally| -> Result<()> {
+        // Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
+        // before any star is evaluated again.
+        self.raise_spherical(|valence| valence >= 4)?;
+        let slots = self.slots;
+        let run = |g: &mut Guarded<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
             let mut spokes = Spokes::new();
             let mut b = bufs();
@@ -166,7 +171,6 @@ impl Driver<'_, '_, '_, '_> {
                 let Some(boundary) = retarget(topo, v, &mut form, &mut spokes)? else {
                     continue;
                 };
-                count_guarded(topo, g.trust, v, &spokes, out, strict, tally)?;
                 let slot = first_slot(topo, slots, v)?.ok_or(internal())?;
                 let cf = form.form();
                 let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
@@ -183,7 +187,7 @@ impl Driver<'_, '_, '_, '_> {
             Ok(())
         };
         let k = chunk_count(self.exec, topo.num_vertices());
-        let (t, any) = if k <= 1 {
+        let any = if k <= 1 {
             let trust: &[f64] = self.trust;
             let a = Arrays {
                 pos: self.pos,
@@ -198,12 +202,37 @@ impl Driver<'_, '_, '_, '_> {
                 trust,
                 any: false,
             };
-            let mut t = Tally::new();
-            run(&mut g, &mut t)?;
-            (t, g.any)
+            run(&mut g, &mut Tally::new())?;
+            g.any
         } else {
             self.split_guarded_pass(k, out.vertex, &run)?
         };
+        Ok(any)
+    }
+
+    /// Raises the trust of every distrusted star whose valence `pick` selects toward 1 by its
+    /// sphericity, `τ ← τ + (1 − τ)·s` (`trust::sphericity`; step 4 of the module docs).
+    /// Out of line, so that its star form is off the stack before the re-evaluation makes
+    /// its own.
+    #[inline(never)]
+    pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<()> {
+        let mut form = StarForm::blank();
+        let mut spokes = Spokes::new();
+        for v in 0..self.topo.num_vertices() as u32 {
+            let tau = get(self.trust, v as usize)?;
+            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
+                continue;
+            }
+            if pick(spokes.len()) {
+                let s = sphericity(form.tangents(), form.centre());
+                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the points the guard moved ([`Driver::blend_toward_linear`]) to the report.
+    pub(super) fn add_guarded(&mut self, t: Tally) {
         let r = &mut self.report;
         let merged = Tally {
             count: r.guarded,
@@ -212,39 +241,17 @@ impl Driver<'_, '_, '_, '_> {
         .merge(t);
         r.guarded = merged.count;
         r.first_guarded = merged.first;
-        Ok(any)
-    }
-
-    /// Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
-    /// before anything is counted: the counts read the neighbours' final trust. Out of line,
-    /// so that its star form is off the stack before the re-evaluation makes its own.
-    #[inline(never)]
-    fn spherical_trust(&mut self) -> Result<()> {
-        let mut form = StarForm::blank();
-        let mut spokes = Spokes::new();
-        for v in 0..self.topo.num_vertices() as u32 {
-            let tau = get(self.trust, v as usize)?;
-            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
-                continue;
-            }
-            if spokes.len() >= 4 {
-                let s = sphericity(form.tangents(), form.centre());
-                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
-            }
-        }
-        Ok(())
     }
 
     /// The re-evaluation of [`Driver::guarded_pass`] in `k ≥ 2` vertex ranges (out of line:
-    /// the serial path keeps a small stack frame): the guarded tally and whether any star was
-    /// evaluated.
+    /// the serial path keeps a small stack frame): whether any star was evaluated.
     #[inline(never)]
     fn split_guarded_pass(
         &mut self,
         k: usize,
         vertex_points: bool,
         run: &GuardedFn<'_>,
-    ) -> Result<(Tally, bool)> {
+    ) -> Result<bool> {
         let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
         let trust: &[f64] = self.trust;
         let nv = topo.num_vertices();
@@ -271,8 +278,8 @@ impl Driver<'_, '_, '_, '_> {
                 })
                 .map_err(|_| internal())?;
         }
-        let t = parts(exec, &mut ranges, |g| g.part.vertices().len(), run)?;
-        Ok((t, ranges.iter().any(|g| g.any)))
+        parts(exec, &mut ranges, |g| g.part.vertices().len(), run)?;
+        Ok(ranges.iter().any(|g| g.any))
     }
 
     /// Keeps the fallbacks the blends of the paper's candidates counted out of the report
@@ -294,88 +301,3 @@ struct Guarded<'a, 'm, 's> {
 
 /// The work of one vertex range of the guard's re-evaluation.
 type GuardedFn<'f> = dyn Fn(&mut Guarded<'_, '_, '_>, &mut Tally) -> Result<()> + Sync + 'f;
-
-/// Counts, in `tally`, the output vertices a distrusted star `v` changes: its vertex point,
-/// the points of its interior edges (once per edge: at the lower distrusted end), the points
-/// of its faces (once per face: at the first distrusted corner in face order); in strict mode
-/// the first is refused (the guard is a fallback toward the linear rule, so it shares the
-/// fallback's status).
-fn count_guarded(
-    topo: &Topology<'_, '_>,
-    trust: &[f64],
-    v: u32,
-    spokes: &Spokes,
-    out: Outputs,
-    strict: bool,
-    tally: &mut Tally,
-) -> Result<()> {
-    let distrusted = |u: u32| -> Result<bool> { Ok(get(trust, u as usize)? < 1.0) };
-    if out.vertex {
-        chunk_fallback(strict, tally, v as usize)?;
-    }
-    for s in spokes.iter() {
-        if s.half_edge == NONE || topo.twin(s.half_edge)? == NONE {
-            continue;
-        }
-        if !distrusted(s.neighbour)? || v < s.neighbour {
-            chunk_fallback(strict, tally, out.edges + s.edge as usize)?;
-        }
-    }
-    if let Some(start) = out.faces {
-        for s in spokes.iter() {
-            if s.face == NONE {
-                continue;
-            }
-            let mut first = NONE;
-            for &u in topo.face_vertices(s.face)? {
-                if distrusted(u)? {
-                    first = u;
-                    break;
-                }
-            }
-            if first == v {
-                chunk_fallback(strict, tally, start + s.face as usize)?;
-            }
-        }
-    }
-    Ok(())
-}
-
-impl Driver<'_, '_, '_, '_> {
-    /// Modified Butterfly's second fallback, after the guarded blends: every interior edge
-    /// point whose end stars are distrusted moves toward the linear rule's point,
-    /// `τ² p + (1 − τ²) p_lin` with `τ` the lesser trust of the two ends. The interpolated
-    /// form alone cannot reach the linear scheme's fold count on Butterfly (`docs/folds.md`):
-    /// an edge next to an irregular vertex takes that vertex's single partial candidate
-    /// (seed 000 §4.3), which no blend corrects. The weight `τ²` rather than `τ` is measured
-    /// (fertility, 2 levels: 60 folded edges with `τ`, 58 with `τ²`, linear 59). The edges
-    /// changed are those the guarded pass counted (`Outputs::edges`); nothing changes where
-    /// every star is trusted. One pass over the edges, split into edge ranges
-    /// ([`crate::exec`]): an edge point depends only on itself and the trust.
-    pub(super) fn blend_edges_toward_linear(
-        &mut self,
-        start: usize,
-        linear: &LinearEdge<'_>,
-    ) -> Result<()> {
-        let topo = self.topo;
-        let trust: &[f64] = self.trust;
-        let ne = topo.num_edges();
-        let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
-        pass(self.exec, out, |first, out, _| {
-            for (e, o) in (first as u32..).zip(out.iter_mut()) {
-                let h = topo.edge_half_edge(e)?;
-                if topo.twin(h)? == NONE {
-                    continue;
-                }
-                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-                let tau = get(trust, a as usize)?.min(get(trust, b as usize)?);
-                if tau < 1.0 {
-                    let w = tau * tau;
-                    *o = lin2(w, *o, 1.0 - w, linear(topo, e)?);
-                }
-            }
-            Ok(())
-        })?;
-        Ok(())
-    }
-}

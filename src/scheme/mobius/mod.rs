@@ -72,6 +72,7 @@ mod memo;
 mod rules;
 mod slots;
 mod spectrum;
+mod toward_linear;
 mod trust;
 mod vertex_pass;
 

@@ -18,6 +18,10 @@ use crate::scheme::linear::butterfly_edge;
 use crate::stencil::butterfly;
 use crate::MAX_VALENCE;
 
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`): only the star's own edges, measured (`docs/folds.md` section 8).
+const RINGS: u8 = 0;
+
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let nv = topo.num_vertices();
@@ -41,11 +45,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             vertex: false,
             edges: nv,
             faces: None,
+            rings: RINGS,
         };
         if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
-            d.blend_edges_toward_linear(nv, &linear)?;
+            d.blend_toward_linear(out, &|_, _, p| Ok(p), &linear)?;
         }
     }
     Ok(())

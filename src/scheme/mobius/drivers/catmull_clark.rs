@@ -17,6 +17,11 @@ use crate::point::{add, Point};
 use crate::stencil::{catmull_clark, centroid_of_sum};
 use crate::MAX_VALENCE;
 
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`): one ring, measured (`docs/folds.md` section 8: with two rings,
+/// polycastle_quad folds 4 edges at level 1 where the linear scheme folds none).
+const RINGS: u8 = 1;
+
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let nv = topo.num_vertices();
@@ -26,7 +31,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
     d.vertex_pass(true, Bufs::new, star_rule)?;
-    d.finish_vertex_points(false, |t, v, p| {
+    let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         // The ring and the face points summed as the star is walked, as the linear scheme
         // does (no arrays of points on the stack; the same bits as the slice form).
         let (mut n, mut ring, mut faces) = (0, [0.0; 3], [0.0; 3]);
@@ -36,7 +41,8 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             n += 1;
         }
         catmull_clark::vertex_interior_sums(p, n, ring, faces)
-    })?;
+    };
+    d.finish_vertex_points(false, linear_vertex)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(catmull_clark::edge_interior(
@@ -65,11 +71,13 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             vertex: true,
             edges: nv,
             faces: Some(fp0),
+            rings: RINGS,
         };
         if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
+            d.blend_toward_linear(out, &linear_vertex, &linear)?;
         }
     }
     Ok(())

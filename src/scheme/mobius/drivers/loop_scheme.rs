@@ -15,16 +15,22 @@ use crate::point::Point;
 use crate::stencil::loop_scheme;
 use crate::MAX_VALENCE;
 
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`): two rings, measured (`docs/folds.md` section 8: with one ring, epcot
+/// still folds 24 edges at levels 1 and 2 where the linear scheme folds none).
+const RINGS: u8 = 2;
+
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let nv = topo.num_vertices();
     d.clear_vertex_points()?;
     d.vertex_pass(true, Bufs::new, star_rule)?;
-    d.finish_vertex_points(false, |t, v, p| {
+    let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         // The ring's sum as the star is walked (no 3 KB array of ring points on the stack).
         let (n, ring) = ring_sum(t, v)?;
         loop_scheme::vertex_interior_sum(p, n, ring)
-    })?;
+    };
+    d.finish_vertex_points(false, linear_vertex)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
         let h = t.edge_half_edge(e)?;
         Ok(loop_scheme::edge_interior(
@@ -52,10 +58,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             vertex: true,
             edges: nv,
             faces: None,
+            rings: RINGS,
         };
         if d.guarded_pass(out, Bufs::new, star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
+            d.blend_toward_linear(out, &linear_vertex, &linear)?;
         }
     }
     Ok(())

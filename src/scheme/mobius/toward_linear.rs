@@ -1,0 +1,228 @@
+//! The fold guard's last step (step 7 of `guard.rs`, step 8 of `docs/folds.md` section 8):
+//! every output point near a distrusted star moves toward the linear rule's point,
+//! `τ² p + (1 − τ²) p_lin`, and these are the points the guard counts in `Report::guarded`.
+//!
+//! Why: the interpolated form `m_τ` (`spectrum.rs`) ends, at `τ = 0`, in a similarity frame
+//! where the stencils are affine but the blends are still the paper's (F4, the face chain,
+//! Butterfly's single partial candidate next to an irregular vertex, seed 000 §4.3), so a fully
+//! distrusted element can still fold where the linear scheme does not (Loop on epcot's
+//! valence-12 stars, Catmull–Clark on polycastle_quad's 90° blocks). This blend is the
+//! spectrum toward linear for that element (seed 000 §7.2): at `τ = 0` the point is the linear
+//! rule's bit for bit, at `τ = 1` it is untouched, and it is continuous in `τ`.
+//!
+//! `τ` of a point is the least trust of the stars within `rings` rings of the stars it is made
+//! from (its vertex for a vertex point, the two ends for an edge point, the corners for a face
+//! point). Moving only the points of the distrusted stars themselves put linear points next
+//! to the paper's points, and that seam folded (Loop epcot: 240 folded edges at level 1 with
+//! every distrusted point fully linear); reaching two rings further (Loop) or one (Catmull–Clark)
+//! spreads the change over the stars around, and Butterfly, whose edge points only move,
+//! needs none. The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
+//! points move, and by how much, is decided by `τ` alone, so it stays Möbius-invariant; the
+//! blend itself is equivariant under similarities only, like every fallback toward the
+//! linear rule. This runs only when some star is distrusted (`Driver::guarded_pass`), so a
+//! mesh that needs nothing pays nothing.
+
+use super::driver::{chunk_fallback, Driver};
+use super::edges::LinearEdge;
+use super::guard::Outputs;
+use crate::error::Result;
+use crate::exec::{pass, Tally};
+use crate::mesh::gather::face_sum;
+use crate::mesh::{get, internal, Topology, NONE};
+use crate::point::{lin2, Point};
+use crate::stencil::centroid_of_sum;
+
+/// The linear rule of an interior vertex `v` at `p` (the vertex point of the linear scheme).
+pub(super) type LinearVertex<'f> =
+    dyn Fn(&Topology<'_, '_>, u32, Point) -> Result<Point> + Sync + 'f;
+
+/// `τ² p + (1 − τ²) p_lin`: exactly `p_lin` at `τ ≤ 0` (no signed zero or non-finite `p`
+/// leaks through `0 · p`), exactly `p` at `τ ≥ 1`.
+pub(super) fn toward_linear(tau: f64, p: Point, p_lin: Point) -> Point {
+    if tau >= 1.0 {
+        return p;
+    }
+    if tau <= 0.0 {
+        return p_lin;
+    }
+    let w = tau * tau;
+    lin2(w, p, 1.0 - w, p_lin)
+}
+
+/// The least trust of the stars within `rings` (0, 1 or 2) rings of `v`, `v` included.
+fn near_trust(topo: &Topology<'_, '_>, trust: &[f64], v: u32, rings: u8) -> Result<f64> {
+    let mut t = get(trust, v as usize)?;
+    if rings == 0 {
+        return Ok(t);
+    }
+    for s in topo.star(v) {
+        t = t.min(get(trust, s.neighbour as usize)?);
+        if rings >= 2 {
+            for s2 in topo.star(s.neighbour) {
+                t = t.min(get(trust, s2.neighbour as usize)?);
+            }
+        }
+    }
+    Ok(t)
+}
+
+impl Driver<'_, '_, '_, '_> {
+    /// Moves the points `out` names toward the linear rule (module docs): the interior vertex
+    /// points by `linear_vertex` (when `out.vertex`), the interior edge points by
+    /// `linear_edge`, the face points (when `out.faces`) toward their face's centroid.
+    ///
+    /// First it counts in the report every point within reach of a distrusted star (or
+    /// refuses the first in strict mode): these include every point step 6 evaluated again.
+    /// Then a spherical star of valence 3, which step 6 evaluated on its sphere
+    /// (`spectrum.rs`), has its trust raised as the others' were (`Driver::raise_spherical`),
+    /// since this blend would leave the sphere (sphere reproduction, `tests/mesh_mobius.rs`).
+    /// Then it blends.
+    pub(super) fn blend_toward_linear(
+        &mut self,
+        out: Outputs,
+        linear_vertex: &LinearVertex<'_>,
+        linear_edge: &LinearEdge<'_>,
+    ) -> Result<()> {
+        let counted = self.each_point(out, false, linear_vertex, linear_edge)?;
+        self.add_guarded(counted);
+        self.raise_spherical(|valence| valence == 3)?;
+        self.each_point(out, true, linear_vertex, linear_edge)?;
+        Ok(())
+    }
+
+    /// One pass over each kind of point `out` names, split into ranges ([`crate::exec`]: a
+    /// point depends only on itself and the trust), for every point whose `τ` is below 1:
+    /// counts it (strict: refuses it), or with `blend` moves it.
+    fn each_point(
+        &mut self,
+        out: Outputs,
+        blend: bool,
+        linear_vertex: &LinearVertex<'_>,
+        linear_edge: &LinearEdge<'_>,
+    ) -> Result<Tally> {
+        let topo = self.topo;
+        let trust: &[f64] = self.trust;
+        let (strict, rings) = (self.strict, out.rings);
+        // Counts the point at `element`, or moves `o` to `toward_linear(τ, o, lin())`.
+        let act = |t: &mut Tally,
+                   element: usize,
+                   tau: f64,
+                   o: &mut Point,
+                   lin: &dyn Fn() -> Result<Point>| {
+            if blend {
+                *o = toward_linear(tau, *o, lin()?);
+                Ok(())
+            } else {
+                chunk_fallback(strict, t, element)
+            }
+        };
+        let mut tally = Tally::new();
+        if out.vertex {
+            let nv = topo.num_vertices();
+            let pts = self.pos.get_mut(..nv).ok_or(internal())?;
+            let t = pass(self.exec, pts, |first, pts, t| {
+                for (v, o) in (first as u32..).zip(pts.iter_mut()) {
+                    if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
+                        continue;
+                    }
+                    let tau = near_trust(topo, trust, v, rings)?;
+                    if tau < 1.0 {
+                        act(t, v as usize, tau, o, &|| {
+                            linear_vertex(topo, v, topo.position(v)?)
+                        })?;
+                    }
+                }
+                Ok(())
+            })?;
+            tally = tally.merge(t);
+        }
+        let (start, ne) = (out.edges, topo.num_edges());
+        let pts = self.pos.get_mut(start..start + ne).ok_or(internal())?;
+        let t = pass(self.exec, pts, |first, pts, t| {
+            for (e, o) in (first as u32..).zip(pts.iter_mut()) {
+                let h = topo.edge_half_edge(e)?;
+                if topo.twin(h)? == NONE {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                let tau =
+                    near_trust(topo, trust, a, rings)?.min(near_trust(topo, trust, b, rings)?);
+                if tau < 1.0 {
+                    act(t, start + e as usize, tau, o, &|| linear_edge(topo, e))?;
+                }
+            }
+            Ok(())
+        })?;
+        tally = tally.merge(t);
+        if let Some(start) = out.faces {
+            let nf = topo.num_faces();
+            let pts = self.pos.get_mut(start..start + nf).ok_or(internal())?;
+            let t = pass(self.exec, pts, |first, pts, t| {
+                for (f, o) in (first as u32..).zip(pts.iter_mut()) {
+                    let mut tau = f64::INFINITY;
+                    for &u in topo.face_vertices(f)? {
+                        tau = tau.min(near_trust(topo, trust, u, rings)?);
+                    }
+                    if tau < 1.0 {
+                        // The linear face point, summed as the face is walked (no array of
+                        // points on the stack): `centroid` of the face's points bit for bit.
+                        act(t, start + f as usize, tau, o, &|| {
+                            let (n, s) = face_sum(topo, f)?;
+                            centroid_of_sum(s, n)
+                        })?;
+                    }
+                }
+                Ok(())
+            })?;
+            tally = tally.merge(t);
+        }
+        Ok(tally)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points whose coordinates have both signs and a signed zero: `0 · p + p_lin` would turn
+    /// the `-0.0` of `p_lin` into `+0.0` where `p` is positive.
+    const P: Point = [3.5, -1.25, 7.0];
+    const P_LIN: Point = [-0.75, -0.0, 2.0];
+
+    fn bits(p: Point) -> [u64; 3] {
+        p.map(f64::to_bits)
+    }
+
+    #[test]
+    fn a_fully_distrusted_point_is_the_linear_rule_bit_for_bit() {
+        assert_eq!(bits(toward_linear(0.0, P, P_LIN)), bits(P_LIN));
+        // Even from a paper's point that is not finite (an F4 near its cut).
+        let inf = [f64::INFINITY, f64::NAN, -f64::INFINITY];
+        assert_eq!(bits(toward_linear(0.0, inf, P_LIN)), bits(P_LIN));
+    }
+
+    #[test]
+    fn a_trusted_point_is_the_paper_point_bit_for_bit() {
+        assert_eq!(bits(toward_linear(1.0, P, P_LIN)), bits(P));
+    }
+
+    #[test]
+    fn the_blend_is_continuous_in_the_trust() {
+        // Within `2 |τ − τ'| · |p − p_lin|` (the derivative of `τ²` is at most 2) plus
+        // rounding, at both ends and between, so no jump at `τ = 0` or `τ = 1`.
+        let span = (0..3).map(|i| (P[i] - P_LIN[i]).abs()).fold(0.0, f64::max);
+        let h = 1e-9;
+        for k in 0..=1000 {
+            let t = k as f64 / 1000.0;
+            let (a, b) = (toward_linear(t, P, P_LIN), toward_linear(t + h, P, P_LIN));
+            for i in 0..3 {
+                assert!((a[i] - b[i]).abs() <= 2.0 * h * span + 1e-14, "τ = {t}");
+            }
+        }
+        // And the weight is τ²: halfway in τ is a quarter of the way to the paper's point.
+        let q = toward_linear(0.5, P, P_LIN);
+        for i in 0..3 {
+            assert!((q[i] - (0.25 * P[i] + 0.75 * P_LIN[i])).abs() < 1e-15);
+        }
+    }
+}
