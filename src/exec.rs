@@ -209,6 +209,17 @@ pub(crate) fn chunk_range(len: usize, k: usize, i: usize) -> (usize, usize) {
     (start, start.saturating_add(size).min(len))
 }
 
+/// The first `n` elements of `*rest`, leaving the others in `*rest`: how a pass over several
+/// arrays carves each chunk's disjoint sub-slice off the front ([`parts`]). An internal error
+/// when fewer than `n` are left.
+pub(crate) fn take_front<'a, T>(rest: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
+    let (head, tail) = core::mem::take(rest)
+        .split_at_mut_checked(n)
+        .ok_or(internal())?;
+    *rest = tail;
+    Ok(head)
+}
+
 /// The work of one chunk of a pass over several arrays: its share of each array and the
 /// function that fills them ([`parts`]).
 pub(crate) trait RunPart {

@@ -112,19 +112,12 @@ fn split_face_spans(
         let (f0, f1) = exec::chunk_range(nf, k, i);
         let (h0, h1) = (child_he(f0)?, child_he(f1)?);
         let len = h1.checked_sub(h0).ok_or(internal())?;
-        let (t, rest_t) = core::mem::take(&mut twin)
-            .split_at_mut_checked(len)
-            .ok_or(internal())?;
-        let (o, rest_o) = core::mem::take(&mut face_of)
-            .split_at_mut_checked(len)
-            .ok_or(internal())?;
-        (twin, face_of) = (rest_t, rest_o);
         spans
             .try_push(FaceSpan {
                 faces: (f0, f1),
                 first: h0,
-                twin: t,
-                face_of: o,
+                twin: exec::take_front(&mut twin, len)?,
+                face_of: exec::take_front(&mut face_of, len)?,
             })
             .map_err(|_| internal())?;
     }

@@ -260,18 +260,11 @@ fn split_face_ranges(
         let (f0, f1) = exec::chunk_range(nf, k, i);
         let (o0, i0) = first_output(pattern, topo, f0)?;
         let (o1, i1) = first_output(pattern, topo, f1)?;
-        let (o, rest_o) = core::mem::take(&mut offsets)
-            .split_at_mut_checked(o1.checked_sub(o0).ok_or(internal())?)
-            .ok_or(internal())?;
-        let (x, rest_i) = core::mem::take(&mut indices)
-            .split_at_mut_checked(i1.checked_sub(i0).ok_or(internal())?)
-            .ok_or(internal())?;
-        (offsets, indices) = (rest_o, rest_i);
         spans
             .try_push(Span {
                 faces: (f0, f1),
-                offsets: o,
-                indices: x,
+                offsets: exec::take_front(&mut offsets, o1.checked_sub(o0).ok_or(internal())?)?,
+                indices: exec::take_front(&mut indices, i1.checked_sub(i0).ok_or(internal())?)?,
             })
             .map_err(|_| internal())?;
     }
