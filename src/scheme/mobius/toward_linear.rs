@@ -14,9 +14,8 @@
 //! from (its vertex for a vertex point, the two ends for an edge point, the corners for a face
 //! point). Moving only the points of the distrusted stars themselves put linear points next
 //! to the paper's points, and that seam folded (Loop epcot: 240 folded edges at level 1 with
-//! every distrusted point fully linear); reaching two rings further (Loop) or one (Catmull–Clark)
-//! spreads the change over the stars around, and Butterfly, whose edge points only move,
-//! needs none. The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
+//! every distrusted point fully linear); reaching two rings further (Loop, Butterfly) or one
+//! (Catmull–Clark) spreads the change over the stars around. The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
 //! points move, and by how much, is decided by `τ` alone, so it stays Möbius-invariant; the
 //! blend itself is equivariant under similarities only, like every fallback toward the
 //! linear rule. This runs only when some star is distrusted (`Driver::guarded_pass`), so a

@@ -19,8 +19,10 @@ use crate::stencil::butterfly;
 use crate::MAX_VALENCE;
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
-/// (`toward_linear.rs`): only the star's own edges, measured (`docs/folds.md` section 8).
-const RINGS: u8 = 0;
+/// (`toward_linear.rs`): two rings, measured (`docs/folds.md` section 8: with only the
+/// star's own edges, cow folds 160 / 181 edges at levels 2 / 3 where linear Butterfly folds
+/// 155 / 179, and camelhead 4 at level 3 where it folds none).
+const RINGS: u8 = 2;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
