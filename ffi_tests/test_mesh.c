@@ -420,6 +420,58 @@ static nls_status size_of(const double *p, size_t nv, const uint32_t *off, size_
     return s;
 }
 
+/* The build's capacities (nls_max_valence, nls_max_face_size; 128 unless the library was
+   built with NLSUBDIV_MAX_VALENCE / NLSUBDIV_MAX_FACE_SIZE): one polygon of exactly the face
+   cap validates, one more corner is VALENCE_TOO_HIGH naming the face; a Catmull-Clark level
+   of it makes a face point of that valence, refused by the plan (no element) when it is
+   above the valence cap. */
+static void test_capacities(void) {
+    uint32_t vcap = nls_max_valence(), fcap = nls_max_face_size(), e, n;
+    CHECK(vcap >= 8 && vcap <= 4096 && fcap >= 8 && fcap <= 4096);
+    for (n = fcap; n <= fcap + 1; n++) {
+        double *p = malloc(3 * (size_t)n * sizeof(double));
+        uint32_t *idx = malloc((size_t)n * sizeof(uint32_t)), off[2] = {0, 0};
+        size_t need = 0;
+        uint32_t *su;
+        uint32_t k;
+        nls_plan plan;
+        nls_status s;
+        CHECK(p != NULL && idx != NULL);
+        if (p == NULL || idx == NULL) return;
+        for (k = 0; k < n; k++) {
+            double t = 2.0 * 3.141592653589793 * k / n;
+            p[3 * k] = cos(t);
+            p[3 * k + 1] = sin(t);
+            p[3 * k + 2] = 0.0;
+            idx[k] = k;
+        }
+        off[1] = n;
+        CHECK_STATUS(flat_plan_scratch_size(n, n, &need), NLS_STATUS_OK);
+        su = malloc(need * sizeof(uint32_t));
+        CHECK(su != NULL);
+        if (su == NULL) return;
+        e = 12345;
+        s = flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 0, p, n, off, 1, idx, n, su, need, &plan, &e);
+        if (n == fcap) {
+            CHECK_STATUS(s, NLS_STATUS_OK);
+            e = 12345;
+            s = flat_plan(NLS_SCHEME_CATMULL_CLARK, 0, 1, p, n, off, 1, idx, n, su, need, &plan, &e);
+            if (n <= vcap) {
+                CHECK_STATUS(s, NLS_STATUS_OK);
+            } else {
+                CHECK_STATUS(s, NLS_STATUS_VALENCE_TOO_HIGH);
+                CHECK(e == NLS_NO_ELEMENT);
+            }
+        } else {
+            CHECK_STATUS(s, NLS_STATUS_VALENCE_TOO_HIGH);
+            CHECK(e == 0);
+        }
+        free(su);
+        free(idx);
+        free(p);
+    }
+}
+
 static void test_bad_meshes(void) {
     double p[3 * 6];
     uint32_t e;
@@ -1483,6 +1535,7 @@ int main(void) {
     test_spheres();
     test_levels_linear();
     test_bad_meshes();
+    test_capacities();
     test_bad_arguments();
     test_early_failure_element();
     test_strict();

@@ -351,8 +351,9 @@ enum nls_status
      */
     NLS_STATUS_DEGENERATE_GEOMETRY = 16,
     /**
-     * A vertex has more neighbours than `MAX_VALENCE` (128), or a face more corners than
-     * `MAX_FACE_SIZE` (128).
+     * A vertex has more neighbours than `MAX_VALENCE`, or a face more corners than
+     * `MAX_FACE_SIZE` (both 128 unless the build sets them; `nls_max_valence`,
+     * `nls_max_face_size`).
      */
     NLS_STATUS_VALENCE_TOO_HIGH = 18,
     /**
@@ -952,6 +953,20 @@ extern "C" {
 uint32_t nls_version(void);
 
 /**
+ * The largest vertex valence this build of the library accepts (`MAX_VALENCE`: 128 unless
+ * the library was built with `NLSUBDIV_MAX_VALENCE`, 8 to 4096). A vertex with more
+ * neighbours, in the input or in a level the plan predicts, is `NLS_STATUS_VALENCE_TOO_HIGH`.
+ */
+uint32_t nls_max_valence(void);
+
+/**
+ * The largest face size (corners) this build of the library accepts (`MAX_FACE_SIZE`: 128
+ * unless the library was built with `NLSUBDIV_MAX_FACE_SIZE`, 8 to 4096). A larger face is
+ * `NLS_STATUS_VALENCE_TOO_HIGH`.
+ */
+uint32_t nls_max_face_size(void);
+
+/**
  * A static, NUL-terminated description of a status code. Unknown codes give
  * `"unknown status"`. The pointer is valid for the life of the program; never free it.
  */
@@ -1058,7 +1073,7 @@ nls_status nls_mesh_plan_scratch_size(const struct nls_mesh_view *mesh, size_t *
  *
  * Validation, topology first and before anything else is computed (the first failure wins):
  * `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_BAD_OFFSETS`,
- * `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face above 128 corners),
+ * `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face above `nls_max_face_size()` corners),
  * `NLS_STATUS_INDEX_OUT_OF_RANGE`, `NLS_STATUS_REPEATED_VERTEX` (each naming the face),
  * `NLS_STATUS_DUPLICATE_FACE`, `NLS_STATUS_INCONSISTENT_ORIENTATION`,
  * `NLS_STATUS_NON_MANIFOLD_EDGE` (naming the later face on the edge),
@@ -1547,7 +1562,7 @@ nls_status nls_mobius_loop_star(const struct nls_star_view *star, double out_ver
  * removes the rules that use it (NaN), as in the driver; `NLS_STATUS_INVALID_ARGUMENT`
  * (`face_count` does not fit `ring_count` and `closed`, or a face does not contain `v`),
  * `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
- * above 128 corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+ * above `nls_max_face_size()` corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
  *
  */
 nls_status nls_mobius_catmull_clark_star(const struct nls_star_view *star,

@@ -64,5 +64,32 @@ loop_only_c() {
 }
 check "C program against a loop-only libnlsubdiv.a" loop_only_c
 
+# Build-time capacities (docs/firmware.md, "Capacities"): at NLSUBDIV_MAX_VALENCE = 12 and
+# NLSUBDIV_MAX_FACE_SIZE = 12 the tests written against the caps pass (stars and faces at the
+# caps are accepted by every scheme, linear and Möbius, one more is ValenceTooHigh naming the
+# element; the tests that read the shared meshes, whose valences reach 12 and more, are left
+# out), and a cap outside 8..4096 stops the build. Their own target folder.
+caps_small() {
+    NLSUBDIV_MAX_VALENCE=12 NLSUBDIV_MAX_FACE_SIZE=12 cargo test -q --locked -p nlsubdiv \
+        --target-dir target/caps --test mesh_validation --test primitives_props &&
+    NLSUBDIV_MAX_VALENCE=12 NLSUBDIV_MAX_FACE_SIZE=12 cargo test -q --locked -p nlsubdiv \
+        --target-dir target/caps --test mesh_topology -- --skip shared_meshes &&
+    NLSUBDIV_MAX_VALENCE=12 NLSUBDIV_MAX_FACE_SIZE=12 cargo test -q --locked -p nlsubdiv \
+        --target-dir target/caps --test mesh_schemes schemes_at_the_valence_capacity &&
+    NLSUBDIV_MAX_VALENCE=12 NLSUBDIV_MAX_FACE_SIZE=12 cargo test -q --locked -p nlsubdiv \
+        --target-dir target/caps --lib caps
+}
+check "capacities 12 / 12: the tests at the caps" caps_small
+caps_refused() {
+    local v out
+    for v in 7 4097 12x ""; do
+        out=$(NLSUBDIV_MAX_VALENCE="$v" cargo check -q --locked -p nlsubdiv --target-dir target/caps 2>&1) && {
+            echo "NLSUBDIV_MAX_VALENCE='$v' built"; return 1; }
+        grep -q "NLSUBDIV_MAX_VALENCE must be a decimal number from 8 to 4096" <<<"$out" || {
+            echo "NLSUBDIV_MAX_VALENCE='$v': no message"; return 1; }
+    done
+}
+check "capacities outside 8..4096 stop the build with a message" caps_refused
+
 echo "test-features: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

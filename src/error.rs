@@ -54,8 +54,9 @@ pub enum Status {
     NumericalFailure = 15,
     /// Coincident points or another degenerate configuration for which the rule is undefined.
     DegenerateGeometry = 16,
-    /// A vertex has more neighbours than `MAX_VALENCE` (128), or a face more corners than
-    /// `MAX_FACE_SIZE` (128).
+    /// A vertex has more neighbours than `MAX_VALENCE`, or a face more corners than
+    /// `MAX_FACE_SIZE` (both 128 unless the build sets them; `nls_max_valence`,
+    /// `nls_max_face_size`).
     ValenceTooHigh = 18,
     /// The scheme does not accept this face type (e.g. Loop on a quad).
     UnsupportedFaceType = 19,

@@ -82,6 +82,7 @@
 #![warn(missing_docs)]
 
 pub mod blend;
+mod caps;
 pub mod curve;
 pub mod differential;
 pub mod error;
@@ -105,12 +106,15 @@ pub use scheme::{
     Scheme, Scratch, ScratchSizes, Tags, VertexWeights, MAX_LEVELS,
 };
 
-/// The largest vertex valence (number of edge neighbours) any rule accepts. Stars are held
-/// in fixed-capacity stack arrays of this size; larger ones give [`Status::ValenceTooHigh`].
-pub const MAX_VALENCE: usize = 128;
+/// The largest vertex valence (number of edge neighbours) any rule accepts: 128 unless the
+/// build sets `NLSUBDIV_MAX_VALENCE` (8 to 4096; `docs/firmware.md`, "Capacities"). Some
+/// rules hold a star in a fixed-capacity stack array of this size; larger stars give
+/// [`Status::ValenceTooHigh`].
+pub const MAX_VALENCE: usize = caps::MAX_VALENCE;
 
-/// The largest number of corners of a face.
-pub const MAX_FACE_SIZE: usize = 128;
+/// The largest number of corners of a face: 128 unless the build sets
+/// `NLSUBDIV_MAX_FACE_SIZE` (8 to 4096); larger faces give [`Status::ValenceTooHigh`].
+pub const MAX_FACE_SIZE: usize = caps::MAX_FACE_SIZE;
 
 /// The crate version, `MAJOR.MINOR.PATCH`.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

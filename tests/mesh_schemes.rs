@@ -920,16 +920,28 @@ fn symmetric_meshes_give_symmetric_outputs() {
     }
 }
 
+/// Every scheme, linear and Möbius (guarded), on stars at the valence capacity, which the
+/// build may set (`NLSUBDIV_MAX_VALENCE`; `scripts/test-features.sh` runs this at 12): the
+/// star arrays of every rule must hold them.
 #[test]
 fn schemes_at_the_valence_capacity() {
     for n in [nlsubdiv::MAX_VALENCE - 1, nlsubdiv::MAX_VALENCE] {
         for m in [fan(n), bipyramid(n), quad_fan(n)] {
-            for s in Scheme::ALL {
-                if !accepts(s, &m) {
+            for (s, mobius) in Scheme::ALL
+                .into_iter()
+                .flat_map(|s| [(s, false), (s, true)])
+            {
+                if !accepts(s, &m) || (mobius && !s.has_mobius_form()) {
                     continue;
                 }
-                match subdivide(s, &m) {
-                    Ok(out) => assert_eq!(euler(&out), euler(&m), "{s:?} n = {n}"),
+                match run(&m, &Options::new(s).mobius(mobius)).map(|(o, _)| o) {
+                    Ok(out) => {
+                        assert_eq!(euler(&out), euler(&m), "{s:?} n = {n}");
+                        assert!(
+                            out.positions.iter().flatten().all(|x| x.is_finite()),
+                            "{s:?} mobius {mobius} n = {n}"
+                        );
+                    }
                     Err(e) => {
                         // Only the output capacity may stop a scheme: vertex insertion doubles
                         // valences; dual faces of boundary vertices grow by one or two corners.

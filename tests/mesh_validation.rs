@@ -350,9 +350,11 @@ fn unsupported_face_types() {
 
 #[test]
 fn output_valence_is_checked() {
-    // Vertex insertion doubles interior valences: 64 → 128 fits, 65 → 130 does not.
-    assert!(subdivide(Scheme::VertexInsertion, &bipyramid(64)).is_ok());
-    let e = subdivide(Scheme::VertexInsertion, &bipyramid(65)).unwrap_err();
+    // Vertex insertion doubles interior valences: MAX/2 fits (64 → 128 at the default
+    // cap), MAX/2 + 1 does not.
+    let half = MAX_VALENCE / 2;
+    assert!(subdivide(Scheme::VertexInsertion, &bipyramid(half)).is_ok());
+    let e = subdivide(Scheme::VertexInsertion, &bipyramid(half + 1)).unwrap_err();
     assert_eq!((e.status, e.element), (Status::ValenceTooHigh, 0));
     // Dual truncation: a face point gets n + (interior edges) neighbours.
     let big = prism(MAX_VALENCE / 2 + 1);

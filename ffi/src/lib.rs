@@ -44,6 +44,22 @@ pub extern "C" fn nls_version() -> u32 {
     (NLS_VERSION_MAJOR << 16) | (NLS_VERSION_MINOR << 8) | NLS_VERSION_PATCH
 }
 
+/// The largest vertex valence this build of the library accepts (`MAX_VALENCE`: 128 unless
+/// the library was built with `NLSUBDIV_MAX_VALENCE`, 8 to 4096). A vertex with more
+/// neighbours, in the input or in a level the plan predicts, is `NLS_STATUS_VALENCE_TOO_HIGH`.
+#[unsafe(no_mangle)]
+pub extern "C" fn nls_max_valence() -> u32 {
+    nlsubdiv::MAX_VALENCE as u32
+}
+
+/// The largest face size (corners) this build of the library accepts (`MAX_FACE_SIZE`: 128
+/// unless the library was built with `NLSUBDIV_MAX_FACE_SIZE`, 8 to 4096). A larger face is
+/// `NLS_STATUS_VALENCE_TOO_HIGH`.
+#[unsafe(no_mangle)]
+pub extern "C" fn nls_max_face_size() -> u32 {
+    nlsubdiv::MAX_FACE_SIZE as u32
+}
+
 /// A static, NUL-terminated description of a status code. Unknown codes give
 /// `"unknown status"`. The pointer is valid for the life of the program; never free it.
 #[unsafe(no_mangle)]

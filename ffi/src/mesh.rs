@@ -841,7 +841,7 @@ pub unsafe extern "C" fn nls_mesh_plan_scratch_size(
 ///
 /// Validation, topology first and before anything else is computed (the first failure wins):
 /// `NLS_STATUS_SIZE_OVERFLOW` (a count above `UINT32_MAX − 1`), `NLS_STATUS_BAD_OFFSETS`,
-/// `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face above 128 corners),
+/// `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face above `nls_max_face_size()` corners),
 /// `NLS_STATUS_INDEX_OUT_OF_RANGE`, `NLS_STATUS_REPEATED_VERTEX` (each naming the face),
 /// `NLS_STATUS_DUPLICATE_FACE`, `NLS_STATUS_INCONSISTENT_ORIENTATION`,
 /// `NLS_STATUS_NON_MANIFOLD_EDGE` (naming the later face on the edge),

@@ -203,7 +203,7 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
 /// removes the rules that use it (NaN), as in the driver; `NLS_STATUS_INVALID_ARGUMENT`
 /// (`face_count` does not fit `ring_count` and `closed`, or a face does not contain `v`),
 /// `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
-/// above 128 corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+/// above `nls_max_face_size()` corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
 ///
 /// cbindgen:ptrs-as-arrays=[[out_vertex_point;3]]
 #[unsafe(no_mangle)]

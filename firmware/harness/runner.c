@@ -77,8 +77,10 @@ static const char *target_name(void) {
 }
 
 int main(void) {
-    printf("harness: nlsubdiv %u.%u.%u on %s\n", (unsigned)(nls_version() >> 16),
-           (unsigned)((nls_version() >> 8) & 0xFF), (unsigned)(nls_version() & 0xFF), target_name());
+    printf("harness: nlsubdiv %u.%u.%u on %s, valence and face-size caps %u, %u\n",
+           (unsigned)(nls_version() >> 16), (unsigned)((nls_version() >> 8) & 0xFF),
+           (unsigned)(nls_version() & 0xFF), target_name(), (unsigned)nls_max_valence(),
+           (unsigned)nls_max_face_size());
     if (nls_version() != ((NLS_VERSION_MAJOR << 16) | (NLS_VERSION_MINOR << 8) | NLS_VERSION_PATCH))
         fw_fail("the library's version is not the header's");
     fw_cases_primitives();
