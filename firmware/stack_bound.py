@@ -6,18 +6,23 @@ this bound covers every path the code has. For each entry point of the harness (
 firmware/stack-bounds.txt) it prints the most bytes of stack below the case's stack pointer
 any path can use, and the deepest path.
 
-    firmware/stack_bound.py ELF [--run RUN.txt] [--bounds FILE] [--paths]
+    firmware/stack_bound.py ELF [--stack-sizes-elf ELF2] [--run RUN.txt] [--bounds FILE]
+                                [--paths] [--indirect]
 
-ELF is the harness built by `firmware/build.sh m4f-stack-sizes` (nightly, -Z emit-stack-sizes).
+ELF is the harness to bound: the M4F build that scripts/test-firmware.sh runs and measures.
+ELF2 is the same harness with its Rust library built by nightly with -Z emit-stack-sizes
+(`firmware/build.sh m4f-stack-sizes`), whose .stack_sizes section holds the compiler's frame
+size of every Rust function.
 
-Frames. A Rust function's frame is its entry in the ELF's .stack_sizes section (the compiler's
-own figure). Every other function (compiler-builtins' soft-float __aeabi_*, the C harness,
-newlib, libgcc) gets the frame its disassembly allocates: the sum of every stack-pointer
+Frames. A function's frame is what its disassembly allocates: the sum of every stack-pointer
 decrement in its body (push, stmdb sp!, vpush, vstmdb sp!, sub sp, str ... [sp, #-n]!).
 Summing the whole body rather than the first block is an over-estimate when a function has
-two prologues on two paths, and never an under-estimate; a decrement by a register
-(variable-length frame) makes the function's frame UNKNOWN. The Rust functions are the
-cross-check of that method: the script reports how many agree with .stack_sizes.
+two prologues on two paths, and never an under-estimate; a decrement by a register or sp
+set from a register makes the function's frame UNKNOWN. The method is checked on ELF2: it
+must give the .stack_sizes figure of every Rust function there (else the run fails), and it
+is what sizes the functions that have no entry (compiler-builtins' soft-float __aeabi_*, the
+C harness, newlib, libgcc) and every function of the stable build, which has no .stack_sizes.
+Where ELF has a .stack_sizes entry, that entry is the frame.
 
 Call graph. From `arm-none-eabi-objdump -d`: bl, and every branch (b, b.w, bcc.w) whose
 target lies outside the function is an edge (a tail call; the caller's frame is counted too,
@@ -28,12 +33,18 @@ point's bound UNKNOWN, never 0.
 
 Worst path. worst(f) = frame(f) + max over callees c of worst(c), memoised (each function is
 visited once: linear in the size of the graph). A cycle on the call graph is recursion: it is
-reported by name and makes the bound of every entry point that reaches it UNKNOWN (the
-library has none: no function of src/ recurses, docs/architecture.md).
+reported by name and makes the bound of every entry point that reaches it UNKNOWN, unless it
+is a direct recursion bounded by construction, listed in BOUNDED_RECURSION with its depth.
 
-Exit status: 0 when every entry point has a bound, each bound is at least the measured
-high-water mark of RUN.txt (a lower static bound means the analysis is wrong) and at most the
-entry's ceiling in FILE (firmware/stack-static-bounds.txt); 1 otherwise; 2 on a usage error.
+The harness's part. A case's mark also holds what the harness calls between the painting and
+the measurement (fw_case_begin_at, the hashing and checks, the soft-float operations of the
+checks, fw_case_end up to fw_stack_used): every entry point's bound is at least the deepest of
+those.
+
+Exit status: 0 when the frame method agrees with .stack_sizes, every bound is at least the
+measured high-water mark of RUN.txt (a lower static bound means the analysis is wrong) and at
+most the entry's ceiling in FILE (firmware/stack-static-bounds.txt), and every entry point
+that is UNKNOWN is listed as UNKNOWN there; 1 otherwise; 2 on a usage error.
 """
 
 import argparse
@@ -67,6 +78,15 @@ RESOLVED = {
             "library runs its passes on the serial executor and never calls a host function"),
     "raise": ([], "a signal handler: the harness installs none (signal is never called), so abort's "
                   "raise takes the default action"),
+}
+
+# Recursion that is bounded by construction: a function (by a part of its name) that calls
+# itself directly -> (most activations on one path, why). Its own frame counts that many
+# times, its other callees once, below the deepest activation. Any other cycle is UNKNOWN.
+BOUNDED_RECURSION = {
+    "System>::vcycle": (17, "the multigrid V-cycle (seed 001, the differential solve) recurses on "
+                            "work.split_last_mut(): one level fewer per call, and work holds at most "
+                            "MAX_HIERARCHY = MAX_LEVELS + 1 = 17 levels (src/differential/solve/mod.rs)"),
 }
 
 CONDS = "eq|ne|cs|hs|cc|lo|mi|pl|vs|vc|hi|ls|ge|lt|gt|le|al"
@@ -160,9 +180,9 @@ def sp_decrement(mnem, ops):
         if m:
             return int(m.group(1))
     if base == "mov" and re.match(r"^sp,\s*r\d+$", ops):
-        # sp from a register: restoring a frame pointer in an epilogue (raises sp), or a
-        # realignment (bfc on a copy of sp); the latter lowers sp by less than its alignment.
-        return "mov"
+        # sp from a register (a realigned frame, or a restore the method cannot tell from one):
+        # not a size the disassembly gives. LLVM and GCC restore sp by add/sub and pop here.
+        return "dynamic"
     return None
 
 
@@ -180,7 +200,7 @@ def disassemble(elf, funcs):
             addr = int(h.group(1), 16)
             if addr in funcs:
                 cur = {"name": h.group(2), "start": addr, "end": addr + max(funcs[addr][1], 2),
-                       "frame": 0, "dynamic": False, "callees": set(), "indirect": [], "realign": False,
+                       "frame": 0, "dynamic": False, "callees": set(), "indirect": [],
                        "rust": funcs[addr][0].startswith(("_R", "_ZN"))}
                 info[addr] = cur
             continue
@@ -193,8 +213,6 @@ def disassemble(elf, funcs):
         d = sp_decrement(mnem, ops)
         if d == "dynamic":
             cur["dynamic"] = True
-        elif d == "mov":
-            cur["realign"] = True
         elif d:
             cur["frame"] += d
         if mnem.startswith("."):
@@ -258,10 +276,14 @@ def analyse(info, sizes):
         onstack.append(a)
         f = info[a]
         own, why = frame(a)
+        callees = f["callees"]
+        for part, (depth, _why) in BOUNDED_RECURSION.items():
+            if part in f["name"] and a in callees and own is not None:
+                own, callees = own * depth, callees - {a}
         best, path, unknown = 0, [], why
         if f["indirect"] and not unknown:
             unknown = f"{f['name']}: unresolved indirect call ({f['indirect'][0]})"
-        for c in sorted(f["callees"]):
+        for c in sorted(callees):
             w, p, u = worst(c)
             if u and not unknown:
                 unknown = u
@@ -300,31 +322,44 @@ def read_bounds(path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("elf")
+    ap.add_argument("elf", help="the harness to bound (the M4F ELF that the run measured)")
+    ap.add_argument("--stack-sizes-elf", help="the same harness built with -Z emit-stack-sizes "
+                    "(firmware/build.sh m4f-stack-sizes): checks the prologue method (default: ELF)")
     ap.add_argument("--run", help="the M4F run log (stack lines) to check the bounds against")
     ap.add_argument("--bounds", help="entry -> ceiling of the static bound (tab-separated)")
     ap.add_argument("--entries", default="firmware/stack-bounds.txt",
                     help="the entry points (first column of this file)")
     ap.add_argument("--paths", action="store_true", help="print each deepest path in full")
+    ap.add_argument("--indirect", action="store_true",
+                    help="list every unresolved indirect call reachable from the entry points")
     args = ap.parse_args()
+    args.stack_sizes_elf = args.stack_sizes_elf or args.elf
 
-    data = open(args.elf, "rb").read()
+    # The prologue method checked against the compiler's own frame sizes, on the build that
+    # has them: every Rust function must agree, or the method is wrong and so is any bound.
+    data = open(args.stack_sizes_elf, "rb").read()
     sections, funcs = elf_sections(data)
     sizes = stack_sizes(data, sections)
     if not sizes:
-        print("stack_bound: the ELF has no .stack_sizes section (build it with firmware/build.sh m4f-stack-sizes)")
+        print(f"stack_bound: {args.stack_sizes_elf} has no .stack_sizes section "
+              "(build it with firmware/build.sh m4f-stack-sizes)")
         return 1
-    info = disassemble(args.elf, funcs)
+    info = disassemble(args.stack_sizes_elf, funcs)
     sizes = {a: v for a, v in sizes.items() if a in info}
-
-    # The cross-check of the prologue method on the functions the compiler sized.
     agree = [a for a in sizes if not info[a]["dynamic"] and info[a]["frame"] == sizes[a]]
     differ = sorted((a for a in sizes if a not in agree), key=lambda a: info[a]["name"])
-    print(f"frames: {len(sizes)} functions from .stack_sizes, {len(info) - len(sizes)} from their prologue; "
-          f"prologue method = .stack_sizes on {len(agree)} of {len(sizes)}")
-    for a in differ:
-        print(f"  prologue {info[a]['frame']} vs .stack_sizes {sizes[a]}: {info[a]['name']}")
+    print(f"frames: the prologue method gives the .stack_sizes frame of {len(agree)} of the "
+          f"{len(sizes)} Rust functions of {args.stack_sizes_elf}")
+    method_problems = [f"prologue {info[a]['frame']} bytes, .stack_sizes {sizes[a]}: {info[a]['name']}"
+                       for a in differ]
 
+    # The bound of the analysed ELF: .stack_sizes where it has them, else the prologue method.
+    if args.elf != args.stack_sizes_elf:
+        data = open(args.elf, "rb").read()
+        sections, funcs = elf_sections(data)
+        sizes = stack_sizes(data, sections)
+        info = disassemble(args.elf, funcs)
+        sizes = {a: v for a, v in sizes.items() if a in info}
     worst, by_name, cycles = analyse(info, sizes)
 
     def named(name):
@@ -364,7 +399,7 @@ def main():
 
     ceilings = read_bounds(args.bounds) if args.bounds else {}
     marks = measured(args.run) if args.run else {}
-    problems, unknowns = [], []
+    problems, unknowns = list(method_problems), []
     print("| entry point | static bound (bytes) | measured | ceiling | deepest path |")
     print("|---|---:|---:|---:|---|")
     for e in entries:
@@ -396,8 +431,20 @@ def main():
             problems.append(f"{e}: not in the run {args.run}")
         elif mark is not None and (mark < 0 or mark > bound):
             problems.append(f"{e}: measured {mark} bytes above the static bound {bound}: the analysis is wrong")
+    if args.indirect:
+        seen, todo = set(), [named(r) for rs in roots_of.values() for r in rs] + harness + [named("fw_stack_used")]
+        while todo:
+            a = todo.pop()
+            if a not in seen:
+                seen.add(a)
+                todo.extend(info[a]["callees"])
+        for a in sorted(seen, key=lambda a: info[a]["name"]):
+            for site in info[a]["indirect"]:
+                print(f"indirect: {info[a]['name']}: {site}")
     for c in sorted(set(cycles)):
-        print(f"recursion: {c}")
+        print(f"recursion (unbounded, on no bounded entry point's path): {c}")
+    for part, (depth, why) in BOUNDED_RECURSION.items():
+        print(f"bounded recursion: {part}, at most {depth} activations: {why}")
     for p in problems:
         print(f"problem: {p}")
     print(f"stack_bound: {len(entries) - len(unknowns)} entry points bounded, {len(unknowns)} UNKNOWN, "
