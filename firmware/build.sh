@@ -2,7 +2,7 @@
 # Builds the cross-architecture harness (firmware/harness/) for one target, with the Rust
 # staticlib for that target, into target/firmware/<target>/harness[.elf].
 #
-#   firmware/build.sh x86_64|aarch64|m4f|m7|riscv32 [opt-level]
+#   firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes [opt-level]
 #
 # opt-level (default 3) is the Rust release profile's; each (target, opt-level) has its own
 # cargo target directory under target/firmware/, so repeated runs rebuild nothing.
@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
-target=${1:?usage: firmware/build.sh x86_64|aarch64|m4f|m7|riscv32 [opt-level]}
+target=${1:?usage: firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes [opt-level]}
 opt=${2:-3}
 out=$ROOT/target/firmware/$target
 mkdir -p "$out"
@@ -21,11 +21,12 @@ mkdir -p "$out"
 CFLAGS_COMMON="-std=c99 -O2 -ffp-contract=off -Wall -Wextra -Wpedantic -Werror -I$ROOT/include -I$ROOT/firmware/harness"
 SOURCES=("$ROOT"/firmware/harness/*.c)
 
-# staticlib TRIPLE CARGO_DIR [RUSTFLAGS]: builds libnlsubdiv.a for TRIPLE, prints its path.
+# staticlib TRIPLE CARGO_DIR [RUSTFLAGS [TOOLCHAIN]]: builds libnlsubdiv.a for TRIPLE (with the
+# rustup TOOLCHAIN when given), prints its path.
 staticlib() {
-    local triple=$1 dir=$2 flags=${3:-}
+    local triple=$1 dir=$2 flags=${3:-} toolchain=${4:-}
     RUSTFLAGS="$flags" CARGO_PROFILE_RELEASE_OPT_LEVEL="$opt" \
-        cargo rustc -q --release --locked -p nlsubdiv-ffi --target "$triple" \
+        cargo ${toolchain:+"+$toolchain"} rustc -q --release --locked -p nlsubdiv-ffi --target "$triple" \
         --target-dir "$dir" --crate-type staticlib >&2
     echo "$dir/$triple/release/libnlsubdiv.a"
 }
@@ -56,6 +57,14 @@ case "$target" in
         # Cortex-M4F: single-precision FPU, so f64 is computed in software (compiler-builtins in
         # the Rust library, libgcc in C). The target's default CPU is what a firmware build gets.
         lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-o$opt")
+        cortex_m "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard" "$lib" ;;
+    m4f-stack-sizes)
+        # The M4F build for the static stack bound (firmware/stack_bound.py): the same sources
+        # and flags as m4f, but the Rust library is compiled by nightly with -Z emit-stack-sizes,
+        # so that every Rust function's frame size is in the ELF's .stack_sizes section. Its own
+        # target directory: the m4f build that runs and is measured stays the stable one.
+        lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-nightly-stack-sizes-o$opt" \
+            "-Z emit-stack-sizes" nightly)
         cortex_m "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard" "$lib" ;;
     m7)
         # Cortex-M7 with the double-precision FPU (FPv5-D16): -C target-cpu=cortex-m7 lets LLVM

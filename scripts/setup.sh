@@ -29,6 +29,16 @@ if command -v rustup >/dev/null; then
             rustup target add "$t"
         fi
     done
+    # The static stack bound (firmware/stack_bound.py) builds the M4F library with nightly's
+    # -Z emit-stack-sizes: a minimal nightly and its thumbv7em library, nothing else.
+    if ! rustup run nightly rustc --version >/dev/null 2>&1; then
+        echo "setup: rustup toolchain install nightly --profile minimal"
+        rustup toolchain install nightly --profile minimal
+    fi
+    if ! rustup target list --installed --toolchain nightly | grep -qx thumbv7em-none-eabihf; then
+        echo "setup: rustup target add thumbv7em-none-eabihf --toolchain nightly"
+        rustup target add thumbv7em-none-eabihf --toolchain nightly
+    fi
 fi
 if ! (command -v cbindgen >/dev/null && cbindgen --version | grep -q "0.29.4"); then
     echo "setup: installing cbindgen 0.29.4"

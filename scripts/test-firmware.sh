@@ -14,7 +14,10 @@
 # output hash per case) must equal the x86_64 ones. The M4F run also measures each case's
 # stack high-water mark; the table per entry point goes to target/firmware/stack-m4f.md, and
 # every entry point listed in firmware/stack-bounds.txt must be in the run and within its
-# bound (the "stack" check, counted like a target).
+# bound (the "stack" check, counted like a target). The static call-graph bound of each entry
+# point (firmware/stack_bound.py, on a nightly build with -Z emit-stack-sizes) must be at least
+# that mark and at most its ceiling in firmware/stack-static-bounds.txt (the "static stack
+# bound" check, counted like a target; skipped without nightly).
 #
 # A target whose tools are missing is SKIPPED (scripts/setup.sh installs them); nothing is
 # installed here. The last line is "test-firmware: N passed, M failed, K skipped" (one per
@@ -182,6 +185,47 @@ stack_bounds() {
     fi
 }
 
+# The static call-graph bound (firmware/stack_bound.py) of the same entry points, on the M4F
+# harness the run measured, its frame-size method checked on the same harness built by nightly
+# with -Z emit-stack-sizes (firmware/build.sh m4f-stack-sizes): each
+# bound must be at least this run's measured high-water mark and at most its ceiling in
+# firmware/stack-static-bounds.txt (UNKNOWN there: an entry point the analysis cannot bound
+# yet, listed as such). SKIPPED, visibly, without nightly or its thumbv7em library.
+static_bound() {
+    local log=$OUT/m4f-stack-sizes/build.log table=$OUT/stack-static-m4f.md elf lacking=() summary
+    [ "$m4f_ok" -eq 1 ] || return 0
+    rustup run nightly rustc --version >/dev/null 2>&1 || lacking+=("the nightly toolchain")
+    if [ ${#lacking[@]} -eq 0 ]; then
+        local dir
+        dir=$(rustup run nightly rustc --print target-libdir --target thumbv7em-none-eabihf 2>/dev/null)
+        compgen -G "$dir/libcore-*.rlib" >/dev/null || lacking+=("nightly's thumbv7em-none-eabihf library")
+    fi
+    command -v python3 >/dev/null || lacking+=(python3)
+    command -v arm-none-eabi-objdump >/dev/null || lacking+=(arm-none-eabi-objdump)
+    if [ ${#lacking[@]} -gt 0 ]; then
+        echo "SKIP static stack bound: missing ${lacking[*]} (scripts/setup.sh installs it)"
+        skipped=$((skipped+1)); return
+    fi
+    mkdir -p "$OUT/m4f-stack-sizes"
+    if ! elf=$(firmware/build.sh m4f-stack-sizes 2>"$log"); then
+        echo "FAIL  static stack bound — build failed; last lines of $log:"
+        tail -n 15 "$log" | sed 's/^/      /'
+        failed=$((failed+1)); return
+    fi
+    # The bound is of the ELF the run measured (the stable build); the nightly one checks the
+    # prologue method of frame sizes against the compiler's .stack_sizes.
+    if python3 firmware/stack_bound.py "$OUT/m4f/harness.elf" --stack-sizes-elf "$elf" \
+        --run "$OUT/m4f/run.txt" --bounds firmware/stack-static-bounds.txt >"$table" 2>&1; then
+        summary=$(tail -n 1 "$table")
+        echo "PASS  static stack bound: ${summary#stack_bound: }; each at least the measured mark ($table)"
+        passed=$((passed+1))
+    else
+        echo "FAIL  static stack bound ($table):"
+        grep -E '^(problem|stack_bound|Traceback)' "$table" | sed 's/^/      /'
+        failed=$((failed+1))
+    fi
+}
+
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
 # The reference first: every other target is compared with it.
@@ -196,6 +240,7 @@ for t in "${targets[@]}"; do
 done
 stack_table
 stack_bounds
+static_bound
 echo "test-firmware: $((SECONDS-t_start)) s"
 echo "test-firmware: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
