@@ -75,14 +75,42 @@ fn area(corners: &[Point]) -> Option<Point> {
 }
 
 /// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
+///
+/// Only whether the cosine is below [`PAIR_TRUSTED`], and if so its value, reaches the trust
+/// (through `ramp(·, 0, PAIR_TRUSTED)`, which is 1 for every value at or above it). So a
+/// cosine that an exact bound without square root or division shows to be above it returns
+/// 1 (see [`clearly_above`]), and only the others take the square root: the same trust.
 fn cos_between(m: Point, n: Point) -> f64 {
     let d = dot(m, m) * dot(n, n);
-    let c = dot(m, n) / crate::sqrt::sqrt(d);
+    let x = dot(m, n);
+    if clearly_above(x, d, PAIR_TRUSTED_SQ) {
+        return 1.0;
+    }
+    let c = x / crate::sqrt::sqrt(d);
     if d > 0.0 && c.is_finite() {
         c
     } else {
         -1.0
     }
+}
+
+/// `PAIR_TRUSTED²`, widened by a relative 1e-12 that covers the rounding of
+/// [`clearly_above`]'s products and of the quotient it vouches for.
+const PAIR_TRUSTED_SQ: f64 = PAIR_TRUSTED * PAIR_TRUSTED * (1.0 + 1e-12);
+/// `FAN_TRUSTED²`, widened as [`PAIR_TRUSTED_SQ`].
+const FAN_TRUSTED_SQ: f64 = FAN_TRUSTED * FAN_TRUSTED * (1.0 + 1e-12);
+
+/// Whether the computed quotient `x / √d` (`x / (√a·√b)` with `d = a·b`) is certainly above
+/// the threshold `t` whose widened square is `t_sq` (`PAIR_TRUSTED_SQ`, `FAN_TRUSTED_SQ`),
+/// decided without the square root: `x > 0` and `x² ≥ t_sq·d`. With `x²` finite and `t_sq·d`
+/// a normal number, each of the two products and each operation of the quotient is off by at
+/// most half an ulp (relative 2⁻⁵³), far inside the widening of 1e-12, so the quotient the
+/// exact path computes is above `t`, where its ramp gives exactly 1. Otherwise (`false`,
+/// also for NaN, zero, subnormal or overflowing values) the caller computes the quotient.
+#[inline(always)]
+fn clearly_above(x: f64, d: f64, t_sq: f64) -> bool {
+    let (xx, td) = (x * x, t_sq * d);
+    x > 0.0 && xx.is_finite() && td >= f64::MIN_POSITIVE && xx >= td
 }
 
 impl Driver<'_, '_, '_, '_> {
@@ -186,7 +214,8 @@ fn star_audit(
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1);
-/// -1 when a child face cannot be measured.
+/// -1 when a child face cannot be measured. A cosine above [`PAIR_TRUSTED`] may count as 1
+/// ([`cos_between`]): the trust of the star is the same.
 fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
     let k = fan.len();
     // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
@@ -202,34 +231,55 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
             Children::Quads { .. } => area(&[centre, e0, o?, e1]),
         }
     };
+    if k == 0 {
+        return f64::INFINITY;
+    }
+    // Each corner face's area vector once: it is the `next` of one pair and the `this` of
+    // the following one.
+    let Some(first) = corner(0) else {
+        return -1.0;
+    };
+    let mut this = first;
     let mut least = f64::INFINITY;
     for i in 0..k {
-        let next = if i + 1 < k { i + 1 } else { 0 };
-        let (Some(c0), Some(c1)) = (corner(i), corner(next)) else {
+        let next = if i + 1 < k {
+            corner(i + 1)
+        } else {
+            Some(first)
+        };
+        let Some(next) = next else {
             return -1.0;
         };
-        least = least.min(cos_between(c0, c1));
+        least = least.min(cos_between(this, next));
         if let Children::Triangles { middles: true, .. } = children {
             let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o?, e1])) else {
                 return -1.0;
             };
-            least = least.min(cos_between(c0, middle));
+            least = least.min(cos_between(this, middle));
         }
+        this = next;
     }
     least
 }
 
 /// The least signed sine of the angles at `centre` between consecutive points of the closed
 /// fan `fan`, signed by the fan polygon's normal (module docs, term 2); -1 when it cannot be
-/// measured.
+/// measured. A sine above [`FAN_TRUSTED`] may count as 1 ([`clearly_above`]): the trust of the
+/// star is the same.
 fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
     let n = newell(fan);
-    let nn = crate::sqrt::sqrt(dot(n, n));
+    let n2 = dot(n, n);
+    let nn = crate::sqrt::sqrt(n2);
     let mut least = f64::INFINITY;
     for (i, e) in fan.iter().enumerate() {
         let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
         let (p, q) = (sub(*e, centre), sub(next, centre));
-        let s = dot(cross(p, q), n) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
+        let (x, pq) = (dot(cross(p, q), n), dot(p, p) * dot(q, q));
+        if clearly_above(x, n2 * pq, FAN_TRUSTED_SQ) {
+            least = least.min(1.0);
+            continue;
+        }
+        let s = x / (nn * crate::sqrt::sqrt(pq));
         least = least.min(if s.is_finite() { s } else { -1.0 });
     }
     least
