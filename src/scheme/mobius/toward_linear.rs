@@ -26,7 +26,7 @@ use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
 use super::guard::Outputs;
 use crate::error::Result;
-use crate::exec::{pass, Tally};
+use crate::exec::{pass, Executor, Tally};
 use crate::mesh::gather::face_sum;
 use crate::mesh::{get, internal, Topology, NONE};
 use crate::point::{lin2, Point};
@@ -49,21 +49,49 @@ pub(super) fn toward_linear(tau: f64, p: Point, p_lin: Point) -> Point {
     lin2(w, p, 1.0 - w, p_lin)
 }
 
-/// The least trust of the stars within `rings` (0, 1 or 2) rings of `v`, `v` included.
-fn near_trust(topo: &Topology<'_, '_>, trust: &[f64], v: u32, rings: u8) -> Result<f64> {
-    let mut t = get(trust, v as usize)?;
+/// The least trust of the stars within `rings` (0, 1 or 2) rings of `v`, `v` included, from
+/// the trust and `ring`, the least trust of every vertex's closed 1-ring ([`ring_trust`]):
+/// the 2-ring of `v` is the union of the closed 1-rings of `v` and its neighbours, and a
+/// least value is the same whichever way its set is walked.
+fn near_trust(
+    topo: &Topology<'_, '_>,
+    trust: &[f64],
+    ring: &[Point],
+    v: u32,
+    rings: u8,
+) -> Result<f64> {
     if rings == 0 {
-        return Ok(t);
+        return get(trust, v as usize);
     }
-    for s in topo.star(v) {
-        t = t.min(get(trust, s.neighbour as usize)?);
-        if rings >= 2 {
-            for s2 in topo.star(s.neighbour) {
-                t = t.min(get(trust, s2.neighbour as usize)?);
-            }
+    let mut t = get(ring, v as usize)?[0];
+    if rings >= 2 {
+        for s in topo.star(v) {
+            t = t.min(get(ring, s.neighbour as usize)?[0]);
         }
     }
     Ok(t)
+}
+
+/// Writes into the first coordinate of `ring[v]` the least trust of `v` and its neighbours,
+/// for every vertex: each point's `τ` then walks one ring of these instead of two rings of
+/// trusts, once per point (`near_trust`).
+fn ring_trust(
+    exec: &dyn Executor,
+    topo: &Topology<'_, '_>,
+    trust: &[f64],
+    ring: &mut [Point],
+) -> Result<()> {
+    pass(exec, ring, |first, out, _| {
+        for (v, o) in (first as u32..).zip(out.iter_mut()) {
+            let mut t = get(trust, v as usize)?;
+            for s in topo.star(v) {
+                t = t.min(get(trust, s.neighbour as usize)?);
+            }
+            *o = [t, 0.0, 0.0];
+        }
+        Ok(())
+    })?;
+    Ok(())
 }
 
 impl Driver<'_, '_, '_, '_> {
@@ -103,6 +131,14 @@ impl Driver<'_, '_, '_, '_> {
         let topo = self.topo;
         let trust: &[f64] = self.trust;
         let (strict, rings) = (self.strict, out.rings);
+        // The kept forms' centres are spent after the audit (`audit.rs`): they hold each
+        // vertex's least trust of its closed 1-ring for this pass.
+        let nv = topo.num_vertices();
+        let ring = self.centre.get_mut(..nv).ok_or(internal())?;
+        if rings > 0 {
+            ring_trust(self.exec, topo, trust, ring)?;
+        }
+        let ring: &[Point] = ring;
         // Counts the point at `element`, or moves `o` to `toward_linear(τ, o, lin())`.
         let act = |t: &mut Tally,
                    element: usize,
@@ -125,7 +161,7 @@ impl Driver<'_, '_, '_, '_> {
                     if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
                         continue;
                     }
-                    let tau = near_trust(topo, trust, v, rings)?;
+                    let tau = near_trust(topo, trust, ring, v, rings)?;
                     if tau < 1.0 {
                         act(t, v as usize, tau, o, &|| {
                             linear_vertex(topo, v, topo.position(v)?)
@@ -145,8 +181,8 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-                let tau =
-                    near_trust(topo, trust, a, rings)?.min(near_trust(topo, trust, b, rings)?);
+                let tau = near_trust(topo, trust, ring, a, rings)?
+                    .min(near_trust(topo, trust, ring, b, rings)?);
                 if tau < 1.0 {
                     act(t, start + e as usize, tau, o, &|| linear_edge(topo, e))?;
                 }
@@ -161,7 +197,7 @@ impl Driver<'_, '_, '_, '_> {
                 for (f, o) in (first as u32..).zip(pts.iter_mut()) {
                     let mut tau = f64::INFINITY;
                     for &u in topo.face_vertices(f)? {
-                        tau = tau.min(near_trust(topo, trust, u, rings)?);
+                        tau = tau.min(near_trust(topo, trust, ring, u, rings)?);
                     }
                     if tau < 1.0 {
                         // The linear face point, summed as the face is walked (no array of
