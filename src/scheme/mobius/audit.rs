@@ -284,3 +284,116 @@ fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
     }
     least
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sqrt::sqrt;
+
+    /// A reproducible stream in `[-1, 1)`.
+    fn stream(seed: u64) -> impl FnMut() -> f64 {
+        let mut x = seed;
+        move || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
+    /// Scales from subnormal products to overflowing ones.
+    const SCALES: [f64; 6] = [1e-170, 1e-80, 1.0, 3.0, 1e80, 1e160];
+
+    #[test]
+    fn the_pair_bound_gives_the_trust_of_the_exact_cosine() {
+        let exact = |m: Point, n: Point| {
+            let d = dot(m, m) * dot(n, n);
+            let c = dot(m, n) / sqrt(d);
+            if d > 0.0 && c.is_finite() {
+                c
+            } else {
+                -1.0
+            }
+        };
+        let mut rnd = stream(11);
+        let (mut bounded, mut quotient) = (0, 0);
+        for i in 0..20_000 {
+            // Around the threshold angle (85°) and anywhere.
+            let angle = if i % 2 == 0 {
+                libm::acos(PAIR_TRUSTED) + 1e-13 * rnd() * (1 << (i % 40)) as f64
+            } else {
+                core::f64::consts::PI * (rnd() + 1.0) / 2.0
+            };
+            let (s, t) = (SCALES[i % 6] * (1.5 + rnd()), SCALES[(i / 6) % 6]);
+            let m = [s, 0.0, 1e-3 * s * rnd()];
+            let n = [t * libm::cos(angle), t * libm::sin(angle), 0.0];
+            let (got, want) = (cos_between(m, n), exact(m, n));
+            assert_eq!(
+                ramp(got, 0.0, PAIR_TRUSTED).to_bits(),
+                ramp(want, 0.0, PAIR_TRUSTED).to_bits(),
+                "{m:?} {n:?}"
+            );
+            if got == 1.0 && want != 1.0 {
+                bounded += 1;
+            } else {
+                quotient += 1;
+            }
+        }
+        assert!(bounded > 1000 && quotient > 1000, "{bounded} {quotient}");
+    }
+
+    #[test]
+    fn the_fan_bound_gives_the_trust_of_the_exact_sine() {
+        let exact = |centre: Point, fan: &[Point]| {
+            let n = newell(fan);
+            let nn = sqrt(dot(n, n));
+            let mut least = f64::INFINITY;
+            for (i, e) in fan.iter().enumerate() {
+                let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
+                let (p, q) = (sub(*e, centre), sub(next, centre));
+                let s = dot(cross(p, q), n) / (nn * sqrt(dot(p, p) * dot(q, q)));
+                least = least.min(if s.is_finite() { s } else { -1.0 });
+            }
+            least
+        };
+        let mut rnd = stream(23);
+        let mut seen = [false; 3];
+        for i in 0..20_000 {
+            // A fan of 3 to 8 points around the origin; its least angle near 2°, 5° or
+            // anywhere, on every scale.
+            let k = 3 + i % 6;
+            let s = SCALES[i % 6];
+            let least = match i % 3 {
+                0 => libm::asin(FAN_TRUSTED) + 1e-13 * rnd() * (1 << (i % 40)) as f64,
+                1 => libm::asin(FAN_DISTRUSTED) + 1e-13 * rnd(),
+                _ => 0.3 * (rnd() + 1.0),
+            };
+            let mut fan = [[0.0; 3]; 8];
+            let mut a = 0.0;
+            for (j, p) in fan.iter_mut().take(k).enumerate() {
+                *p = [s * libm::cos(a), s * libm::sin(a), 1e-3 * s * rnd()];
+                a += if j == 0 {
+                    least
+                } else {
+                    (2.0 * core::f64::consts::PI - least) / (k - 1) as f64
+                };
+            }
+            let fan = &fan[..k];
+            let centre = [1e-3 * s * rnd(), 1e-3 * s * rnd(), 0.0];
+            let (got, want) = (fan_sine(centre, fan), exact(centre, fan));
+            let (g, w) = (
+                ramp(got, FAN_DISTRUSTED, FAN_TRUSTED),
+                ramp(want, FAN_DISTRUSTED, FAN_TRUSTED),
+            );
+            assert_eq!(g.to_bits(), w.to_bits(), "{centre:?} {fan:?}");
+            seen[if w == 1.0 {
+                0
+            } else if w == 0.0 {
+                2
+            } else {
+                1
+            }] = true;
+        }
+        assert_eq!(seen, [true; 3], "every part of the ramp exercised");
+    }
+}

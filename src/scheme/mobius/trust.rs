@@ -227,6 +227,44 @@ mod tests {
     }
 
     #[test]
+    fn the_position_bound_gives_the_exact_trust() {
+        // The division and the two ramps, as `position_trust` computes them off its bound.
+        let exact = |e: Point, c: Point| {
+            let cc = dot(c, c);
+            let t = dot(e, c) / cc;
+            if !t.is_finite() || !cc.is_finite() {
+                return 1.0;
+            }
+            ramp(t, 0.0, T_MARGIN).min(ramp(t, 1.0, 1.0 - T_MARGIN))
+        };
+        let mut x: u64 = 5;
+        let mut rnd = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for i in 0..20_000 {
+            // `t` at the margins' ends to within a few ulps, or anywhere, on every scale.
+            let base = [0.15, 0.85, 0.5, 0.0][i % 4];
+            let t = base * (1.0 + 1e-15 * rnd() * (1 << (i % 12)) as f64) + 0.001 * rnd();
+            let t = if i % 8 < 4 {
+                base * (1.0 + 4e-16 * rnd())
+            } else {
+                t
+            };
+            let s = [1e-160, 1e-100, 1.0, 1e100, 1e150][i % 5];
+            let c = [s, 0.0, 0.0];
+            let e = [t * s, s * rnd(), 0.0];
+            assert_eq!(
+                position_trust(e, c).to_bits(),
+                exact(e, c).to_bits(),
+                "{e:?} {c:?}"
+            );
+        }
+    }
+
+    #[test]
     fn f4_angle_matches_the_cross_ratio() {
         use crate::quat::cross_ratio;
         let mut x: u64 = 7;
