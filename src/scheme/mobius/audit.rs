@@ -364,14 +364,16 @@ mod tests {
             let k = 3 + i % 6;
             let s = SCALES[i % 6];
             let least = match i % 3 {
-                0 => libm::asin(FAN_TRUSTED) + 1e-13 * rnd() * (1 << (i % 40)) as f64,
+                0 => libm::asin(FAN_TRUSTED) * (1.0 + 1e-16 * rnd() * (1u64 << (i % 30)) as f64),
                 1 => libm::asin(FAN_DISTRUSTED) + 1e-13 * rnd(),
                 _ => 0.3 * (rnd() + 1.0),
             };
+            // Off the plane and off centre only away from the thresholds.
+            let noise = if i % 3 == 2 { 1e-3 * s } else { 0.0 };
             let mut fan = [[0.0; 3]; 8];
             let mut a = 0.0;
             for (j, p) in fan.iter_mut().take(k).enumerate() {
-                *p = [s * libm::cos(a), s * libm::sin(a), 1e-3 * s * rnd()];
+                *p = [s * libm::cos(a), s * libm::sin(a), noise * rnd()];
                 a += if j == 0 {
                     least
                 } else {
@@ -379,7 +381,7 @@ mod tests {
                 };
             }
             let fan = &fan[..k];
-            let centre = [1e-3 * s * rnd(), 1e-3 * s * rnd(), 0.0];
+            let centre = [noise * rnd(), noise * rnd(), 0.0];
             let (got, want) = (fan_sine(centre, fan), exact(centre, fan));
             let (g, w) = (
                 ramp(got, FAN_DISTRUSTED, FAN_TRUSTED),
