@@ -75,14 +75,42 @@ fn area(corners: &[Point]) -> Option<Point> {
 }
 
 /// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
+///
+/// Only whether the cosine is below [`PAIR_TRUSTED`], and if so its value, reaches the trust
+/// (through `ramp(·, 0, PAIR_TRUSTED)`, which is 1 for every value at or above it). So a
+/// cosine that an exact bound without square root or division shows to be above it returns
+/// 1 (see [`clearly_above`]), and only the others take the square root: the same trust.
 fn cos_between(m: Point, n: Point) -> f64 {
     let d = dot(m, m) * dot(n, n);
-    let c = dot(m, n) / crate::sqrt::sqrt(d);
+    let x = dot(m, n);
+    if clearly_above(x, d, PAIR_TRUSTED_SQ) {
+        return 1.0;
+    }
+    let c = x / crate::sqrt::sqrt(d);
     if d > 0.0 && c.is_finite() {
         c
     } else {
         -1.0
     }
+}
+
+/// `PAIR_TRUSTED²`, widened by a relative 1e-12 that covers the rounding of
+/// [`clearly_above`]'s products and of the quotient it vouches for.
+const PAIR_TRUSTED_SQ: f64 = PAIR_TRUSTED * PAIR_TRUSTED * (1.0 + 1e-12);
+/// `FAN_TRUSTED²`, widened as [`PAIR_TRUSTED_SQ`].
+const FAN_TRUSTED_SQ: f64 = FAN_TRUSTED * FAN_TRUSTED * (1.0 + 1e-12);
+
+/// Whether the computed quotient `x / √d` (`x / (√a·√b)` with `d = a·b`) is certainly above
+/// the threshold `t` whose widened square is `t_sq` (`PAIR_TRUSTED_SQ`, `FAN_TRUSTED_SQ`),
+/// decided without the square root: `x > 0` and `x² ≥ t_sq·d`. With `x²` finite and `t_sq·d`
+/// a normal number, each of the two products and each operation of the quotient is off by at
+/// most half an ulp (relative 2⁻⁵³), far inside the widening of 1e-12, so the quotient the
+/// exact path computes is above `t`, where its ramp gives exactly 1. Otherwise (`false`,
+/// also for NaN, zero, subnormal or overflowing values) the caller computes the quotient.
+#[inline(always)]
+fn clearly_above(x: f64, d: f64, t_sq: f64) -> bool {
+    let (xx, td) = (x * x, t_sq * d);
+    x > 0.0 && xx.is_finite() && td >= f64::MIN_POSITIVE && xx >= td
 }
 
 impl Driver<'_, '_, '_, '_> {
@@ -186,7 +214,8 @@ fn star_audit(
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1);
-/// -1 when a child face cannot be measured.
+/// -1 when a child face cannot be measured. A cosine above [`PAIR_TRUSTED`] may count as 1
+/// ([`cos_between`]): the trust of the star is the same.
 fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
     let k = fan.len();
     // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
@@ -202,35 +231,171 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
             Children::Quads { .. } => area(&[centre, e0, o?, e1]),
         }
     };
+    if k == 0 {
+        return f64::INFINITY;
+    }
+    // Each corner face's area vector once: it is the `next` of one pair and the `this` of
+    // the following one.
+    let Some(first) = corner(0) else {
+        return -1.0;
+    };
+    let mut this = first;
     let mut least = f64::INFINITY;
     for i in 0..k {
-        let next = if i + 1 < k { i + 1 } else { 0 };
-        let (Some(c0), Some(c1)) = (corner(i), corner(next)) else {
+        let next = if i + 1 < k {
+            corner(i + 1)
+        } else {
+            Some(first)
+        };
+        let Some(next) = next else {
             return -1.0;
         };
-        least = least.min(cos_between(c0, c1));
+        least = least.min(cos_between(this, next));
         if let Children::Triangles { middles: true, .. } = children {
             let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o?, e1])) else {
                 return -1.0;
             };
-            least = least.min(cos_between(c0, middle));
+            least = least.min(cos_between(this, middle));
         }
+        this = next;
     }
     least
 }
 
 /// The least signed sine of the angles at `centre` between consecutive points of the closed
 /// fan `fan`, signed by the fan polygon's normal (module docs, term 2); -1 when it cannot be
-/// measured.
+/// measured. A sine above [`FAN_TRUSTED`] may count as 1 ([`clearly_above`]): the trust of the
+/// star is the same.
 fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
     let n = newell(fan);
-    let nn = crate::sqrt::sqrt(dot(n, n));
+    let n2 = dot(n, n);
+    let nn = crate::sqrt::sqrt(n2);
     let mut least = f64::INFINITY;
     for (i, e) in fan.iter().enumerate() {
         let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
         let (p, q) = (sub(*e, centre), sub(next, centre));
-        let s = dot(cross(p, q), n) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
+        let (x, pq) = (dot(cross(p, q), n), dot(p, p) * dot(q, q));
+        if clearly_above(x, n2 * pq, FAN_TRUSTED_SQ) {
+            least = least.min(1.0);
+            continue;
+        }
+        let s = x / (nn * crate::sqrt::sqrt(pq));
         least = least.min(if s.is_finite() { s } else { -1.0 });
     }
     least
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sqrt::sqrt;
+
+    /// A reproducible stream in `[-1, 1)`.
+    fn stream(seed: u64) -> impl FnMut() -> f64 {
+        let mut x = seed;
+        move || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
+    /// Scales from subnormal products to overflowing ones.
+    const SCALES: [f64; 6] = [1e-170, 1e-80, 1.0, 3.0, 1e80, 1e160];
+
+    #[test]
+    fn the_pair_bound_gives_the_trust_of_the_exact_cosine() {
+        let exact = |m: Point, n: Point| {
+            let d = dot(m, m) * dot(n, n);
+            let c = dot(m, n) / sqrt(d);
+            if d > 0.0 && c.is_finite() {
+                c
+            } else {
+                -1.0
+            }
+        };
+        let mut rnd = stream(11);
+        let (mut bounded, mut quotient) = (0, 0);
+        for i in 0..20_000 {
+            // Around the threshold angle (85°) and anywhere.
+            let angle = if i % 2 == 0 {
+                libm::acos(PAIR_TRUSTED) + 1e-13 * rnd() * (1 << (i % 40)) as f64
+            } else {
+                core::f64::consts::PI * (rnd() + 1.0) / 2.0
+            };
+            let (s, t) = (SCALES[i % 6] * (1.5 + rnd()), SCALES[(i / 6) % 6]);
+            let m = [s, 0.0, 1e-3 * s * rnd()];
+            let n = [t * libm::cos(angle), t * libm::sin(angle), 0.0];
+            let (got, want) = (cos_between(m, n), exact(m, n));
+            assert_eq!(
+                ramp(got, 0.0, PAIR_TRUSTED).to_bits(),
+                ramp(want, 0.0, PAIR_TRUSTED).to_bits(),
+                "{m:?} {n:?}"
+            );
+            if got == 1.0 && want != 1.0 {
+                bounded += 1;
+            } else {
+                quotient += 1;
+            }
+        }
+        assert!(bounded > 1000 && quotient > 1000, "{bounded} {quotient}");
+    }
+
+    #[test]
+    fn the_fan_bound_gives_the_trust_of_the_exact_sine() {
+        let exact = |centre: Point, fan: &[Point]| {
+            let n = newell(fan);
+            let nn = sqrt(dot(n, n));
+            let mut least = f64::INFINITY;
+            for (i, e) in fan.iter().enumerate() {
+                let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
+                let (p, q) = (sub(*e, centre), sub(next, centre));
+                let s = dot(cross(p, q), n) / (nn * sqrt(dot(p, p) * dot(q, q)));
+                least = least.min(if s.is_finite() { s } else { -1.0 });
+            }
+            least
+        };
+        let mut rnd = stream(23);
+        let mut seen = [false; 3];
+        for i in 0..20_000 {
+            // A fan of 3 to 8 points around the origin; its least angle near 2°, 5° or
+            // anywhere, on every scale.
+            let k = 3 + i % 6;
+            let s = SCALES[i % 6];
+            let least = match i % 3 {
+                0 => libm::asin(FAN_TRUSTED) * (1.0 + 1e-16 * rnd() * (1u64 << (i % 30)) as f64),
+                1 => libm::asin(FAN_DISTRUSTED) + 1e-13 * rnd(),
+                _ => 0.3 * (rnd() + 1.0),
+            };
+            // Off the plane and off centre only away from the thresholds.
+            let noise = if i % 3 == 2 { 1e-3 * s } else { 0.0 };
+            let mut fan = [[0.0; 3]; 8];
+            let mut a = 0.0;
+            for (j, p) in fan.iter_mut().take(k).enumerate() {
+                *p = [s * libm::cos(a), s * libm::sin(a), noise * rnd()];
+                a += if j == 0 {
+                    least
+                } else {
+                    (2.0 * core::f64::consts::PI - least) / (k - 1) as f64
+                };
+            }
+            let fan = &fan[..k];
+            let centre = [noise * rnd(), noise * rnd(), 0.0];
+            let (got, want) = (fan_sine(centre, fan), exact(centre, fan));
+            let (g, w) = (
+                ramp(got, FAN_DISTRUSTED, FAN_TRUSTED),
+                ramp(want, FAN_DISTRUSTED, FAN_TRUSTED),
+            );
+            assert_eq!(g.to_bits(), w.to_bits(), "{centre:?} {fan:?}");
+            seen[if w == 1.0 {
+                0
+            } else if w == 0.0 {
+                2
+            } else {
+                1
+            }] = true;
+        }
+        assert_eq!(seen, [true; 3], "every part of the ramp exercised");
+    }
 }

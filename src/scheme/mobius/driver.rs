@@ -33,7 +33,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     pub(super) trust: &'o mut [f64],
     /// Per vertex: the centre `c` and radius `r` of an interior star's canonical form, kept
     /// by the vertex pass for the fold guard's output audit (`audit.rs`); `r = 0` where
-    /// there is none.
+    /// there is none. After the audit (which keeps its own trust in the centres' first
+    /// coordinates), the blend toward the linear rule keeps there the least trust of each
+    /// closed 1-ring (radii) and 2-ring (centres) (`toward_linear.rs`).
     pub(super) centre: &'o mut [Point],
     pub(super) radius: &'o mut [f64],
     pub(super) report: MobiusReport,

@@ -43,6 +43,9 @@ const LN_SPREAD_TRUSTED: f64 = 1.386_294_361_119_890_6; // ln 4
 const LN_SPREAD_DISTRUSTED: f64 = 2.079_441_541_679_835_9; // ln 8
 /// Margin of the candidate position `t` inside `[0, 1]` below which trust falls.
 const T_MARGIN: f64 = 0.15;
+/// `T_MARGIN` and `1 − T_MARGIN` moved inward by a relative 1e-12 ([`position_trust`]).
+const T_LOW: f64 = T_MARGIN * (1.0 + 1e-12);
+const T_HIGH: f64 = (1.0 - T_MARGIN) * (1.0 - 1e-12);
 /// F4 angle (radians) at or below which an edge is trusted: 120°.
 const RHO_TRUSTED: f64 = 2.094_395_102_393_195_5;
 /// F4 angle (radians) at or above which an edge is distrusted: 160°.
@@ -92,7 +95,16 @@ pub(super) fn spread_trust(ring: &[Point]) -> f64 {
 /// candidate, nothing to distrust; a neighbour at infinity is term 1's).
 pub(super) fn position_trust(e: Point, c: Point) -> f64 {
     let cc = dot(c, c);
-    let t = dot(e, c) / cc;
+    let x = dot(e, c);
+    // The common case without the division and the ramps: `x` between the margins times
+    // `cc`, widened by a relative 1e-12 that covers the rounding of the two products and of
+    // `t = x / cc` (each off by at most 2⁻⁵³ relative while `cc` and the products are
+    // normal), puts `t` inside `[T_MARGIN, 1 − T_MARGIN]`, where both ramps are exactly 1.
+    let (lo, hi) = (T_LOW * cc, T_HIGH * cc);
+    if lo >= f64::MIN_POSITIVE && hi.is_finite() && x >= lo && x <= hi {
+        return 1.0;
+    }
+    let t = x / cc;
     // `cc = 0` makes `t` non-finite.
     if !t.is_finite() || !cc.is_finite() {
         return 1.0;
@@ -212,6 +224,44 @@ mod tests {
         assert_eq!(at(1.2), 0.0);
         assert!((at(0.075) - 0.5).abs() < 1e-12);
         assert!((at(0.925) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_position_bound_gives_the_exact_trust() {
+        // The division and the two ramps, as `position_trust` computes them off its bound.
+        let exact = |e: Point, c: Point| {
+            let cc = dot(c, c);
+            let t = dot(e, c) / cc;
+            if !t.is_finite() || !cc.is_finite() {
+                return 1.0;
+            }
+            ramp(t, 0.0, T_MARGIN).min(ramp(t, 1.0, 1.0 - T_MARGIN))
+        };
+        let mut x: u64 = 5;
+        let mut rnd = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for i in 0..20_000 {
+            // `t` at the margins' ends to within a few ulps, or anywhere, on every scale.
+            let base = [0.15, 0.85, 0.5, 0.0][i % 4];
+            let t = base * (1.0 + 1e-15 * rnd() * (1 << (i % 12)) as f64) + 0.001 * rnd();
+            let t = if i % 8 < 4 {
+                base * (1.0 + 4e-16 * rnd())
+            } else {
+                t
+            };
+            let s = [1e-160, 1e-100, 1.0, 1e100, 1e150][i % 5];
+            let c = [s, 0.0, 0.0];
+            let e = [t * s, s * rnd(), 0.0];
+            assert_eq!(
+                position_trust(e, c).to_bits(),
+                exact(e, c).to_bits(),
+                "{e:?} {c:?}"
+            );
+        }
     }
 
     #[test]
