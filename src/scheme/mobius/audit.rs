@@ -320,7 +320,7 @@ mod tests {
         for i in 0..20_000 {
             // Around the threshold angle (85°) and anywhere.
             let angle = if i % 2 == 0 {
-                libm::acos(PAIR_TRUSTED) + 1e-13 * rnd() * (1 << (i % 40)) as f64
+                libm::acos(PAIR_TRUSTED) + 1e-13 * rnd() * (1u64 << (i % 40)) as f64
             } else {
                 core::f64::consts::PI * (rnd() + 1.0) / 2.0
             };
