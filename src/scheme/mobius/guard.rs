@@ -196,6 +196,7 @@ impl Driver<'_, '_, '_, '_> {
                 radius: &mut [],
                 edge_c: self.edge_c,
                 face_c: self.face_c,
+                work: &mut *self.work,
             };
             let mut g = Guarded {
                 part: Part::whole(topo, self.guard, a),
@@ -267,6 +268,7 @@ impl Driver<'_, '_, '_, '_> {
             radius: &mut [],
             edge_c: self.edge_c,
             face_c: self.face_c,
+            work: &mut *self.work,
         };
         let mut ranges = ArrayVec::<Guarded<'_, '_, '_>, MAX_CHUNKS>::new();
         for part in Part::ranges(topo, slots, guard, k, a)? {
