@@ -83,7 +83,7 @@ static size_t edge_id(const tri_mesh *m, uint32_t a, uint32_t b) {
 
 /* The level from the star rules, compared with the driver point by point. */
 static void level_from_star_rules(tri_mesh *m, const char *what) {
-    static double cand[64][3 * 64], out[3 * 512], spts[3 * 600];
+    static double cand[64][3 * 64], out[3 * 512], spts[3 * 4096];
     static uint32_t spokes[64][65], ring[64][65], scratch[4096], ooff[512], oidx[2048], off[97];
     size_t n[64], nv, k, same = 0, nsingle = 0, nzorin = 0;
     int closed[64];
@@ -94,7 +94,7 @@ static void level_from_star_rules(tri_mesh *m, const char *what) {
      * changes the driver's output wherever it distrusts a star). */
     CHECK_STATUS(flat_subdivide(NLS_SCHEME_MODIFIED_BUTTERFLY, NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL, 1, m->p, m->nv,
                                 off, m->nf, m->idx,
-                                3 * m->nf, scratch, 4096, spts, 600, out, 512, ooff, 511, oidx, 2048, &sz, NULL, NULL),
+                                3 * m->nf, scratch, 4096, spts, 4096, out, 512, ooff, 511, oidx, 2048, &sz, NULL, NULL),
                  NLS_STATUS_OK);
     nv = sz.vertex_count;
     for (v = 0; v < m->nv; v++) n[v] = star(m, v, spokes[v], ring[v], &closed[v]);

@@ -1352,8 +1352,13 @@ mod tests {
         assert_eq!(s, Status::Ok);
         // Points: two candidates per corner (4 corners), and per vertex the kept form's
         // centre (4), then the fold guard's trust and the form's radius per vertex and the
-        // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point).
-        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 4));
+        // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point); the star
+        // workspace: four arrays of the largest valence (2) for each chunk, at most one per
+        // vertex (4).
+        assert_eq!(
+            (plan.scratch_u32, plan.scratch_points),
+            (28, 8 + 4 + 4 + 4 * 2 * 4)
+        );
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {
@@ -1430,13 +1435,13 @@ mod tests {
                 linear_weights: core::ptr::null(),
             };
             let mut su = vec![0u32; 4096];
-            let mut sp = vec![0.0; 3 * 512];
+            let mut sp = vec![0.0; 3 * 2048];
             let (mut op, mut oo, mut oi) = (vec![0.0; 3 * 64], vec![0u32; 65], vec![0u32; 256]);
             let sc = nls_scratch {
                 u32s: su.as_mut_ptr(),
                 u32_capacity: su.len(),
                 points: sp.as_mut_ptr(),
-                point_capacity: 512,
+                point_capacity: 2048,
             };
             let buf = nls_mesh_buffers {
                 positions: op.as_mut_ptr(),

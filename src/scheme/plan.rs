@@ -61,7 +61,11 @@ pub struct Plan {
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and,
     ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
     ///   and the form's radius (two `f64`), and per corner the slot of its candidates (one
-    ///   `f64`; `f64` values three to a point) — with tags, at least the cut
+    ///   `f64`; `f64` values three to a point), and the star workspace of the vertex pass
+    ///   (four arrays of the largest valence stepped from for each of at most
+    ///   `min(`[`crate::exec::MAX_CHUNKS`]`, vertices)` chunks: the tangent polygon of the
+    ///   star's canonical form and the per-star arrays of the scheme's rule, kept off the
+    ///   stack) — with tags, at least the cut
     ///   level's positions, its step's output and candidates; with a
     ///   spectrum weight below 1 ([`Options::spectrum`]) or per-vertex weights
     ///   ([`plan_weighted`]), the linear positions of the largest level written; with
@@ -74,6 +78,10 @@ pub struct Plan {
     /// The scratch of the largest tagged Möbius step (the level cut along its sharp edges,
     /// [`super::mobius::crease::scratch`]); zero without tags or without Möbius.
     pub(super) crease: ScratchSizes,
+    /// The largest valence of the levels stepped from (a bound from the refinement rule
+    /// for the derived levels), which sizes the Möbius star workspace
+    /// ([`super::mobius::workspace`]).
+    pub(super) star_valence: usize,
 }
 
 impl Plan {
@@ -96,16 +104,22 @@ impl Plan {
     /// The candidate points of the largest Möbius step: two per corner of the largest level
     /// stepped from and an `f64` per corner for their slots, and per vertex a point and two
     /// `f64` for the fold guard
-    /// ([`super::mobius::candidate_points`]; 0 for zero levels); with tags, at least the
-    /// points of the largest tagged step ([`Plan::crease`]).
+    /// ([`super::mobius::candidate_points`]; 0 for zero levels), and the star workspace of
+    /// the largest valence stepped from ([`super::mobius::workspace::workspace_points`]);
+    /// with tags, at least the points of the largest tagged step ([`Plan::crease`]).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {
+        if self.levels == 0 {
+            return Ok(self.crease.points);
+        }
         let (mut vertices, mut corners) = (0usize, 0usize);
         for k in 0..self.levels {
             let sz = self.sizes.get(k).ok_or(internal())?;
             vertices = vertices.max(sz.vertices);
             corners = corners.max(sz.indices);
         }
-        Ok(super::mobius::candidate_points(vertices, corners)?.max(self.crease.points))
+        let work = super::mobius::workspace::workspace_points(self.star_valence, vertices)?;
+        let step = cadd(super::mobius::candidate_points(vertices, corners)?, work)?;
+        Ok(step.max(self.crease.points))
     }
 }
 
@@ -287,6 +301,7 @@ fn levels_plan(
         scratch: ScratchSizes::default(),
         sharpness: 0,
         crease: ScratchSizes::default(),
+        star_valence: 0,
     };
     // One sharpness value per edge and vertex of the largest level stepped from.
     let mut sharpness = cadd(stats.edges(), stats.sizes().vertices)?;
@@ -295,11 +310,13 @@ fn levels_plan(
     if levels > 0 {
         // Level 1 exactly as the single step computes it (face types, per-vertex valences).
         let first = step_size(scheme, &topo)?;
+        p.star_valence = stats.max_valence();
         for k in 1..=levels {
             stats = stats.next(pattern)?;
             let sz = stats.sizes();
             if k < levels {
                 sharpness = sharpness.max(cadd(stats.edges(), sz.vertices)?);
+                p.star_valence = p.star_valence.max(stats.max_valence());
             }
             if k == 1 && sz != first {
                 return Err(internal());
@@ -317,7 +334,8 @@ fn levels_plan(
         for k in 0..levels {
             let sz = p.sizes.get(k).copied().ok_or(internal())?;
             let next = p.sizes.get(k + 1).copied().ok_or(internal())?;
-            let c = super::mobius::crease::scratch(sz.vertices, sz.indices, sz.faces, next)?;
+            let (v, c, f) = (sz.vertices, sz.indices, sz.faces);
+            let c = super::mobius::crease::scratch(v, c, f, next, p.star_valence)?;
             p.crease.u32s = p.crease.u32s.max(c.u32s);
             p.crease.points = p.crease.points.max(c.points);
         }

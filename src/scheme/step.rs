@@ -17,7 +17,8 @@ use crate::point::{self, Point};
 
 /// One step of `scheme` on `topo` into `out`: the linear (or spherelike) rules with `mobius`
 /// `None`, the canonical Möbius version with its options otherwise, `candidates` its scratch
-/// ([`mobius::candidate_points`]; unused by the other rules). Returns the sizes written and
+/// ([`mobius::candidate_points`] and the star workspace,
+/// [`mobius::workspace::workspace_points`]; unused by the other rules). Returns the sizes written and
 /// the Möbius report (empty for the other rules). With `sharp` (the level's sharpness
 /// values of a tagged mesh) the linear rules with sharp features ([`linear_tagged`]), or
 /// the Möbius step on the mesh cut along its sharp edges ([`mobius::crease`], whose `u32`

@@ -33,6 +33,11 @@ impl LevelCounts {
         self.e
     }
 
+    /// The largest valence (an upper bound for a derived level, exact for a built one).
+    pub(crate) fn max_valence(&self) -> usize {
+        self.max_vi.max(self.max_vb)
+    }
+
     /// The counts of a built topology.
     pub(crate) fn of(topo: &Topology<'_, '_>) -> Result<LevelCounts> {
         let mut s = LevelCounts {

@@ -81,12 +81,14 @@ fn sharp(s: f32) -> bool {
 /// `u32s`: the cut flags (an edge has a half-edge: `corners`), the sharp-edge count per
 /// vertex, per cut vertex its original and its corner mark, the cut level's indices and
 /// topology, the cut step's connectivity (that of the child). `points`: the cut level's
-/// positions, its step's output and its Möbius candidates.
+/// positions, its step's output and its Möbius candidates and star workspace (for a cut
+/// level whose valences are at most `max_valence + 1`, `max_valence` bounding the level's).
 pub(crate) fn scratch(
     vertices: usize,
     corners: usize,
     faces: usize,
     next: MeshSizes,
+    max_valence: usize,
 ) -> Result<ScratchSizes> {
     let cut_v = cadd(vertices, corners)?;
     let u32s = [
@@ -102,7 +104,11 @@ pub(crate) fn scratch(
     .iter()
     .try_fold(0usize, |a, &b| cadd(a, b))?;
     let out = cadd(cadd(cut_v, corners)?, faces)?;
-    let points = cadd(cadd(cut_v, out)?, super::candidate_points(cut_v, corners)?)?;
+    // Cutting a star along its sharp edges splits it into fans of at most one more spoke
+    // (a star cut along one edge opens into a fan of all its faces).
+    let work = super::workspace::workspace_points(cadd(max_valence, 1)?, cut_v)?;
+    let step = cadd(super::candidate_points(cut_v, corners)?, work)?;
+    let points = cadd(cadd(cut_v, out)?, step)?;
     Ok(ScratchSizes { u32s, points })
 }
 

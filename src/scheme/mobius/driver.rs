@@ -48,6 +48,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// Per vertex: non-zero where a boundary loop ends as an open curve (a corner of a
     /// sharp feature, `crease.rs`); empty without sharp features (`boundary.rs`).
     pub(super) corners: &'o [u32],
+    /// The star workspace of the vertex pass (`workspace.rs`): per chunk, the per-star
+    /// arrays of the scheme's rule.
+    pub(super) work: &'o mut [Point],
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -87,6 +90,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             guard: opts.guard,
             exec,
             corners: &[],
+            work: &mut [],
         }
     }
 

@@ -11,6 +11,7 @@ use super::form::{Frame, MapBack, Spokes};
 use super::memo::StarForm;
 use crate::error::Result;
 use crate::mesh::{get, set, NONE};
+use crate::point::Point;
 
 impl Driver<'_, '_, '_, '_> {
     /// A boundary vertex with one face (valence 2), from two lookups: its first spoke has no
@@ -48,6 +49,15 @@ impl Driver<'_, '_, '_, '_> {
     /// The face candidates of the ears' corners (the face centroid in the substitute
     /// vertex's form).
     pub(super) fn ear_face_candidates(&mut self) -> Result<()> {
+        // The substitute forms' tangent polygons in the star workspace (no pass holds it now).
+        let tangents = core::mem::take(&mut self.work);
+        let r = self.ear_face_candidates_into(tangents);
+        self.work = tangents;
+        r
+    }
+
+    /// [`Driver::ear_face_candidates`] with the star workspace `tangents` taken out.
+    fn ear_face_candidates_into(&mut self, tangents: &mut [Point]) -> Result<()> {
         let topo = self.topo;
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
@@ -60,7 +70,7 @@ impl Driver<'_, '_, '_, '_> {
                 let Some(u) = self.form_vertex(f, i)? else {
                     continue;
                 };
-                if !self.local_into(u, &mut form, &mut spokes)? {
+                if !self.local_into(u, &mut form, &mut spokes, tangents)? {
                     continue;
                 }
                 if let Ok(c) = form.face_centroid(topo, f).and_then(|c| form.back(c)) {

@@ -161,6 +161,7 @@ impl Driver<'_, '_, '_, '_> {
         let run = |g: &mut Guarded<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
             let mut spokes = Spokes::new();
+            let tangents = g.part.take_tangents()?;
             let mut b = bufs();
             for v in g.part.vertices() {
                 let tau = get(g.trust, v as usize)?;
@@ -168,12 +169,13 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 // Only interior stars with a form are ever distrusted (`trust_star`).
-                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes)? else {
+                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes, tangents)? else {
                     continue;
                 };
                 let slot = first_slot(topo, slots, v)?.ok_or(internal())?;
                 let cf = form.form();
-                let mut frame = Spectrum::new(cf.v, cf.c, form.tangents(), tau);
+                let t = tangents.get(..spokes.len()).ok_or(internal())?;
+                let mut frame = Spectrum::new(cf.v, cf.c, t, tau);
                 let mut star = Star {
                     v,
                     boundary,
@@ -196,6 +198,7 @@ impl Driver<'_, '_, '_, '_> {
                 radius: &mut [],
                 edge_c: self.edge_c,
                 face_c: self.face_c,
+                work: &mut *self.work,
             };
             let mut g = Guarded {
                 part: Part::whole(topo, self.guard, a),
@@ -218,17 +221,28 @@ impl Driver<'_, '_, '_, '_> {
     pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<()> {
         let mut form = StarForm::blank();
         let mut spokes = Spokes::new();
-        for v in 0..self.topo.num_vertices() as u32 {
-            let tau = get(self.trust, v as usize)?;
-            if tau >= 1.0 || self.retarget(v, &mut form, &mut spokes)?.is_none() {
-                continue;
+        // The tangent polygons in the star workspace (no other pass holds it now).
+        let tangents = core::mem::take(&mut self.work);
+        let r = (|| {
+            for v in 0..self.topo.num_vertices() as u32 {
+                let tau = get(self.trust, v as usize)?;
+                if tau >= 1.0
+                    || self
+                        .retarget(v, &mut form, &mut spokes, tangents)?
+                        .is_none()
+                {
+                    continue;
+                }
+                if pick(spokes.len()) {
+                    let t = tangents.get(..spokes.len()).ok_or(internal())?;
+                    let s = sphericity(t, form.centre());
+                    set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
+                }
             }
-            if pick(spokes.len()) {
-                let s = sphericity(form.tangents(), form.centre());
-                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
-            }
-        }
-        Ok(())
+            Ok(())
+        })();
+        self.work = tangents;
+        r
     }
 
     /// Adds the points the guard moved ([`Driver::blend_toward_linear`]) to the report.
@@ -267,6 +281,7 @@ impl Driver<'_, '_, '_, '_> {
             radius: &mut [],
             edge_c: self.edge_c,
             face_c: self.face_c,
+            work: &mut *self.work,
         };
         let mut ranges = ArrayVec::<Guarded<'_, '_, '_>, MAX_CHUNKS>::new();
         for part in Part::ranges(topo, slots, guard, k, a)? {

@@ -3,12 +3,12 @@
 //! faces around the vertex and (Butterfly, Kobbelt) parts of the 2-ring into the form, and
 //! several rules read the same vertex, so each image is computed once per form.
 //!
-//! One [`StarForm`] lives per driver loop and is re-targeted per vertex: it is about 5 KB
-//! (the memo and the tangent polygon), and a fresh one per vertex would be moved several
-//! times per vertex (measured with callgrind: those copies cost half of Möbius
+//! One [`StarForm`] lives per driver loop and is re-targeted per vertex: it is about 2 KiB
+//! (the memo; the tangent polygon is the caller's), and a fresh one per vertex would be
+//! moved several times per vertex (measured with callgrind: those copies cost half of Möbius
 //! Catmull–Clark's instructions).
 
-use super::form::{FacePts, Frame, MapBack, Ring, Spokes, ORIGIN};
+use super::form::{FacePts, Frame, MapBack, Spokes, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
@@ -24,9 +24,6 @@ pub(super) struct StarForm {
     /// recomputed bit for bit.
     memo: [(u32, u32, Point); MEMO_SLOTS],
     stamp: u32,
-    /// The tangent polygon of the form (`(u_i − v)⁻¹` over the star's neighbours), from
-    /// which the ring's images are put in the memo when the form is made.
-    tangents: Ring,
 }
 
 /// Slots of [`StarForm::memo`] (`2^MEMO_BITS`): at least twice the vertices a driver maps
@@ -102,19 +99,12 @@ impl StarForm {
             },
             memo: [(NONE, 0, ORIGIN); MEMO_SLOTS],
             stamp: 0,
-            tangents: Ring::new(),
         }
     }
 
     /// The canonical form (meaningful after a successful [`StarForm::reset`]).
     pub(super) fn form(&self) -> &CanonicalForm {
         &self.cf
-    }
-
-    /// The tangent polygon `T_i = (u_i − v)⁻¹` of the form (after a successful
-    /// [`StarForm::reset`]).
-    pub(super) fn tangents(&self) -> &[Point] {
-        &self.tangents
     }
 
     /// The centre `c` of the tangent polygon (after a successful [`StarForm::reset`]).
@@ -141,7 +131,11 @@ impl StarForm {
     /// degenerate star: the caller's fallback); the memo then holds no form (`v = NONE`).
     /// `Err` only for a failure of the topology queries, which is an error, never a fallback.
     /// `spokes` receives the star of `v` (as [`Topology::spokes_into`]), which the drivers
-    /// then walk instead of walking the star again.
+    /// then walk instead of walking the star again, and the first `spokes.len()` points of
+    /// `tangents` its tangent polygon `T_i = (u_i − v)⁻¹` (the guard's sphericity reads it).
+    /// `tangents` is the caller's (a part of the star workspace, `workspace.rs`), so that the
+    /// form's size does not grow with the valence cap; shorter than the valence is an
+    /// internal error (the workspace is sized by the level's largest valence).
     ///
     /// The images of the ring neighbours are cached at once, from the tangent polygon the
     /// form was made of: [`CanonicalForm::to_normalised`] would compute the same `T_i` again
@@ -153,9 +147,11 @@ impl StarForm {
         v: u32,
         boundary: bool,
         spokes: &mut Spokes,
+        tangents: &mut [Point],
     ) -> Result<bool> {
         self.clear();
         star_into(topo, v, spokes)?;
+        let tangents = tangents.get_mut(..spokes.len()).ok_or(internal())?;
         let kind = if boundary {
             StarKind::Boundary
         } else {
@@ -165,23 +161,22 @@ impl StarForm {
         // The tangent polygon straight from the mesh: `CanonicalForm::new` of the ring's
         // positions bit for bit (same checks: a finite centre, every `T_i` defined).
         let mut ok = point::is_finite(&centre);
-        self.tangents.clear();
-        for s in spokes.iter() {
+        for (s, t) in spokes.iter().zip(tangents.iter_mut()) {
             match CanonicalForm::tangent(centre, topo.position(s.neighbour)?) {
-                Some(t) => self.tangents.try_push(t).map_err(|_| internal())?,
+                Some(ti) => *t = ti,
                 None => ok = false,
             }
         }
         if !ok {
             return Ok(false);
         }
-        self.cf = match CanonicalForm::from_tangents(centre, &self.tangents, kind) {
+        self.cf = match CanonicalForm::from_tangents(centre, tangents, kind) {
             Ok(cf) => cf,
             Err(_) => return Ok(false),
         };
         self.v = v;
         let stamp = self.stamp;
-        for (s, t) in spokes.iter().zip(self.tangents.iter()) {
+        for (s, t) in spokes.iter().zip(tangents.iter()) {
             if let Ok(p) = self.cf.normalised_from_tangent(*t) {
                 if let Some(e) = self.memo.get_mut(memo_slot(s.neighbour)) {
                     *e = (s.neighbour, stamp, p);

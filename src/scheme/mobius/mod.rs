@@ -46,8 +46,9 @@
 //! * steps 1–3 per vertex: `form.rs` (the canonical form of a star given by points and the
 //!   conventions of the normalised frame), `memo.rs` (the form of a mesh vertex with a memo
 //!   of canonical images), `vertex_pass.rs` (the pass every driver runs, split into
-//!   vertex ranges), `slots.rs` (the vertex-major slots of the candidates), `ears.rs`
-//!   (substitute forms for ears);
+//!   vertex ranges), `workspace.rs` (each range's star workspace in the point scratch: the
+//!   per-star arrays of the rules), `slots.rs` (the vertex-major slots of the candidates),
+//!   `ears.rs` (substitute forms for ears);
 //! * step 4: `edges.rs` (edge blends), `faces.rs` (face-point blends), `boundary.rs`
 //!   (boundary curves, closed or open between corners);
 //! * sharp features: `crease.rs` (a tagged level refined as the level cut along its sharp
@@ -75,6 +76,7 @@ mod spectrum;
 mod toward_linear;
 mod trust;
 mod vertex_pass;
+pub(crate) mod workspace;
 
 pub use rules::{butterfly_star, catmull_clark_star, doo_sabin_star, kobbelt_star, loop_star};
 
@@ -145,7 +147,8 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 }
 
 /// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
-/// of at least [`candidate_points`] points. The connectivity and the output vertex order are
+/// of at least [`candidate_points`] points and the star workspace of `topo`'s largest
+/// valence ([`workspace::workspace_points`]). The connectivity and the output vertex order are
 /// those of the linear scheme ([`super::step::linear`]).
 ///
 /// # Errors
@@ -175,20 +178,25 @@ pub(crate) fn step(
     out.check(&sizes)?;
     let nv = topo.num_vertices();
     let candidates = candidate_points(nv, topo.num_half_edges())?;
+    let work = workspace::workspace_points(workspace::max_valence(topo)?, nv)?;
     let blend = opts.spectrum < 1.0;
+    let step_points = candidates
+        .checked_add(work)
+        .ok_or(Error::new(Status::SizeOverflow))?;
     let need = if blend {
-        candidates
+        step_points
             .checked_add(sizes.vertices)
             .ok_or(Error::new(Status::SizeOverflow))?
     } else {
-        candidates
+        step_points
     };
     if scratch.len() < need {
         return Err(Error::too_small(need));
     }
     // `split_at_mut_checked`, not `split_at_mut`: the length is checked above, but the
     // panicking form would link a panic path into every export (the link proof refuses it).
-    let (scratch, linear_pos) = scratch.split_at_mut_checked(candidates).ok_or(internal())?;
+    let (scratch, rest) = scratch.split_at_mut_checked(candidates).ok_or(internal())?;
+    let (work, linear_pos) = rest.split_at_mut_checked(work).ok_or(internal())?;
     write_pattern_with(scheme.pattern(), topo, out.offsets, out.indices, exec)?;
     let pos = out.positions.get_mut(..sizes.vertices).ok_or(internal())?;
     let nh = topo.num_half_edges();
@@ -204,6 +212,7 @@ pub(crate) fn step(
     slots::write(topo, slot_map)?;
     let form = (trust, centre, radius);
     let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
+    d.work = work;
     d.corners = corners;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the

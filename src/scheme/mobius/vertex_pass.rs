@@ -18,9 +18,10 @@
 use arrayvec::ArrayVec;
 
 use super::driver::{chunk_fallback, Driver};
-use super::form::{present, Frame, Ring, Spokes, MISSING};
+use super::form::{present, Frame, Spokes, MISSING};
 use super::memo::StarForm;
 use super::slots::{first_slot, slot_at_or_after};
+use super::workspace::STAR_ARRAYS;
 use crate::error::Result;
 use crate::exec::{chunk_count, chunk_range, parts, pass, Tally, MAX_CHUNKS};
 use crate::mesh::{internal, Topology, NONE};
@@ -44,40 +45,47 @@ pub(super) struct Star<'p, F: Frame = StarForm> {
 }
 
 impl<F: Frame> Star<'_, F> {
-    /// The images of the ring neighbours in star order into `ring` ([`MISSING`] for one the
-    /// form sends to infinity); whether all exist.
+    /// The images of the ring neighbours in star order into `ring`, one per spoke
+    /// ([`MISSING`] for one the form sends to infinity); whether all exist.
     #[inline(always)]
-    pub(super) fn ring_images(&mut self, topo: &Topology<'_, '_>, ring: &mut Ring) -> Result<bool> {
-        ring.clear();
+    pub(super) fn ring_images(
+        &mut self,
+        topo: &Topology<'_, '_>,
+        ring: &mut [Point],
+    ) -> Result<bool> {
+        if ring.len() != self.spokes.len() {
+            return Err(internal());
+        }
         let mut all = true;
-        for s in self.spokes {
-            let c = match self.form.image(topo, s.neighbour) {
+        for (s, r) in self.spokes.iter().zip(ring.iter_mut()) {
+            *r = match self.form.image(topo, s.neighbour) {
                 Ok(c) => c,
                 Err(_) => {
                     all = false;
                     MISSING
                 }
             };
-            ring.try_push(c).map_err(|_| internal())?;
         }
         Ok(all)
     }
 
-    /// The centroids, taken in the form, of the faces after each spoke into `centroids`
-    /// ([`MISSING`] after the last spoke of an open star and where a corner is at infinity).
+    /// The centroids, taken in the form, of the faces after each spoke into `centroids`, one
+    /// per spoke ([`MISSING`] after the last spoke of an open star and where a corner is at
+    /// infinity).
     pub(super) fn face_centroids(
         &mut self,
         topo: &Topology<'_, '_>,
-        centroids: &mut Ring,
+        centroids: &mut [Point],
     ) -> Result<()> {
-        centroids.clear();
-        for s in self.spokes {
-            let c = if s.face == NONE {
+        if centroids.len() != self.spokes.len() {
+            return Err(internal());
+        }
+        for (s, c) in self.spokes.iter().zip(centroids.iter_mut()) {
+            *c = if s.face == NONE {
                 MISSING
             } else {
                 self.form.face_centroid(topo, s.face).unwrap_or(MISSING)
             };
-            centroids.try_push(c).map_err(|_| internal())?;
         }
         Ok(())
     }
@@ -100,6 +108,8 @@ pub(super) struct Part<'a, 'm, 's> {
     radius: &'a mut [f64],
     edge_c: &'a mut [Point],
     face_c: &'a mut [Point],
+    /// This range's star workspace (`workspace.rs`), taken by [`Part::with_work`].
+    work: &'a mut [Point],
 }
 
 /// The work of one vertex range of the vertex pass.
@@ -115,7 +125,8 @@ fn split_off<'a, T>(s: &mut &'a mut [T], n: usize) -> Result<&'a mut [T]> {
 }
 
 /// The arrays a vertex-range pass writes, whole: the vertex points (`V` of them, or none),
-/// the fold guard's per-vertex values (`V` each, or none), the candidate slots (`H` each).
+/// the fold guard's per-vertex values (`V` each, or none), the candidate slots (`H` each),
+/// and the star workspace (`workspace.rs`), shared equally by the ranges.
 pub(super) struct Arrays<'a> {
     pub(super) pos: &'a mut [Point],
     pub(super) trust: &'a mut [f64],
@@ -123,6 +134,7 @@ pub(super) struct Arrays<'a> {
     pub(super) radius: &'a mut [f64],
     pub(super) edge_c: &'a mut [Point],
     pub(super) face_c: &'a mut [Point],
+    pub(super) work: &'a mut [Point],
 }
 
 /// The first `n` elements of `*s`, or none when `*s` is empty (an array the pass does not
@@ -147,6 +159,7 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
             radius: a.radius,
             edge_c: a.edge_c,
             face_c: a.face_c,
+            work: a.work,
         }
     }
 
@@ -167,7 +180,10 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
             mut radius,
             mut edge_c,
             mut face_c,
+            mut work,
         } = a;
+        // Each range's share of the workspace: at least one chunk's (`k ≤ MAX_CHUNKS`).
+        let share = work.len() / k.max(1);
         let mut ranges = ArrayVec::new();
         let mut k0 = 0;
         for i in 0..k {
@@ -187,6 +203,7 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
                 radius: split_per_vertex(&mut radius, n)?,
                 edge_c: split_off(&mut edge_c, nk)?,
                 face_c: split_off(&mut face_c, nk)?,
+                work: split_off(&mut work, share)?,
             };
             ranges.try_push(part).map_err(|_| internal())?;
             k0 = k1;
@@ -197,6 +214,32 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
     /// The vertices of this part.
     pub(super) fn vertices(&self) -> core::ops::Range<u32> {
         self.v0 as u32..self.v1 as u32
+    }
+
+    /// The tangent-polygon array of this part's star workspace (`workspace.rs`: its last
+    /// [`STAR_ARRAYS`]th, at least the level's largest valence), taken out of the part for
+    /// the star forms of its pass; the rule's arrays are the rest ([`Part::with_work`]).
+    pub(super) fn take_tangents(&mut self) -> Result<&'a mut [Point]> {
+        let work = core::mem::take(&mut self.work);
+        let n = work.len() / STAR_ARRAYS;
+        let (rest, tangents) = work
+            .split_at_mut_checked(work.len() - n)
+            .ok_or(internal())?;
+        self.work = rest;
+        Ok(tangents)
+    }
+
+    /// Runs `f` with this part's star workspace (`workspace.rs`) taken out of it, so that
+    /// `f` can write the part while it reads and writes the workspace.
+    #[inline(always)]
+    pub(super) fn with_work<R>(
+        &mut self,
+        f: impl FnOnce(&mut Self, &mut [Point]) -> Result<R>,
+    ) -> Result<R> {
+        let work = core::mem::take(&mut self.work);
+        let r = f(self, &mut *work);
+        self.work = work;
+        r
     }
 }
 
@@ -301,13 +344,14 @@ impl Part<'_, '_, '_> {
 /// Re-targets `form` to the canonical form of a non-ear, non-isolated vertex; `None` (and
 /// `form` holds no form) when `v` is isolated or an ear or its form does not exist
 /// (degenerate star), else whether `v` lies on the boundary. With a form, `spokes` holds
-/// `v`'s star.
+/// `v`'s star and `tangents` begins with its tangent polygon ([`StarForm::reset`]).
 #[inline(always)]
 pub(super) fn retarget(
     topo: &Topology<'_, '_>,
     v: u32,
     form: &mut StarForm,
     spokes: &mut Spokes,
+    tangents: &mut [Point],
 ) -> Result<Option<bool>> {
     // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
     let h = topo.vertex_half_edge(v)?;
@@ -316,20 +360,24 @@ pub(super) fn retarget(
         form.clear();
         return Ok(None);
     }
-    Ok(form.reset(topo, v, boundary, spokes)?.then_some(boundary))
+    Ok(form
+        .reset(topo, v, boundary, spokes, tangents)?
+        .then_some(boundary))
 }
 
 impl<'m, 's> Driver<'_, 'm, 's, '_> {
     /// Re-targets `form` to the canonical form of a non-ear, non-isolated vertex; `false`
     /// (and `form` holds no form) when `v` is isolated or an ear or its form does not exist
-    /// (degenerate star). With a form, `spokes` holds `v`'s star.
+    /// (degenerate star). With a form, `spokes` holds `v`'s star and `tangents` begins with
+    /// its tangent polygon.
     pub(super) fn local_into(
         &self,
         v: u32,
         form: &mut StarForm,
         spokes: &mut Spokes,
+        tangents: &mut [Point],
     ) -> Result<bool> {
-        Ok(self.retarget(v, form, spokes)?.is_some())
+        Ok(self.retarget(v, form, spokes, tangents)?.is_some())
     }
 
     /// [`retarget`] on this step's topology.
@@ -339,8 +387,9 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         v: u32,
         form: &mut StarForm,
         spokes: &mut Spokes,
+        tangents: &mut [Point],
     ) -> Result<Option<bool>> {
-        retarget(self.topo, v, form, spokes)
+        retarget(self.topo, v, form, spokes, tangents)
     }
 
     /// The arrays of the vertex pass: with the vertex points of the first `V` outputs when
@@ -364,6 +413,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
             radius,
             edge_c: self.edge_c,
             face_c: self.face_c,
+            work: &mut *self.work,
         })
     }
 
@@ -381,9 +431,10 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         let run = |part: &mut Part<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
             let mut spokes = Spokes::new();
+            let tangents = part.take_tangents()?;
             let mut b = bufs();
             for v in part.v0 as u32..part.v1 as u32 {
-                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes)? else {
+                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes, tangents)? else {
                     continue;
                 };
                 let slot = first_slot(topo, slots, v)?.ok_or(internal())?;

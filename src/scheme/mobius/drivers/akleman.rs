@@ -5,7 +5,8 @@
 //! rule. Layouts are the linear schemes'.
 
 use super::super::driver::Driver;
-use super::super::form::{MapBack, Ring, ORIGIN};
+use super::super::form::{MapBack, ORIGIN};
+use super::super::workspace::take;
 use crate::blend::f4;
 use crate::error::Result;
 use crate::mesh::gather::ring_sum;
@@ -17,10 +18,17 @@ use crate::stencil::akleman;
 /// substitute's) blended into face points at `start + f`.
 fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
     let topo = d.topo;
-    d.vertex_pass(false, Ring::new, |p, star, fc| {
-        star.face_centroids(topo, fc)?;
-        p.keep_face_candidates(star, fc)
-    })?;
+    d.vertex_pass(
+        false,
+        || (),
+        |p, star, _| {
+            p.with_work(|p, mut work| {
+                let fc = take(&mut work, star.spokes.len())?;
+                star.face_centroids(topo, fc)?;
+                p.keep_face_candidates(star, fc)
+            })
+        },
+    )?;
     d.ear_face_candidates()?;
     d.blend_faces(start)
 }
@@ -66,14 +74,22 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
     let topo = d.topo;
     face_points(d, topo.num_vertices())?;
     d.clear_vertex_points()?;
-    d.vertex_pass(true, Ring::new, |p, star, ring| {
-        if !star.boundary && star.ring_images(topo, ring)? {
-            if let Ok(q) = akleman::truncated_vertex(ORIGIN, ring).and_then(|t| star.form.back(t)) {
-                p.set_vertex(star.v, q)?;
-            }
-        }
-        Ok(())
-    })?;
+    d.vertex_pass(
+        true,
+        || (),
+        |p, star, _| {
+            p.with_work(|p, mut work| {
+                let ring = take(&mut work, star.spokes.len())?;
+                if !star.boundary && star.ring_images(topo, ring)? {
+                    let t = akleman::truncated_vertex(ORIGIN, ring);
+                    if let Ok(q) = t.and_then(|t| star.form.back(t)) {
+                        p.set_vertex(star.v, q)?;
+                    }
+                }
+                Ok(())
+            })
+        },
+    )?;
     d.finish_vertex_points(true, |t, v, p| {
         let (n, ring) = ring_sum(t, v)?;
         akleman::truncated_vertex_sum(p, n, ring)

@@ -6,17 +6,17 @@
 
 use super::super::audit::Children;
 use super::super::driver::Driver;
-use super::super::form::{Frame, Ring, MISSING};
+use super::super::form::{Frame, MISSING};
 use super::super::guard::Outputs;
 use super::super::rules::butterfly_star_in_form;
 use super::super::vertex_pass::{Part, Star};
+use super::super::workspace::take;
 use crate::error::Result;
-use crate::mesh::{internal, Topology, NONE};
+use crate::mesh::{Topology, NONE};
 use crate::point::Point;
 use crate::scheme::carry::copy_old;
 use crate::scheme::linear::butterfly_edge;
 use crate::stencil::butterfly;
-use crate::MAX_VALENCE;
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
 /// (`toward_linear.rs`): two rings, measured (`docs/folds.md` section 8: with only the
@@ -28,7 +28,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     copy_old(topo, d.pos)?;
-    d.vertex_pass(false, Bufs::new, star_rule)?;
+    d.vertex_pass(false, || (), star_rule)?;
     let linear = |t: &Topology<'_, '_>, e: u32| -> Result<Point> { butterfly_edge(t, e) };
     // The boundary curves before the blends: the audit reads every output point of the
     // step, and the blends may run twice (their fallbacks are rewound, these stay).
@@ -49,7 +49,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             faces: None,
             rings: RINGS,
         };
-        if d.guarded_pass(out, Bufs::new, star_rule)? {
+        if d.guarded_pass(out, || (), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
             d.blend_toward_linear(out, &|_, _, p| Ok(p), &linear)?;
@@ -59,16 +59,24 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 }
 
 /// The Butterfly candidates of one star in its frame (the canonical form, or the guard's
-/// `m_τ`), measured for the guard's trust while still in the frame, then mapped back.
-fn star_rule<F: Frame>(
+/// `m_τ`), measured for the guard's trust while still in the frame, then mapped back. The
+/// two arrays are the chunk's star workspace (`workspace.rs`).
+fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut ()) -> Result<()> {
+    p.with_work(|p, work| star_rule_in(p, star, work))
+}
+
+/// [`star_rule`] with the chunk's star workspace.
+#[inline(always)]
+fn star_rule_in<F: Frame>(
     p: &mut Part<'_, '_, '_>,
     star: &mut Star<'_, F>,
-    b: &mut Bufs,
+    mut work: &mut [Point],
 ) -> Result<()> {
-    let (ring, cands) = (&mut b.ring, &mut b.cands);
+    let n = star.spokes.len();
+    let ring = take(&mut work, n)?;
+    let cands = take(&mut work, n)?;
     let topo = p.topo;
     star.ring_images(topo, ring)?;
-    let n = star.spokes.len();
     for (j, (s, c)) in star.spokes.iter().zip(cands.iter_mut()).enumerate() {
         *c = MISSING;
         let h = s.half_edge;
@@ -81,22 +89,6 @@ fn star_rule<F: Frame>(
             *c = p;
         }
     }
-    let cands = cands.get(..n).ok_or(internal())?;
     p.trust_star(star, ring, cands)?;
     p.keep_edges_from(star, cands)
-}
-
-/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
-struct Bufs {
-    ring: Ring,
-    cands: [Point; MAX_VALENCE],
-}
-
-impl Bufs {
-    fn new() -> Bufs {
-        Bufs {
-            ring: Ring::new(),
-            cands: [MISSING; MAX_VALENCE],
-        }
-    }
 }

@@ -6,16 +6,16 @@
 
 use super::super::audit::Children;
 use super::super::driver::Driver;
-use super::super::form::{Frame, Normalised, Ring, MISSING};
+use super::super::form::{Frame, Normalised};
 use super::super::guard::Outputs;
 use super::super::rules::catmull_clark_star_in_form;
 use super::super::vertex_pass::{Part, Star};
+use super::super::workspace::take;
 use crate::error::Result;
 use crate::mesh::gather::face_sum;
-use crate::mesh::{internal, Topology};
+use crate::mesh::Topology;
 use crate::point::{add, Point};
 use crate::stencil::{catmull_clark, centroid_of_sum};
-use crate::MAX_VALENCE;
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
 /// (`toward_linear.rs`): one ring, measured (`docs/folds.md` section 8: with two rings,
@@ -30,7 +30,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // pass below, which maps each face into the corner's form once.
     d.ear_face_candidates()?;
     d.clear_vertex_points()?;
-    d.vertex_pass(true, Bufs::new, star_rule)?;
+    d.vertex_pass(true, || (), star_rule)?;
     let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         // The ring and the face points summed as the star is walked, as the linear scheme
         // does (no arrays of points on the stack; the same bits as the slice form).
@@ -73,7 +73,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             faces: Some(fp0),
             rings: RINGS,
         };
-        if d.guarded_pass(out, Bufs::new, star_rule)? {
+        if d.guarded_pass(out, || (), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
@@ -90,40 +90,25 @@ fn face_centroid(t: &Topology<'_, '_>, f: u32) -> Result<Point> {
     centroid_of_sum(s, n)
 }
 
-/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
-struct Bufs {
-    ring: Ring,
-    fc: Ring,
-    cands: [Point; MAX_VALENCE],
-}
-
-impl Bufs {
-    fn new() -> Bufs {
-        Bufs {
-            ring: Ring::new(),
-            fc: Ring::new(),
-            cands: [MISSING; MAX_VALENCE],
-        }
-    }
-}
-
 /// The Catmull–Clark rules of one star in its frame (the canonical form, or the guard's
 /// `m_τ`): the canonical centroids of the faces after each spoke and the images of the
 /// neighbours ([`MISSING`] when unavailable), the face candidates, edge candidates (measured
-/// for the guard's trust while still in the frame) and the vertex point, mapped back.
-fn star_rule<F: Frame>(
-    p: &mut Part<'_, '_, '_>,
-    star: &mut Star<'_, F>,
-    b: &mut Bufs,
-) -> Result<()> {
-    let topo = p.topo;
-    star.face_centroids(topo, &mut b.fc)?;
-    p.keep_face_candidates(star, &b.fc)?;
-    star.ring_images(topo, &mut b.ring)?;
-    let vertex =
-        catmull_clark_star_in_form(&b.ring, &b.fc, !star.boundary, &Normalised, &mut b.cands)?;
-    let cands = b.cands.get(..b.ring.len()).ok_or(internal())?;
-    p.trust_star(star, &b.ring, cands)?;
-    p.keep_edges_from(star, cands)?;
-    p.keep_vertex_from(star, vertex)
+/// for the guard's trust while still in the frame) and the vertex point, mapped back. The
+/// three arrays are the chunk's star workspace (`workspace.rs`).
+fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut ()) -> Result<()> {
+    p.with_work(|p, mut work| {
+        let topo = p.topo;
+        let n = star.spokes.len();
+        let fc = take(&mut work, n)?;
+        let ring = take(&mut work, n)?;
+        // Every entry is written by the rules below before it is read.
+        let cands = take(&mut work, n)?;
+        star.face_centroids(topo, fc)?;
+        p.keep_face_candidates(star, fc)?;
+        star.ring_images(topo, ring)?;
+        let vertex = catmull_clark_star_in_form(ring, fc, !star.boundary, &Normalised, cands)?;
+        p.trust_star(star, ring, cands)?;
+        p.keep_edges_from(star, cands)?;
+        p.keep_vertex_from(star, vertex)
+    })
 }

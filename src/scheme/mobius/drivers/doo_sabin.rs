@@ -55,6 +55,15 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 /// arrays are off the stack while the vertex pass runs (docs/firmware.md, "Stack").
 #[inline(never)]
 fn missing_corners(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    // The substitute forms' tangent polygons in the star workspace (the vertex pass is done).
+    let tangents = core::mem::take(&mut d.work);
+    let r = missing_corners_into(d, tangents);
+    d.work = tangents;
+    r
+}
+
+/// [`missing_corners`] with the star workspace `tangents` taken out of `d`.
+fn missing_corners_into(d: &mut Driver<'_, '_, '_, '_>, tangents: &mut [Point]) -> Result<()> {
     let topo = d.topo;
     let mut form = StarForm::blank();
     let mut spokes = Spokes::new();
@@ -73,7 +82,7 @@ fn missing_corners(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
             }
             let q = if d.is_ear(topo.origin(h)?)? {
                 d.form_vertex(f, i)?.and_then(|u| {
-                    if !d.local_into(u, &mut form, &mut spokes).ok()? {
+                    if !d.local_into(u, &mut form, &mut spokes, tangents).ok()? {
                         return None;
                     }
                     form.face(topo, f, &mut pts).ok()?;

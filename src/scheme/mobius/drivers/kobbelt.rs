@@ -6,8 +6,10 @@
 //! grid lines of new edge points through the face.
 
 use super::super::driver::Driver;
-use super::super::form::{present, Ring, MISSING};
+use super::super::form::{present, MISSING};
 use super::super::rules::kobbelt_beyond_in_form;
+use super::super::vertex_pass::{Part, Star};
+use super::super::workspace::take;
 use crate::blend::{self, f4, f4_hinted};
 use crate::error::Result;
 use crate::mesh::gather::apex;
@@ -28,46 +30,47 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 /// `v`'s canonical form (regular interior vertices give the actual grid neighbour), kept as
 /// `h`'s edge candidate.
 fn points_beyond(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
-    let topo = d.topo;
     d.vertex_pass(
         false,
-        || (Ring::new(), Ring::new()),
-        |p, star, (ring, diagonals)| {
-            // The images of the neighbours and, for a closed star, of the diagonals.
-            let mut complete = true;
-            ring.clear();
-            diagonals.clear();
-            for s in star.spokes {
-                let form = &mut *star.form;
-                let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
-                ring.try_push(q).map_err(|_| internal())?;
-                complete &= present(&q);
-                if !star.boundary {
-                    let c = apex(topo, s.half_edge)
-                        .and_then(|a| form.canon(topo, a))
-                        .unwrap_or(MISSING);
-                    diagonals.try_push(c).map_err(|_| internal())?;
-                    complete &= present(&c);
-                }
-            }
-            for j in 0..star.spokes.len() {
-                let q = kobbelt_beyond_in_form(
-                    ring,
-                    diagonals,
-                    !star.boundary,
-                    complete,
-                    j,
-                    &*star.form,
-                );
-                if let (Some(q), true) =
-                    (q, star.spokes.get(j).is_some_and(|s| s.half_edge != NONE))
-                {
-                    p.set_edge(star, j, q)?;
-                }
-            }
-            Ok(())
-        },
+        || (),
+        |p, star, _| p.with_work(|p, work| beyond_in_workspace(p, star, work)),
     )?;
+    Ok(())
+}
+
+/// [`points_beyond`] at one star, its two arrays in the chunk's star workspace
+/// (`workspace.rs`).
+#[inline(always)]
+fn beyond_in_workspace(
+    p: &mut Part<'_, '_, '_>,
+    star: &mut Star<'_>,
+    mut work: &mut [Point],
+) -> Result<()> {
+    let topo = p.topo;
+    // The images of the neighbours and, for a closed star, of the diagonals.
+    let n = star.spokes.len();
+    let ring = take(&mut work, n)?;
+    let diagonals = take(&mut work, if star.boundary { 0 } else { n })?;
+    let mut complete = true;
+    for (j, s) in star.spokes.iter().enumerate() {
+        let form = &mut *star.form;
+        let q = form.canon(topo, s.neighbour).unwrap_or(MISSING);
+        *ring.get_mut(j).ok_or(internal())? = q;
+        complete &= present(&q);
+        if !star.boundary {
+            let c = apex(topo, s.half_edge)
+                .and_then(|a| form.canon(topo, a))
+                .unwrap_or(MISSING);
+            *diagonals.get_mut(j).ok_or(internal())? = c;
+            complete &= present(&c);
+        }
+    }
+    for j in 0..star.spokes.len() {
+        let q = kobbelt_beyond_in_form(ring, diagonals, !star.boundary, complete, j, &*star.form);
+        if let (Some(q), true) = (q, star.spokes.get(j).is_some_and(|s| s.half_edge != NONE)) {
+            p.set_edge(star, j, q)?;
+        }
+    }
     Ok(())
 }
 

@@ -4,16 +4,16 @@
 
 use super::super::audit::Children;
 use super::super::driver::Driver;
-use super::super::form::{Frame, Normalised, Ring, MISSING};
+use super::super::form::{Frame, Normalised};
 use super::super::guard::Outputs;
 use super::super::rules::loop_star_in_form;
 use super::super::vertex_pass::{Part, Star};
+use super::super::workspace::take;
 use crate::error::Result;
 use crate::mesh::gather::{apex, ring_sum};
-use crate::mesh::{internal, Topology};
+use crate::mesh::Topology;
 use crate::point::Point;
 use crate::stencil::loop_scheme;
-use crate::MAX_VALENCE;
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
 /// (`toward_linear.rs`): two rings, measured (`docs/folds.md` section 8: with one ring, epcot
@@ -24,7 +24,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     let topo = d.topo;
     let nv = topo.num_vertices();
     d.clear_vertex_points()?;
-    d.vertex_pass(true, Bufs::new, star_rule)?;
+    d.vertex_pass(true, || (), star_rule)?;
     let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         // The ring's sum as the star is walked (no 3 KB array of ring points on the stack).
         let (n, ring) = ring_sum(t, v)?;
@@ -60,7 +60,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             faces: None,
             rings: RINGS,
         };
-        if d.guarded_pass(out, Bufs::new, star_rule)? {
+        if d.guarded_pass(out, || (), star_rule)? {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
             d.blend_toward_linear(out, &linear_vertex, &linear)?;
@@ -71,36 +71,21 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 
 /// The Loop rules of one star in its frame (the canonical form, or the guard's `m_τ`): the
 /// vertex point and the edge candidates, measured for the guard's trust while still in the
-/// frame, then mapped back. A star whose ring is not all in the frame gives nothing.
-fn star_rule<F: Frame>(
-    p: &mut Part<'_, '_, '_>,
-    star: &mut Star<'_, F>,
-    b: &mut Bufs,
-) -> Result<()> {
-    let (ring, cands) = (&mut b.ring, &mut b.cands);
-    if !star.ring_images(p.topo, ring)? {
-        return Ok(());
-    }
-    // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
-    let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
-    let n = ring.len();
-    let cands = cands.get(..n).ok_or(internal())?;
-    p.trust_star(star, ring, cands)?;
-    p.keep_edges_from(star, cands)?;
-    p.keep_vertex_from(star, vertex)
-}
-
-/// The buffers of [`star_rule`], one set per chunk of the vertex pass.
-struct Bufs {
-    ring: Ring,
-    cands: [Point; MAX_VALENCE],
-}
-
-impl Bufs {
-    fn new() -> Bufs {
-        Bufs {
-            ring: Ring::new(),
-            cands: [MISSING; MAX_VALENCE],
+/// frame, then mapped back. A star whose ring is not all in the frame gives nothing. The
+/// two arrays are the chunk's star workspace (`workspace.rs`).
+fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut ()) -> Result<()> {
+    p.with_work(|p, mut work| {
+        let n = star.spokes.len();
+        let ring = take(&mut work, n)?;
+        if !star.ring_images(p.topo, ring)? {
+            return Ok(());
         }
-    }
+        // Every entry is written by the rule before it is read.
+        let cands = take(&mut work, n)?;
+        // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
+        let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
+        p.trust_star(star, ring, cands)?;
+        p.keep_edges_from(star, cands)?;
+        p.keep_vertex_from(star, vertex)
+    })
 }

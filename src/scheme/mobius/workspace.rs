@@ -1,0 +1,57 @@
+//! The star workspace of the vertex pass: the per-star arrays of a scheme's rule (the
+//! images of the ring, the centroids of the faces around the star, the candidates in the
+//! normalised frame; seed 000 §4.1 steps 2–3) and the tangent polygon of its canonical form
+//! (§4.2) live in the caller's point scratch rather than on the stack, so that the depth of
+//! a Möbius step does not grow with the valence cap (docs/firmware.md, "Stack").
+//!
+//! Each chunk of the vertex pass owns [`STAR_ARRAYS`] arrays of the level's largest valence;
+//! a pass has at most [`crate::exec::MAX_CHUNKS`] chunks and never more than the level has
+//! vertices ([`crate::exec::chunk_count`]), so a small mesh's workspace is small.
+//! [`workspace_points`] is what the scratch-size queries add for it. The arrays are scratch,
+//! overwritten star by star: a rule writes every entry it reads, so no value depends on the
+//! scratch's contents or on the chunking.
+
+use crate::error::{Error, Result, Status};
+use crate::exec::MAX_CHUNKS;
+use crate::mesh::{internal, Topology};
+use crate::point::Point;
+
+/// The per-star arrays one chunk holds: the tangent polygon of the star's canonical form
+/// (the last, [`super::vertex_pass::Part::take_tangents`]; seed 000 §4.2) and the rule's:
+/// Catmull–Clark's ring images, face centroids and candidates (Loop and Butterfly use two,
+/// Akleman's operators one). A pass that runs alone on the step (the guard's sphericity
+/// pass, the ears, Doo–Sabin's missing corners) holds the whole workspace.
+pub(super) const STAR_ARRAYS: usize = 4;
+
+/// The points of the star workspace of a step on a level of at most `vertices` vertices
+/// whose largest valence is `max_valence`: [`STAR_ARRAYS`] arrays of that length for each
+/// of at most `min(`[`MAX_CHUNKS`]`, vertices)` chunks (the most chunks a pass over the
+/// level's vertices makes, [`crate::exec::chunk_count`]).
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub(crate) fn workspace_points(max_valence: usize, vertices: usize) -> Result<usize> {
+    let chunks = vertices.clamp(1, MAX_CHUNKS);
+    max_valence
+        .checked_mul(STAR_ARRAYS * chunks)
+        .ok_or(Error::new(Status::SizeOverflow))
+}
+
+/// The largest valence of `topo` (0 without vertices), which sizes its step's workspace.
+pub(super) fn max_valence(topo: &Topology<'_, '_>) -> Result<usize> {
+    let mut m = 0;
+    for v in 0..topo.num_vertices() as u32 {
+        m = m.max(topo.valence(v)?);
+    }
+    Ok(m)
+}
+
+/// The first `n` points of `*work`, which keeps the rest; an internal error when it is
+/// shorter (the step's size check makes every chunk's share long enough).
+pub(super) fn take<'a>(work: &mut &'a mut [Point], n: usize) -> Result<&'a mut [Point]> {
+    let (a, b) = core::mem::take(work)
+        .split_at_mut_checked(n)
+        .ok_or(internal())?;
+    *work = b;
+    Ok(a)
+}
