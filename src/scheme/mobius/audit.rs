@@ -40,11 +40,10 @@ use super::driver::Driver;
 use super::form::present;
 use super::trust::{newell, ramp};
 use crate::error::Result;
-use crate::exec::pass;
+use crate::exec::{chunk_count, chunk_range, parts, take_front, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{cross, dot, sub, Point};
-use crate::MAX_VALENCE;
 use arrayvec::ArrayVec;
 
 /// Cosine between two adjacent child faces at or above which the audit trusts a star: 80°.
@@ -126,10 +125,9 @@ impl Driver<'_, '_, '_, '_> {
         let (pos, radius, trust): (&[Point], &[f64], &[f64]) = (self.pos, self.radius, self.trust);
         // Measure every star (vertex ranges, `crate::exec`): the star's trust from the audit
         // replaces the first coordinate of its kept centre, which nothing reads afterwards.
-        pass(self.exec, self.centre, |first, out, _| {
-            let mut fan: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-            let mut outer: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-            for (v, c) in (first as u32..).zip(out.iter_mut()) {
+        // Each range's fan arrays are its share of the star workspace (`workspace.rs`).
+        let measure = |part: &mut AuditPart<'_>, _: &mut Tally| -> Result<()> {
+            for (v, c) in (part.first as u32..).zip(part.out.iter_mut()) {
                 let r = get(radius, v as usize)?;
                 let a = if r == 0.0 || get(trust, v as usize)? > 1.0 {
                     1.0
@@ -140,12 +138,39 @@ impl Driver<'_, '_, '_, '_> {
                         r,
                         kind: StarKind::Interior,
                     };
-                    star_audit(topo, pos, &cf, v, children, &mut fan, &mut outer)?
+                    star_audit(topo, pos, &cf, v, children, part.work)?
                 };
                 *c = [a, 0.0, 0.0];
             }
             Ok(())
-        })?;
+        };
+        let nv = topo.num_vertices();
+        let k = chunk_count(self.exec, nv);
+        let (mut out, mut work) = (
+            self.centre.get_mut(..nv).ok_or(internal())?,
+            &mut *self.work,
+        );
+        let share = work.len() / k.max(1);
+        if k <= 1 {
+            let mut part = AuditPart {
+                first: 0,
+                out,
+                work,
+            };
+            measure(&mut part, &mut Tally::new())?;
+        } else {
+            let mut ranges = ArrayVec::<AuditPart<'_>, MAX_CHUNKS>::new();
+            for i in 0..k {
+                let (v0, v1) = chunk_range(nv, k, i);
+                let part = AuditPart {
+                    first: v0,
+                    out: take_front(&mut out, v1 - v0)?,
+                    work: take_front(&mut work, share)?,
+                };
+                ranges.try_push(part).map_err(|_| internal())?;
+            }
+            parts(self.exec, &mut ranges, |p| p.out.len(), measure)?;
+        }
         // Lower the trust of each distrusted star and its interior neighbours (serial: a
         // neighbour is shared by several stars; `min` makes the order irrelevant).
         for v in 0..topo.num_vertices() {
@@ -169,24 +194,33 @@ impl Driver<'_, '_, '_, '_> {
     }
 }
 
+/// One vertex range of the audit: its first vertex, the kept centres of its vertices (which
+/// receive the audit's trust) and its share of the star workspace.
+struct AuditPart<'a> {
+    first: usize,
+    out: &'a mut [Point],
+    work: &'a mut [Point],
+}
+
 /// The audit's trust of interior star `v` whose canonical form is `cf` (module docs): its
-/// child faces' output points `pos` mapped into the form's normalised frame; `fan`, `outer`
-/// are scratch.
+/// child faces' output points `pos` mapped into the form's normalised frame. `work` holds the
+/// fan and the outer points (two arrays of the valence: at least the star workspace of one
+/// chunk, `workspace.rs`).
 fn star_audit(
     topo: &Topology<'_, '_>,
     pos: &[Point],
     cf: &CanonicalForm,
     v: u32,
     children: Children,
-    fan: &mut ArrayVec<Point, MAX_VALENCE>,
-    outer: &mut ArrayVec<Point, MAX_VALENCE>,
+    work: &mut [Point],
 ) -> Result<f64> {
     // A point the frame cannot map (at the form's pole, or not finite) is missing: the
     // terms then distrust the star.
     let map = |p: Point| cf.to_normalised(p).unwrap_or([f64::NAN; 3]);
     let centre = map(get(pos, v as usize)?);
-    fan.clear();
-    outer.clear();
+    let half = work.len() / 2;
+    let (fan, outer) = work.split_at_mut_checked(half).ok_or(internal())?;
+    let (mut nf, mut no) = (0, 0);
     for s in topo.star(v) {
         let (e, o) = match children {
             Children::Triangles { edges, middles } => {
@@ -204,11 +238,15 @@ fn star_audit(
                 (edges + s.edge as usize, Some(faces + s.face as usize))
             }
         };
-        fan.try_push(map(get(pos, e)?)).map_err(|_| internal())?;
+        set(fan, nf, map(get(pos, e)?))?;
+        nf += 1;
         if let Some(o) = o {
-            outer.try_push(map(get(pos, o)?)).map_err(|_| internal())?;
+            set(outer, no, map(get(pos, o)?))?;
+            no += 1;
         }
     }
+    let fan = fan.get(..nf).ok_or(internal())?;
+    let outer = outer.get(..no).ok_or(internal())?;
     let pair = pair_cos(centre, fan, outer, children);
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan_sine(centre, fan), FAN_DISTRUSTED, FAN_TRUSTED)))
 }
