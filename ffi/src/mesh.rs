@@ -1354,12 +1354,14 @@ mod tests {
         // centre (4), then the fold guard's trust and the form's radius per vertex and the
         // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point); the star
         // workspace: four arrays of the largest valence (2) for each chunk, at most one per
-        // vertex (4).
+        // vertex (4). `u32`: the topology (28) and the spoke workspace, four entries per
+        // spoke of the largest valence (2) for each chunk (4).
         assert_eq!(
             (plan.scratch_u32, plan.scratch_points),
-            (28, 8 + 4 + 4 + 4 * 2 * 4)
+            (28 + 4 * 2 * 4, 8 + 4 + 4 + 4 * 2 * 4)
         );
         let mut pts = vec![0.0; 3 * plan.scratch_points];
+        scratch.resize(plan.scratch_u32, 0);
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {
             u32s: scratch.as_mut_ptr(),

@@ -156,7 +156,7 @@ pub(super) fn run(
         .ok_or(internal())?;
     let (s_a, rest) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
     let (s_b, rest) = rest.split_at_mut_checked(p.sharpness).ok_or(internal())?;
-    let crease = rest.get_mut(..p.crease.u32s).ok_or(internal())?;
+    let step_u32s = rest.get_mut(..p.step_u32s).ok_or(internal())?;
     let mut bufs_s: [&mut [u32]; 2] = [s_a, s_b];
     let tagged = p.sharpness > 0;
     let (p_a, rest) = scratch_points
@@ -237,9 +237,18 @@ pub(super) fn run(
                 let w: &[f64] = w_out;
                 let w = w.get(..out_sizes.vertices).ok_or(internal())?;
                 let w = (w, given.of_linear());
-                step_weighted(scheme, m, w, sharp, &topo, o, step_scratch, crease, exec)
+                step_weighted(scheme, m, w, sharp, &topo, o, step_scratch, step_u32s, exec)
             }
-            _ => step(scheme, mobius, sharp, &topo, o, step_scratch, crease, exec),
+            _ => step(
+                scheme,
+                mobius,
+                sharp,
+                &topo,
+                o,
+                step_scratch,
+                step_u32s,
+                exec,
+            ),
         };
         let (written, r) = if k + 1 == levels {
             one(out)?

@@ -55,7 +55,11 @@ pub struct Plan {
     ///   the level stepped from and of its child), and at least
     ///   [`plan_scratch_size_tagged`]; with tags and [`Options::mobius`], the scratch of the
     ///   largest step on a level cut along its sharp edges (its cut flags, vertex copies,
-    ///   indices, topology and the child's connectivity).
+    ///   indices, topology and the child's connectivity). With [`Options::mobius`], at
+    ///   least the spoke workspace of the vertex pass (four entries per spoke of the largest
+    ///   valence stepped from, one more with tags, for each of at most
+    ///   `min(`[`crate::exec::MAX_CHUNKS`]`, vertices)` chunks: a star's spokes, kept off the
+    ///   stack).
     /// * `points`: the positions of the intermediate levels (two alternating buffers) and,
     ///   for the Möbius version, the candidates of the largest step (two per corner of the
     ///   level stepped from: an edge and a face candidate per half-edge, seed 000 §4.1) and,
@@ -82,6 +86,10 @@ pub struct Plan {
     /// for the derived levels), which sizes the Möbius star workspace
     /// ([`super::mobius::workspace`]).
     pub(super) star_valence: usize,
+    /// The `u32` scratch of the largest Möbius step: its spoke workspace
+    /// ([`super::mobius::workspace::spoke_u32s`]) or, with tags, the cut step's
+    /// ([`Plan::crease`]); zero without Möbius.
+    pub(super) step_u32s: usize,
 }
 
 impl Plan {
@@ -302,6 +310,7 @@ fn levels_plan(
         sharpness: 0,
         crease: ScratchSizes::default(),
         star_valence: 0,
+        step_u32s: 0,
     };
     // One sharpness value per edge and vertex of the largest level stepped from.
     let mut sharpness = cadd(stats.edges(), stats.sizes().vertices)?;
@@ -340,12 +349,17 @@ fn levels_plan(
             p.crease.points = p.crease.points.max(c.points);
         }
     }
+    if mobius && levels > 0 {
+        let mut vertices = 0;
+        for k in 0..levels {
+            vertices = vertices.max(p.sizes.get(k).ok_or(internal())?.vertices);
+        }
+        let spokes = super::mobius::workspace::spoke_u32s(p.star_valence, vertices)?;
+        p.step_u32s = spokes.max(p.crease.u32s);
+    }
     let candidates = if mobius { p.mobius_step_points()? } else { 0 };
     p.scratch = ScratchSizes {
-        u32s: cadd(
-            cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?,
-            p.crease.u32s,
-        )?,
+        u32s: cadd(cadd(lay.total_u32()?, cmul(p.sharpness, 2)?)?, p.step_u32s)?,
         points: cadd(cadd(lay.points[0], lay.points[1])?, candidates)?,
     };
     if p.scratch.u32s > MAX_COUNT.saturating_mul(8) {

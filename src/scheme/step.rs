@@ -21,8 +21,10 @@ use crate::point::{self, Point};
 /// [`mobius::workspace::workspace_points`]; unused by the other rules). Returns the sizes written and
 /// the Möbius report (empty for the other rules). With `sharp` (the level's sharpness
 /// values of a tagged mesh) the linear rules with sharp features ([`linear_tagged`]), or
-/// the Möbius step on the mesh cut along its sharp edges ([`mobius::crease`], whose `u32`
-/// scratch is `crease`; `candidates` then holds its points).
+/// the Möbius step on the mesh cut along its sharp edges ([`mobius::crease`]; `candidates`
+/// then holds its points). `u32s` is the `u32` scratch of a Möbius step: the spoke workspace
+/// ([`mobius::workspace::spoke_u32s`]) or, with sharp features, the cut step's
+/// ([`mobius::crease::scratch`]); unused by the other rules.
 ///
 /// # Errors
 /// [`Status::SchemeNotBuilt`] for a scheme or Möbius version this build does not contain
@@ -36,7 +38,7 @@ pub(crate) fn step(
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     candidates: &mut [Point],
-    crease: &mut [u32],
+    u32s: &mut [u32],
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     // A constant `false` without the `mobius` feature: the optimiser then drops every Möbius
@@ -45,13 +47,13 @@ pub(crate) fn step(
     match (mobius, sharp) {
         (None, None) => linear_with(scheme, topo, out, exec).map(|s| (s, MobiusReport::default())),
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
-        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, opts, exec, &[]),
+        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, u32s, opts, exec, &[]),
         (Some(opts), Some(sh)) if opts.spectrum < 1.0 => {
             let blend = Blend::Global(opts.spectrum);
-            mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, opts, blend, exec)
+            mobius_tagged_spectrum(scheme, topo, sh, out, u32s, candidates, opts, blend, exec)
         }
         (Some(opts), Some(sh)) => {
-            mobius::crease::step(scheme, topo, sh, out, crease, candidates, opts, exec)
+            mobius::crease::step(scheme, topo, sh, out, u32s, candidates, opts, exec)
         }
     }
 }
@@ -74,7 +76,7 @@ pub(crate) fn step_weighted(
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     candidates: &mut [Point],
-    crease: &mut [u32],
+    u32s: &mut [u32],
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
     let full = MobiusOptions {
@@ -85,27 +87,18 @@ pub(crate) fn step_weighted(
         .get(..step_size(scheme, topo)?.vertices)
         .ok_or(internal())?;
     match weights::uniform(w, of_linear) {
-        Uniform::Zero => step(scheme, None, sharp, topo, out, candidates, crease, exec),
-        Uniform::One => step(
-            scheme,
-            Some(full),
-            sharp,
-            topo,
-            out,
-            candidates,
-            crease,
-            exec,
-        ),
+        Uniform::Zero => step(scheme, None, sharp, topo, out, candidates, u32s, exec),
+        Uniform::One => step(scheme, Some(full), sharp, topo, out, candidates, u32s, exec),
         Uniform::Mixed => match sharp {
             Some(sh) => {
                 let blend = Blend::PerVertex(w, of_linear);
-                mobius_tagged_spectrum(scheme, topo, sh, out, crease, candidates, full, blend, exec)
+                mobius_tagged_spectrum(scheme, topo, sh, out, u32s, candidates, full, blend, exec)
             }
             None => {
                 let n = w.len();
                 let split = candidates.len().checked_sub(n).ok_or(internal())?;
                 let (cand, lin) = candidates.split_at_mut_checked(split).ok_or(internal())?;
-                let (sizes, report) = mobius::step(scheme, topo, out, cand, full, exec, &[])?;
+                let (sizes, report) = mobius::step(scheme, topo, out, cand, u32s, full, exec, &[])?;
                 linear::positions(scheme, topo, lin, exec)?;
                 let pos = out.positions.get_mut(..n).ok_or(internal())?;
                 Blend::PerVertex(w, of_linear).apply(pos, lin)?;
@@ -129,7 +122,7 @@ fn mobius_tagged_spectrum(
     topo: &Topology<'_, '_>,
     sh: &Sharpness<'_>,
     out: &mut MeshOut<'_>,
-    crease: &mut [u32],
+    u32s: &mut [u32],
     candidates: &mut [Point],
     opts: MobiusOptions,
     blend: Blend<'_>,
@@ -146,7 +139,7 @@ fn mobius_tagged_spectrum(
         spectrum: 1.0,
         ..opts
     };
-    let (sizes, report) = mobius::crease::step(scheme, topo, sh, out, crease, cand, full, exec)?;
+    let (sizes, report) = mobius::crease::step(scheme, topo, sh, out, u32s, cand, full, exec)?;
     let pos = out.positions.get_mut(..n).ok_or(internal())?;
     blend.apply(pos, lin)?;
     if let Some(i) = first_non_finite(pos) {

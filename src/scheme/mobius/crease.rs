@@ -80,7 +80,7 @@ fn sharp(s: f32) -> bool {
 ///
 /// `u32s`: the cut flags (an edge has a half-edge: `corners`), the sharp-edge count per
 /// vertex, per cut vertex its original and its corner mark, the cut level's indices and
-/// topology, the cut step's connectivity (that of the child). `points`: the cut level's
+/// topology, the cut step's connectivity (that of the child), its spoke workspace. `points`: the cut level's
 /// positions, its step's output and its Möbius candidates and star workspace (for a cut
 /// level whose valences are at most `max_valence + 1`, `max_valence` bounding the level's).
 pub(crate) fn scratch(
@@ -91,6 +91,9 @@ pub(crate) fn scratch(
     max_valence: usize,
 ) -> Result<ScratchSizes> {
     let cut_v = cadd(vertices, corners)?;
+    // Cutting a star along its sharp edges splits it into fans of at most one more spoke
+    // (a star cut along one edge opens into a fan of all its faces).
+    let spokes = super::workspace::spoke_u32s(cadd(max_valence, 1)?, cut_v)?;
     let u32s = [
         corners,
         vertices,
@@ -100,12 +103,11 @@ pub(crate) fn scratch(
         topology_scratch_size(cut_v, corners)?,
         next.offsets()?,
         next.indices,
+        spokes,
     ]
     .iter()
     .try_fold(0usize, |a, &b| cadd(a, b))?;
     let out = cadd(cadd(cut_v, corners)?, faces)?;
-    // Cutting a star along its sharp edges splits it into fans of at most one more spoke
-    // (a star cut along one edge opens into a fan of all its faces).
     let work = super::workspace::workspace_points(cadd(max_valence, 1)?, cut_v)?;
     let step = cadd(super::candidate_points(cut_v, corners)?, work)?;
     let points = cadd(cadd(cut_v, out)?, step)?;
@@ -151,7 +153,7 @@ pub(crate) fn step(
     if !any && !any_corner {
         // Nothing sharp at this level: the untagged step, bit for bit.
         let cand = &mut *points;
-        return super::step(scheme, topo, out, cand, opts, exec, &[]);
+        return super::step(scheme, topo, out, cand, u32s, opts, exec, &[]);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
@@ -178,8 +180,17 @@ pub(crate) fn step(
     let mut cut_out = MeshOut::new(c_pos, c_offs, c_idx);
     let corner: &[u32] = corner;
     let rename = |e: Error| rename_error(e, topo, &cut_topo, copy_of);
-    let (_, mut report) =
-        super::step(scheme, &cut_topo, &mut cut_out, points, opts, exec, corner).map_err(rename)?;
+    let (_, mut report) = super::step(
+        scheme,
+        &cut_topo,
+        &mut cut_out,
+        points,
+        u32s,
+        opts,
+        exec,
+        corner,
+    )
+    .map_err(rename)?;
     // The uncut level's output: its pattern, the first copy's vertex point (the vertex
     // itself), the edge point of each edge's representative half-edge, the face points.
     write_pattern(scheme.pattern(), topo, out.offsets, out.indices)?;

@@ -51,6 +51,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// The star workspace of the vertex pass (`workspace.rs`): per chunk, the per-star
     /// arrays of the scheme's rule.
     pub(super) work: &'o mut [Point],
+    /// The spoke workspace (`workspace.rs`): per chunk, the spokes of one star
+    /// ([`super::form::Spokes`]).
+    pub(super) spoke_work: &'o mut [u32],
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -91,6 +94,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             exec,
             corners: &[],
             work: &mut [],
+            spoke_work: &mut [],
         }
     }
 

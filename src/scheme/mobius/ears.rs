@@ -51,16 +51,21 @@ impl Driver<'_, '_, '_, '_> {
     pub(super) fn ear_face_candidates(&mut self) -> Result<()> {
         // The substitute forms' tangent polygons in the star workspace (no pass holds it now).
         let tangents = core::mem::take(&mut self.work);
-        let r = self.ear_face_candidates_into(tangents);
+        let spoke_work = core::mem::take(&mut self.spoke_work);
+        let r = self.ear_face_candidates_into(tangents, Spokes::new(&mut *spoke_work));
         self.work = tangents;
+        self.spoke_work = spoke_work;
         r
     }
 
     /// [`Driver::ear_face_candidates`] with the star workspace `tangents` taken out.
-    fn ear_face_candidates_into(&mut self, tangents: &mut [Point]) -> Result<()> {
+    fn ear_face_candidates_into(
+        &mut self,
+        tangents: &mut [Point],
+        mut spokes: Spokes<'_>,
+    ) -> Result<()> {
         let topo = self.topo;
         let mut form = StarForm::blank();
-        let mut spokes = Spokes::new();
         for f in 0..topo.num_faces() as u32 {
             for (i, h) in topo.face_half_edges(f)?.enumerate() {
                 let v = topo.origin(h)?;

@@ -8,18 +8,87 @@
 //! linear stencil is affine, so nothing else changes (docs/DECISIONS.md, "Möbius mesh
 //! schemes").
 
-use arrayvec::ArrayVec;
-
 use crate::error::Result;
-use crate::mesh::{Spoke, Topology};
+use crate::mesh::{Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
 use crate::stencil::centroid_of_sum;
-use crate::MAX_VALENCE;
 
 pub(super) use crate::mesh::gather::{FacePts, Ring};
-/// The spokes of one vertex star, counter-clockwise.
-pub(super) type Spokes = ArrayVec<Spoke, MAX_VALENCE>;
+
+/// The `u32` entries one spoke takes in a [`Spokes`] buffer (neighbour, edge, half-edge,
+/// face).
+pub(super) const SPOKE_U32S: usize = 4;
+
+/// The spokes of one vertex star, counter-clockwise, in the caller's memory: a chunk's share
+/// of the spoke workspace in the step's `u32` scratch (`workspace.rs`), so that nothing
+/// sized by the valence cap is on the stack (docs/firmware.md, "Stack").
+pub(super) struct Spokes<'w> {
+    buf: &'w mut [u32],
+    len: usize,
+}
+
+/// The spoke stored in `c` ([`SPOKE_U32S`] entries; a shorter slice, which [`Spokes`] never
+/// hands out, reads as a spoke of [`NONE`]s).
+#[inline(always)]
+fn spoke_of(c: &[u32]) -> Spoke {
+    let [neighbour, edge, half_edge, face] = <[u32; SPOKE_U32S]>::try_from(c).unwrap_or([NONE; 4]);
+    Spoke {
+        neighbour,
+        edge,
+        half_edge,
+        face,
+    }
+}
+
+impl<'w> Spokes<'w> {
+    /// No spokes yet, in `buf` (room for `buf.len() / SPOKE_U32S` of them).
+    pub(super) fn new(buf: &'w mut [u32]) -> Self {
+        Spokes { buf, len: 0 }
+    }
+
+    /// Forgets every spoke.
+    pub(super) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// The number of spokes.
+    #[inline(always)]
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Appends `s`; `Err(())` when the buffer is full.
+    #[inline(always)]
+    pub(super) fn try_push(&mut self, s: Spoke) -> core::result::Result<(), ()> {
+        let i = self.len * SPOKE_U32S;
+        match self.buf.get_mut(i..i + SPOKE_U32S) {
+            Some([a, b, c, d]) => {
+                (*a, *b, *c, *d) = (s.neighbour, s.edge, s.half_edge, s.face);
+                self.len += 1;
+                Ok(())
+            }
+            _ => Err(()),
+        }
+    }
+
+    /// Spoke `j`, if there is one.
+    #[inline(always)]
+    pub(super) fn get(&self, j: usize) -> Option<Spoke> {
+        if j >= self.len {
+            return None;
+        }
+        let i = j * SPOKE_U32S;
+        self.buf.get(i..i + SPOKE_U32S).map(spoke_of)
+    }
+
+    /// The spokes in order.
+    #[inline(always)]
+    pub(super) fn iter(&self) -> impl DoubleEndedIterator<Item = Spoke> + ExactSizeIterator + '_ {
+        let used = self.buf.get(..self.len * SPOKE_U32S).unwrap_or(&[]);
+        used.chunks_exact(SPOKE_U32S).map(spoke_of)
+    }
+}
 
 /// The image of the centre vertex in the normalised canonical frame.
 pub(super) const ORIGIN: Point = [0.0; 3];

@@ -160,8 +160,7 @@ impl Driver<'_, '_, '_, '_> {
         let slots = self.slots;
         let run = |g: &mut Guarded<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
-            let mut spokes = Spokes::new();
-            let tangents = g.part.take_tangents()?;
+            let (mut spokes, tangents) = g.part.take_stars()?;
             let mut b = bufs();
             for v in g.part.vertices() {
                 let tau = get(g.trust, v as usize)?;
@@ -199,6 +198,7 @@ impl Driver<'_, '_, '_, '_> {
                 edge_c: self.edge_c,
                 face_c: self.face_c,
                 work: &mut *self.work,
+                spoke_work: &mut *self.spoke_work,
             };
             let mut g = Guarded {
                 part: Part::whole(topo, self.guard, a),
@@ -220,8 +220,9 @@ impl Driver<'_, '_, '_, '_> {
     #[inline(never)]
     pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<()> {
         let mut form = StarForm::blank();
-        let mut spokes = Spokes::new();
-        // The tangent polygons in the star workspace (no other pass holds it now).
+        // The spokes and tangent polygons in the workspaces (no other pass holds them now).
+        let spoke_work = core::mem::take(&mut self.spoke_work);
+        let mut spokes = Spokes::new(&mut *spoke_work);
         let tangents = core::mem::take(&mut self.work);
         let r = (|| {
             for v in 0..self.topo.num_vertices() as u32 {
@@ -242,6 +243,7 @@ impl Driver<'_, '_, '_, '_> {
             Ok(())
         })();
         self.work = tangents;
+        self.spoke_work = spoke_work;
         r
     }
 
@@ -282,6 +284,7 @@ impl Driver<'_, '_, '_, '_> {
             edge_c: self.edge_c,
             face_c: self.face_c,
             work: &mut *self.work,
+            spoke_work: &mut *self.spoke_work,
         };
         let mut ranges = ArrayVec::<Guarded<'_, '_, '_>, MAX_CHUNKS>::new();
         for part in Part::ranges(topo, slots, guard, k, a)? {

@@ -46,7 +46,7 @@ fn memo_slot(u: u32) -> usize {
 /// Loop, Butterfly, Catmull–Clark and Doo–Sabin after the first) instead of the star
 /// iterator's face lookups. `v` is not isolated. The same errors: [`Status::ValenceTooHigh`]
 /// naming `v`, an internal error for arrays that disagree with the valence.
-pub(super) fn star_into(topo: &Topology<'_, '_>, v: u32, out: &mut Spokes) -> Result<()> {
+pub(super) fn star_into(topo: &Topology<'_, '_>, v: u32, out: &mut Spokes<'_>) -> Result<()> {
     let r = topo.raw();
     out.clear();
     let n = get(r.valence, v as usize)? as usize;
@@ -146,7 +146,7 @@ impl StarForm {
         topo: &Topology<'_, '_>,
         v: u32,
         boundary: bool,
-        spokes: &mut Spokes,
+        spokes: &mut Spokes<'_>,
         tangents: &mut [Point],
     ) -> Result<bool> {
         self.clear();
@@ -298,12 +298,13 @@ mod tests {
             let mesh = Mesh::new(p, offs, idx);
             let scratch = &mut buf[..topology_scratch_size(p.len(), idx.len()).unwrap()];
             let topo = Topology::build(mesh, scratch).unwrap();
-            let (mut a, mut b) = (Spokes::new(), Spokes::new());
+            let mut spoke_buf = [0u32; 4 * 16];
+            let mut b = Spokes::new(&mut spoke_buf);
             for v in 0..p.len() as u32 {
-                topo.spokes_into(v, &mut a).unwrap();
+                let a = topo.spokes(v).unwrap();
                 star_into(&topo, v, &mut b).unwrap();
-                assert_eq!(a, b, "vertex {v}");
-                assert!(!b.is_empty());
+                assert!(a.iter().copied().eq(b.iter()), "vertex {v}");
+                assert!(b.len() > 0);
             }
         }
     }

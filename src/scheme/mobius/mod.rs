@@ -148,7 +148,8 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 
 /// Writes one step of the Möbius version of `scheme` on `topo` into `out`, with `scratch`
 /// of at least [`candidate_points`] points and the star workspace of `topo`'s largest
-/// valence ([`workspace::workspace_points`]). The connectivity and the output vertex order are
+/// valence ([`workspace::workspace_points`]), and `spoke_work` of at least
+/// [`workspace::spoke_u32s`] entries. The connectivity and the output vertex order are
 /// those of the linear scheme ([`super::step::linear`]).
 ///
 /// # Errors
@@ -160,11 +161,13 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 ///
 /// `corners` marks the vertices where a boundary loop ends as an open curve (sharp
 /// features, [`crease`]); empty otherwise.
+#[allow(clippy::too_many_arguments)] // the level, its output, two scratch buffers, the options
 pub(crate) fn step(
     scheme: Scheme,
     topo: &Topology<'_, '_>,
     out: &mut MeshOut<'_>,
     scratch: &mut [Point],
+    spoke_work: &mut [u32],
     opts: MobiusOptions,
     exec: &dyn Executor,
     corners: &[u32],
@@ -178,7 +181,12 @@ pub(crate) fn step(
     out.check(&sizes)?;
     let nv = topo.num_vertices();
     let candidates = candidate_points(nv, topo.num_half_edges())?;
-    let work = workspace::workspace_points(workspace::max_valence(topo)?, nv)?;
+    let max_valence = workspace::max_valence(topo)?;
+    let work = workspace::workspace_points(max_valence, nv)?;
+    let spokes = workspace::spoke_u32s(max_valence, nv)?;
+    if spoke_work.len() < spokes {
+        return Err(Error::too_small(spokes));
+    }
     let blend = opts.spectrum < 1.0;
     let step_points = candidates
         .checked_add(work)
@@ -213,6 +221,7 @@ pub(crate) fn step(
     let form = (trust, centre, radius);
     let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
     d.work = work;
+    d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the

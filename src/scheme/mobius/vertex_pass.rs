@@ -39,7 +39,7 @@ pub(super) struct Star<'p, F: Frame = StarForm> {
     pub(super) slot: usize,
     /// The spokes of `v`, counter-clockwise from the star's first spoke
     /// ([`Topology::star`]).
-    pub(super) spokes: &'p Spokes,
+    pub(super) spokes: &'p Spokes<'p>,
     /// The frame of the star (the canonical form with its memo, for the paper's rules).
     pub(super) form: &'p mut F,
 }
@@ -110,6 +110,8 @@ pub(super) struct Part<'a, 'm, 's> {
     face_c: &'a mut [Point],
     /// This range's star workspace (`workspace.rs`), taken by [`Part::with_work`].
     work: &'a mut [Point],
+    /// This range's spoke workspace (`workspace.rs`), taken by [`Part::take_stars`].
+    spoke_work: &'a mut [u32],
 }
 
 /// The work of one vertex range of the vertex pass.
@@ -135,6 +137,7 @@ pub(super) struct Arrays<'a> {
     pub(super) edge_c: &'a mut [Point],
     pub(super) face_c: &'a mut [Point],
     pub(super) work: &'a mut [Point],
+    pub(super) spoke_work: &'a mut [u32],
 }
 
 /// The first `n` elements of `*s`, or none when `*s` is empty (an array the pass does not
@@ -160,6 +163,7 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
             edge_c: a.edge_c,
             face_c: a.face_c,
             work: a.work,
+            spoke_work: a.spoke_work,
         }
     }
 
@@ -181,9 +185,11 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
             mut edge_c,
             mut face_c,
             mut work,
+            mut spoke_work,
         } = a;
-        // Each range's share of the workspace: at least one chunk's (`k ≤ MAX_CHUNKS`).
+        // Each range's share of the workspaces: at least one chunk's (`k ≤ MAX_CHUNKS`).
         let share = work.len() / k.max(1);
+        let spoke_share = spoke_work.len() / k.max(1);
         let mut ranges = ArrayVec::new();
         let mut k0 = 0;
         for i in 0..k {
@@ -204,6 +210,7 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
                 edge_c: split_off(&mut edge_c, nk)?,
                 face_c: split_off(&mut face_c, nk)?,
                 work: split_off(&mut work, share)?,
+                spoke_work: split_off(&mut spoke_work, spoke_share)?,
             };
             ranges.try_push(part).map_err(|_| internal())?;
             k0 = k1;
@@ -216,17 +223,19 @@ impl<'a, 'm, 's> Part<'a, 'm, 's> {
         self.v0 as u32..self.v1 as u32
     }
 
-    /// The tangent-polygon array of this part's star workspace (`workspace.rs`: its last
-    /// [`STAR_ARRAYS`]th, at least the level's largest valence), taken out of the part for
-    /// the star forms of its pass; the rule's arrays are the rest ([`Part::with_work`]).
-    pub(super) fn take_tangents(&mut self) -> Result<&'a mut [Point]> {
+    /// The spokes and the tangent-polygon array of this part's star forms, taken out of the
+    /// part for its pass: its spoke workspace, and the last [`STAR_ARRAYS`]th of its star
+    /// workspace (`workspace.rs`; each at least the level's largest valence). The rule's
+    /// arrays are the rest ([`Part::with_work`]).
+    pub(super) fn take_stars(&mut self) -> Result<(Spokes<'a>, &'a mut [Point])> {
         let work = core::mem::take(&mut self.work);
         let n = work.len() / STAR_ARRAYS;
         let (rest, tangents) = work
             .split_at_mut_checked(work.len() - n)
             .ok_or(internal())?;
         self.work = rest;
-        Ok(tangents)
+        let spokes = Spokes::new(core::mem::take(&mut self.spoke_work));
+        Ok((spokes, tangents))
     }
 
     /// Runs `f` with this part's star workspace (`workspace.rs`) taken out of it, so that
@@ -350,7 +359,7 @@ pub(super) fn retarget(
     topo: &Topology<'_, '_>,
     v: u32,
     form: &mut StarForm,
-    spokes: &mut Spokes,
+    spokes: &mut Spokes<'_>,
     tangents: &mut [Point],
 ) -> Result<Option<bool>> {
     // `is_isolated`, `is_boundary_vertex` and `is_ear` from one look at the first spoke.
@@ -374,7 +383,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         &self,
         v: u32,
         form: &mut StarForm,
-        spokes: &mut Spokes,
+        spokes: &mut Spokes<'_>,
         tangents: &mut [Point],
     ) -> Result<bool> {
         Ok(self.retarget(v, form, spokes, tangents)?.is_some())
@@ -386,7 +395,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         &self,
         v: u32,
         form: &mut StarForm,
-        spokes: &mut Spokes,
+        spokes: &mut Spokes<'_>,
         tangents: &mut [Point],
     ) -> Result<Option<bool>> {
         retarget(self.topo, v, form, spokes, tangents)
@@ -414,6 +423,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
             edge_c: self.edge_c,
             face_c: self.face_c,
             work: &mut *self.work,
+            spoke_work: &mut *self.spoke_work,
         })
     }
 
@@ -430,8 +440,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         let slots = self.slots;
         let run = |part: &mut Part<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();
-            let mut spokes = Spokes::new();
-            let tangents = part.take_tangents()?;
+            let (mut spokes, tangents) = part.take_stars()?;
             let mut b = bufs();
             for v in part.v0 as u32..part.v1 as u32 {
                 let Some(boundary) = retarget(topo, v, &mut form, &mut spokes, tangents)? else {

@@ -16,6 +16,8 @@ use crate::exec::MAX_CHUNKS;
 use crate::mesh::{internal, Topology};
 use crate::point::Point;
 
+use super::form::SPOKE_U32S;
+
 /// The per-star arrays one chunk holds: the tangent polygon of the star's canonical form
 /// (the last, [`super::vertex_pass::Part::take_tangents`]; seed 000 §4.2) and the rule's:
 /// Catmull–Clark's ring images, face centroids and candidates (Loop and Butterfly use two,
@@ -34,6 +36,20 @@ pub(crate) fn workspace_points(max_valence: usize, vertices: usize) -> Result<us
     let chunks = vertices.clamp(1, MAX_CHUNKS);
     max_valence
         .checked_mul(STAR_ARRAYS * chunks)
+        .ok_or(Error::new(Status::SizeOverflow))
+}
+
+/// The `u32` entries of the spoke workspace of a step on a level of at most `vertices`
+/// vertices whose largest valence is `max_valence`: the spokes of one star
+/// ([`super::form::Spokes`], [`SPOKE_U32S`] entries a spoke) for each chunk, as
+/// [`workspace_points`] counts them.
+///
+/// # Errors
+/// [`Status::SizeOverflow`].
+pub(crate) fn spoke_u32s(max_valence: usize, vertices: usize) -> Result<usize> {
+    let chunks = vertices.clamp(1, MAX_CHUNKS);
+    max_valence
+        .checked_mul(SPOKE_U32S * chunks)
         .ok_or(Error::new(Status::SizeOverflow))
 }
 

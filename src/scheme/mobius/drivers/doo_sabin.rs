@@ -57,16 +57,21 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
 fn missing_corners(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     // The substitute forms' tangent polygons in the star workspace (the vertex pass is done).
     let tangents = core::mem::take(&mut d.work);
-    let r = missing_corners_into(d, tangents);
+    let spoke_work = core::mem::take(&mut d.spoke_work);
+    let r = missing_corners_into(d, tangents, Spokes::new(&mut *spoke_work));
     d.work = tangents;
+    d.spoke_work = spoke_work;
     r
 }
 
 /// [`missing_corners`] with the star workspace `tangents` taken out of `d`.
-fn missing_corners_into(d: &mut Driver<'_, '_, '_, '_>, tangents: &mut [Point]) -> Result<()> {
+fn missing_corners_into(
+    d: &mut Driver<'_, '_, '_, '_>,
+    tangents: &mut [Point],
+    mut spokes: Spokes<'_>,
+) -> Result<()> {
     let topo = d.topo;
     let mut form = StarForm::blank();
-    let mut spokes = Spokes::new();
     let mut pts = FacePts::new();
     let mut linear_pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
