@@ -40,7 +40,7 @@ use super::driver::Driver;
 use super::form::present;
 use super::trust::{newell, ramp};
 use crate::error::Result;
-use crate::exec::{chunk_count, chunk_range, parts, take_front, Tally, MAX_CHUNKS};
+use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{cross, dot, sub, Point};
@@ -117,8 +117,7 @@ impl Driver<'_, '_, '_, '_> {
     /// star's normalised frame) fold or collapse, and of its interior neighbours (module
     /// docs). Boundary stars, and stars without a form, are not audited.
     ///
-    /// Not inlined: its two point arrays then live in its own stack frame, after the vertex
-    /// pass's has gone, and do not add to the drivers' deepest stack (`docs/firmware.md`).
+    /// Not inlined, so that its frame is not part of the vertex pass's (`docs/firmware.md`).
     #[inline(never)]
     pub(super) fn audit(&mut self, children: Children) -> Result<()> {
         let topo = self.topo;
@@ -146,11 +145,10 @@ impl Driver<'_, '_, '_, '_> {
         };
         let nv = topo.num_vertices();
         let k = chunk_count(self.exec, nv);
-        let (mut out, mut work) = (
+        let (out, work) = (
             self.centre.get_mut(..nv).ok_or(internal())?,
             &mut *self.work,
         );
-        let share = work.len() / k.max(1);
         if k <= 1 {
             let mut part = AuditPart {
                 first: 0,
@@ -159,17 +157,7 @@ impl Driver<'_, '_, '_, '_> {
             };
             measure(&mut part, &mut Tally::new())?;
         } else {
-            let mut ranges = ArrayVec::<AuditPart<'_>, MAX_CHUNKS>::new();
-            for i in 0..k {
-                let (v0, v1) = chunk_range(nv, k, i);
-                let part = AuditPart {
-                    first: v0,
-                    out: take_front(&mut out, v1 - v0)?,
-                    work: take_front(&mut work, share)?,
-                };
-                ranges.try_push(part).map_err(|_| internal())?;
-            }
-            parts(self.exec, &mut ranges, |p| p.out.len(), measure)?;
+            split_audit(self.exec, k, out, work, &measure)?;
         }
         // Lower the trust of each distrusted star and its interior neighbours (serial: a
         // neighbour is shared by several stars; `min` makes the order irrelevant).
@@ -192,6 +180,32 @@ impl Driver<'_, '_, '_, '_> {
         }
         Ok(())
     }
+}
+
+/// The measuring of [`Driver::audit`] in `k ≥ 2` vertex ranges, each with its share of the
+/// star workspace `work` (out of line: the serial path keeps a small stack frame).
+#[inline(never)]
+fn split_audit(
+    exec: &dyn Executor,
+    k: usize,
+    mut out: &mut [Point],
+    mut work: &mut [Point],
+    measure: &(dyn Fn(&mut AuditPart<'_>, &mut Tally) -> Result<()> + Sync),
+) -> Result<()> {
+    let nv = out.len();
+    let share = work.len() / k.max(1);
+    let mut ranges = ArrayVec::<AuditPart<'_>, MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (v0, v1) = chunk_range(nv, k, i);
+        let part = AuditPart {
+            first: v0,
+            out: take_front(&mut out, v1 - v0)?,
+            work: take_front(&mut work, share)?,
+        };
+        ranges.try_push(part).map_err(|_| internal())?;
+    }
+    parts(exec, &mut ranges, |p| p.out.len(), measure)?;
+    Ok(())
 }
 
 /// One vertex range of the audit: its first vertex, the kept centres of its vertices (which
