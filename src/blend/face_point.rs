@@ -60,7 +60,10 @@ use crate::MAX_FACE_SIZE;
 /// what to do). When several quadruplets' F4s fail, the one reported is `NumericalFailure` before
 /// `DegenerateGeometry`, so it does not depend on where the face starts.
 pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
-    face_point_ordered(Face::new(vertices, candidates, None)?)
+    if candidates.len() != vertices.len() {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    face_point_ordered(Face::new(&Slices(vertices, candidates), None)?)
 }
 
 /// [`face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]` of the
@@ -73,10 +76,54 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
 /// # Errors
 /// Those of [`face_point`]; [`Status::InvalidArgument`] when `ids` differs in length.
 pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]) -> Result<Point> {
-    if ids.len() != vertices.len() {
+    if ids.len() != vertices.len() || candidates.len() != vertices.len() {
         return Err(Error::new(Status::InvalidArgument));
     }
-    face_point_ordered(Face::new(vertices, candidates, Some(ids))?)
+    face_point_ordered(Face::new(&Slices(vertices, candidates), Some(ids))?)
+}
+
+/// [`face_point_with_ids`] of a face whose corners and candidates are read in place
+/// ([`FaceCorners`]): the Möbius drivers read a mesh face's positions and its corners'
+/// candidates where they are, so no copy of the face is on the stack (`docs/firmware.md`,
+/// "Stack"). The same bits as the slice form of the same points. `ids` has
+/// [`FaceCorners::len`] entries.
+///
+/// # Errors
+/// Those of [`face_point_with_ids`].
+pub(crate) fn face_point_in_place<C: FaceCorners + ?Sized>(
+    corners: &C,
+    ids: &[u32],
+) -> Result<Point> {
+    if ids.len() != corners.len() {
+        return Err(Error::new(Status::InvalidArgument));
+    }
+    face_point_ordered(Face::new(corners, Some(ids))?)
+}
+
+/// A face's corners `v_i` and the candidates `v_{f,i}` of their stars, read by index
+/// `i < len()` (`None` for an index the face does not have, or a value that cannot be read).
+pub(crate) trait FaceCorners {
+    /// The number of corners `d`.
+    fn len(&self) -> usize;
+    /// Corner `v_i`.
+    fn vertex(&self, i: usize) -> Option<Point>;
+    /// Candidate `v_{f,i}`.
+    fn candidate(&self, i: usize) -> Option<Point>;
+}
+
+/// A face given as two slices of equal length: its corners and their candidates.
+struct Slices<'a>(&'a [Point], &'a [Point]);
+
+impl FaceCorners for Slices<'_> {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    fn vertex(&self, i: usize) -> Option<Point> {
+        self.0.get(i).copied()
+    }
+    fn candidate(&self, i: usize) -> Option<Point> {
+        self.1.get(i).copied()
+    }
 }
 
 /// F4 points and sort keys of a face's quadruplets, in face order.
@@ -90,7 +137,7 @@ const _: () = assert!(MAX_FACE_SIZE <= 256);
 /// and are filled in place; each step is out of line, so the frames of F4 (step 2) and of F6
 /// (step 4) are never on the stack together with each other or with a second copy of the
 /// arrays (`docs/firmware.md`, "Stack").
-fn face_point_ordered(face: Face<'_>) -> Result<Point> {
+fn face_point_ordered<C: FaceCorners + ?Sized>(face: Face<'_, C>) -> Result<Point> {
     let mut p = Blended::new();
     blend_quadruplets(&face, &mut p)?;
     let mut order = Order::new();
@@ -99,9 +146,8 @@ fn face_point_ordered(face: Face<'_>) -> Result<Point> {
 }
 
 /// A face's corners, their candidates and (optionally) vertex ids, indexed cyclically.
-struct Face<'a> {
-    vertices: &'a [Point],
-    candidates: &'a [Point],
+struct Face<'a, C: FaceCorners + ?Sized> {
+    corners: &'a C,
     ids: Option<&'a [u32]>,
     /// The number of corners `d`.
     d: usize,
@@ -109,17 +155,10 @@ struct Face<'a> {
     h: usize,
 }
 
-impl<'a> Face<'a> {
-    /// Step 1: the face, validated (`ids`, when given, has the length of `vertices`).
-    fn new(
-        vertices: &'a [Point],
-        candidates: &'a [Point],
-        ids: Option<&'a [u32]>,
-    ) -> Result<Face<'a>> {
-        let d = vertices.len();
-        if candidates.len() != d {
-            return Err(Error::new(Status::InvalidArgument));
-        }
+impl<'a, C: FaceCorners + ?Sized> Face<'a, C> {
+    /// Step 1: the face, validated (`ids`, when given, has the length of the face).
+    fn new(corners: &'a C, ids: Option<&'a [u32]>) -> Result<Face<'a, C>> {
+        let d = corners.len();
         if d < 3 {
             return Err(Error::new(Status::TooFewPoints));
         }
@@ -128,12 +167,14 @@ impl<'a> Face<'a> {
         }
         // A shortcut: a non-finite corner or candidate is `NonFiniteInput` (the ranking of
         // `blend_quadruplets` would report it too, after evaluating every quadruplet).
-        if !vertices.iter().chain(candidates).all(point::is_finite) {
+        let finite = |p: Option<Point>| p.is_some_and(|p| point::is_finite(&p));
+        if !(0..d).all(|i| finite(corners.vertex(i)))
+            || !(0..d).all(|i| finite(corners.candidate(i)))
+        {
             return Err(Error::new(Status::NonFiniteInput));
         }
         Ok(Face {
-            vertices,
-            candidates,
+            corners,
             ids,
             d,
             h: d / 2,
@@ -146,25 +187,27 @@ impl<'a> Face<'a> {
         self.d % 2 == 0
     }
 
-    /// `s[i mod d]`.
-    fn at(&self, s: &[Point], i: usize) -> Result<Point> {
+    /// Corner `v_{i mod d}`.
+    fn vertex(&self, i: usize) -> Result<Point> {
         i.checked_rem(self.d)
-            .and_then(|k| s.get(k).copied())
+            .and_then(|k| self.corners.vertex(k))
             .ok_or(Error::new(Status::InvalidArgument))
     }
 
-    /// Corner `v_{i mod d}`.
-    fn vertex(&self, i: usize) -> Result<Point> {
-        self.at(self.vertices, i)
+    /// Candidate `v_{f, i mod d}`.
+    fn candidate(&self, i: usize) -> Result<Point> {
+        i.checked_rem(self.d)
+            .and_then(|k| self.corners.candidate(k))
+            .ok_or(Error::new(Status::InvalidArgument))
     }
 
     /// Quadruplet `i`: `(v_i, v_{f,i}, v_{f,i+h}, v_{i+h})`.
     fn quad(&self, i: usize) -> Result<[Point; 4]> {
         Ok([
-            self.at(self.vertices, i)?,
-            self.at(self.candidates, i)?,
-            self.at(self.candidates, i + self.h)?,
-            self.at(self.vertices, i + self.h)?,
+            self.vertex(i)?,
+            self.candidate(i)?,
+            self.candidate(i + self.h)?,
+            self.vertex(i + self.h)?,
         ])
     }
 
@@ -213,7 +256,7 @@ fn failure_rank(status: Status) -> u8 {
 /// face starts: every one is evaluated and the failure reported is the one of
 /// [`failure_rank`] (then the first), the same for every start.
 #[inline(never)]
-fn blend_quadruplets(face: &Face<'_>, p: &mut Blended) -> Result<()> {
+fn blend_quadruplets<C: FaceCorners + ?Sized>(face: &Face<'_, C>, p: &mut Blended) -> Result<()> {
     let (d, h) = (face.d, face.h);
     p.clear();
     for _ in 0..d {
@@ -273,7 +316,11 @@ fn blend_quadruplets(face: &Face<'_>, p: &mut Blended) -> Result<()> {
 /// tie-break)` with an insertion sort (`d` is small, and the sort must be stable and
 /// panic-free). The tie-break is the id of `v_i` when given, else 0 (face order).
 #[inline(never)]
-fn sort_by_key(face: &Face<'_>, p: &[(Point, i64)], order: &mut Order) -> Result<()> {
+fn sort_by_key<C: FaceCorners + ?Sized>(
+    face: &Face<'_, C>,
+    p: &[(Point, i64)],
+    order: &mut Order,
+) -> Result<()> {
     // The sort key of quadruplet `i`: (rounded key, tie-break), compared lexicographically.
     let key = |i: u8| -> Result<(i64, u32)> {
         let k = p
@@ -306,7 +353,11 @@ fn sort_by_key(face: &Face<'_>, p: &[(Point, i64)], order: &mut Order) -> Result
 /// Step 4: `v_f = p_1`, then `v_f := F6(a_{l−1}, v_f, d_{l−1}, a_l, p_l, d_l)` along `order`,
 /// each chain `(a_l, d_l)` of an even face oriented by [`oriented_start`].
 #[inline(never)]
-fn chain(face: &Face<'_>, p: &[(Point, i64)], order: &[u8]) -> Result<Point> {
+fn chain<C: FaceCorners + ?Sized>(
+    face: &Face<'_, C>,
+    p: &[(Point, i64)],
+    order: &[u8],
+) -> Result<Point> {
     let h = face.h;
     let point = |i: usize| {
         p.get(i)
@@ -349,7 +400,7 @@ fn chain(face: &Face<'_>, p: &[(Point, i64)], order: &[u8]) -> Result<Point> {
 /// rule, a negative-real ρ). The identities hold off the negative reals (principal roots:
 /// `√(q⁻¹) = (√q)⁻¹` fails there), so on exactly cocircular data the numbering can still
 /// enter. An odd face has no reversed pairs: `i` itself.
-fn oriented_start(face: &Face<'_>, i: usize, prev: usize) -> usize {
+fn oriented_start<C: FaceCorners + ?Sized>(face: &Face<'_, C>, i: usize, prev: usize) -> usize {
     let (d, h) = (face.d, face.h);
     if face.is_even() && (i + d - prev) % d > h {
         (i + h) % d

@@ -4,19 +4,43 @@
 //! takes its linear centroid, counted as a fallback.
 
 use super::driver::{chunk_fallback, Driver};
-use super::form::{present, FacePts};
 use super::slots::slot_of;
-use crate::blend;
-use crate::error::Result;
+use crate::blend::{self, FaceCorners};
+use crate::error::{Result, Status};
 use crate::exec::pass;
-use crate::mesh::gather::face_points_into;
-use crate::mesh::{get, internal};
-use crate::point::Point;
-use crate::stencil::centroid;
+use crate::mesh::{get, internal, Topology};
+use crate::point::{self, Point};
+use crate::stencil::centroid_of_sum;
+
+/// A face of the level read in place for [`blend::face_point_in_place`]: its corners'
+/// positions and the face candidates of their stars (seed 000 §4.4.3), where they are.
+struct MeshFace<'a, 'm, 's> {
+    topo: &'a Topology<'m, 's>,
+    /// The face's vertices, in face order.
+    verts: &'a [u32],
+    /// The half-edge of the first corner (corner `i`'s is `first + i`).
+    first: u32,
+    face_c: &'a [Point],
+    slots: &'a [f64],
+}
+
+impl FaceCorners for MeshFace<'_, '_, '_> {
+    fn len(&self) -> usize {
+        self.verts.len()
+    }
+    fn vertex(&self, i: usize) -> Option<Point> {
+        self.topo.position(*self.verts.get(i)?).ok()
+    }
+    fn candidate(&self, i: usize) -> Option<Point> {
+        let h = self.first.checked_add(u32::try_from(i).ok()?)?;
+        get(self.face_c, slot_of(self.slots, h).ok()?).ok()
+    }
+}
 
 impl Driver<'_, '_, '_, '_> {
     /// Blends the face candidates into face points written at `start + f`: one pass over the
-    /// faces, split into face ranges ([`crate::exec`]).
+    /// faces, split into face ranges ([`crate::exec`]). Each face is read in place (no copy
+    /// of its corners on the stack, `docs/firmware.md`).
     pub(super) fn blend_faces(&mut self, start: usize) -> Result<()> {
         let topo = self.topo;
         let nf = topo.num_faces();
@@ -25,28 +49,32 @@ impl Driver<'_, '_, '_, '_> {
         let strict = self.strict;
         let out = self.pos.get_mut(start..start + nf).ok_or(internal())?;
         let t = pass(self.exec, out, |first, out, tally| {
-            let mut verts = FacePts::new();
-            let mut cands = FacePts::new();
             for (f, o) in (first as u32..).zip(out.iter_mut()) {
-                face_points_into(topo, f, &mut verts)?;
-                cands.clear();
-                for h in topo.face_half_edges(f)? {
-                    cands
-                        .try_push(get(face_c, slot_of(slots, h)?)?)
-                        .map_err(|_| internal())?;
-                }
-                let p = if cands.iter().all(present) {
-                    // Ties of the §4.4.3 sort go by vertex id, so the face point does not
-                    // depend on which corner the face is listed from (docs/DECISIONS.md).
-                    blend::face_point_with_ids(&verts, &cands, topo.face_vertices(f)?).ok()
-                } else {
-                    None
+                let verts = topo.face_vertices(f)?;
+                let face = MeshFace {
+                    topo,
+                    verts,
+                    first: topo.face_half_edges(f)?.start,
+                    face_c,
+                    slots,
                 };
-                *o = match p {
-                    Some(p) => p,
-                    None => {
+                // A missing candidate is not finite: the chain refuses it, and the face takes
+                // its centroid. Ties of the §4.4.3 sort go by vertex id, so the face point
+                // does not depend on which corner the face is listed from
+                // (docs/DECISIONS.md).
+                *o = match blend::face_point_in_place(&face, verts) {
+                    Ok(p) => p,
+                    // Only a read of the face can fail so (F4 and F6 never do): arrays that
+                    // disagree, an internal error, never a fallback.
+                    Err(e) if e.status == Status::InvalidArgument => return Err(internal()),
+                    Err(_) => {
                         chunk_fallback(strict, tally, start + f as usize)?;
-                        centroid(&verts)?
+                        // `centroid` of the corners, summed in face order as it does.
+                        let mut s = [0.0; 3];
+                        for &u in verts {
+                            s = point::add(s, topo.position(u)?);
+                        }
+                        centroid_of_sum(s, verts.len())?
                     }
                 };
             }
