@@ -760,22 +760,38 @@ fn subdivide_call(
     match result {
         Ok(report) => Ok(report),
         Err(e) if e.status == Status::BufferTooSmall => {
-            let plan = scheme::plan_weighted(view, opts, tags, weights, su)?;
-            if su.len() < plan.scratch.u32s {
-                return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
-            }
-            if sp.len() < plan.scratch.points {
-                return Err(too_small(NLS_MESH_BUFFER_SCRATCH_POINTS));
-            }
-            if let Err(f) = raw.check_sizes(&plan.output()) {
-                *needed = Some(plan.output());
-                return Err(f);
-            }
-            // Every buffer holds the plan: the error was not a buffer's.
-            Err(e.into())
+            too_small_buffer(view, (opts, tags, weights), su, sp, raw, needed, e)
         }
         Err(e) => Err(e.into()),
     }
+}
+
+/// Which buffer of a call that failed with `BufferTooSmall` (`e`) was short, from the plan.
+/// Out of line, so that the plan is not in the frame of every call (`docs/firmware.md`,
+/// "Stack").
+#[inline(never)]
+fn too_small_buffer(
+    view: Mesh<'_>,
+    (opts, tags, weights): (&Options, &Tags<'_>, Option<VertexWeights<'_>>),
+    su: &mut [u32],
+    sp: &[Point],
+    raw: &RawOut,
+    needed: &mut Option<MeshSizes>,
+    e: nlsubdiv::Error,
+) -> Result<Report, Fail> {
+    let plan = scheme::plan_weighted(view, opts, tags, weights, su)?;
+    if su.len() < plan.scratch.u32s {
+        return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
+    }
+    if sp.len() < plan.scratch.points {
+        return Err(too_small(NLS_MESH_BUFFER_SCRATCH_POINTS));
+    }
+    if let Err(f) = raw.check_sizes(&plan.output()) {
+        *needed = Some(plan.output());
+        return Err(f);
+    }
+    // Every buffer holds the plan: the error was not a buffer's.
+    Err(e.into())
 }
 
 /// Writes the default options: `NLS_SCHEME_LOOP`, no flags (linear, not strict), 1 level.

@@ -63,7 +63,7 @@ pub fn face_point(vertices: &[Point], candidates: &[Point]) -> Result<Point> {
     if candidates.len() != vertices.len() {
         return Err(Error::new(Status::InvalidArgument));
     }
-    face_point_ordered(Face::new(&Slices(vertices, candidates), None)?)
+    face_point_on_stack(Face::new(&Slices(vertices, candidates), None)?)
 }
 
 /// [`face_point`] with ties of the noncircularity sort broken by the vertex ids `ids[i]` of the
@@ -79,25 +79,41 @@ pub fn face_point_with_ids(vertices: &[Point], candidates: &[Point], ids: &[u32]
     if ids.len() != vertices.len() || candidates.len() != vertices.len() {
         return Err(Error::new(Status::InvalidArgument));
     }
-    face_point_ordered(Face::new(&Slices(vertices, candidates), Some(ids))?)
+    face_point_on_stack(Face::new(&Slices(vertices, candidates), Some(ids))?)
 }
 
 /// [`face_point_with_ids`] of a face whose corners and candidates are read in place
-/// ([`FaceCorners`]): the Möbius drivers read a mesh face's positions and its corners'
-/// candidates where they are, so no copy of the face is on the stack (`docs/firmware.md`,
+/// ([`FaceCorners`]), with the chain's working arrays in `work`: the Möbius drivers read a
+/// mesh face's positions and its corners' candidates where they are and lend a part of their
+/// star workspace, so nothing sized by the face-size cap is on the stack (`docs/firmware.md`,
 /// "Stack"). The same bits as the slice form of the same points. `ids` has
-/// [`FaceCorners::len`] entries.
+/// [`FaceCorners::len`] entries; `work` at least [`work_points`] of it.
 ///
 /// # Errors
-/// Those of [`face_point_with_ids`].
+/// Those of [`face_point_with_ids`]; [`Status::BufferTooSmall`] for a short `work`.
 pub(crate) fn face_point_in_place<C: FaceCorners + ?Sized>(
     corners: &C,
     ids: &[u32],
+    work: &mut [Point],
 ) -> Result<Point> {
     if ids.len() != corners.len() {
         return Err(Error::new(Status::InvalidArgument));
     }
-    face_point_ordered(Face::new(corners, Some(ids))?)
+    let face = Face::new(corners, Some(ids))?;
+    let d = face.d;
+    let need = work_points(d);
+    let (pts, rest) = work.split_at_mut_checked(d).ok_or(Error::too_small(need))?;
+    let keys = rest
+        .as_flattened_mut()
+        .get_mut(..d)
+        .ok_or(Error::too_small(need))?;
+    face_point_ordered(face, pts, keys)
+}
+
+/// The points of the working arrays of a `d`-gon's chain ([`face_point_in_place`]): its
+/// F4 points and their sort keys (`f64`, three to a point).
+pub(crate) const fn work_points(d: usize) -> usize {
+    d + d.div_ceil(3)
 }
 
 /// A face's corners `v_i` and the candidates `v_{f,i}` of their stars, read by index
@@ -126,23 +142,36 @@ impl FaceCorners for Slices<'_> {
     }
 }
 
-/// F4 points and sort keys of a face's quadruplets, in face order.
-type Blended = ArrayVec<(Point, i64), MAX_FACE_SIZE>;
-
 /// Quadruplet indices in chain order (`u8`: a face has at most [`MAX_FACE_SIZE`] corners).
 type Order = ArrayVec<u8, MAX_FACE_SIZE>;
 const _: () = assert!(MAX_FACE_SIZE <= 256);
 
-/// The four steps of the chain (module docs). The two working arrays live in this frame
-/// and are filled in place; each step is out of line, so the frames of F4 (step 2) and of F6
-/// (step 4) are never on the stack together with each other or with a second copy of the
-/// arrays (`docs/firmware.md`, "Stack").
-fn face_point_ordered<C: FaceCorners + ?Sized>(face: Face<'_, C>) -> Result<Point> {
-    let mut p = Blended::new();
-    blend_quadruplets(&face, &mut p)?;
+/// [`face_point_ordered`] with the F4 points and keys in this frame (the public, slice
+/// forms: `MAX_FACE_SIZE` of each).
+fn face_point_on_stack<C: FaceCorners + ?Sized>(face: Face<'_, C>) -> Result<Point> {
+    let mut pts = [[0.0; 3]; MAX_FACE_SIZE];
+    let mut keys = [0.0; MAX_FACE_SIZE];
+    let d = face.d;
+    let pts = pts.get_mut(..d).ok_or(Error::new(Status::ValenceTooHigh))?;
+    let keys = keys
+        .get_mut(..d)
+        .ok_or(Error::new(Status::ValenceTooHigh))?;
+    face_point_ordered(face, pts, keys)
+}
+
+/// The four steps of the chain (module docs), with the F4 points `pts` and the sort keys
+/// `keys` of the face's quadruplets (`d` of each) filled in place; each step is out of line,
+/// so the frames of F4 (step 2) and of F6 (step 4) are never on the stack together
+/// (`docs/firmware.md`, "Stack").
+fn face_point_ordered<C: FaceCorners + ?Sized>(
+    face: Face<'_, C>,
+    pts: &mut [Point],
+    keys: &mut [f64],
+) -> Result<Point> {
+    blend_quadruplets(&face, pts, keys)?;
     let mut order = Order::new();
-    sort_by_key(&face, &p, &mut order)?;
-    chain(&face, &p, &order)
+    sort_by_key(&face, keys, &mut order)?;
+    chain(&face, pts, &order)
 }
 
 /// A face's corners, their candidates and (optionally) vertex ids, indexed cyclically.
@@ -256,15 +285,17 @@ fn failure_rank(status: Status) -> u8 {
 /// face starts: every one is evaluated and the failure reported is the one of
 /// [`failure_rank`] (then the first), the same for every start.
 #[inline(never)]
-fn blend_quadruplets<C: FaceCorners + ?Sized>(face: &Face<'_, C>, p: &mut Blended) -> Result<()> {
+fn blend_quadruplets<C: FaceCorners + ?Sized>(
+    face: &Face<'_, C>,
+    pts: &mut [Point],
+    keys: &mut [f64],
+) -> Result<()> {
     let (d, h) = (face.d, face.h);
-    p.clear();
-    for _ in 0..d {
-        p.try_push(([0.0; 3], 0))
-            .map_err(|_| Error::new(Status::ValenceTooHigh))?;
-    }
-    let mut put = |i: usize, v: (Point, i64)| -> Result<()> {
-        *p.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = v;
+    // A key is an integer of at most 10¹² in magnitude (a noncircularity in [0, 1] times
+    // 10¹², rounded), exact as an `f64`: the sort compares the same values.
+    let mut put = |i: usize, (pt, key): (Point, i64)| -> Result<()> {
+        *pts.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = pt;
+        *keys.get_mut(i).ok_or(Error::new(Status::InvalidArgument))? = key as f64;
         Ok(())
     };
     let mut failure: Option<Error> = None;
@@ -318,19 +349,18 @@ fn blend_quadruplets<C: FaceCorners + ?Sized>(face: &Face<'_, C>, p: &mut Blende
 #[inline(never)]
 fn sort_by_key<C: FaceCorners + ?Sized>(
     face: &Face<'_, C>,
-    p: &[(Point, i64)],
+    keys: &[f64],
     order: &mut Order,
 ) -> Result<()> {
     // The sort key of quadruplet `i`: (rounded key, tie-break), compared lexicographically.
-    let key = |i: u8| -> Result<(i64, u32)> {
-        let k = p
+    let key = |i: u8| -> Result<(f64, u32)> {
+        let k = *keys
             .get(usize::from(i))
-            .ok_or(Error::new(Status::InvalidArgument))?
-            .1;
+            .ok_or(Error::new(Status::InvalidArgument))?;
         Ok((k, face.id(usize::from(i))?))
     };
     order.clear();
-    for i in 0..p.len() {
+    for i in 0..keys.len() {
         let i = u8::try_from(i).map_err(|_| Error::new(Status::ValenceTooHigh))?;
         order
             .try_push(i)
@@ -353,17 +383,9 @@ fn sort_by_key<C: FaceCorners + ?Sized>(
 /// Step 4: `v_f = p_1`, then `v_f := F6(a_{l−1}, v_f, d_{l−1}, a_l, p_l, d_l)` along `order`,
 /// each chain `(a_l, d_l)` of an even face oriented by [`oriented_start`].
 #[inline(never)]
-fn chain<C: FaceCorners + ?Sized>(
-    face: &Face<'_, C>,
-    p: &[(Point, i64)],
-    order: &[u8],
-) -> Result<Point> {
+fn chain<C: FaceCorners + ?Sized>(face: &Face<'_, C>, p: &[Point], order: &[u8]) -> Result<Point> {
     let h = face.h;
-    let point = |i: usize| {
-        p.get(i)
-            .map(|x| x.0)
-            .ok_or(Error::new(Status::InvalidArgument))
-    };
+    let point = |i: usize| p.get(i).copied().ok_or(Error::new(Status::InvalidArgument));
     let mut it = order.iter().map(|&i| usize::from(i));
     let first = it.next().ok_or(Error::new(Status::TooFewPoints))?;
     let mut vf = point(first)?;

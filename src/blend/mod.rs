@@ -38,7 +38,7 @@ mod solve;
 pub use f4::{f4, f4_hinted, noncircularity};
 pub use f6::f6;
 pub use face_point::{face_point, face_point_with_ids};
-pub(crate) use face_point::{face_point_in_place, FaceCorners};
+pub(crate) use face_point::{face_point_in_place, work_points, FaceCorners};
 pub use roots::is_negative_real;
 
 /// Relative distance below which two inputs count as coincident: `|p − q| ≤ 1e-13 × the

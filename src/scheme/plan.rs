@@ -66,10 +66,11 @@ pub struct Plan {
     ///   per vertex, the centre of its canonical form (one point) and the fold guard's trust
     ///   and the form's radius (two `f64`), and per corner the slot of its candidates (one
     ///   `f64`; `f64` values three to a point), and the star workspace of the vertex pass
-    ///   (four arrays of the largest valence stepped from for each of at most
-    ///   `min(`[`crate::exec::MAX_CHUNKS`]`, vertices)` chunks: the tangent polygon of the
-    ///   star's canonical form and the per-star arrays of the scheme's rule, kept off the
-    ///   stack) — with tags, at least the cut
+    ///   (for each of at most `min(`[`crate::exec::MAX_CHUNKS`]`, max(vertices, faces))`
+    ///   chunks, four arrays of the largest valence stepped from — the tangent polygon of
+    ///   the star's canonical form and the per-star arrays of the scheme's rule — or the F4
+    ///   points and sort keys of the largest face's face-point chain if that is more; kept
+    ///   off the stack) — with tags, at least the cut
     ///   level's positions, its step's output and candidates; with a
     ///   spectrum weight below 1 ([`Options::spectrum`]) or per-vertex weights
     ///   ([`plan_weighted`]), the linear positions of the largest level written; with
@@ -86,6 +87,9 @@ pub struct Plan {
     /// for the derived levels), which sizes the Möbius star workspace
     /// ([`super::mobius::workspace`]).
     pub(super) star_valence: usize,
+    /// The largest face of the levels stepped from, which sizes the face-point chain's
+    /// arrays in the Möbius star workspace.
+    pub(super) star_face: usize,
     /// The `u32` scratch of the largest Möbius step: its spoke workspace
     /// ([`super::mobius::workspace::spoke_u32s`]) or, with tags, the cut step's
     /// ([`Plan::crease`]); zero without Möbius.
@@ -113,19 +117,22 @@ impl Plan {
     /// stepped from and an `f64` per corner for their slots, and per vertex a point and two
     /// `f64` for the fold guard
     /// ([`super::mobius::candidate_points`]; 0 for zero levels), and the star workspace of
-    /// the largest valence stepped from ([`super::mobius::workspace::workspace_points`]);
+    /// the largest valence and face stepped from
+    /// ([`super::mobius::workspace::workspace_points`]);
     /// with tags, at least the points of the largest tagged step ([`Plan::crease`]).
     pub(super) fn mobius_step_points(&self) -> Result<usize> {
         if self.levels == 0 {
             return Ok(self.crease.points);
         }
-        let (mut vertices, mut corners) = (0usize, 0usize);
+        let (mut vertices, mut corners, mut elements) = (0usize, 0usize, 0usize);
         for k in 0..self.levels {
             let sz = self.sizes.get(k).ok_or(internal())?;
             vertices = vertices.max(sz.vertices);
             corners = corners.max(sz.indices);
+            elements = elements.max(sz.vertices.max(sz.faces));
         }
-        let work = super::mobius::workspace::workspace_points(self.star_valence, vertices)?;
+        let (v, f) = (self.star_valence, self.star_face);
+        let work = super::mobius::workspace::workspace_points(v, f, elements)?;
         let step = cadd(super::mobius::candidate_points(vertices, corners)?, work)?;
         Ok(step.max(self.crease.points))
     }
@@ -310,6 +317,7 @@ fn levels_plan(
         sharpness: 0,
         crease: ScratchSizes::default(),
         star_valence: 0,
+        star_face: 0,
         step_u32s: 0,
     };
     // One sharpness value per edge and vertex of the largest level stepped from.
@@ -320,12 +328,14 @@ fn levels_plan(
         // Level 1 exactly as the single step computes it (face types, per-vertex valences).
         let first = step_size(scheme, &topo)?;
         p.star_valence = stats.max_valence();
+        p.star_face = stats.max_face();
         for k in 1..=levels {
             stats = stats.next(pattern)?;
             let sz = stats.sizes();
             if k < levels {
                 sharpness = sharpness.max(cadd(stats.edges(), sz.vertices)?);
                 p.star_valence = p.star_valence.max(stats.max_valence());
+                p.star_face = p.star_face.max(stats.max_face());
             }
             if k == 1 && sz != first {
                 return Err(internal());
@@ -344,7 +354,7 @@ fn levels_plan(
             let sz = p.sizes.get(k).copied().ok_or(internal())?;
             let next = p.sizes.get(k + 1).copied().ok_or(internal())?;
             let (v, c, f) = (sz.vertices, sz.indices, sz.faces);
-            let c = super::mobius::crease::scratch(v, c, f, next, p.star_valence)?;
+            let c = super::mobius::crease::scratch(v, c, f, next, p.star_valence, p.star_face)?;
             p.crease.u32s = p.crease.u32s.max(c.u32s);
             p.crease.points = p.crease.points.max(c.points);
         }

@@ -33,6 +33,11 @@ impl LevelCounts {
         self.e
     }
 
+    /// The largest face size (as [`Topology::max_face_size`] for a built level).
+    pub(crate) fn max_face(&self) -> usize {
+        self.max_face
+    }
+
     /// The largest valence (an upper bound for a derived level, exact for a built one).
     pub(crate) fn max_valence(&self) -> usize {
         self.max_vi.max(self.max_vb)

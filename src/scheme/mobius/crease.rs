@@ -82,13 +82,15 @@ fn sharp(s: f32) -> bool {
 /// vertex, per cut vertex its original and its corner mark, the cut level's indices and
 /// topology, the cut step's connectivity (that of the child), its spoke workspace. `points`: the cut level's
 /// positions, its step's output and its Möbius candidates and star workspace (for a cut
-/// level whose valences are at most `max_valence + 1`, `max_valence` bounding the level's).
+/// level whose valences are at most `max_valence + 1`, `max_valence` bounding the level's,
+/// and whose faces have at most `max_face` corners).
 pub(crate) fn scratch(
     vertices: usize,
     corners: usize,
     faces: usize,
     next: MeshSizes,
     max_valence: usize,
+    max_face: usize,
 ) -> Result<ScratchSizes> {
     let cut_v = cadd(vertices, corners)?;
     // Cutting a star along its sharp edges splits it into fans of at most one more spoke
@@ -108,7 +110,8 @@ pub(crate) fn scratch(
     .iter()
     .try_fold(0usize, |a, &b| cadd(a, b))?;
     let out = cadd(cadd(cut_v, corners)?, faces)?;
-    let work = super::workspace::workspace_points(cadd(max_valence, 1)?, cut_v)?;
+    let work =
+        super::workspace::workspace_points(cadd(max_valence, 1)?, max_face, cut_v.max(faces))?;
     let step = cadd(super::candidate_points(cut_v, corners)?, work)?;
     let points = cadd(cadd(cut_v, out)?, step)?;
     Ok(ScratchSizes { u32s, points })

@@ -7,10 +7,11 @@ use super::driver::{chunk_fallback, Driver};
 use super::slots::slot_of;
 use crate::blend::{self, FaceCorners};
 use crate::error::{Result, Status};
-use crate::exec::pass;
+use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, Topology};
 use crate::point::{self, Point};
 use crate::stencil::centroid_of_sum;
+use arrayvec::ArrayVec;
 
 /// A face of the level read in place for [`blend::face_point_in_place`]: its corners'
 /// positions and the face candidates of their stars (seed 000 §4.4.3), where they are.
@@ -37,19 +38,27 @@ impl FaceCorners for MeshFace<'_, '_, '_> {
     }
 }
 
+/// One face range of the face blends: its first face, its face points, its share of the star
+/// workspace (the chain's arrays, `workspace.rs`).
+struct FacePart<'a> {
+    first: usize,
+    out: &'a mut [Point],
+    work: &'a mut [Point],
+}
+
 impl Driver<'_, '_, '_, '_> {
     /// Blends the face candidates into face points written at `start + f`: one pass over the
-    /// faces, split into face ranges ([`crate::exec`]). Each face is read in place (no copy
-    /// of its corners on the stack, `docs/firmware.md`).
+    /// faces, split into face ranges ([`crate::exec`]). Each face is read in place, and the
+    /// chain's arrays are the range's share of the star workspace (nothing sized by the
+    /// face-size cap on the stack, `docs/firmware.md`).
     pub(super) fn blend_faces(&mut self, start: usize) -> Result<()> {
         let topo = self.topo;
         let nf = topo.num_faces();
         let face_c: &[Point] = self.face_c;
         let slots: &[f64] = self.slots;
         let strict = self.strict;
-        let out = self.pos.get_mut(start..start + nf).ok_or(internal())?;
-        let t = pass(self.exec, out, |first, out, tally| {
-            for (f, o) in (first as u32..).zip(out.iter_mut()) {
+        let run = |part: &mut FacePart<'_>, tally: &mut Tally| -> Result<()> {
+            for (f, o) in (part.first as u32..).zip(part.out.iter_mut()) {
                 let verts = topo.face_vertices(f)?;
                 let face = MeshFace {
                     topo,
@@ -62,11 +71,15 @@ impl Driver<'_, '_, '_, '_> {
                 // its centroid. Ties of the §4.4.3 sort go by vertex id, so the face point
                 // does not depend on which corner the face is listed from
                 // (docs/DECISIONS.md).
-                *o = match blend::face_point_in_place(&face, verts) {
+                *o = match blend::face_point_in_place(&face, verts, part.work) {
                     Ok(p) => p,
-                    // Only a read of the face can fail so (F4 and F6 never do): arrays that
-                    // disagree, an internal error, never a fallback.
-                    Err(e) if e.status == Status::InvalidArgument => return Err(internal()),
+                    // Only a read of the face or a short workspace can fail so (F4 and F6
+                    // never do): an internal error, never a fallback.
+                    Err(e)
+                        if matches!(e.status, Status::InvalidArgument | Status::BufferTooSmall) =>
+                    {
+                        return Err(internal())
+                    }
                     Err(_) => {
                         chunk_fallback(strict, tally, start + f as usize)?;
                         // `centroid` of the corners, summed in face order as it does.
@@ -79,8 +92,50 @@ impl Driver<'_, '_, '_, '_> {
                 };
             }
             Ok(())
-        })?;
+        };
+        let out = self.pos.get_mut(start..start + nf).ok_or(internal())?;
+        let work = &mut *self.work;
+        let k = chunk_count(self.exec, nf);
+        let t = if k <= 1 {
+            let mut t = Tally::new();
+            run(
+                &mut FacePart {
+                    first: 0,
+                    out,
+                    work,
+                },
+                &mut t,
+            )?;
+            t
+        } else {
+            split_faces(self.exec, k, out, work, &run)?
+        };
         self.add_fallbacks(t);
         Ok(())
     }
+}
+
+/// [`Driver::blend_faces`] in `k ≥ 2` face ranges, each with its share of the star workspace
+/// `work` (out of line: the serial path keeps a small stack frame).
+#[inline(never)]
+fn split_faces(
+    exec: &dyn Executor,
+    k: usize,
+    mut out: &mut [Point],
+    mut work: &mut [Point],
+    run: &(dyn Fn(&mut FacePart<'_>, &mut Tally) -> Result<()> + Sync),
+) -> Result<Tally> {
+    let nf = out.len();
+    let share = work.len() / k.max(1);
+    let mut ranges = ArrayVec::<FacePart<'_>, MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (f0, f1) = chunk_range(nf, k, i);
+        let part = FacePart {
+            first: f0,
+            out: take_front(&mut out, f1 - f0)?,
+            work: take_front(&mut work, share)?,
+        };
+        ranges.try_push(part).map_err(|_| internal())?;
+    }
+    parts(exec, &mut ranges, |p| p.out.len(), run)
 }

@@ -182,7 +182,8 @@ pub(crate) fn step(
     let nv = topo.num_vertices();
     let candidates = candidate_points(nv, topo.num_half_edges())?;
     let max_valence = workspace::max_valence(topo)?;
-    let work = workspace::workspace_points(max_valence, nv)?;
+    let elements = nv.max(topo.num_faces());
+    let work = workspace::workspace_points(max_valence, topo.max_face_size(), elements)?;
     let spokes = workspace::spoke_u32s(max_valence, nv)?;
     if spoke_work.len() < spokes {
         return Err(Error::too_small(spokes));

@@ -25,17 +25,29 @@ use super::form::SPOKE_U32S;
 /// pass, the ears, Doo–Sabin's missing corners) holds the whole workspace.
 pub(super) const STAR_ARRAYS: usize = 4;
 
-/// The points of the star workspace of a step on a level of at most `vertices` vertices
-/// whose largest valence is `max_valence`: [`STAR_ARRAYS`] arrays of that length for each
-/// of at most `min(`[`MAX_CHUNKS`]`, vertices)` chunks (the most chunks a pass over the
-/// level's vertices makes, [`crate::exec::chunk_count`]).
+/// The points of the star workspace of a step on a level whose largest valence is
+/// `max_valence`, whose largest face has `max_face` corners and which has at most
+/// `elements` vertices and faces: for each of at most `min(`[`MAX_CHUNKS`]`, elements)`
+/// chunks (the most chunks a pass over the level's vertices or faces makes,
+/// [`crate::exec::chunk_count`]), [`STAR_ARRAYS`] arrays of the valence for the vertex
+/// pass, or the face-point chain's arrays of the largest face for the face blends
+/// ([`crate::blend::work_points`]), whichever is larger.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
-pub(crate) fn workspace_points(max_valence: usize, vertices: usize) -> Result<usize> {
-    let chunks = vertices.clamp(1, MAX_CHUNKS);
-    max_valence
-        .checked_mul(STAR_ARRAYS * chunks)
+pub(crate) fn workspace_points(
+    max_valence: usize,
+    max_face: usize,
+    elements: usize,
+) -> Result<usize> {
+    let chunks = elements.clamp(1, MAX_CHUNKS);
+    let star = max_valence
+        .checked_mul(STAR_ARRAYS)
+        .ok_or(Error::new(Status::SizeOverflow))?;
+    // `max_face` is at most the face-size cap, so the sum cannot overflow.
+    let face = crate::blend::work_points(max_face.min(crate::MAX_FACE_SIZE));
+    star.max(face)
+        .checked_mul(chunks)
         .ok_or(Error::new(Status::SizeOverflow))
 }
 
