@@ -16,9 +16,11 @@ use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{self, Point};
 
 /// Edges gathered per batch by [`Driver::blend_interior_edges`]: 128 bytes each on the
-/// stack. 16 keeps the batch at 2 KiB (docs/firmware.md, "Stack"); 32 measured no faster
-/// (Loop epcot 4 levels, one thread, interleaved best of 11: 102.9 against 103.7 ms).
-const EDGE_CHUNK: usize = 16;
+/// stack. 12 keeps the batch at 1.5 KiB (docs/firmware.md, "Stack"); larger batches measured
+/// no faster (one thread, interleaved best of 11, Loop / Butterfly on epcot, 4 levels: 16
+/// edges 104.6 / 196.1 ms, 12 edges 100.9 / 185.2 ms; 32 against 16, Loop: 103.7 against
+/// 102.9 ms).
+const EDGE_CHUNK: usize = 12;
 
 /// What the F4 of one interior edge `e = (a, b)` reads: its end points, the candidates of the
 /// stars of `a` and `b`, and the hint (the apex of the face on the left of `a → b`).
