@@ -6,25 +6,12 @@
 use arrayvec::ArrayVec;
 
 use super::Topology;
-use crate::error::{Error, Result, Status};
+use crate::error::Result;
 use crate::point::{add, Point};
-use crate::{MAX_FACE_SIZE, MAX_VALENCE};
+use crate::MAX_VALENCE;
 
 /// Points of a vertex ring, one per spoke.
 pub(crate) type Ring = ArrayVec<Point, MAX_VALENCE>;
-
-/// Points of one face, in face order.
-pub(crate) type FacePts = ArrayVec<Point, MAX_FACE_SIZE>;
-
-/// Positions of the corners of face `f`, in face order, into a reused buffer.
-pub(crate) fn face_points_into(topo: &Topology<'_, '_>, f: u32, r: &mut FacePts) -> Result<()> {
-    r.clear();
-    for &v in topo.face_vertices(f)? {
-        r.try_push(topo.position(v)?)
-            .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
-    }
-    Ok(())
-}
 
 /// The number of `v`'s neighbours and the sum of their positions, counter-clockwise from
 /// the star's first spoke and left to right ([`crate::point::sum`] of the ring's points):

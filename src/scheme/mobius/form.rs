@@ -14,7 +14,7 @@ use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{self, Point};
 use crate::stencil::centroid_of_sum;
 
-pub(super) use crate::mesh::gather::{FacePts, Ring};
+pub(super) use crate::mesh::gather::Ring;
 
 /// The `u32` entries one spoke takes in a [`Spokes`] buffer (neighbour, edge, half-edge,
 /// face).

@@ -8,7 +8,7 @@
 //! moved several times per vertex (measured with callgrind: those copies cost half of Möbius
 //! Catmull–Clark's instructions).
 
-use super::form::{FacePts, Frame, MapBack, Spokes, ORIGIN};
+use super::form::{Frame, MapBack, Spokes, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, internal, Spoke, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
@@ -205,22 +205,6 @@ impl StarForm {
             *e = (u, self.stamp, p);
         }
         Ok(p)
-    }
-
-    /// The canonical images of the corners of face `f`, in face order, into `pts`.
-    #[inline(always)]
-    pub(super) fn face(
-        &mut self,
-        topo: &Topology<'_, '_>,
-        f: u32,
-        pts: &mut FacePts,
-    ) -> Result<()> {
-        pts.clear();
-        for &u in topo.face_vertices(f)? {
-            pts.try_push(self.canon(topo, u)?)
-                .map_err(|_| Error::at(Status::ValenceTooHigh, f))?;
-        }
-        Ok(())
     }
 }
 

@@ -3,14 +3,12 @@
 //! corner point that cannot be computed takes the linear rule, counted as a fallback.
 
 use super::super::driver::Driver;
-use super::super::form::{present, FacePts, Spokes};
+use super::super::form::{present, MapBack, Spokes};
 use super::super::memo::StarForm;
-use super::super::rules::doo_sabin_corner_in_form;
 use super::super::slots::slot_of;
 use crate::error::Result;
 use crate::exec::pass;
-use crate::mesh::gather::face_points_into;
-use crate::mesh::{get, internal, set, NONE};
+use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{self, Point};
 use crate::scheme::carry::append_isolated;
 use crate::stencil::doo_sabin;
@@ -21,22 +19,23 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // One canonical form per vertex: all its corners, kept in the edge candidates' slots
     // (the vertex pass writes slots, split into vertex ranges), then moved to the corners'
     // output points (split into corner ranges).
-    d.vertex_pass(false, FacePts::new, |p, star, pts| {
-        for (j, s) in star.spokes.iter().enumerate() {
-            if s.face == NONE {
-                continue;
+    d.vertex_pass(
+        false,
+        || (),
+        |p, star, _| {
+            for (j, s) in star.spokes.iter().enumerate() {
+                if s.face == NONE {
+                    continue;
+                }
+                let i = (s.half_edge - topo.face_half_edges(s.face)?.start) as usize;
+                let q = corner_in_form(topo, s.face, i, star.form)?;
+                if let Ok(q) = q {
+                    p.set_edge(star, j, q)?;
+                }
             }
-            let i = (s.half_edge - topo.face_half_edges(s.face)?.start) as usize;
-            let form = &mut *star.form;
-            let q = form
-                .face(topo, s.face, pts)
-                .and_then(|()| doo_sabin_corner_in_form(pts, i, form));
-            if let Ok(q) = q {
-                p.set_edge(star, j, q)?;
-            }
-        }
-        Ok(())
-    })?;
+            Ok(())
+        },
+    )?;
     let (edge_c, slots): (&[Point], &[f64]) = (d.edge_c, d.slots);
     let out = d.pos.get_mut(..nh).ok_or(internal())?;
     pass(d.exec, out, |first, out, _| {
@@ -48,6 +47,27 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     // Ears in a substitute's form; anything still missing takes the linear rule.
     missing_corners(d)?;
     append_isolated(topo, d.pos, nh)
+}
+
+/// The corner point of corner `i` of face `f` in `form` (seed 000 §4.3: the linear rule on
+/// the face's images in the form, mapped back), reading the images from the form's memo as
+/// the rule walks the face, with no array of the face: the bits of
+/// `rules::doo_sabin_corner_in_form` on the face's images. The inner result is the rule's (an
+/// image or the map back failing: the caller's fallback); the outer one an error of the
+/// topology.
+fn corner_in_form(
+    topo: &Topology<'_, '_>,
+    f: u32,
+    i: usize,
+    form: &mut StarForm,
+) -> Result<Result<Point>> {
+    let verts = topo.face_vertices(f)?;
+    let mut corner = |c: usize| match verts.get(c) {
+        Some(&u) => form.canon(topo, u),
+        None => Err(internal()),
+    };
+    let q = doo_sabin::corner_point_by(verts.len(), i, &mut corner);
+    Ok(q.and_then(|q| form.back(q)))
 }
 
 /// The corner points the vertex pass left missing: an ear's in a substitute's form, any other
@@ -72,27 +92,19 @@ fn missing_corners_into(
 ) -> Result<()> {
     let topo = d.topo;
     let mut form = StarForm::blank();
-    let mut pts = FacePts::new();
-    let mut linear_pts = FacePts::new();
     for f in 0..topo.num_faces() as u32 {
-        // The face's own corners only when one of its corner points is missing (rare).
-        let mut gathered = false;
+        let verts = topo.face_vertices(f)?;
         for (i, h) in topo.face_half_edges(f)?.enumerate() {
             if present(&get(d.pos, h as usize)?) {
                 continue;
             }
-            if !gathered {
-                face_points_into(topo, f, &mut linear_pts)?;
-                gathered = true;
-            }
             let q = if d.is_ear(topo.origin(h)?)? {
-                d.form_vertex(f, i)?.and_then(|u| {
-                    if !d.local_into(u, &mut form, &mut spokes, tangents).ok()? {
-                        return None;
+                match d.form_vertex(f, i)? {
+                    Some(u) if d.local_into(u, &mut form, &mut spokes, tangents)? => {
+                        corner_in_form(topo, f, i, &mut form)?.ok()
                     }
-                    form.face(topo, f, &mut pts).ok()?;
-                    doo_sabin_corner_in_form(&pts, i, &form).ok()
-                })
+                    _ => None,
+                }
             } else {
                 None
             };
@@ -100,7 +112,12 @@ fn missing_corners_into(
                 Some(q) if point::is_finite(&q) => q,
                 _ => {
                     d.fallback(h as usize)?;
-                    doo_sabin::corner_point(&linear_pts, i)?
+                    // The linear corner point, reading the face's positions as it walks.
+                    let corner = |c: usize| match verts.get(c) {
+                        Some(&u) => topo.position(u),
+                        None => Err(internal()),
+                    };
+                    doo_sabin::corner_point_by(verts.len(), i, corner)?
                 }
             };
             set(d.pos, h as usize, q)?;

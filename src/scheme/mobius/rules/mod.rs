@@ -29,7 +29,6 @@ pub use butterfly::butterfly_star;
 pub(super) use butterfly::butterfly_star_in_form;
 pub use catmull_clark::catmull_clark_star;
 pub(super) use catmull_clark::catmull_clark_star_in_form;
-pub(super) use doo_sabin::doo_sabin_corner_in_form;
 pub use doo_sabin::doo_sabin_star;
 pub(super) use kobbelt::kobbelt_beyond_in_form;
 pub use kobbelt::kobbelt_star;
