@@ -6,8 +6,8 @@ this bound covers every path the code has. For each entry point of the harness (
 firmware/stack-bounds.txt) it prints the most bytes of stack below the case's stack pointer
 any path can use, and the deepest path.
 
-    firmware/stack_bound.py ELF [--stack-sizes-elf ELF2] [--run RUN.txt] [--bounds FILE]
-                                [--paths] [--indirect]
+    firmware/stack_bound.py ELF [--stack-sizes-elf ELF2] [--llvm-ir IR.ll] [--run RUN.txt]
+                                [--bounds FILE] [--paths] [--indirect] [--drop-type NAME]
 
 ELF is the harness to bound: the M4F build that scripts/test-firmware.sh runs and measures.
 ELF2 is the same harness with its Rust library built by nightly with -Z emit-stack-sizes
@@ -27,14 +27,29 @@ Where ELF has a .stack_sizes entry, that entry is the frame.
 Call graph. From `arm-none-eabi-objdump -d`: bl, and every branch (b, b.w, bcc.w) whose
 target lies outside the function is an edge (a tail call; the caller's frame is counted too,
 although it was popped: an over-estimate). Indirect calls and branches (blx rN, bx rN other
-than lr, mov pc / ldr pc other than returns) are resolved by RESOLVED below, per function,
-with the reason; one that is reachable from an entry point and not resolved makes that entry
-point's bound UNKNOWN, never 0.
+than lr, mov pc / ldr pc other than returns) are resolved by type from IR.ll, the LLVM IR of
+ELF's Rust library after LTO (`firmware/build.sh m4f-llvm-ir`: the same stable build with
+--emit=llvm-ir added, so its functions are ELF's, inlining done, named by the same mangled
+symbols). An indirect call of the IR (a `dyn Trait` method through its vtable: the passes'
+`exec.run(...)` on `&dyn Executor`, their `&dyn Fn` tasks; a fn pointer: the curve rules)
+can reach every function whose address the IR takes (a use of @f other than as a direct
+callee: vtable constants, stores, arguments) with the call's return type and parameter
+types (an sret parameter marked): every function of that type that any vtable slot or fn
+pointer can hold, a sound over-approximation. An ELF function gets the union over its IR
+call sites; a candidate that is not in ELF was removed by the linker, so nothing points to
+it. A function with indirect sites that is not in the IR (C, newlib, compiler-builtins), or
+whose IR body has no indirect call, stays unresolved, as does every one without IR.ll.
+RESOLVED below overrides by hand, per function, with the reason. An indirect call that is
+reachable from an entry point and not resolved makes that entry point's bound UNKNOWN, never
+0. --drop-type NAME ignores the IR's targets of the functions whose name contains NAME: a
+bound that then falls below a painted mark shows the resolution is what covers that path
+(curve subdivide: 3,656 -> 1,080 bytes, below its mark of 3,064, with NAME run_levels).
 
 Worst path. worst(f) = frame(f) + max over callees c of worst(c), memoised (each function is
 visited once: linear in the size of the graph). A cycle on the call graph is recursion: it is
 reported by name and makes the bound of every entry point that reaches it UNKNOWN, unless it
-is a direct recursion bounded by construction, listed in BOUNDED_RECURSION with its depth.
+is a direct recursion bounded by construction, listed in BOUNDED_RECURSION with its depth, or
+a mutual one walked at most once, listed in BOUNDED_CYCLES.
 
 The harness's part. A case's mark also holds what the harness calls between the painting and
 the measurement (fw_case_begin_at, the hashing and checks, the soft-float operations of the
@@ -69,9 +84,10 @@ GROUP_ROOTS = [
 # after the measurement), so they are not part of any entry point's bound.
 OUTSIDE_WINDOW = {"snprintf", "printf", "puts", "putchar", "fw_case_end", "fw_meshes_init", "fw_fail", "fw_note_pass"}
 
-# Indirect calls and branches resolved by hand: function -> (targets, why). Empty: none of the
-# functions reachable from the entry points calls through a pointer (no trait objects, no
-# callbacks, no formatting: the panic handler of ffi/src/lib.rs aborts without formatting).
+# Indirect calls and branches resolved by hand: function -> (targets, why); these take the
+# place of the LLVM IR's resolution by type (--llvm-ir) for the functions they name. The IR
+# cannot see the C side: the only call from the library into a C pointer is the host
+# executor's, and the harness sets none.
 RESOLVED = {
     "<nlsubdiv::executor::HostExecutor as nlsubdiv::exec::Executor>::run": (
         [], "the host's run callback (nls_executor.run): the harness sets no executor, so the "
