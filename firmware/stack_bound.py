@@ -381,9 +381,13 @@ def resolve_by_type(ll_path, info, names):
             continue  # not a function of the Rust library's IR: stays unresolved
         if not sites[raw]:
             continue  # an indirect branch the IR does not have (codegen's own): unresolved
-        cands = set()
+        cands, empty = set(), [key for key in sites[raw] if not by_key.get(key)]
+        if empty:
+            # a call whose type no address-taken function has: the method cannot tell what it
+            # reaches (a cast pointer, a type it parses wrongly), so it stays unresolved
+            continue
         for key in sites[raw]:
-            cands |= by_key.get(key, set())
+            cands |= by_key[key]
         targets = {names[c] for c in cands if c in names} | \
                   {names[alias[c]] for c in cands if c in alias and alias[c] in names}
         # a candidate that is in neither the ELF nor an alias of one of its functions was
