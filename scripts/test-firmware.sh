@@ -218,6 +218,15 @@ static_bound() {
         tail -n 15 "$log" | sed 's/^/      /'
         failed=$((failed+1)); return
     fi
+    # The IR must be of the code the run measured: its build's library must disassemble to
+    # the m4f build's instruction for instruction (else a candidate the IR lacks could be
+    # missed). Same compiler, flags and profile, so they agree; a difference fails the check.
+    local lib=thumbv7em-none-eabihf/release/libnlsubdiv.a
+    if ! cmp -s <(arm-none-eabi-objdump -d "$OUT/cargo-o3/$lib" | sed 1,3d) \
+                <(arm-none-eabi-objdump -d "$OUT/cargo-llvm-ir-o3/$lib" | sed 1,3d); then
+        echo "FAIL  static stack bound — the LLVM IR's library ($OUT/cargo-llvm-ir-o3/$lib) is not the measured one's code"
+        failed=$((failed+1)); return
+    fi
     # The bound is of the ELF the run measured (the stable build); the nightly one checks the
     # prologue method of frame sizes against the compiler's .stack_sizes.
     if python3 firmware/stack_bound.py "$OUT/m4f/harness.elf" --stack-sizes-elf "$elf" --llvm-ir "$ir" \
