@@ -38,7 +38,8 @@ types (an sret parameter marked): every function of that type that any vtable sl
 pointer can hold, a sound over-approximation. An ELF function gets the union over its IR
 call sites; a candidate that is not in ELF was removed by the linker, so nothing points to
 it. A function with indirect sites that is not in the IR (C, newlib, compiler-builtins), or
-whose IR body has no indirect call, stays unresolved, as does every one without IR.ll.
+whose IR body has no indirect call, or one of whose IR calls matches no address-taken
+function's type, stays unresolved, as does every one without IR.ll.
 RESOLVED below overrides by hand, per function, with the reason. An indirect call that is
 reachable from an entry point and not resolved makes that entry point's bound UNKNOWN, never
 0. --drop-type NAME ignores the IR's targets of the functions whose name contains NAME: a
