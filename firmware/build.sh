@@ -2,7 +2,7 @@
 # Builds the cross-architecture harness (firmware/harness/) for one target, with the Rust
 # staticlib for that target, into target/firmware/<target>/harness[.elf].
 #
-#   firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes [opt-level]
+#   firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes|m4f-llvm-ir [opt-level]
 #
 # opt-level (default 3) is the Rust release profile's; each (target, opt-level) has its own
 # cargo target directory under target/firmware/, so repeated runs rebuild nothing.
@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
-target=${1:?usage: firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes [opt-level]}
+target=${1:?usage: firmware/build.sh x86_64|aarch64|m4f|m7|riscv32|m4f-stack-sizes|m4f-llvm-ir [opt-level]}
 opt=${2:-3}
 out=$ROOT/target/firmware/$target
 mkdir -p "$out"
@@ -66,6 +66,17 @@ case "$target" in
         lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-nightly-stack-sizes-o$opt" \
             "-Z emit-stack-sizes" nightly)
         cortex_m "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard" "$lib" ;;
+    m4f-llvm-ir)
+        # The LLVM IR of the m4f build's Rust library, after LTO (its functions are the ELF's,
+        # inlining done), for the static stack bound's resolution of indirect calls by type
+        # (firmware/stack_bound.py --llvm-ir). The same stable compiler, flags and profile as
+        # m4f: --emit only adds an output (of the final crate, which LTO has merged with the
+        # core's). Its own target directory; prints the path of the .ll file.
+        dir=$ROOT/target/firmware/cargo-llvm-ir-o$opt
+        CARGO_PROFILE_RELEASE_OPT_LEVEL="$opt" cargo rustc -q --release --locked -p nlsubdiv-ffi \
+            --target thumbv7em-none-eabihf --target-dir "$dir" --crate-type staticlib \
+            -- --emit=llvm-ir,link >&2
+        ls -t "$dir"/thumbv7em-none-eabihf/release/deps/nlsubdiv-*.ll | head -n 1 ;;
     m7)
         # Cortex-M7 with the double-precision FPU (FPv5-D16): -C target-cpu=cortex-m7 lets LLVM
         # use it for f64; its own target directory, since RUSTFLAGS differ from m4f's.

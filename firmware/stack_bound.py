@@ -6,8 +6,8 @@ this bound covers every path the code has. For each entry point of the harness (
 firmware/stack-bounds.txt) it prints the most bytes of stack below the case's stack pointer
 any path can use, and the deepest path.
 
-    firmware/stack_bound.py ELF [--stack-sizes-elf ELF2] [--run RUN.txt] [--bounds FILE]
-                                [--paths] [--indirect]
+    firmware/stack_bound.py ELF [--stack-sizes-elf ELF2] [--llvm-ir IR.ll] [--run RUN.txt]
+                                [--bounds FILE] [--paths] [--indirect] [--drop-type NAME]
 
 ELF is the harness to bound: the M4F build that scripts/test-firmware.sh runs and measures.
 ELF2 is the same harness with its Rust library built by nightly with -Z emit-stack-sizes
@@ -27,14 +27,30 @@ Where ELF has a .stack_sizes entry, that entry is the frame.
 Call graph. From `arm-none-eabi-objdump -d`: bl, and every branch (b, b.w, bcc.w) whose
 target lies outside the function is an edge (a tail call; the caller's frame is counted too,
 although it was popped: an over-estimate). Indirect calls and branches (blx rN, bx rN other
-than lr, mov pc / ldr pc other than returns) are resolved by RESOLVED below, per function,
-with the reason; one that is reachable from an entry point and not resolved makes that entry
-point's bound UNKNOWN, never 0.
+than lr, mov pc / ldr pc other than returns) are resolved by type from IR.ll, the LLVM IR of
+ELF's Rust library after LTO (`firmware/build.sh m4f-llvm-ir`: the same stable build with
+--emit=llvm-ir added, so its functions are ELF's, inlining done, named by the same mangled
+symbols). An indirect call of the IR (a `dyn Trait` method through its vtable: the passes'
+`exec.run(...)` on `&dyn Executor`, their `&dyn Fn` tasks; a fn pointer: the curve rules)
+can reach every function whose address the IR takes (a use of @f other than as a direct
+callee: vtable constants, stores, arguments) with the call's return type and parameter
+types (an sret parameter marked): every function of that type that any vtable slot or fn
+pointer can hold, a sound over-approximation. An ELF function gets the union over its IR
+call sites; a candidate that is not in ELF was removed by the linker, so nothing points to
+it. A function with indirect sites that is not in the IR (C, newlib, compiler-builtins), or
+whose IR body has no indirect call, or one of whose IR calls matches no address-taken
+function's type, stays unresolved, as does every one without IR.ll.
+RESOLVED below overrides by hand, per function, with the reason. An indirect call that is
+reachable from an entry point and not resolved makes that entry point's bound UNKNOWN, never
+0. --drop-type NAME ignores the IR's targets of the functions whose name contains NAME: a
+bound that then falls below a painted mark shows the resolution is what covers that path
+(curve subdivide: 3,656 -> 1,080 bytes, below its mark of 3,064, with NAME run_levels).
 
 Worst path. worst(f) = frame(f) + max over callees c of worst(c), memoised (each function is
 visited once: linear in the size of the graph). A cycle on the call graph is recursion: it is
 reported by name and makes the bound of every entry point that reaches it UNKNOWN, unless it
-is a direct recursion bounded by construction, listed in BOUNDED_RECURSION with its depth.
+is a direct recursion bounded by construction, listed in BOUNDED_RECURSION with its depth, or
+a mutual one walked at most once, listed in BOUNDED_CYCLES.
 
 The harness's part. A case's mark also holds what the harness calls between the painting and
 the measurement (fw_case_begin_at, the hashing and checks, the soft-float operations of the
@@ -69,9 +85,10 @@ GROUP_ROOTS = [
 # after the measurement), so they are not part of any entry point's bound.
 OUTSIDE_WINDOW = {"snprintf", "printf", "puts", "putchar", "fw_case_end", "fw_meshes_init", "fw_fail", "fw_note_pass"}
 
-# Indirect calls and branches resolved by hand: function -> (targets, why). Empty: none of the
-# functions reachable from the entry points calls through a pointer (no trait objects, no
-# callbacks, no formatting: the panic handler of ffi/src/lib.rs aborts without formatting).
+# Indirect calls and branches resolved by hand: function -> (targets, why); these take the
+# place of the LLVM IR's resolution by type (--llvm-ir) for the functions they name. The IR
+# cannot see the C side: the only call from the library into a C pointer is the host
+# executor's, and the harness sets none.
 RESOLVED = {
     "<nlsubdiv::executor::HostExecutor as nlsubdiv::exec::Executor>::run": (
         [], "the host's run callback (nls_executor.run): the harness sets no executor, so the "
@@ -87,6 +104,15 @@ BOUNDED_RECURSION = {
     "System>::vcycle": (17, "the multigrid V-cycle (seed 001, the differential solve) recurses on "
                             "work.split_last_mut(): one level fewer per call, and work holds at most "
                             "MAX_HIERARCHY = MAX_LEVELS + 1 = 17 levels (src/differential/solve/mod.rs)"),
+}
+
+# Mutual recursion bounded by construction: caller -> (callee, why): the callee, called from
+# caller, cannot call caller again, so that edge leads to a copy of the callee without its
+# edge back to caller (the cycle is walked at most once: callee > caller > callee).
+BOUNDED_CYCLES = {
+    "_stat": ("_swiopen", "newlib's semihosting open (libgloss/arm): _swiopen calls _stat only when its "
+                          "flags hold O_CREAT|O_EXCL (and.w r3, r6, #0xa00; cmp; beq), and _stat calls "
+                          "_swiopen with flags 0 (movs r1, #0): panics reach it through abort > _exit"),
 }
 
 CONDS = "eq|ne|cs|hs|cc|lo|mi|pl|vs|vc|hi|ls|ge|lt|gt|le|al"
@@ -111,7 +137,7 @@ def elf_sections(data):
         return data[start:data.index(b"\0", start)].decode()
 
     sections = {name_at(strtab, h[0]): (h[3], h[4], h[5], h[1], h[2]) for h in headers}
-    funcs = {}
+    funcs, names_all = {}, {}
     for h in headers:
         if h[1] != 2:  # SHT_SYMTAB
             continue
@@ -120,6 +146,8 @@ def elf_sections(data):
             st_name, value, size, info, _, _ = struct.unpack_from("<IIIBBH", data, h[4] + i * 16)
             if info & 0xF == 2:  # STT_FUNC
                 funcs.setdefault(value & ~1, (name_at(names, st_name), size))
+                names_all.setdefault(name_at(names, st_name), value & ~1)
+    elf_sections.names = names_all  # every function symbol (aliases too) -> address
     return sections, funcs
 
 
@@ -199,7 +227,7 @@ def disassemble(elf, funcs):
         if h:
             addr = int(h.group(1), 16)
             if addr in funcs:
-                cur = {"name": h.group(2), "start": addr, "end": addr + max(funcs[addr][1], 2),
+                cur = {"name": h.group(2), "raw": funcs[addr][0], "start": addr, "end": addr + max(funcs[addr][1], 2),
                        "frame": 0, "dynamic": False, "callees": set(), "indirect": [],
                        "rust": funcs[addr][0].startswith(("_R", "_ZN"))}
                 info[addr] = cur
@@ -246,7 +274,133 @@ def disassemble(elf, funcs):
     return info
 
 
-def analyse(info, sizes):
+IR_NAME = r'(?:"(?:[^"\\]|\\.)*"|[-\w.$]+)'
+IR_DEFINE = re.compile(rf'^(define|declare)\b[^@]*@({IR_NAME})\(')
+IR_ALIAS = re.compile(rf'^@({IR_NAME}) = .*\balias\b.*, ptr @({IR_NAME})\s*$')
+IR_INDIRECT = re.compile(r'\bcall\b[^@]*?\s(%[-\w.$]+)\(')
+IR_GLOBAL = re.compile(rf'@({IR_NAME})(\(?)')
+
+
+def ir_types(text):
+    """The type of each argument of an LLVM argument or parameter list (the text between the
+    parentheses): the first type of each comma-separated item, brackets kept whole."""
+    out, depth, item = [], 0, ""
+    for ch in text + ",":
+        if ch in "({[<":
+            depth += 1
+        elif ch in ")}]>":
+            depth -= 1
+        if ch == "," and depth == 0:
+            item = item.strip()
+            if item and item != "...":
+                m = re.match(r"^(\{.*?\}|\[.*?\]|<.*?>|\S+)", item)
+                # sret is the ABI's return slot: a call passes it where the callee has it
+                out.append(m.group(1) + (" sret" if " sret(" in item else ""))
+            elif item == "...":
+                out.append("...")
+            item = ""
+        else:
+            item += ch
+    return tuple(out)
+
+
+def ir_return(before):
+    """The return type that ends the text before a function's name (define, declare, call)."""
+    before = before.rstrip()
+    if before.endswith(("}", "]", ">")):
+        depth = 0
+        for i in range(len(before) - 1, -1, -1):
+            depth += before[i] in "}]>"
+            depth -= before[i] in "{[<"
+            if depth == 0:
+                return before[i:]
+    return before.split()[-1] if before.split() else ""
+
+
+def balanced(line, start):
+    """The text between the parenthesis at line[start] and its match."""
+    depth = 0
+    for i in range(start, len(line)):
+        depth += line[i] == "("
+        depth -= line[i] == ")"
+        if depth == 0:
+            return line[start + 1:i]
+    return line[start + 1:]
+
+
+def resolve_by_type(ll_path, info, names):
+    """Indirect calls resolved from the LLVM IR of the same Rust library build (after LTO: the
+    functions of the IR are those of the ELF, inlining done). The targets of an indirect call
+    of the IR (a `dyn Trait` method through its vtable, a `&dyn Fn` task, a fn pointer) are
+    every function whose address the IR takes (any use of @f other than as a direct callee:
+    vtable constants, stores, arguments) and whose parameter types are those of the call: a
+    sound over-approximation of what any vtable slot or fn pointer of that type can hold.
+    ELF function -> (target addresses, candidate names, why) for every Rust function of ELF
+    that has indirect sites; a function not in the IR, or with no indirect call in its IR
+    body, is left unresolved (UNKNOWN)."""
+    unquote = lambda n: n[1:-1] if n.startswith('"') else n
+    params, sites, taken, alias = {}, {}, set(), {}
+    cur = None
+    with open(ll_path, encoding="utf-8") as fh:
+        for line in fh:
+            m = IR_DEFINE.match(line)
+            if m:
+                name = unquote(m.group(2))
+                at = line.index("@" + m.group(2) + "(")
+                params[name] = (ir_return(line[:at]),) + ir_types(balanced(line, m.end() - 1))
+                if m.group(1) == "define":
+                    cur = name
+                    sites[cur] = []
+                continue
+            if line.startswith("}"):
+                cur = None
+                continue
+            m = IR_ALIAS.match(line)
+            if m:
+                alias[unquote(m.group(1))] = unquote(m.group(2))
+            if line.startswith(("!", "attributes ", ";")):
+                continue
+            for c in IR_INDIRECT.finditer(line) if cur else ():
+                sites[cur].append((ir_return(line[:c.start(1)]),) + ir_types(balanced(line, c.end() - 1)))
+            # A global followed by "(" right after "call ..." is a direct callee; any other use
+            # of a function's name takes its address.
+            for g in IR_GLOBAL.finditer(line):
+                if not g.group(2) or not re.search(r"\bcall\b[^@]*$", line[:g.start()]):
+                    taken.add(unquote(g.group(1)))
+    for a, b in alias.items():
+        params.setdefault(a, params.get(b))
+    by_key = {}
+    for f in taken:
+        if f in params and params[f] is not None:
+            by_key.setdefault(params[f], set()).add(f)
+    out = {}
+    for f in info.values():
+        if not f["indirect"]:
+            continue
+        raw = f["raw"]
+        if raw not in sites:
+            continue  # not a function of the Rust library's IR: stays unresolved
+        if not sites[raw]:
+            continue  # an indirect branch the IR does not have (codegen's own): unresolved
+        cands, empty = set(), [key for key in sites[raw] if not by_key.get(key)]
+        if empty:
+            # a call whose type no address-taken function has: the method cannot tell what it
+            # reaches (a cast pointer, a type it parses wrongly), so it stays unresolved
+            continue
+        for key in sites[raw]:
+            cands |= by_key[key]
+        targets = {names[c] for c in cands if c in names} | \
+                  {names[alias[c]] for c in cands if c in alias and alias[c] in names}
+        # a candidate that is in neither the ELF nor an alias of one of its functions was
+        # removed by the linker (--gc-sections): nothing references it, so no pointer to it
+        # exists at run time.
+        out[f["start"]] = (targets, sorted(cands),
+                           f"{len(sites[raw])} indirect call(s) in the IR, {len(cands)} candidate(s) "
+                           f"of their types, {len(targets)} in the ELF")
+    return out
+
+
+def analyse(info, sizes, by_type=None, drop=None):
     """Per function: (worst bytes or None, deepest path as addresses, why unknown)."""
     by_name = {f["name"]: a for a, f in info.items()}
     for name, (targets, _why) in RESOLVED.items():
@@ -254,6 +408,22 @@ def analyse(info, sizes):
             f = info[by_name[name]]
             f["callees"] |= {by_name[t] for t in targets if t in by_name}
             f["indirect"] = []
+    # the LLVM IR's resolution (resolve_by_type), where RESOLVED says nothing; --drop-type
+    # removes the candidates of the functions it names (a check that the resolution matters)
+    hand = {by_name[n] for n in RESOLVED if n in by_name}
+    for a, (targets, _cands, _why) in (by_type or {}).items():
+        if a in hand:
+            continue
+        f = info[a]
+        if not (drop and drop in f["name"]):
+            f["callees"] |= targets
+        f["indirect"] = []
+    for caller, (callee, _why) in BOUNDED_CYCLES.items():
+        if caller in by_name and callee in by_name:
+            a, b = by_name[caller], by_name[callee]
+            clone = dict(info[b], name=f"{callee} (called by {caller})", callees=info[b]["callees"] - {a})
+            info[-b] = clone  # a negative address: no .stack_sizes entry, the prologue frame
+            info[a]["callees"] = info[a]["callees"] - {b} | {-b}
     sys.setrecursionlimit(100000)
     memo, onstack = {}, []
     cycles = []
@@ -329,6 +499,10 @@ def main():
     ap.add_argument("--bounds", help="entry -> ceiling of the static bound (tab-separated)")
     ap.add_argument("--entries", default="firmware/stack-bounds.txt",
                     help="the entry points (first column of this file)")
+    ap.add_argument("--llvm-ir", help="the LLVM IR of the Rust library of ELF, after LTO "
+                    "(firmware/build.sh m4f-llvm-ir): resolves its indirect calls by type")
+    ap.add_argument("--drop-type", metavar="NAME", help="a check of the check: ignore the IR's "
+                    "targets of the indirect calls of the functions whose name contains NAME")
     ap.add_argument("--paths", action="store_true", help="print each deepest path in full")
     ap.add_argument("--indirect", action="store_true",
                     help="list every unresolved indirect call reachable from the entry points")
@@ -360,7 +534,8 @@ def main():
         sizes = stack_sizes(data, sections)
         info = disassemble(args.elf, funcs)
         sizes = {a: v for a, v in sizes.items() if a in info}
-    worst, by_name, cycles = analyse(info, sizes)
+    by_type = resolve_by_type(args.llvm_ir, info, elf_sections.names) if args.llvm_ir else {}
+    worst, by_name, cycles = analyse(info, sizes, by_type, args.drop_type)
 
     def named(name):
         if name not in by_name:
@@ -441,10 +616,17 @@ def main():
         for a in sorted(seen, key=lambda a: info[a]["name"]):
             for site in info[a]["indirect"]:
                 print(f"indirect: {info[a]['name']}: {site}")
+    if args.indirect:
+        for a in sorted(by_type, key=lambda a: info[a]["name"]):
+            targets, cands, why = by_type[a]
+            print(f"by type: {info[a]['name']}: {why}: "
+                  + ", ".join(sorted(info[t]["name"] for t in targets if t in info)))
     for c in sorted(set(cycles)):
         print(f"recursion (unbounded, on no bounded entry point's path): {c}")
     for part, (depth, why) in BOUNDED_RECURSION.items():
         print(f"bounded recursion: {part}, at most {depth} activations: {why}")
+    for caller, (callee, why) in BOUNDED_CYCLES.items():
+        print(f"bounded recursion: {callee} > {caller} > {callee}, once: {why}")
     for p in problems:
         print(f"problem: {p}")
     print(f"stack_bound: {len(entries) - len(unknowns)} entry points bounded, {len(unknowns)} UNKNOWN, "

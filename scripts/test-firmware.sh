@@ -192,7 +192,7 @@ stack_bounds() {
 # firmware/stack-static-bounds.txt (UNKNOWN there: an entry point the analysis cannot bound
 # yet, listed as such). SKIPPED, visibly, without nightly or its thumbv7em library.
 static_bound() {
-    local log=$OUT/m4f-stack-sizes/build.log table=$OUT/stack-static-m4f.md elf lacking=() summary
+    local log=$OUT/m4f-stack-sizes/build.log table=$OUT/stack-static-m4f.md elf ir lacking=() summary
     [ "$m4f_ok" -eq 1 ] || return 0
     rustup run nightly rustc --version >/dev/null 2>&1 || lacking+=("the nightly toolchain")
     if [ ${#lacking[@]} -eq 0 ]; then
@@ -212,9 +212,24 @@ static_bound() {
         tail -n 15 "$log" | sed 's/^/      /'
         failed=$((failed+1)); return
     fi
+    # The LLVM IR of the measured build's Rust library: the indirect calls resolved by type.
+    if ! ir=$(firmware/build.sh m4f-llvm-ir 2>>"$log"); then
+        echo "FAIL  static stack bound — LLVM IR build failed; last lines of $log:"
+        tail -n 15 "$log" | sed 's/^/      /'
+        failed=$((failed+1)); return
+    fi
+    # The IR must be of the code the run measured: its build's library must disassemble to
+    # the m4f build's instruction for instruction (else a candidate the IR lacks could be
+    # missed). Same compiler, flags and profile, so they agree; a difference fails the check.
+    local lib=thumbv7em-none-eabihf/release/libnlsubdiv.a
+    if ! cmp -s <(arm-none-eabi-objdump -d "$OUT/cargo-o3/$lib" | sed 1,3d) \
+                <(arm-none-eabi-objdump -d "$OUT/cargo-llvm-ir-o3/$lib" | sed 1,3d); then
+        echo "FAIL  static stack bound — the LLVM IR's library ($OUT/cargo-llvm-ir-o3/$lib) is not the measured one's code"
+        failed=$((failed+1)); return
+    fi
     # The bound is of the ELF the run measured (the stable build); the nightly one checks the
     # prologue method of frame sizes against the compiler's .stack_sizes.
-    if python3 firmware/stack_bound.py "$OUT/m4f/harness.elf" --stack-sizes-elf "$elf" \
+    if python3 firmware/stack_bound.py "$OUT/m4f/harness.elf" --stack-sizes-elf "$elf" --llvm-ir "$ir" \
         --run "$OUT/m4f/run.txt" --bounds firmware/stack-static-bounds.txt >"$table" 2>&1; then
         summary=$(tail -n 1 "$table")
         echo "PASS  static stack bound: ${summary#stack_bound: }; each at least the measured mark ($table)"
