@@ -1351,9 +1351,10 @@ mod tests {
         };
         assert_eq!(s, Status::Ok);
         // Points: two candidates per corner (4 corners), and per vertex the kept form's
-        // centre (4), then the fold guard's trust and the form's radius per vertex and the
-        // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point).
-        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 4));
+        // centre (4), then the fold guard's trust and the form's radius per vertex, the
+        // candidates' slot per corner and the guard's F4-angle term per edge, room for one
+        // per corner (⌈(8 + 4 + 4) / 3⌉ = 6: three values to a point).
+        assert_eq!((plan.scratch_u32, plan.scratch_points), (28, 8 + 4 + 6));
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         let (mut op, mut oo, mut oi) = (vec![0.0; 27], vec![0u32; 5], vec![0u32; 16]);
         let sc = nls_scratch {

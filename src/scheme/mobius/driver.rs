@@ -48,6 +48,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// Per vertex: non-zero where a boundary loop ends as an open curve (a corner of a
     /// sharp feature, `crease.rs`); empty without sharp features (`boundary.rs`).
     pub(super) corners: &'o [u32],
+    /// Per edge: the fold guard's F4-angle term, between the two passes of
+    /// [`Driver::trust_edges`]; empty without the guard's scratch.
+    pub(super) edge_trust: &'o mut [f64],
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -87,6 +90,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             guard: opts.guard,
             exec,
             corners: &[],
+            edge_trust: &mut [],
         }
     }
 

@@ -35,7 +35,7 @@ use arrayvec::ArrayVec;
 use super::driver::Driver;
 use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
-use super::slots::first_slot;
+use super::slots::{first_slot, slot_of};
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
@@ -110,31 +110,95 @@ impl Driver<'_, '_, '_, '_> {
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
     pub(super) fn trust_edges(&mut self) -> Result<()> {
+        // Two passes over disjoint output ranges instead of one serial pass that lowers both
+        // ends of each edge: the F4-angle term of every edge into `edge_trust` (edge ranges),
+        // then every interior star's trust lowered to the least term of its spokes (vertex
+        // ranges). An edge with a boundary end (`EXEMPT`) or a missing candidate gets the
+        // neutral 1. Each trust is the least of the same terms, and `f64::min` of values
+        // below 1 (never NaN, never −0: `ramp`) does not depend on their order, so the trust
+        // is the same bits for every chunking.
         let topo = self.topo;
-        for e in 0..topo.num_edges() as u32 {
-            let h = topo.edge_half_edge(e)?;
-            let t = topo.twin(h)?;
-            if t == NONE {
-                continue;
-            }
-            let (ca, cb) = (
-                get(self.edge_c, self.slot(h)?)?,
-                get(self.edge_c, self.slot(t)?)?,
-            );
-            if !present(&ca) || !present(&cb) {
-                continue;
-            }
-            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-            let (ta, tb) = (get(self.trust, a as usize)?, get(self.trust, b as usize)?);
-            if ta > 1.0 || tb > 1.0 {
-                continue; // a boundary star (`EXEMPT`)
-            }
-            let g = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
-            if g < 1.0 {
-                set(self.trust, a as usize, ta.min(g))?;
-                set(self.trust, b as usize, tb.min(g))?;
-            }
+        let ne = topo.num_edges();
+        let g_all = core::mem::take(&mut self.edge_trust);
+        let (edge_c, trust) = (&*self.edge_c, &*self.trust);
+        let slots = self.slots;
+        let slot = |h: u32| -> Result<usize> { slot_of(slots, h) };
+        let k = chunk_count(self.exec, ne);
+        let mut edges = ArrayVec::<(usize, &mut [f64]), MAX_CHUNKS>::new();
+        let mut rest: &mut [f64] = g_all.get_mut(..ne).ok_or(internal())?;
+        for i in 0..k {
+            let (e0, e1) = crate::exec::chunk_range(ne, k, i);
+            let out = crate::exec::take_front(&mut rest, e1 - e0)?;
+            edges.try_push((e0, out)).map_err(|_| internal())?;
         }
+        parts(
+            self.exec,
+            &mut edges,
+            |p| p.1.len(),
+            |(e0, out), _| {
+                for (i, ge) in out.iter_mut().enumerate() {
+                    let e = (*e0 + i) as u32;
+                    *ge = 1.0;
+                    let h = topo.edge_half_edge(e)?;
+                    let t = topo.twin(h)?;
+                    if t == NONE {
+                        continue;
+                    }
+                    let (ca, cb) = (get(edge_c, slot(h)?)?, get(edge_c, slot(t)?)?);
+                    if !present(&ca) || !present(&cb) {
+                        continue;
+                    }
+                    let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                    if get(trust, a as usize)? > 1.0 || get(trust, b as usize)? > 1.0 {
+                        continue; // a boundary star (`EXEMPT`)
+                    }
+                    *ge = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
+                }
+                Ok(())
+            },
+        )?;
+        drop(edges);
+        let g: &[f64] = g_all.get(..ne).ok_or(internal())?;
+        let nv = topo.num_vertices();
+        let r = topo.raw();
+        let k = chunk_count(self.exec, nv);
+        let mut verts = ArrayVec::<(usize, &mut [f64]), MAX_CHUNKS>::new();
+        let mut rest: &mut [f64] = self.trust.get_mut(..nv).ok_or(internal())?;
+        for i in 0..k {
+            let (v0, v1) = crate::exec::chunk_range(nv, k, i);
+            let out = crate::exec::take_front(&mut rest, v1 - v0)?;
+            verts.try_push((v0, out)).map_err(|_| internal())?;
+        }
+        parts(
+            self.exec,
+            &mut verts,
+            |p| p.1.len(),
+            |(v0, out), _| {
+                for (i, tv) in out.iter_mut().enumerate() {
+                    let first = get(r.vert_he, *v0 + i)?;
+                    if *tv > 1.0 || first == NONE {
+                        continue;
+                    }
+                    // Every interior edge at `v` has a half-edge leaving `v`: the outgoing
+                    // half-edges of the star (as `slots::write` walks them) meet them all.
+                    let mut cur = first;
+                    for _ in 0..get(r.valence, *v0 + i)? {
+                        let ge = get(g, get(r.edge_of, cur as usize)? as usize)?;
+                        if ge < 1.0 {
+                            *tv = tv.min(ge);
+                        }
+                        let (_, prev, _) = r.next_prev_face(cur)?;
+                        cur = get(r.twin, prev as usize)?;
+                        if cur == NONE || cur == first {
+                            break;
+                        }
+                    }
+                }
+                Ok(())
+            },
+        )?;
+        drop(verts);
+        self.edge_trust = g_all;
         Ok(())
     }
 
