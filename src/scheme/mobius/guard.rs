@@ -106,14 +106,14 @@ impl Part<'_, '_, '_> {
 impl Driver<'_, '_, '_, '_> {
     /// Step 3 (module docs): lowers the trust of both end stars of every interior edge
     /// between two interior stars to the F4-angle term of the blend of their candidates
-    /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
+    /// ([`f4_trust`]; no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
     pub(super) fn trust_edges(&mut self) -> Result<()> {
-        // Two passes over disjoint output ranges instead of one serial pass that lowers both
-        // ends of each edge: the F4-angle term of every edge into `edge_trust` (edge ranges),
-        // then every interior star's trust lowered to the least term of its spokes (vertex
-        // ranges). An edge with a boundary end (`EXEMPT`) or a missing candidate gets the
+        // Two passes over disjoint output ranges, so that both run on the executor's threads
+        // (a pass that lowers both ends of each edge would write scattered vertices): the
+        // F4-angle term of every edge into `edge_trust` (edge ranges), then every interior
+        // star's trust lowered to the least term of its spokes (vertex ranges). An edge with a boundary end (`EXEMPT`) or a missing candidate gets the
         // neutral 1. Each trust is the least of the same terms, and `f64::min` of values
         // below 1 (never NaN, never −0: `ramp`) does not depend on their order, so the trust
         // is the same bits for every chunking.
