@@ -599,8 +599,9 @@ static void test_bad_arguments(void) {
         CHECK(plan.scratch_u32 == 777 && plan.scratch_points == 777);
         /* the pyramid: 6 vertices, 20 corners; Möbius: two candidates per corner, per
          * vertex the kept canonical form's centre (6 points), then the fold guard's trust
-         * and the form's radius per vertex and the candidates' slot per corner, three
-         * values to a point (ceil(32 / 3) = 11 points); the star workspace: four arrays of
+         * and the form's radius per vertex, the candidates' slot per corner and the guard's
+         * F4-angle term per edge (room for one per corner), three values to a point
+         * (ceil(52 / 3) = 18 points); the star workspace: four arrays of
          * the largest valence (the apex's, 5) for each chunk, at most one per vertex (6);
          * u32: the topology (su) and the spoke workspace, four entries per spoke of the
          * largest valence for each chunk */
@@ -608,7 +609,7 @@ static void test_bad_arguments(void) {
         CHECK(su == 4 * 20 + 3 * 6);
         CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS, 1, MESH, x.su, su, &plan, NULL),
                      NLS_STATUS_OK);
-        CHECK(plan.scratch_u32 == su + 4 * 5 * 6 && plan.scratch_points == 40 + 6 + 11 + 4 * 5 * 6);
+        CHECK(plan.scratch_u32 == su + 4 * 5 * 6 && plan.scratch_points == 40 + 6 + 18 + 4 * 5 * 6);
         CHECK_STATUS(flat_plan(NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_STRICT, 1, MESH, x.su, su, &plan, NULL),
                      NLS_STATUS_OK);
         CHECK(plan.scratch_points == 0);

@@ -1367,14 +1367,15 @@ mod tests {
         };
         assert_eq!(s, Status::Ok);
         // Points: two candidates per corner (4 corners), and per vertex the kept form's
-        // centre (4), then the fold guard's trust and the form's radius per vertex and the
-        // candidates' slot per corner (⌈(8 + 4) / 3⌉ = 4: three values to a point); the star
-        // workspace: four arrays of the largest valence (2) for each chunk, at most one per
-        // vertex (4). `u32`: the topology (28) and the spoke workspace, four entries per
-        // spoke of the largest valence (2) for each chunk (4).
+        // centre (4), then the fold guard's trust and the form's radius per vertex, the
+        // candidates' slot per corner and the guard's F4-angle term per edge, room for one
+        // per corner (⌈(8 + 4 + 4) / 3⌉ = 6: three values to a point); the star workspace:
+        // four arrays of the largest valence (2) for each chunk, at most one per vertex (4).
+        // `u32`: the topology (28) and the spoke workspace, four entries per spoke of the
+        // largest valence (2) for each chunk (4).
         assert_eq!(
             (plan.scratch_u32, plan.scratch_points),
-            (28 + 4 * 2 * 4, 8 + 4 + 4 + 4 * 2 * 4)
+            (28 + 4 * 2 * 4, 8 + 4 + 6 + 4 * 2 * 4)
         );
         let mut pts = vec![0.0; 3 * plan.scratch_points];
         scratch.resize(plan.scratch_u32, 0);

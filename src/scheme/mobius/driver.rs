@@ -54,6 +54,9 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// The spoke workspace (`workspace.rs`): per chunk, the spokes of one star
     /// ([`super::form::Spokes`]).
     pub(super) spoke_work: &'o mut [u32],
+    /// Per edge: the fold guard's F4-angle term, between the two passes of
+    /// [`Driver::trust_edges`]; empty without the guard's scratch.
+    pub(super) edge_trust: &'o mut [f64],
 }
 
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
@@ -95,6 +98,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             corners: &[],
             work: &mut [],
             spoke_work: &mut [],
+            edge_trust: &mut [],
         }
     }
 

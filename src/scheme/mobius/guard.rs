@@ -35,13 +35,13 @@ use arrayvec::ArrayVec;
 use super::driver::Driver;
 use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
-use super::slots::first_slot;
+use super::slots::{first_slot, slot_of};
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
-use crate::exec::{chunk_count, parts, Tally, MAX_CHUNKS};
+use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
 use crate::point::Point;
@@ -106,35 +106,81 @@ impl Part<'_, '_, '_> {
 impl Driver<'_, '_, '_, '_> {
     /// Step 3 (module docs): lowers the trust of both end stars of every interior edge
     /// between two interior stars to the F4-angle term of the blend of their candidates
-    /// ([`f4_trust`]; one pass over the edges, no cross-ratio formed).
+    /// ([`f4_trust`]; no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
     pub(super) fn trust_edges(&mut self) -> Result<()> {
+        // Two passes over disjoint output ranges, so that both run on the executor's threads
+        // (a pass that lowers both ends of each edge would write scattered vertices): the
+        // F4-angle term of every edge into `edge_trust` (edge ranges), then every interior
+        // star's trust lowered to the least term of its spokes (vertex ranges). An edge with
+        // a boundary end (`EXEMPT`) or a missing candidate gets the neutral 1. Each trust is the least of the same terms, and `f64::min` of values
+        // below 1 (never NaN, never −0: `ramp`) does not depend on their order, so the trust
+        // is the same bits for every chunking.
         let topo = self.topo;
-        for e in 0..topo.num_edges() as u32 {
-            let h = topo.edge_half_edge(e)?;
-            let t = topo.twin(h)?;
-            if t == NONE {
-                continue;
+        let ne = topo.num_edges();
+        let g_all = core::mem::take(&mut self.edge_trust);
+        let (edge_c, trust) = (&*self.edge_c, &*self.trust);
+        let slots = self.slots;
+        let slot = |h: u32| -> Result<usize> { slot_of(slots, h) };
+        let edge_terms = |e0: usize, out: &mut [f64]| -> Result<()> {
+            for (i, ge) in out.iter_mut().enumerate() {
+                let e = (e0 + i) as u32;
+                *ge = 1.0;
+                let h = topo.edge_half_edge(e)?;
+                let t = topo.twin(h)?;
+                if t == NONE {
+                    continue;
+                }
+                let (ca, cb) = (get(edge_c, slot(h)?)?, get(edge_c, slot(t)?)?);
+                if !present(&ca) || !present(&cb) {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                if get(trust, a as usize)? > 1.0 || get(trust, b as usize)? > 1.0 {
+                    continue; // a boundary star (`EXEMPT`)
+                }
+                *ge = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
             }
-            let (ca, cb) = (
-                get(self.edge_c, self.slot(h)?)?,
-                get(self.edge_c, self.slot(t)?)?,
-            );
-            if !present(&ca) || !present(&cb) {
-                continue;
+            Ok(())
+        };
+        f64_ranges(
+            self.exec,
+            g_all.get_mut(..ne).ok_or(internal())?,
+            &edge_terms,
+        )?;
+        let g: &[f64] = g_all.get(..ne).ok_or(internal())?;
+        let nv = topo.num_vertices();
+        let r = topo.raw();
+        let least_terms = |v0: usize, out: &mut [f64]| -> Result<()> {
+            for (i, tv) in out.iter_mut().enumerate() {
+                let first = get(r.vert_he, v0 + i)?;
+                if *tv > 1.0 || first == NONE {
+                    continue;
+                }
+                // Every interior edge at `v` has a half-edge leaving `v`: the outgoing
+                // half-edges of the star (as `slots::write` walks them) meet them all.
+                let mut cur = first;
+                for _ in 0..get(r.valence, v0 + i)? {
+                    let ge = get(g, get(r.edge_of, cur as usize)? as usize)?;
+                    if ge < 1.0 {
+                        *tv = tv.min(ge);
+                    }
+                    let (_, prev, _) = r.next_prev_face(cur)?;
+                    cur = get(r.twin, prev as usize)?;
+                    if cur == NONE || cur == first {
+                        break;
+                    }
+                }
             }
-            let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-            let (ta, tb) = (get(self.trust, a as usize)?, get(self.trust, b as usize)?);
-            if ta > 1.0 || tb > 1.0 {
-                continue; // a boundary star (`EXEMPT`)
-            }
-            let g = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
-            if g < 1.0 {
-                set(self.trust, a as usize, ta.min(g))?;
-                set(self.trust, b as usize, tb.min(g))?;
-            }
-        }
+            Ok(())
+        };
+        f64_ranges(
+            self.exec,
+            self.trust.get_mut(..nv).ok_or(internal())?,
+            &least_terms,
+        )?;
+        self.edge_trust = g_all;
         Ok(())
     }
 
@@ -319,3 +365,37 @@ struct Guarded<'a, 'm, 's> {
 
 /// The work of one vertex range of the guard's re-evaluation.
 type GuardedFn<'f> = dyn Fn(&mut Guarded<'_, '_, '_>, &mut Tally) -> Result<()> + Sync + 'f;
+
+/// The work of one range of an `f64` pass: its first index and its values.
+type F64Fn<'f> = dyn Fn(usize, &mut [f64]) -> Result<()> + Sync + 'f;
+
+/// Runs `f(first, range)` over the disjoint ranges of `out` that `exec` asks for
+/// ([`crate::exec::chunk_range`]); one range runs inline.
+fn f64_ranges(exec: &dyn Executor, out: &mut [f64], f: &F64Fn<'_>) -> Result<()> {
+    let k = chunk_count(exec, out.len());
+    if k <= 1 {
+        return f(0, out);
+    }
+    split_f64_ranges(exec, out, k, f)
+}
+
+/// [`f64_ranges`] in `k ≥ 2` ranges (out of line: the serial path keeps a small stack frame,
+/// `docs/firmware.md`).
+#[inline(never)]
+fn split_f64_ranges(exec: &dyn Executor, out: &mut [f64], k: usize, f: &F64Fn<'_>) -> Result<()> {
+    let n = out.len();
+    let mut rest = out;
+    let mut ranges = ArrayVec::<(usize, &mut [f64]), MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (a, b) = chunk_range(n, k, i);
+        let range = take_front(&mut rest, b - a)?;
+        ranges.try_push((a, range)).map_err(|_| internal())?;
+    }
+    parts(
+        exec,
+        &mut ranges,
+        |p| p.1.len(),
+        |(a, range), _| f(*a, range),
+    )?;
+    Ok(())
+}

@@ -130,14 +130,16 @@ impl Default for MobiusReport {
 /// The candidate points one step needs on a level of `num_vertices` vertices and
 /// `num_corners` corners (= half-edges): an edge candidate and a face candidate per
 /// half-edge, then per vertex the centre of its canonical form (a point), then per vertex
-/// the fold guard's trust and the form's radius and per half-edge its candidates' slot
-/// (`slots.rs`), `f64` values three to a point.
+/// the fold guard's trust and the form's radius, per half-edge its candidates' slot
+/// (`slots.rs`) and per edge (at most one per half-edge) the guard's F4-angle term
+/// (`guard.rs`), `f64` values three to a point.
 ///
 /// # Errors
 /// [`Status::SizeOverflow`].
 pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Result<usize> {
     num_vertices
         .checked_mul(2)
+        .and_then(|f| f.checked_add(num_corners))
         .and_then(|f| f.checked_add(num_corners))
         .and_then(|f| f.checked_add(2))
         .map(|f| f / 3)
@@ -217,13 +219,15 @@ pub(crate) fn step(
         .split_at_mut_checked(nv)
         .ok_or(internal())?;
     let (radius, rest) = rest.split_at_mut_checked(nv).ok_or(internal())?;
-    let slot_map = rest.get_mut(..nh).ok_or(internal())?;
+    let (slot_map, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
+    let edge_trust = rest.get_mut(..topo.num_edges()).ok_or(internal())?;
     slots::write(topo, slot_map)?;
     let form = (trust, centre, radius);
     let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
     d.work = work;
     d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
+    d.edge_trust = edge_trust;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the
     // optimiser removes it and the linker the driver.
