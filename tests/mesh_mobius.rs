@@ -586,6 +586,17 @@ fn mobius_levels_equal_repeated_steps() {
                     .unwrap_err();
                     assert_eq!((e.status, e.needed), (Status::BufferTooSmall, sp.len()));
                 }
+                // One `u32` too few (the spoke workspace is its last part) likewise.
+                if let Some(short) = su.len().checked_sub(1) {
+                    let e = scheme::subdivide(
+                        m.view(),
+                        &opts,
+                        Scratch::new(&mut su[..short], &mut sp),
+                        &mut MeshOut::new(&mut out.positions, &mut out.offsets, &mut out.indices),
+                    )
+                    .unwrap_err();
+                    assert_eq!((e.status, e.needed), (Status::BufferTooSmall, su.len()));
+                }
             }
         }
     }
