@@ -5,9 +5,12 @@
 //! a Möbius step does not grow with the valence cap (docs/firmware.md, "Stack").
 //!
 //! Each chunk of the vertex pass owns [`STAR_ARRAYS`] arrays of the level's largest valence;
-//! a pass has at most [`crate::exec::MAX_CHUNKS`] chunks and never more than the level has
-//! vertices ([`crate::exec::chunk_count`]), so a small mesh's workspace is small.
-//! [`workspace_points`] is what the scratch-size queries add for it. The arrays are scratch,
+//! each chunk of the face blends, the F4 points and sort keys of its largest face's
+//! face-point chain (seed 000 §4.4.3) in the same share; a pass has at most
+//! [`crate::exec::MAX_CHUNKS`] chunks and never more than it has elements
+//! ([`crate::exec::chunk_count`]), so a small mesh's workspace is small.
+//! [`workspace_points`] is what the scratch-size queries add for it, and [`spoke_u32s`] the
+//! spoke workspace of the `u32` scratch (a star's spokes, per chunk). The arrays are scratch,
 //! overwritten star by star: a rule writes every entry it reads, so no value depends on the
 //! scratch's contents or on the chunking.
 
@@ -19,7 +22,7 @@ use crate::point::Point;
 use super::form::SPOKE_U32S;
 
 /// The per-star arrays one chunk holds: the tangent polygon of the star's canonical form
-/// (the last, [`super::vertex_pass::Part::take_tangents`]; seed 000 §4.2) and the rule's:
+/// (the last, [`super::vertex_pass::Part::take_stars`]; seed 000 §4.2) and the rule's:
 /// Catmull–Clark's ring images, face centroids and candidates (Loop and Butterfly use two,
 /// Akleman's operators one). A pass that runs alone on the step (the guard's sphericity
 /// pass, the ears, Doo–Sabin's missing corners) holds the whole workspace.

@@ -1,5 +1,5 @@
 //! Möbius Doo–Sabin (seed 000 §4.3): every corner point is evaluated in the canonical form of
-//! its vertex ([`doo_sabin_corner_in_form`]), an ear's corner in a substitute's form; a
+//! its vertex ([`corner_in_form`]: the linear stencil on the face's images, mapped back), an ear's corner in a substitute's form; a
 //! corner point that cannot be computed takes the linear rule, counted as a fallback.
 
 use super::super::driver::Driver;
