@@ -1,6 +1,7 @@
 //! Möbius Doo–Sabin (seed 000 §4.3): every corner point is evaluated in the canonical form of
-//! its vertex ([`corner_in_form`]: the linear stencil on the face's images, mapped back), an ear's corner in a substitute's form; a
-//! corner point that cannot be computed takes the linear rule, counted as a fallback.
+//! its vertex ([`corner_in_form`]: the linear stencil on the face's images, mapped back), an
+//! ear's corner in a substitute's form; a corner point that cannot be computed takes the
+//! linear rule, counted as a fallback.
 
 use super::super::driver::Driver;
 use super::super::form::{present, MapBack, Spokes};
