@@ -57,6 +57,10 @@ case "$target" in
         # Cortex-M4F: single-precision FPU, so f64 is computed in software (compiler-builtins in
         # the Rust library, libgcc in C). The target's default CPU is what a firmware build gets.
         lib=$(staticlib thumbv7em-none-eabihf "$ROOT/target/firmware/cargo-o$opt")
+        # The library the harness links, kept beside it: the bare-metal example later builds
+        # into the same cargo directory, and the static bound compares its LLVM IR's library
+        # with the one this ELF was linked from (scripts/test-firmware.sh).
+        cp "$lib" "$out/libnlsubdiv.a"
         cortex_m "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard" "$lib" ;;
     m4f-stack-sizes)
         # The M4F build for the static stack bound (firmware/stack_bound.py): the same sources

@@ -221,8 +221,10 @@ static_bound() {
     # The IR must be of the code the run measured: its build's library must disassemble to
     # the m4f build's instruction for instruction (else a candidate the IR lacks could be
     # missed). Same compiler, flags and profile, so they agree; a difference fails the check.
+    # The measured library is the copy firmware/build.sh m4f kept beside the harness (the
+    # bare-metal example rebuilds the cargo directory's own copy with its own options).
     local lib=thumbv7em-none-eabihf/release/libnlsubdiv.a
-    if ! cmp -s <(arm-none-eabi-objdump -d "$OUT/cargo-o3/$lib" | sed 1,3d) \
+    if ! cmp -s <(arm-none-eabi-objdump -d "$OUT/m4f/libnlsubdiv.a" | sed 1,3d) \
                 <(arm-none-eabi-objdump -d "$OUT/cargo-llvm-ir-o3/$lib" | sed 1,3d); then
         echo "FAIL  static stack bound — the LLVM IR's library ($OUT/cargo-llvm-ir-o3/$lib) is not the measured one's code"
         failed=$((failed+1)); return
