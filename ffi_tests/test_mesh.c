@@ -1412,6 +1412,18 @@ static nls_status loop_star(const double *v, const double *ring, size_t n, uint3
     return nls_mobius_loop_star(&star, vp, e);
 }
 
+static void fill(double *p, size_t n, double value) {
+    size_t i;
+    for (i = 0; i < n; i++) p[i] = value;
+}
+
+static int all_equal(const double *p, size_t n, double value) {
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (p[i] != value) return 0;
+    return 1;
+}
+
 static void test_star_rules_edge_cases(void) {
     static const double v[3] = {0, 0, 0};
     static const double ring[3 * 4] = {1, 0, 0.1, 0, 1, -0.1, -1, 0, 0.1, 0, -1, -0.1};
@@ -1422,8 +1434,10 @@ static void test_star_rules_edge_cases(void) {
     CHECK(isnan(vp[0]) && isnan(e[0]) && isnan(e[9]) && isfinite(e[3]) && isfinite(e[6]));
     CHECK_STATUS(loop_star(v, ring, 4, 1, vp, e), NLS_STATUS_OK);
     CHECK(isfinite(vp[0]) && isfinite(e[0]) && isfinite(e[9]));
-    /* bad arguments: nothing written */
-    vp[0] = sentinel;
+    /* bad arguments: nothing written (the rules write the caller's buffers directly, only
+     * once they cannot fail) */
+    fill(vp, 3, sentinel);
+    fill(e, 3 * 4, sentinel);
     CHECK_STATUS(loop_star(v, ring, 4, 2, vp, e), NLS_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(loop_star(v, ring, 1, 1, vp, e), NLS_STATUS_TOO_FEW_POINTS);
     CHECK_STATUS(loop_star(v, NULL, 4, 1, vp, e), NLS_STATUS_NULL_PARAMETER);
@@ -1443,7 +1457,7 @@ static void test_star_rules_edge_cases(void) {
         CHECK_STATUS(loop_star(v, r2, 4, 1, vp, e), NLS_STATUS_NON_FINITE_INPUT);
     }
     CHECK_STATUS(nls_mobius_loop_star(NULL, vp, e), NLS_STATUS_NULL_PARAMETER);
-    CHECK(vp[0] == sentinel);
+    CHECK(all_equal(vp, 3, sentinel) && all_equal(e, 3 * 4, sentinel));
     /* Catmull–Clark: four quads around the centre */
     {
         const uint32_t offs[5] = {0, 4, 8, 12, 16};
@@ -1462,7 +1476,9 @@ static void test_star_rules_edge_cases(void) {
         CHECK(isfinite(vp[0]) && isfinite(e[0]) && isfinite(f[0]) && isfinite(f[9]));
         CHECK_STATUS(cc_star(v, ring, 4, 0, offs, 3, corners, 12, vp, e, f), NLS_STATUS_OK);
         CHECK(isnan(vp[0]) && isnan(e[0]) && isnan(e[9]) && isfinite(e[3]) && isfinite(f[6]));
-        vp[0] = sentinel;
+        fill(vp, 3, sentinel);
+        fill(e, 3 * 4, sentinel);
+        fill(f, 3 * 4, sentinel);
         CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 3, corners, 12, vp, e, f),
                      NLS_STATUS_INVALID_ARGUMENT);
         {
@@ -1486,10 +1502,18 @@ static void test_star_rules_edge_cases(void) {
                      NLS_STATUS_ALIASING_BUFFERS);
         CHECK_STATUS(cc_star(v, ring, 4, 1, NULL, 4, corners, 16, vp, e, f),
                      NLS_STATUS_NULL_PARAMETER);
+        {
+            double r2[3 * 4];
+            memcpy(r2, ring, sizeof r2);
+            r2[3] = r2[4] = r2[5] = 0.0; /* a neighbour on the centre: no canonical form */
+            CHECK_STATUS(cc_star(v, r2, 4, 1, offs, 4, corners, 16, vp, e, f),
+                         NLS_STATUS_DEGENERATE_GEOMETRY);
+        }
         corners[20] = INFINITY;
         CHECK_STATUS(cc_star(v, ring, 4, 1, offs, 4, corners, 16, vp, e, f),
                      NLS_STATUS_NON_FINITE_INPUT);
-        CHECK(vp[0] == sentinel);
+        CHECK(all_equal(vp, 3, sentinel) && all_equal(e, 3 * 4, sentinel) &&
+              all_equal(f, 3 * 4, sentinel));
     }
     /* nls_f4_hinted: like nls_f4 off the negative-real case */
     {

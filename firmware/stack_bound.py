@@ -100,11 +100,9 @@ RESOLVED = {
 # Recursion that is bounded by construction: a function (by a part of its name) that calls
 # itself directly -> (most activations on one path, why). Its own frame counts that many
 # times, its other callees once, below the deepest activation. Any other cycle is UNKNOWN.
-BOUNDED_RECURSION = {
-    "System>::vcycle": (17, "the multigrid V-cycle (seed 001, the differential solve) recurses on "
-                            "work.split_last_mut(): one level fewer per call, and work holds at most "
-                            "MAX_HIERARCHY = MAX_LEVELS + 1 = 17 levels (src/differential/solve/mod.rs)"),
-}
+# None today: the multigrid V-cycle of differential subdivision, which recursed once per
+# hierarchy level, is a loop (src/differential/solve/multigrid.rs).
+BOUNDED_RECURSION: dict = {}
 
 # Mutual recursion bounded by construction: caller -> (callee, why): the callee, called from
 # caller, cannot call caller again, so that edge leads to a copy of the callee without its

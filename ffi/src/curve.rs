@@ -9,7 +9,7 @@
 use nlsubdiv::curve::{self, CurveScheme};
 use nlsubdiv::{Point, Status, NO_ELEMENT};
 
-use crate::guard::{check_fp_env, check_ptr, flag, overlaps, points};
+use crate::guard::{check_fp_env, check_ptr, flag, overlaps, points, points_mut};
 use crate::mesh::{is_clear, named, read_arg, Span};
 use crate::primitives::run;
 
@@ -58,20 +58,6 @@ fn scheme_of(code: u32) -> Result<CurveScheme, Status> {
 unsafe fn store<T>(p: *mut T, v: T) {
     // SAFETY: by the caller's contract.
     unsafe { p.write(v) };
-}
-
-/// Borrows `count` packed points `double[3*count]` mutably.
-///
-/// # Safety
-/// `p` passed `check_ptr::<Point>(p, count)`, points to `3*count` writable doubles, and the
-/// range overlaps no other slice alive for `'a`.
-unsafe fn points_mut<'a>(p: *mut f64, count: usize) -> &'a mut [Point] {
-    if count == 0 {
-        return &mut [];
-    }
-    // SAFETY: non-NULL, aligned, byte size ≤ isize::MAX (checked by the caller), writable and
-    // unaliased by the caller's contract.
-    unsafe { core::slice::from_raw_parts_mut(p.cast::<Point>(), count) }
 }
 
 /// The exact number of points after `levels` levels of any curve scheme:

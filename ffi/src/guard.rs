@@ -339,6 +339,20 @@ pub(crate) unsafe fn points<'a>(p: *const f64, count: usize) -> Result<&'a [Poin
     Ok(unsafe { core::slice::from_raw_parts(p.cast::<Point>(), count) })
 }
 
+/// Borrows `count` packed points `double[3*count]` mutably.
+///
+/// # Safety
+/// `p` passed `check_ptr::<Point>(p, count)`, points to `3*count` writable doubles, and the
+/// range overlaps no other slice alive for `'a`.
+pub(crate) unsafe fn points_mut<'a>(p: *mut f64, count: usize) -> &'a mut [Point] {
+    if count == 0 {
+        return &mut [];
+    }
+    // SAFETY: non-NULL, aligned, byte size ≤ isize::MAX (checked by the caller), writable and
+    // unaliased by the caller's contract.
+    unsafe { core::slice::from_raw_parts_mut(p.cast::<Point>(), count) }
+}
+
 /// Turns a core result into the status and, on success, the value.
 pub(crate) fn status_of<T>(r: nlsubdiv::Result<T>) -> Result<T, Status> {
     r.map_err(|e| e.status)

@@ -11,7 +11,9 @@
 use nlsubdiv::scheme::mobius as smobius;
 use nlsubdiv::{Point, Status, MAX_VALENCE};
 
-use crate::guard::{check_fp_env, check_out, check_ptr, flag, points, read_point};
+use crate::guard::{
+    check_fp_env, check_out, check_ptr, flag, points, points_mut, read_point, write,
+};
 use crate::primitives::run;
 
 const NAN3: Point = [f64::NAN; 3];
@@ -51,19 +53,6 @@ unsafe fn read_star(p: *const nls_star_view) -> Result<nls_star_view, Status> {
     check_ptr(p, 1)?;
     // SAFETY: checked non-NULL and aligned; readable by the caller's contract.
     Ok(unsafe { p.read() })
-}
-
-/// Writes `values` packed to `out[0..3*values.len()]`.
-///
-/// # Safety
-/// `out` passed `check_out(out, 3*values.len())` and is writable for that many doubles.
-unsafe fn write_points(out: *mut f64, values: &[Point]) {
-    for (i, p) in values.iter().enumerate() {
-        for (k, c) in p.iter().enumerate() {
-            // SAFETY: `3i + k < 3*values.len()`, writable by the caller's contract.
-            unsafe { out.add(3 * i + k).write(*c) };
-        }
-    }
 }
 
 /// A byte range `(start, bytes)` of `count` elements of `T` at `p`.
@@ -163,15 +152,19 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
         check_fp_env()?;
         // SAFETY: checked above; readable by the caller's contract and disjoint from the
         // outputs.
-        let ring_pts = unsafe { points(ring, ring_count)? };
-        let mut edges = [NAN3; MAX_VALENCE];
-        let cands = edges.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
+        // The rule writes its candidates straight to the caller's buffer, and only once it
+        // cannot fail (nothing is written on error): no copy of them on the stack.
+        // SAFETY: checked above; `ring` is readable by the caller's contract, and the output
+        // is writable for `3*ring_count` doubles and disjoint from `ring`.
+        let (ring_pts, cands) = unsafe {
+            (
+                points(ring, ring_count)?,
+                points_mut(out_edge_candidates, ring_count),
+            )
+        };
         let vp = smobius::loop_star(v, ring_pts, closed, cands).map_err(|e| e.status)?;
-        // SAFETY: both outputs checked above for their sizes.
-        unsafe {
-            write_points(out_vertex_point, &[vp.unwrap_or(NAN3)]);
-            write_points(out_edge_candidates, cands);
-        }
+        // SAFETY: checked above for 3 doubles.
+        unsafe { write(out_vertex_point, vp.unwrap_or(NAN3)) };
         Ok(())
     })
 }
@@ -249,27 +242,24 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
             ],
         )?;
         check_fp_env()?;
-        // SAFETY: checked above (`face_offsets` is non-NULL since `offsets_len ≥ 1`); readable
-        // by the caller's contract and disjoint from the outputs.
-        let (ring_pts, corners, offs) = unsafe {
+        // The rule writes the outputs only once it cannot fail (nothing is written on
+        // error), so they need no copy on the stack.
+        // SAFETY: checked above (`face_offsets` is non-NULL since `offsets_len ≥ 1`); the
+        // inputs are readable by the caller's contract, the outputs writable for their sizes,
+        // pairwise disjoint and disjoint from the inputs.
+        let (ring_pts, corners, offs, e, f) = unsafe {
             (
                 points(ring, ring_count)?,
                 points(face_corners, corner_count)?,
                 core::slice::from_raw_parts(face_offsets, offsets_len),
+                points_mut(out_edge_candidates, ring_count),
+                points_mut(out_face_candidates, face_count),
             )
         };
-        let mut edges = [NAN3; MAX_VALENCE];
-        let mut faces = [NAN3; MAX_VALENCE];
-        let e = edges.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
-        let f = faces.get_mut(..face_count).ok_or(Status::ValenceTooHigh)?;
         let vp = smobius::catmull_clark_star(v, ring_pts, closed, offs, corners, e, f)
             .map_err(|e| e.status)?;
-        // SAFETY: the three outputs checked above for their sizes.
-        unsafe {
-            write_points(out_vertex_point, &[vp.unwrap_or(NAN3)]);
-            write_points(out_edge_candidates, e);
-            write_points(out_face_candidates, f);
-        }
+        // SAFETY: checked above for 3 doubles.
+        unsafe { write(out_vertex_point, vp.unwrap_or(NAN3)) };
         Ok(())
     })
 }
@@ -350,12 +340,10 @@ pub unsafe extern "C" fn nls_mobius_butterfly_star(
             *slot = flag(f)?;
         }
         let irregular = irregular.get(..flags_len).ok_or(Status::ValenceTooHigh)?;
-        let mut cands = [NAN3; MAX_VALENCE];
-        let c = cands.get_mut(..ring_count).ok_or(Status::ValenceTooHigh)?;
+        // SAFETY: checked above for `3*ring_count` writable doubles, disjoint from the
+        // inputs; the rule writes it only once it cannot fail (nothing is written on error).
+        let c = unsafe { points_mut(out_edge_candidates, ring_count) };
         smobius::butterfly_star(v, ring_pts, closed, irregular, c).map_err(|e| e.status)?;
-        let out = cands.get(..ring_count).ok_or(Status::ValenceTooHigh)?;
-        // SAFETY: checked above for `3*ring_count` doubles.
-        unsafe { write_points(out_edge_candidates, out) };
         Ok(())
     })
 }

@@ -122,6 +122,11 @@ impl System<'_> {
     }
 
     /// One V-cycle for `K̃` at the last level of `work`: `x ≈ K̃⁻¹ b`.
+    ///
+    /// A loop down the hierarchy (smooth, restrict the residual) to the control mesh's solve,
+    /// then a loop up (prolong the correction, smooth): the recursive V-cycle's operations in
+    /// its order, with one frame on the stack whatever the number of levels
+    /// (`docs/firmware.md`, "Stack").
     pub(super) fn vcycle(
         &self,
         work: &mut [Work<'_>],
@@ -129,15 +134,26 @@ impl System<'_> {
         c: Coarse,
         exec: &dyn Executor,
     ) -> Result<()> {
+        let top = work.len().checked_sub(1).ok_or(internal())?;
+        for j in (1..=top).rev() {
+            self.restrict(work.get_mut(..=j).ok_or(internal())?, exec)?;
+        }
+        let lap = self.level(0)?.lap;
+        coarse_solve(&lap, work.first_mut().ok_or(internal())?, coarse, c)?;
+        for j in 1..=top {
+            self.prolong(work.get_mut(..=j).ok_or(internal())?, exec)?;
+        }
+        Ok(())
+    }
+
+    /// The way down at the last level `j ≥ 1` of `work`: `x = 0`, pre-smoothing, and the
+    /// residual restricted by `Pᵀ` to the right-hand side of level `j − 1`.
+    fn restrict(&self, work: &mut [Work<'_>], exec: &dyn Executor) -> Result<()> {
         let Some((cur, below)) = work.split_last_mut() else {
             return Err(internal());
         };
         let j = below.len();
         let lap = self.level(j)?.lap;
-        if j == 0 {
-            // The control mesh is small and its CG runs many short passes: serial.
-            return coarse_solve(&lap, cur, coarse, c);
-        }
         let n = lap.len();
         for xi in cur.x.iter_mut() {
             *xi = [0.0; 3];
@@ -146,7 +162,7 @@ impl System<'_> {
             gauss_seidel(&lap, cur.b, cur.x, true)?;
         }
         residual(&lap, cur, exec)?;
-        let lc = self.level(j - 1)?;
+        let lc = self.level(j.checked_sub(1).ok_or(internal())?)?;
         let nc = lc.lap.len();
         let cw = below.last_mut().ok_or(internal())?;
         for i in 0..nc {
@@ -166,7 +182,20 @@ impl System<'_> {
                 set(cw.b, i, [0.0; 3])?;
             }
         }
-        self.vcycle(below, coarse, c, exec)?;
+        Ok(())
+    }
+
+    /// The way up at the last level `j ≥ 1` of `work`: level `j − 1`'s correction
+    /// prolonged, then post-smoothing.
+    fn prolong(&self, work: &mut [Work<'_>], exec: &dyn Executor) -> Result<()> {
+        let Some((cur, below)) = work.split_last_mut() else {
+            return Err(internal());
+        };
+        let j = below.len();
+        let lap = self.level(j)?.lap;
+        let n = lap.len();
+        let lc = self.level(j.checked_sub(1).ok_or(internal())?)?;
+        let nc = lc.lap.len();
         // Prolongation, by rows: an old vertex adds its coarse value, an edge point the mean
         // of its edge's ends.
         let cx = &*below.last().ok_or(internal())?.x;

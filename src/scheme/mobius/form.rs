@@ -177,18 +177,23 @@ pub(super) const fn interior_spoke(closed: bool, j: usize, n: usize) -> bool {
     closed || (j >= 1 && j + 1 < n)
 }
 
-/// The canonical form of the star `v ring…` and the ring's images in its normalised frame
-/// ([`MISSING`] for a neighbour the form sends to infinity).
+/// The canonical form of the star `v ring…`, with the ring's images in its normalised frame
+/// left in `images` ([`MISSING`] for a neighbour the form sends to infinity).
 ///
 /// The images are made in place from the tangent polygon the form was made of (one array of
-/// the ring's length on the stack, not two): with a form, every `T_i` exists, and
+/// the ring's length, not two): with a form, every `T_i` exists, and
 /// [`CanonicalForm::to_normalised`] of `ring[i]` is `normalised_from_tangent(T_i)` bit for
-/// bit.
-pub(super) fn star_form(v: Point, ring: &[Point], closed: bool) -> Result<(CanonicalForm, Ring)> {
-    let mut images = Ring::new();
-    let cf = CanonicalForm::new_with_tangents(v, ring, kind_of(closed), &mut images)?;
+/// bit. The caller owns the array (a `Ring` returned by value would be copied from frame to
+/// frame: 3 KiB each time at the default valence cap, `docs/firmware.md`, "Stack").
+pub(super) fn star_form(
+    v: Point,
+    ring: &[Point],
+    closed: bool,
+    images: &mut Ring,
+) -> Result<CanonicalForm> {
+    let cf = CanonicalForm::new_with_tangents(v, ring, kind_of(closed), images)?;
     for t in images.iter_mut() {
         *t = cf.normalised_from_tangent(*t).unwrap_or(MISSING);
     }
-    Ok((cf, images))
+    Ok(cf)
 }

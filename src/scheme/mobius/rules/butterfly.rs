@@ -13,7 +13,7 @@
 //!   across a boundary edge replaced by the reflection `u + w − z` as OpenMesh does
 //!   ([`butterfly::reflect`]).
 
-use super::super::form::{interior_spoke, present, star_form, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, Ring, MISSING, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::set;
 use crate::point::Point;
@@ -104,6 +104,7 @@ pub(in crate::scheme::mobius) fn butterfly_star_in_form(
 /// `ring`; [`Status::TooFewPoints`] for fewer than 2 neighbours; the errors of
 /// [`crate::mobius::CanonicalForm::new`] (the star has no canonical form: the driver takes
 /// the linear rule for everything this star gives).
+/// Nothing is written to the output buffers when an error is returned.
 pub fn butterfly_star(
     v: Point,
     ring: &[Point],
@@ -121,21 +122,23 @@ pub fn butterfly_star(
     if n < 2 {
         return Err(Error::new(Status::TooFewPoints));
     }
-    for j in 0..n {
-        set(edge_candidates, j, MISSING)?;
-    }
+    let out = edge_candidates.get_mut(..n).ok_or(Error::too_small(n))?;
     // An ear (open star of one face): the driver gives it no form, so no candidates.
     if !closed && n == 2 {
+        out.fill(MISSING);
         return Ok(());
     }
-    let (cf, images) = star_form(v, ring, closed)?;
+    // The form first, so that nothing is written when the star has none.
+    let mut images = Ring::new();
+    let cf = star_form(v, ring, closed, &mut images)?;
+    out.fill(MISSING);
     for j in 0..n {
         if !interior_spoke(closed, j, n) {
             continue;
         }
         let irregular = irregular_neighbours.get(j).copied().unwrap_or(false);
         if let Some(p) = butterfly_star_in_form(&images, closed, j, irregular) {
-            set(edge_candidates, j, cf.from_normalised(p).unwrap_or(MISSING))?;
+            set(out, j, cf.from_normalised(p).unwrap_or(MISSING))?;
         }
     }
     Ok(())

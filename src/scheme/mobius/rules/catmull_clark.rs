@@ -3,15 +3,12 @@
 //! centroids, edge and vertex stencils of [`crate::stencil::catmull_clark`] on the 1-ring and
 //! the faces around the vertex, all mapped into the star's canonical form.
 
-use arrayvec::ArrayVec;
-
-use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, Ring, MISSING, ORIGIN};
 use super::StarFaces;
 use crate::error::{Error, Result};
 use crate::mesh::{get, internal, set};
 use crate::point::{self, Point};
 use crate::stencil::{catmull_clark, centroid_of_sum};
-use crate::MAX_VALENCE;
 
 /// The Catmull–Clark rules in a star's canonical form: `ring` and `faces` hold the images of the
 /// neighbours and the canonical centroids of the faces after each spoke ([`MISSING`] when not
@@ -78,6 +75,7 @@ pub(in crate::scheme::mobius) fn catmull_clark_star_in_form(
 /// and [`crate::Status::InvalidArgument`] (a face that does not contain `v`) naming the face.
 /// Unlike [`super::loop_star`], a neighbour sent to infinity only removes the rules that use
 /// it, as in the driver.
+/// Nothing is written to the output buffers when an error is returned.
 pub fn catmull_clark_star(
     v: Point,
     ring: &[Point],
@@ -96,39 +94,41 @@ pub fn catmull_clark_star(
         return Err(Error::too_small(nf));
     }
     let faces = StarFaces::new(face_offsets, face_corners)?;
-    let (cf, images) = star_form(v, ring, closed)?;
+    let mut images = Ring::new();
+    let cf = star_form(v, ring, closed, &mut images)?;
     faces.check_corners(v)?;
-    let mut centroids: ArrayVec<Point, MAX_VALENCE> = ArrayVec::new();
-    for j in 0..n {
-        let c = if j < nf {
-            // The images summed as the face is walked: `centroid` of them bit for bit, with
-            // no array of the face's points on the stack.
-            let corners = faces.face(j)?;
-            let mut sum = ORIGIN;
-            let mut ok = true;
-            for p in corners {
-                match cf.to_normalised(*p) {
-                    Ok(q) => sum = point::add(sum, q),
-                    Err(_) => ok = false,
-                }
+    // Nothing can fail from here on (the offsets, sizes and corners are checked), so the
+    // caller's buffers hold the work: `face_candidates` first holds the canonical centroids,
+    // which the edge and vertex rules read, and is mapped back in place after them (the same
+    // operations as with an array of centroids, with no such array on the stack,
+    // `docs/firmware.md`, "Stack").
+    let centroids = face_candidates.get_mut(..nf).ok_or(internal())?;
+    for (j, c) in centroids.iter_mut().enumerate() {
+        // The images summed as the face is walked: `centroid` of them bit for bit, with no
+        // array of the face's points on the stack.
+        let corners = faces.face(j)?;
+        let mut sum = ORIGIN;
+        let mut ok = true;
+        for p in corners {
+            match cf.to_normalised(*p) {
+                Ok(q) => sum = point::add(sum, q),
+                Err(_) => ok = false,
             }
-            if ok {
-                centroid_of_sum(sum, corners.len())?
-            } else {
-                MISSING
-            }
+        }
+        *c = if ok {
+            centroid_of_sum(sum, corners.len())?
         } else {
             MISSING
         };
-        centroids.try_push(c).map_err(|_| internal())?;
-        if j < nf {
-            let back = if present(&c) {
-                cf.from_normalised(c).unwrap_or(MISSING)
-            } else {
-                MISSING
-            };
-            set(face_candidates, j, back)?;
+    }
+    // A closed star has a face after every spoke; an open one has none after its last spoke,
+    // which no interior spoke reads (`catmull_clark_star_in_form` reads the faces of interior
+    // spokes and, closed, all of them).
+    let vertex = catmull_clark_star_in_form(&images, centroids, closed, &cf, edge_candidates)?;
+    for c in centroids.iter_mut() {
+        if present(c) {
+            *c = cf.from_normalised(*c).unwrap_or(MISSING);
         }
     }
-    catmull_clark_star_in_form(&images, &centroids, closed, &cf, edge_candidates)
+    Ok(vertex)
 }

@@ -3,7 +3,7 @@
 //! `v` ([`doo_sabin::corner_point`]) is evaluated on the face mapped into `v`'s canonical form,
 //! so every new point comes from exactly one form and needs no blend.
 
-use super::super::form::{star_form, MapBack, MISSING};
+use super::super::form::{star_form, MapBack, Ring, MISSING};
 use super::StarFaces;
 use crate::error::{Error, Result, Status};
 use crate::mesh::set;
@@ -67,7 +67,7 @@ pub fn doo_sabin_star(
         faces.check_corners(v)?;
         return Ok(());
     }
-    let (cf, _) = star_form(v, ring, closed)?;
+    let cf = star_form(v, ring, closed, &mut Ring::new())?;
     faces.check_corners(v)?;
     let mut pts: ArrayVec<Point, MAX_FACE_SIZE> = ArrayVec::new();
     for j in 0..nf {

@@ -16,7 +16,7 @@
 //! the corner after `b` in the face on the left of `a → b`), `r_a` the point beyond `a` on
 //! the line from `b` and `r_b` the point beyond `b` on the line from `a`.
 
-use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, Ring, MISSING, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::set;
 use crate::point::{self, Point};
@@ -101,8 +101,9 @@ pub fn kobbelt_star(
         }
         return Ok(());
     }
-    let (cf, images) = star_form(v, ring, closed)?;
-    let mut diag = super::super::form::Ring::new();
+    let mut images = Ring::new();
+    let cf = star_form(v, ring, closed, &mut images)?;
+    let mut diag = Ring::new();
     for d in diagonals {
         diag.try_push(cf.to_normalised(*d).unwrap_or(MISSING))
             .map_err(|_| Error::new(Status::ValenceTooHigh))?;

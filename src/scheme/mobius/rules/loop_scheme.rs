@@ -2,7 +2,7 @@
 //! a 1-ring scheme): Loop's vertex and edge stencils ([`crate::stencil::loop_scheme`]) on the
 //! 1-ring mapped into the star's canonical form.
 
-use super::super::form::{interior_spoke, present, star_form, MapBack, MISSING, ORIGIN};
+use super::super::form::{interior_spoke, present, star_form, MapBack, Ring, MISSING, ORIGIN};
 use crate::error::{Error, Result, Status};
 use crate::mesh::{get, set};
 use crate::point::Point;
@@ -68,6 +68,7 @@ pub(in crate::scheme::mobius) fn loop_star_in_form(
 /// [`crate::mobius::CanonicalForm::new`] (the star has no canonical form: the driver takes
 /// the linear rule for everything this star would give); [`Status::DegenerateGeometry`]
 /// naming the ring index of a neighbour the form sends to infinity.
+/// Nothing is written to the output buffers when an error is returned.
 pub fn loop_star(
     v: Point,
     ring: &[Point],
@@ -77,7 +78,8 @@ pub fn loop_star(
     if edge_candidates.len() < ring.len() {
         return Err(Error::too_small(ring.len()));
     }
-    let (cf, images) = star_form(v, ring, closed)?;
+    let mut images = Ring::new();
+    let cf = star_form(v, ring, closed, &mut images)?;
     if let Some(i) = images.iter().position(|p| !present(p)) {
         // The driver takes no candidate from a star with a neighbour at infinity.
         return Err(Error::at(Status::DegenerateGeometry, i as u32));
