@@ -64,27 +64,37 @@ pub fn f6(a: Point, b: Point, c: Point, d: Point, e: Point, f: Point) -> Result<
         && bound <= DIFFERENCES_MAX_SQ
         && be > COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * bound
     {
-        return f6_formula(pts).and_then(|p| frame::to_world(None, p));
+        return f6_fast(&pts);
     }
-    f6_careful(pts)
+    f6_careful(&pts)
+}
+
+/// The common case of [`f6`]: the formula in world coordinates. Out of line, as
+/// [`f6_careful`] is, so that `f6`'s own frame holds neither path's temporaries and the
+/// deepest stack is one path's, not the sum of both (`docs/firmware.md`, "Stack"); a call
+/// per blend costs nothing measurable next to the formula.
+#[inline(never)]
+fn f6_fast(pts: &[Point; 6]) -> Result<Point> {
+    f6_formula(*pts).and_then(|p| frame::to_world(None, p))
 }
 
 /// [`f6`] on finite points with the largest pair square computed: the difference range or the
 /// normalised frame (`frame.rs`), then the rule `b = e → b` or the formula.
-fn f6_careful(pts: [Point; 6]) -> Result<Point> {
+#[inline(never)]
+fn f6_careful(pts: &[Point; 6]) -> Result<Point> {
     let b = pts[1];
-    let sq = pair_squares(&pts);
+    let sq = pair_squares(pts);
     let max_sq = max_of(&sq);
     let (found, frame) = if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
-        (f6_in(pts, sq, max_sq)?, None)
+        (f6_in(pts, &sq, max_sq)?, None)
     } else {
-        match normalised(pts, sq)? {
+        match normalised(*pts, sq)? {
             None => (None, None),
             Some(Normalised {
                 frame,
                 local,
                 local_sq,
-            }) => (f6_in(local, local_sq, max_of(&local_sq))?, Some(frame)),
+            }) => (f6_in(&local, &local_sq, max_of(&local_sq))?, Some(frame)),
         }
     };
     match found {
@@ -96,13 +106,13 @@ fn f6_careful(pts: [Point; 6]) -> Result<Point> {
 /// F6 on six finite points with pairwise squares `sq` (pairs in lexicographic order) whose
 /// largest is `max_sq`, in world or normalised-frame coordinates: `None` for the rule
 /// `b = e → b`, else the solved point.
-fn f6_in(pts: [Point; 6], sq: [f64; 15], max_sq: f64) -> Result<Option<Point>> {
+fn f6_in(pts: &[Point; 6], sq: &[f64; 15], max_sq: f64) -> Result<Option<Point>> {
     // Pair (b, e) is the 8th: ab ac ad ae af bc bd be.
     let be = sq.get(7).copied().unwrap_or(f64::INFINITY);
     if be <= COINCIDENT_TOLERANCE * COINCIDENT_TOLERANCE * max_sq {
         return Ok(None);
     }
-    f6_formula(pts).map(Some)
+    f6_formula(*pts).map(Some)
 }
 
 /// The formula of [`f6`] on six finite points (world or normalised-frame coordinates) with
@@ -217,7 +227,7 @@ mod tests {
             }
             let [a, b, c, d, e, f] = pts;
             let fast = f6(a, b, c, d, e, f);
-            let slow = f6_careful(pts);
+            let slow = f6_careful(&pts);
             assert!(
                 same_point(fast, slow),
                 "{pts:?}: {:?} vs {:?}",
@@ -305,7 +315,7 @@ mod tests {
                     negative += 1;
                 }
             }
-            let (fast, eager) = (f6_in(pts, sq, max_sq), f6_in_eager(pts, sq, max_sq));
+            let (fast, eager) = (f6_in(&pts, &sq, max_sq), f6_in_eager(pts, sq, max_sq));
             assert!(
                 same(fast, eager),
                 "{pts:?}: {:?} vs {:?}",
