@@ -44,6 +44,15 @@ cortex_m() {
     echo "$out/harness.elf"
 }
 
+# The bare-metal targets are single-core parts that run every pass on the calling thread: their
+# library is built with NLSUBDIV_MAX_CHUNKS=1 (docs/firmware.md, "Stack"), so the paths that
+# split a pass into chunks are not in it and the static stack bound is that of the code a
+# firmware build runs. The output bits do not depend on it; the Linux targets keep the
+# default.
+case "$target" in
+    m4f|m4f-stack-sizes|m4f-llvm-ir|m7|riscv32) export NLSUBDIV_MAX_CHUNKS=1 ;;
+esac
+
 case "$target" in
     x86_64)
         lib=$(staticlib x86_64-unknown-linux-gnu "$ROOT/target/firmware/cargo-o$opt")

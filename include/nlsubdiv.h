@@ -114,8 +114,9 @@
 #define NLS_NO_ELEMENT 4294967295
 
 /**
- * The largest number of tasks one pass is split into (`nls_executor.max_tasks` above it acts
- * as this).
+ * The largest number of tasks one pass is split into by any build of the library; a build
+ * may split into fewer (`nls_max_tasks()`). `nls_executor.max_tasks` above the build's
+ * figure acts as it.
  */
 #define NLS_MAX_TASKS 64
 
@@ -478,7 +479,7 @@ typedef struct nls_executor {
      */
     void *host_context;
     /**
-     * How many tasks a pass should be split into, at most `NLS_MAX_TASKS` (usually the pool's
+     * How many tasks a pass should be split into, at most `nls_max_tasks()` (usually the pool's
      * thread count, or a few times it for balance); 0 or 1 runs every pass on the calling
      * thread without calling `run`.
      */
@@ -1040,6 +1041,14 @@ nls_status nls_curve_subdivide(uint32_t scheme,
                                size_t scratch_capacity,
                                size_t *out_count,
                                uint32_t *out_element);
+
+/**
+ * The largest number of tasks this build of the library splits one pass into: 64
+ * (`NLS_MAX_TASKS`) unless it was built with `NLSUBDIV_MAX_CHUNKS` (1 to 64; a firmware
+ * build on one core sets 1, `docs/firmware.md`). With 1, every pass runs on the calling
+ * thread and an `nls_executor`'s `run` is never called.
+ */
+uint32_t nls_max_tasks(void);
 
 /**
  * Writes the default options: `NLS_SCHEME_LOOP`, no flags (linear, not strict), 1 level.

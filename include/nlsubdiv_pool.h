@@ -128,7 +128,7 @@ static inline void nls_pool_destroy(nls_pool *p) {
 
 /**
  * Starts a pool of `threads` threads in all, the calling thread included (0: one per online
- * core, `sysconf(_SC_NPROCESSORS_ONLN)`; at most NLS_MAX_TASKS are used). Returns 0, or an
+ * core, `sysconf(_SC_NPROCESSORS_ONLN)`; at most nls_max_tasks() are used). Returns 0, or an
  * error number of pthread_create / the allocation; on failure nothing is left running and
  * nls_pool_executor returns NULL, so a call that uses it runs on the calling thread.
  */
@@ -139,7 +139,7 @@ static inline int nls_pool_init(nls_pool *p, unsigned threads) {
         const long n = sysconf(_SC_NPROCESSORS_ONLN);
         threads = n > 0 ? (unsigned)n : 1u;
     }
-    if (threads > NLS_MAX_TASKS) threads = NLS_MAX_TASKS;
+    if (threads > nls_max_tasks()) threads = nls_max_tasks();
     p->threads = 1;
     p->started = 0;
     p->workers = NULL;

@@ -32,7 +32,7 @@ const DEFAULT_CAP: usize = 128;
 /// `text` read as a decimal number, `default` when it is absent, and 0 (refused by the
 /// assertions below) when it is empty, has a character other than a digit, or is above
 /// [`MAX_CAP`].
-const fn parse(text: Option<&str>, default: usize) -> usize {
+pub(crate) const fn parse(text: Option<&str>, default: usize) -> usize {
     let bytes = match text {
         Some(t) => t.as_bytes(),
         None => return default,

@@ -37,8 +37,21 @@ use crate::error::{Result, NO_ELEMENT};
 use crate::mesh::internal;
 use crate::point::Point;
 
-/// The largest number of chunks one pass is split into.
-pub const MAX_CHUNKS: usize = 64;
+/// The largest number of chunks one pass is split into: 64 unless the build sets
+/// `NLSUBDIV_MAX_CHUNKS` (a decimal number from 1 to 64; anything else stops the build).
+///
+/// A pass split into several chunks holds one descriptor per chunk on the stack (the
+/// paths that split run out of line, `docs/firmware.md`, "Stack"), and the Möbius step's
+/// workspaces in the scratch are sized for this many chunks. A firmware build on a single
+/// core, which runs every pass on the calling thread, sets it to 1: the paths that split are
+/// then never taken, the optimiser drops them, and the static stack bound is that of the
+/// serial path. The output bits do not depend on it (nor on the chunking).
+pub const MAX_CHUNKS: usize = crate::caps::parse(option_env!("NLSUBDIV_MAX_CHUNKS"), 64);
+
+const _: () = assert!(
+    MAX_CHUNKS >= 1 && MAX_CHUNKS <= 64,
+    "NLSUBDIV_MAX_CHUNKS must be a decimal number from 1 to 64"
+);
 
 /// One chunk of a pass: a contiguous range of the pass's output (or, for a pass that
 /// writes several arrays, the chunk's share of each) and the task's result.
@@ -153,11 +166,24 @@ where
     let n = out.len();
     let k = chunk_count(exec, n);
     if k <= 1 {
-        let mut t = Tally::new();
-        f(0, out, &mut t)?;
-        return Ok(t);
+        return own_frame(|| {
+            let mut t = Tally::new();
+            f(0, out, &mut t)?;
+            Ok(t)
+        });
     }
     split_pass(exec, out, k, &f)
+}
+
+/// Runs `f` in a stack frame of its own, never inlined into its caller. The one-chunk path of
+/// every pass calls its task through it, so that the task's locals are not added to the frame
+/// of a function that runs several passes one after the other (a scheme's driver), whatever
+/// the optimiser does with a task that has a single caller (in a build with [`MAX_CHUNKS`] =
+/// 1 it has no other): the driver's stack is then its own plus the deepest pass's, not the sum
+/// of all its passes' (`docs/firmware.md`, "Stack"). One call per pass.
+#[inline(never)]
+pub(crate) fn own_frame<R>(f: impl FnOnce() -> R) -> R {
+    f()
 }
 
 /// The work of one chunk of a [`pass`]: its first output index, its output range, its tally.
@@ -259,9 +285,11 @@ where
     F: Fn(&mut P, &mut Tally) -> Result<()> + Sync,
 {
     if let [one] = parts {
-        let mut t = Tally::new();
-        f(one, &mut t)?;
-        return Ok(t);
+        return own_frame(|| {
+            let mut t = Tally::new();
+            f(one, &mut t)?;
+            Ok(t)
+        });
     }
     let mut bound = ArrayVec::<Bound<'_, '_, P, F>, MAX_CHUNKS>::new();
     let mut sizes = ArrayVec::<usize, MAX_CHUNKS>::new();

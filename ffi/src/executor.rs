@@ -10,11 +10,21 @@ use core::sync::atomic::{AtomicBool, Ordering};
 
 use nlsubdiv::exec::{Chunk, Executor, MAX_CHUNKS};
 
-/// The largest number of tasks one pass is split into (`nls_executor.max_tasks` above it acts
-/// as this).
+/// The largest number of tasks one pass is split into by any build of the library; a build
+/// may split into fewer (`nls_max_tasks()`). `nls_executor.max_tasks` above the build's
+/// figure acts as it.
 pub const NLS_MAX_TASKS: u32 = 64;
 // The C value is a literal (cbindgen cannot write the core's constant into the header).
-const _: () = assert!(NLS_MAX_TASKS as usize == MAX_CHUNKS);
+const _: () = assert!(MAX_CHUNKS <= NLS_MAX_TASKS as usize);
+
+/// The largest number of tasks this build of the library splits one pass into: 64
+/// (`NLS_MAX_TASKS`) unless it was built with `NLSUBDIV_MAX_CHUNKS` (1 to 64; a firmware
+/// build on one core sets 1, `docs/firmware.md`). With 1, every pass runs on the calling
+/// thread and an `nls_executor`'s `run` is never called.
+#[unsafe(no_mangle)]
+pub extern "C" fn nls_max_tasks() -> u32 {
+    MAX_CHUNKS as u32
+}
 
 /// One task of a pass: the library's function the host calls with the `task_context` it was
 /// given and a task index below `task_count`.
@@ -55,7 +65,7 @@ pub struct nls_executor {
     >,
     /// Passed to `run` as is.
     pub host_context: *mut c_void,
-    /// How many tasks a pass should be split into, at most `NLS_MAX_TASKS` (usually the pool's
+    /// How many tasks a pass should be split into, at most `nls_max_tasks()` (usually the pool's
     /// thread count, or a few times it for balance); 0 or 1 runs every pass on the calling
     /// thread without calling `run`.
     pub max_tasks: u32,

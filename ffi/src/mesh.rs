@@ -23,7 +23,9 @@ use nlsubdiv::{Error, Point, Status, NO_ELEMENT};
 use crate::executor::{nls_executor, HostExecutor};
 use crate::guard::{check_fp_env, check_ptr};
 use crate::primitives::run;
-use crate::tags::{check_tags, nls_tags, plan_need, read_tags, tag_raw_spans, tag_spans, tags_of};
+use crate::tags::{
+    check_tags, nls_tags, plan_need, read_tags, tag_raw_spans, tag_spans, tags_of, RawTags,
+};
 use crate::weights::{check_weights, weight_raw_span, weight_span, weights_of};
 
 /// Mesh scheme: Loop (triangles only; 1→4; approximating).
@@ -1047,6 +1049,102 @@ pub unsafe extern "C" fn nls_mesh_subdivide(
     }
 }
 
+/// The arguments of `nls_mesh_subdivide` read and checked ([`checked_args`]): what the call
+/// itself needs, nothing of the checks.
+struct CheckedArgs {
+    mesh: RawMesh,
+    raw_opts: nls_subdivide_options,
+    opts: Options,
+    tags: Option<RawTags>,
+    raw: RawOut,
+    exec: Option<HostExecutor>,
+}
+
+/// Reads and checks every argument of [`subdivide_body`] (pointers, sizes, aliasing, options,
+/// tags, weights, the plan's `u32` scratch, the FP environment), naming the element of a
+/// failure in `element`; `sizes_ok` is set once `out_sizes` may be written. Out of line, so
+/// that the checks' arrays of buffer ranges are not in the frame below which the
+/// subdivision runs (`docs/firmware.md`, "Stack").
+///
+/// # Safety
+/// The contract of [`subdivide_body`].
+#[inline(never)]
+#[allow(clippy::too_many_arguments)] // the exports' parameters and the element slot
+unsafe fn checked_args(
+    mesh: *const nls_mesh_view,
+    options: *const nls_subdivide_options,
+    tags: Option<*const nls_tags>,
+    scratch: *const nls_scratch,
+    out: *const nls_mesh_buffers,
+    out_sizes: *mut nls_mesh_sizes,
+    out_report: *mut nls_subdivide_report,
+    out_element: *mut u32,
+    element: &mut ElementSlot,
+    sizes_ok: &mut bool,
+) -> Result<CheckedArgs, Fail> {
+    // SAFETY: the caller passes NULL or readable structs.
+    let (mesh_r, scratch_r, out_r, tags_r, opts_r) = unsafe {
+        (
+            RawMesh::read(mesh),
+            read_arg(scratch),
+            read_arg(out),
+            read_tags(tags),
+            read_arg(options),
+        )
+    };
+    // SAFETY: the caller passes NULL or a readable view.
+    let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
+    let [d, e] = named(scratch, &scratch_r, scratch_raw_spans);
+    let [f, g, h] = named(out, &out_r, out_raw_spans);
+    let [i, j, k, l] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
+    let m = weight_raw_span(options, &opts_r, &mesh_r);
+    element.close_unless_clear(
+        &[Span::of_one(out_sizes), Span::of_one(out_report)],
+        &[a, b, c, d, e, f, g, h, i, j, k, l, m],
+    );
+    let (mesh, opts) = (mesh_r?, opts_r?);
+    let raw = RawOut {
+        scratch: scratch_r?,
+        out: out_r?,
+    };
+    let raw_tags = tags_r?;
+    let tags = raw_tags.as_ref();
+    check_ptr(out_sizes.cast_const(), 1)?;
+    check_optional(out_report)?;
+    check_optional(out_element)?;
+    let inputs = mesh.spans();
+    let [s0, s1, s2, s3, s4] = raw.spans();
+    let [i0, i1, i2] = inputs;
+    let [t0, t1, t2, t3] = tag_spans(tags);
+    let w0 = weight_span(&opts, &mesh);
+    check_out_pointers(
+        &[Span::of_one(out_sizes), Span::of_one(out_report)],
+        element,
+        &[i0, i1, i2, t0, t1, t2, t3, w0, s0, s1, s2, s3, s4],
+    )?;
+    *sizes_ok = true;
+    // SAFETY: the caller passes NULL or a readable executor in the options.
+    let exec = unsafe { HostExecutor::read(opts.executor) }?;
+    let raw_opts = opts;
+    let opts = parse_options(&raw_opts)?;
+    mesh.check()?;
+    check_tags(tags)?;
+    check_weights(&raw_opts, &mesh)?;
+    raw.check(&[i0, i1, i2, t0, t1, t2, t3, w0])?;
+    if raw.scratch.u32_capacity < plan_need(&mesh, tags)? {
+        return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
+    }
+    check_fp_env()?;
+    Ok(CheckedArgs {
+        mesh,
+        raw_opts,
+        opts,
+        tags: raw_tags,
+        raw,
+        exec,
+    })
+}
+
 /// The body of `nls_mesh_subdivide` and `nls_mesh_subdivide_tagged`.
 ///
 /// # Safety
@@ -1066,59 +1164,30 @@ pub(crate) unsafe fn subdivide_body(
     let mut needed: Option<MeshSizes> = None;
     let mut sizes_ok = false;
     let status = run_with_element(out_element, |element| {
-        // SAFETY: the caller passes NULL or readable structs.
-        let (mesh_r, scratch_r, out_r, tags_r, opts_r) = unsafe {
-            (
-                RawMesh::read(mesh),
-                read_arg(scratch),
-                read_arg(out),
-                read_tags(tags),
-                read_arg(options),
-            )
+        // SAFETY: forwarded contract.
+        let args = unsafe {
+            checked_args(
+                mesh,
+                options,
+                tags,
+                scratch,
+                out,
+                out_sizes,
+                out_report,
+                out_element,
+                element,
+                &mut sizes_ok,
+            )?
         };
-        // SAFETY: the caller passes NULL or a readable view.
-        let [a, b, c] = unsafe { RawMesh::named(mesh, &mesh_r) };
-        let [d, e] = named(scratch, &scratch_r, scratch_raw_spans);
-        let [f, g, h] = named(out, &out_r, out_raw_spans);
-        let [i, j, k, l] = named(tags.unwrap_or(null()), &tags_r, tag_raw_spans);
-        let m = weight_raw_span(options, &opts_r, &mesh_r);
-        element.close_unless_clear(
-            &[Span::of_one(out_sizes), Span::of_one(out_report)],
-            &[a, b, c, d, e, f, g, h, i, j, k, l, m],
-        );
-        let (mesh, opts) = (mesh_r?, opts_r?);
-        let raw = RawOut {
-            scratch: scratch_r?,
-            out: out_r?,
-        };
-        let tags = tags_r?;
+        let CheckedArgs {
+            mesh,
+            raw_opts,
+            opts,
+            tags,
+            raw,
+            exec,
+        } = args;
         let tags = tags.as_ref();
-        check_ptr(out_sizes.cast_const(), 1)?;
-        check_optional(out_report)?;
-        check_optional(out_element)?;
-        let inputs = mesh.spans();
-        let [s0, s1, s2, s3, s4] = raw.spans();
-        let [i0, i1, i2] = inputs;
-        let [t0, t1, t2, t3] = tag_spans(tags);
-        let w0 = weight_span(&opts, &mesh);
-        check_out_pointers(
-            &[Span::of_one(out_sizes), Span::of_one(out_report)],
-            element,
-            &[i0, i1, i2, t0, t1, t2, t3, w0, s0, s1, s2, s3, s4],
-        )?;
-        sizes_ok = true;
-        // SAFETY: the caller passes NULL or a readable executor in the options.
-        let exec = unsafe { HostExecutor::read(opts.executor) }?;
-        let raw_opts = opts;
-        let opts = parse_options(&raw_opts)?;
-        mesh.check()?;
-        check_tags(tags)?;
-        check_weights(&raw_opts, &mesh)?;
-        raw.check(&[i0, i1, i2, t0, t1, t2, t3, w0])?;
-        if raw.scratch.u32_capacity < plan_need(&mesh, tags)? {
-            return Err(too_small(NLS_MESH_BUFFER_SCRATCH_U32));
-        }
-        check_fp_env()?;
         // SAFETY: every buffer was checked (NULL, alignment, size) and the writable ones
         // overlap nothing; the caller guarantees readability and writability.
         let (view, (su, sp, mut out)) = unsafe { (mesh.mesh()?, raw.slices()) };

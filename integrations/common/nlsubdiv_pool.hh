@@ -37,7 +37,7 @@ class ThreadPool {
     exec_.host_context = this;
     // One task per thread: the kernel's ranges are of equal size, and more tasks than
     // threads only add wake-ups (the output is the same for every task count).
-    exec_.max_tasks = std::min<uint32_t>(threads_, NLS_MAX_TASKS);
+    exec_.max_tasks = std::min<uint32_t>(threads_, nls_max_tasks());
     try {
       for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] { work(); });
     } catch (...) {

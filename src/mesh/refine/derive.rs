@@ -85,11 +85,13 @@ where
 {
     let k = exec::chunk_count(exec, nf);
     if k <= 1 {
-        return f(&mut FaceSpan {
-            faces: (0, nf),
-            first: 0,
-            twin: &mut *r.twin,
-            face_of: &mut *r.face_of,
+        return exec::own_frame(|| {
+            f(&mut FaceSpan {
+                faces: (0, nf),
+                first: 0,
+                twin: &mut *r.twin,
+                face_of: &mut *r.face_of,
+            })
         });
     }
     split_face_spans(nf, r, &child_he, exec, k, &f)

@@ -237,7 +237,7 @@ fn write_face_ranges(
             offsets,
             indices,
         };
-        return write_span(pattern, topo, n, &mut all);
+        return exec::own_frame(|| write_span(pattern, topo, n, &mut all));
     }
     split_face_ranges(pattern, topo, n, offsets, indices, exec, k)
 }

@@ -40,7 +40,9 @@ use super::driver::Driver;
 use super::form::present;
 use super::trust::{newell, ramp};
 use crate::error::Result;
-use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
+use crate::exec::{
+    chunk_count, chunk_range, own_frame, parts, take_front, Executor, Tally, MAX_CHUNKS,
+};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::{cross, dot, sub, Point};
@@ -155,7 +157,7 @@ impl Driver<'_, '_, '_, '_> {
                 out,
                 work,
             };
-            measure(&mut part, &mut Tally::new())?;
+            own_frame(|| measure(&mut part, &mut Tally::new()))?;
         } else {
             split_audit(self.exec, k, out, work, &measure)?;
         }

@@ -20,7 +20,7 @@ use crate::point::{self, Point};
 /// no faster (one thread, interleaved best of 11, Loop / Butterfly on epcot, 4 levels: 16
 /// edges 104.6 / 196.1 ms, 12 edges 100.9 / 185.2 ms; 32 against 16, Loop: 103.7 against
 /// 102.9 ms).
-const EDGE_CHUNK: usize = 12;
+const EDGE_CHUNK: usize = 8;
 
 /// What the F4 of one interior edge `e = (a, b)` reads: its end points, the candidates of the
 /// stars of `a` and `b`, and the hint (the apex of the face on the left of `a → b`).

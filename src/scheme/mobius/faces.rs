@@ -7,7 +7,9 @@ use super::driver::{chunk_fallback, Driver};
 use super::slots::slot_of;
 use crate::blend::{self, FaceCorners};
 use crate::error::{Result, Status};
-use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
+use crate::exec::{
+    chunk_count, chunk_range, own_frame, parts, take_front, Executor, Tally, MAX_CHUNKS,
+};
 use crate::mesh::{get, internal, Topology};
 use crate::point::{self, Point};
 use crate::stencil::centroid_of_sum;
@@ -97,16 +99,18 @@ impl Driver<'_, '_, '_, '_> {
         let work = &mut *self.work;
         let k = chunk_count(self.exec, nf);
         let t = if k <= 1 {
-            let mut t = Tally::new();
-            run(
-                &mut FacePart {
-                    first: 0,
-                    out,
-                    work,
-                },
-                &mut t,
-            )?;
-            t
+            own_frame(|| {
+                let mut t = Tally::new();
+                run(
+                    &mut FacePart {
+                        first: 0,
+                        out,
+                        work,
+                    },
+                    &mut t,
+                )?;
+                Ok::<_, crate::error::Error>(t)
+            })?
         } else {
             split_faces(self.exec, k, out, work, &run)?
         };

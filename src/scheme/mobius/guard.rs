@@ -41,7 +41,9 @@ use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
-use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
+use crate::exec::{
+    chunk_count, chunk_range, own_frame, parts, take_front, Executor, Tally, MAX_CHUNKS,
+};
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::CanonicalForm;
 use crate::point::Point;
@@ -251,7 +253,7 @@ impl Driver<'_, '_, '_, '_> {
                 trust,
                 any: false,
             };
-            run(&mut g, &mut Tally::new())?;
+            own_frame(|| run(&mut g, &mut Tally::new()))?;
             g.any
         } else {
             self.split_guarded_pass(k, out.vertex, &run)?
@@ -374,7 +376,7 @@ type F64Fn<'f> = dyn Fn(usize, &mut [f64]) -> Result<()> + Sync + 'f;
 fn f64_ranges(exec: &dyn Executor, out: &mut [f64], f: &F64Fn<'_>) -> Result<()> {
     let k = chunk_count(exec, out.len());
     if k <= 1 {
-        return f(0, out);
+        return own_frame(|| f(0, out));
     }
     split_f64_ranges(exec, out, k, f)
 }

@@ -23,7 +23,7 @@ use super::memo::StarForm;
 use super::slots::{first_slot, slot_at_or_after};
 use super::workspace::STAR_ARRAYS;
 use crate::error::Result;
-use crate::exec::{chunk_count, chunk_range, parts, pass, Tally, MAX_CHUNKS};
+use crate::exec::{chunk_count, chunk_range, own_frame, parts, pass, Tally, MAX_CHUNKS};
 use crate::mesh::{internal, Topology, NONE};
 use crate::point::Point;
 
@@ -463,7 +463,7 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         let guard = self.guard;
         if k <= 1 {
             let mut part = Part::whole(topo, guard, self.arrays(vertex_points, true)?);
-            return run(&mut part, &mut Tally::new());
+            return own_frame(|| run(&mut part, &mut Tally::new()));
         }
         self.split_vertex_pass(k, vertex_points, &run)
     }
