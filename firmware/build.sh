@@ -48,9 +48,9 @@ cortex_m() {
 # library is built with NLSUBDIV_MAX_CHUNKS=1 (docs/firmware.md, "Stack"), so the paths that
 # split a pass into chunks are not in it and the static stack bound is that of the code a
 # firmware build runs. The output bits do not depend on it; the Linux targets keep the
-# default.
+# default. An NLSUBDIV_MAX_CHUNKS in the environment wins (to measure another setting).
 case "$target" in
-    m4f|m4f-stack-sizes|m4f-llvm-ir|m7|riscv32) export NLSUBDIV_MAX_CHUNKS=1 ;;
+    m4f|m4f-stack-sizes|m4f-llvm-ir|m7|riscv32) export NLSUBDIV_MAX_CHUNKS=${NLSUBDIV_MAX_CHUNKS:-1} ;;
 esac
 
 case "$target" in

@@ -20,6 +20,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 export PATH="$HOME/.cargo/bin:$PATH"
+# The firmware configuration of firmware/build.sh: one core, no chunk-splitting paths.
+export NLSUBDIV_MAX_CHUNKS=${NLSUBDIV_MAX_CHUNKS:-1}
 OUT=$ROOT/target/firmware/size
 mkdir -p "$OUT"
 CPU="-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard"

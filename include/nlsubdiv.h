@@ -1031,6 +1031,9 @@ nls_status nls_curve_scratch_size(uint32_t scheme, size_t count, uint32_t closed
  * `NLS_STATUS_TOO_FEW_POINTS`, `NLS_STATUS_BUFFER_TOO_SMALL`, `NLS_STATUS_ALIASING_BUFFERS`,
  * `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,
  * `NLS_STATUS_DEGENERATE_GEOMETRY`, `NLS_STATUS_NUMERICAL_FAILURE`.
+ *
+ * Stack on Cortex-M4F: at most 4,096 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_curve_subdivide(uint32_t scheme,
                                const struct nls_curve_view *curve,
@@ -1166,6 +1169,9 @@ nls_status nls_mesh_plan(const struct nls_mesh_view *mesh,
  * ends of the double range); `NLS_STATUS_ALIASING_BUFFERS` also when `out_sizes`,
  * `out_report` or `out_element` points into a buffer of the call or into another
  * out-pointer.
+ *
+ * Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mesh_subdivide(const struct nls_mesh_view *mesh,
                               const struct nls_subdivide_options *options,
@@ -1251,6 +1257,9 @@ nls_status nls_differential_plan(const struct nls_mesh_view *mesh,
  * known); `NLS_STATUS_DEGENERATE_GEOMETRY` (a normal edit at a control vertex whose surface
  * normal is zero, naming the vertex); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
  * call or into another out-pointer.
+ *
+ * Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_differential_subdivide(const struct nls_mesh_view *mesh,
                                       const struct nls_differential_options *options,
@@ -1262,6 +1271,9 @@ nls_status nls_differential_subdivide(const struct nls_mesh_view *mesh,
 
 /**
  * The identity map.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mobius_identity(struct nls_mobius *out);
 
@@ -1273,6 +1285,9 @@ nls_status nls_mobius_identity(struct nls_mobius *out);
  * zero axis with a non-zero angle), `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would
  * not be finite: inputs near the end of the double range). Nothing is written on error.
  *
+ * Stack on Cortex-M4F: at most 2,560 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_mobius_similarity(const double axis[3], double angle, double scale, const double t[3], struct nls_mobius *out);
 
@@ -1283,22 +1298,34 @@ nls_status nls_mobius_similarity(const double axis[3], double angle, double scal
  * `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite: a centre or radius
  * near the end of the double range). Nothing is written on error.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_mobius_inversion(const double centre[3], double radius, struct nls_mobius *out);
 
 /**
  * The composition `outer ∘ inner` (first `inner`, then `outer`).
+ *
+ * Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mobius_compose(const struct nls_mobius *outer, const struct nls_mobius *inner, struct nls_mobius *out);
 
 /**
  * The inverse map. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for a singular matrix.
+ *
+ * Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mobius_invert(const struct nls_mobius *m, struct nls_mobius *out);
 
 /**
  * The image of the point `p`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` when `p` is sent to
  * infinity.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_mobius_apply(const struct nls_mobius *m, const double p[3], double out[3]);
@@ -1311,6 +1338,9 @@ nls_status nls_mobius_apply(const struct nls_mobius *m, const double p[3], doubl
  * Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown kind), `NLS_STATUS_TOO_FEW_POINTS`,
  * `NLS_STATUS_VALENCE_TOO_HIGH`, `NLS_STATUS_NON_FINITE_INPUT`,
  * `NLS_STATUS_DEGENERATE_GEOMETRY` (a neighbour coincides with `v`, or zero radius).
+ *
+ * Stack on Cortex-M4F: at most 4,608 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_canonical_form_new(const double v[3], const double *ring, size_t ring_count, uint32_t kind, struct nls_canonical_form *out);
@@ -1346,6 +1376,9 @@ nls_status nls_canonical_form_map(const struct nls_canonical_form *cf, uint32_t 
  * `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_DEGENERATE_GEOMETRY` (`b = c` or `d = a`),
  * `NLS_STATUS_FP_ENVIRONMENT`.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_cross_ratio(const double a[3], const double b[3], const double c[3], const double d[3], double out_wxyz[4]);
 
@@ -1361,6 +1394,9 @@ nls_status nls_cross_ratio(const double a[3], const double b[3], const double c[
  * Errors: `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
  * `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_DEGENERATE_GEOMETRY` (the point is at
  * infinity), `NLS_STATUS_NUMERICAL_FAILURE`, `NLS_STATUS_FP_ENVIRONMENT`.
+ *
+ * Stack on Cortex-M4F: at most 3,072 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_f4(const double a[3], const double b[3], const double c[3], const double d[3], double out[3]);
@@ -1380,6 +1416,9 @@ nls_status nls_f4(const double a[3], const double b[3], const double c[3], const
  *
  * Errors: as `nls_f4`; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
  *
+ * Stack on Cortex-M4F: at most 3,072 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_f4_hinted(const double a[3], const double b[3], const double c[3], const double d[3], const double x[3], double out[3]);
 
@@ -1390,6 +1429,9 @@ nls_status nls_f4_hinted(const double a[3], const double b[3], const double c[3]
  * Errors: as `nls_f4`; `NLS_STATUS_DEGENERATE_GEOMETRY` also when a cross-ratio of the
  * construction is undefined (`a = b`, `d = e`, `b = c`, `e = f`).
  *
+ * Stack on Cortex-M4F: at most 3,584 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_f6(const double a[3], const double b[3], const double c[3], const double d[3], const double e[3], const double f[3], double out[3]);
 
@@ -1398,12 +1440,18 @@ nls_status nls_f6(const double a[3], const double b[3], const double c[3], const
  * `ρ = cr[c, a, b, d]`, the cross-ratio F4 uses (seed 000 §4.4.3 (ii)); 0 for cocircular
  * points.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_noncircularity(const double a[3], const double b[3], const double c[3], const double d[3], double *out);
 
 /**
  * The corner tangent `t[a, b, c] = (b − a)⁻¹ + (c − b)⁻¹` (seed 000 §3.3): a vector tangent
  * at `b` to the circle through `a, b, c`.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_corner_tangent(const double a[3], const double b[3], const double c[3], double out[3]);
@@ -1415,11 +1463,17 @@ nls_status nls_corner_tangent(const double a[3], const double b[3], const double
  *
  * Errors: also `NLS_STATUS_DEGENERATE_GEOMETRY` when a neighbour coincides with `v`.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_tangent_polygon(const double v[3], const double *ring, size_t ring_count, double *out);
 
 /**
  * The Hamilton product `p·q` of two quaternions given as `w, x, y, z`.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_quat_mul(const double p[4], const double q[4], double out[4]);
@@ -1428,12 +1482,18 @@ nls_status nls_quat_mul(const double p[4], const double q[4], double out[4]);
  * The inverse `q⁻¹ = q̄/|q|²`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for `q = 0` (or an
  * inverse that is not a finite, non-zero quaternion).
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_quat_inverse(const double q[4], double out[4]);
 
 /**
  * The principal square root (non-negative real part, seed 000 §3.1). Errors:
  * `NLS_STATUS_DEGENERATE_GEOMETRY` for a negative real `q`, whose root is not unique.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_quat_sqrt(const double q[4], double out[4]);
@@ -1442,12 +1502,18 @@ nls_status nls_quat_sqrt(const double q[4], double out[4]);
  * The principal logarithm `[ln|q|, n θ]`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for zero
  * or a negative real `q`.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_quat_log(const double q[4], double out[4]);
 
 /**
  * The exponential `e^w [cos|v|, v/|v| sin|v|]`. Errors: `NLS_STATUS_NUMERICAL_FAILURE` on
  * overflow.
+ *
+ * Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_quat_exp(const double q[4], double out[4]);
@@ -1459,6 +1525,9 @@ nls_status nls_quat_exp(const double q[4], double out[4]);
  * vertex (ring from one boundary neighbour to the other); other values are
  * `NLS_STATUS_INVALID_ARGUMENT`.
  *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_star_willmore_energy(const double v[3], const double *ring, size_t ring_count, uint32_t closed, double *out);
 
@@ -1466,6 +1535,9 @@ nls_status nls_star_willmore_energy(const double v[3], const double *ring, size_
  * The Möbius-regularity defect of the vertex star `v ring…`: the sum of squared differences
  * of consecutive cross-ratios `cr[v, u_{i−1}, u_i, u_{i+1}]` (seed 000 Fig. 15); 0 iff the
  * star is Möbius regular. `closed` as for `nls_star_willmore_energy`.
+ *
+ * Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_star_mobius_regularity(const double v[3], const double *ring, size_t ring_count, uint32_t closed, double *out);
@@ -1481,6 +1553,9 @@ nls_status nls_star_mobius_regularity(const double v[3], const double *ring, siz
  * Errors: `NLS_STATUS_TOO_FEW_POINTS` (`count < 3`), `NLS_STATUS_VALENCE_TOO_HIGH`, and
  * those of `nls_f4` and `nls_f6`.
  *
+ * Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_face_point(const double *vertices, const double *candidates, size_t count, double out[3]);
 
@@ -1492,6 +1567,9 @@ nls_status nls_face_point(const double *vertices, const double *candidates, size
  * tier-1 rules should call it with its own vertex indices.
  *
  * Errors: those of `nls_face_point`.
+ *
+ * Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_face_point_with_ids(const double *vertices, const double *candidates, const uint32_t *ids, size_t count, double out[3]);
@@ -1540,6 +1618,9 @@ nls_status nls_face_point_with_ids(const double *vertices, const double *candida
  * `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
  * `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
  *
+ * Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+ *
  */
 nls_status nls_mobius_loop_star(const struct nls_star_view *star, double out_vertex_point[3], double *out_edge_candidates);
 
@@ -1572,6 +1653,9 @@ nls_status nls_mobius_loop_star(const struct nls_star_view *star, double out_ver
  * (`face_count` does not fit `ring_count` and `closed`, or a face does not contain `v`),
  * `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
  * above `nls_max_face_size()` corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+ *
+ * Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  *
  */
 nls_status nls_mobius_catmull_clark_star(const struct nls_star_view *star,
@@ -1609,6 +1693,8 @@ nls_status nls_mobius_catmull_clark_star(const struct nls_star_view *star,
  * the star has no canonical form); `NLS_STATUS_INVALID_ARGUMENT` also for a flag not 0 or 1;
  * `NLS_STATUS_TOO_FEW_POINTS` for fewer than 2 neighbours. Nothing is written on error.
  *
+ * Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mobius_butterfly_star(const struct nls_star_view *star, const uint32_t *irregular_neighbours, double *out_edge_candidates);
 
@@ -1689,6 +1775,9 @@ nls_status nls_mesh_plan_tagged(const struct nls_mesh_view *mesh,
  * error (see `nls_mesh_plan_tagged` and `nls_mesh_subdivide`), or `NLS_NO_ELEMENT`.
  * @return `NLS_STATUS_OK`, the errors of `nls_mesh_plan_tagged` and of
  * `nls_mesh_subdivide`.
+ *
+ * Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+ * (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
  */
 nls_status nls_mesh_subdivide_tagged(const struct nls_mesh_view *mesh,
                                      const struct nls_subdivide_options *options,

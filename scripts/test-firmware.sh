@@ -17,7 +17,9 @@
 # bound (the "stack" check, counted like a target). The static call-graph bound of each entry
 # point (firmware/stack_bound.py, on a nightly build with -Z emit-stack-sizes) must be at least
 # that mark and at most its ceiling in firmware/stack-static-bounds.txt (the "static stack
-# bound" check, counted like a target; skipped without nightly).
+# bound" check, counted like a target; skipped without nightly). The C header must state each
+# measured export's stack ceiling (firmware/header_stack.py, one more check). The bare-metal
+# targets are built for one core (NLSUBDIV_MAX_CHUNKS=1, firmware/build.sh).
 #
 # A target whose tools are missing is SKIPPED (scripts/setup.sh installs them); nothing is
 # installed here. The last line is "test-firmware: N passed, M failed, K skipped" (one per
@@ -243,6 +245,21 @@ static_bound() {
     fi
 }
 
+# The C header states each measured export's stack ceiling (the largest of its entry points'
+# static-bound ceilings above): firmware/header_stack.py fails on a missing or different line.
+header_stack() {
+    local log=$OUT/header-stack.txt summary
+    if python3 firmware/header_stack.py >"$log" 2>&1; then
+        summary=$(tail -n 1 "$log")
+        echo "PASS  ${summary#header_stack: } in include/nlsubdiv.h"
+        passed=$((passed+1))
+    else
+        echo "FAIL  header's stack figures ($log):"
+        sed 's/^/      /' "$log"
+        failed=$((failed+1))
+    fi
+}
+
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
 # The reference first: every other target is compared with it.
@@ -258,6 +275,7 @@ done
 stack_table
 stack_bounds
 static_bound
+header_stack
 echo "test-firmware: $((SECONDS-t_start)) s"
 echo "test-firmware: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -145,6 +145,9 @@ pub unsafe extern "C" fn nls_curve_scratch_size(
 /// `NLS_STATUS_TOO_FEW_POINTS`, `NLS_STATUS_BUFFER_TOO_SMALL`, `NLS_STATUS_ALIASING_BUFFERS`,
 /// `NLS_STATUS_FP_ENVIRONMENT`, `NLS_STATUS_NON_FINITE_INPUT`,
 /// `NLS_STATUS_DEGENERATE_GEOMETRY`, `NLS_STATUS_NUMERICAL_FAILURE`.
+///
+/// Stack on Cortex-M4F: at most 4,096 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_curve_subdivide(
     scheme: u32,

@@ -342,6 +342,9 @@ pub unsafe extern "C" fn nls_differential_plan(
 /// known); `NLS_STATUS_DEGENERATE_GEOMETRY` (a normal edit at a control vertex whose surface
 /// normal is zero, naming the vertex); `NLS_STATUS_ALIASING_BUFFERS` also when an out-pointer points into a buffer of the
 /// call or into another out-pointer.
+///
+/// Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_differential_subdivide(
     mesh: *const nls_mesh_view,

@@ -1024,6 +1024,9 @@ pub(crate) unsafe fn plan_body(
 /// ends of the double range); `NLS_STATUS_ALIASING_BUFFERS` also when `out_sizes`,
 /// `out_report` or `out_element` points into a buffer of the call or into another
 /// out-pointer.
+///
+/// Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mesh_subdivide(
     mesh: *const nls_mesh_view,

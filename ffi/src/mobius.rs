@@ -119,6 +119,9 @@ fn canonical_form_of(cf: &nls_canonical_form) -> Result<CanonicalForm, Status> {
 }
 
 /// The identity map.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_identity(out: *mut nls_mobius) -> Status {
     run(|| {
@@ -135,6 +138,9 @@ pub unsafe extern "C" fn nls_mobius_identity(out: *mut nls_mobius) -> Status {
 /// Errors: `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_INVALID_ARGUMENT` (`scale = 0`, or a
 /// zero axis with a non-zero angle), `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would
 /// not be finite: inputs near the end of the double range). Nothing is written on error.
+///
+/// Stack on Cortex-M4F: at most 2,560 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[axis;3], [t;3]]
 #[unsafe(no_mangle)]
@@ -186,6 +192,9 @@ pub unsafe extern "C" fn nls_mobius_similarity(
 /// `NLS_STATUS_NUMERICAL_FAILURE` (a coefficient would not be finite: a centre or radius
 /// near the end of the double range). Nothing is written on error.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[centre;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_inversion(
@@ -217,6 +226,9 @@ pub unsafe extern "C" fn nls_mobius_inversion(
 }
 
 /// The composition `outer ∘ inner` (first `inner`, then `outer`).
+///
+/// Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_compose(
     outer: *const nls_mobius,
@@ -242,6 +254,9 @@ pub unsafe extern "C" fn nls_mobius_compose(
 }
 
 /// The inverse map. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for a singular matrix.
+///
+/// Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_invert(m: *const nls_mobius, out: *mut nls_mobius) -> Status {
     run(|| {
@@ -261,6 +276,9 @@ pub unsafe extern "C" fn nls_mobius_invert(m: *const nls_mobius, out: *mut nls_m
 
 /// The image of the point `p`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` when `p` is sent to
 /// infinity.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[p;3], [out;3]]
 #[unsafe(no_mangle)]
@@ -291,6 +309,9 @@ pub unsafe extern "C" fn nls_mobius_apply(
 /// Errors: `NLS_STATUS_INVALID_ARGUMENT` (unknown kind), `NLS_STATUS_TOO_FEW_POINTS`,
 /// `NLS_STATUS_VALENCE_TOO_HIGH`, `NLS_STATUS_NON_FINITE_INPUT`,
 /// `NLS_STATUS_DEGENERATE_GEOMETRY` (a neighbour coincides with `v`, or zero radius).
+///
+/// Stack on Cortex-M4F: at most 4,608 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]

@@ -24,6 +24,9 @@ pub(crate) fn run(body: impl FnOnce() -> Result<(), Status>) -> Status {
 /// `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_DEGENERATE_GEOMETRY` (`b = c` or `d = a`),
 /// `NLS_STATUS_FP_ENVIRONMENT`.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [out_wxyz;4]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_cross_ratio(
@@ -63,6 +66,9 @@ pub unsafe extern "C" fn nls_cross_ratio(
 /// Errors: `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`,
 /// `NLS_STATUS_NON_FINITE_INPUT`, `NLS_STATUS_DEGENERATE_GEOMETRY` (the point is at
 /// infinity), `NLS_STATUS_NUMERICAL_FAILURE`, `NLS_STATUS_FP_ENVIRONMENT`.
+///
+/// Stack on Cortex-M4F: at most 3,072 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [out;3]]
 #[unsafe(no_mangle)]
@@ -106,6 +112,9 @@ pub unsafe extern "C" fn nls_f4(
 ///
 /// Errors: as `nls_f4`; a non-finite `x` is `NLS_STATUS_NON_FINITE_INPUT`.
 ///
+/// Stack on Cortex-M4F: at most 3,072 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [x;3], [out;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_f4_hinted(
@@ -141,6 +150,9 @@ pub unsafe extern "C" fn nls_f4_hinted(
 ///
 /// Errors: as `nls_f4`; `NLS_STATUS_DEGENERATE_GEOMETRY` also when a cross-ratio of the
 /// construction is undefined (`a = b`, `d = e`, `b = c`, `e = f`).
+///
+/// Stack on Cortex-M4F: at most 3,584 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3], [e;3], [f;3], [out;3]]
 #[unsafe(no_mangle)]
@@ -178,6 +190,9 @@ pub unsafe extern "C" fn nls_f6(
 /// `ρ = cr[c, a, b, d]`, the cross-ratio F4 uses (seed 000 §4.4.3 (ii)); 0 for cocircular
 /// points.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [d;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_noncircularity(
@@ -209,6 +224,9 @@ pub unsafe extern "C" fn nls_noncircularity(
 /// The corner tangent `t[a, b, c] = (b − a)⁻¹ + (c − b)⁻¹` (seed 000 §3.3): a vector tangent
 /// at `b` to the circle through `a, b, c`.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[a;3], [b;3], [c;3], [out;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_corner_tangent(
@@ -234,6 +252,9 @@ pub unsafe extern "C" fn nls_corner_tangent(
 /// `3*ring_count` doubles and must not overlap `ring`.
 ///
 /// Errors: also `NLS_STATUS_DEGENERATE_GEOMETRY` when a neighbour coincides with `v`.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]
@@ -289,6 +310,9 @@ fn quat_op(
 
 /// The Hamilton product `p·q` of two quaternions given as `w, x, y, z`.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[p;4], [q;4], [out;4]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_quat_mul(p: *const f64, q: *const f64, out: *mut f64) -> Status {
@@ -302,6 +326,9 @@ pub unsafe extern "C" fn nls_quat_mul(p: *const f64, q: *const f64, out: *mut f6
 /// The inverse `q⁻¹ = q̄/|q|²`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for `q = 0` (or an
 /// inverse that is not a finite, non-zero quaternion).
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[q;4], [out;4]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_quat_inverse(q: *const f64, out: *mut f64) -> Status {
@@ -310,6 +337,9 @@ pub unsafe extern "C" fn nls_quat_inverse(q: *const f64, out: *mut f64) -> Statu
 
 /// The principal square root (non-negative real part, seed 000 §3.1). Errors:
 /// `NLS_STATUS_DEGENERATE_GEOMETRY` for a negative real `q`, whose root is not unique.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[q;4], [out;4]]
 #[unsafe(no_mangle)]
@@ -320,6 +350,9 @@ pub unsafe extern "C" fn nls_quat_sqrt(q: *const f64, out: *mut f64) -> Status {
 /// The principal logarithm `[ln|q|, n θ]`. Errors: `NLS_STATUS_DEGENERATE_GEOMETRY` for zero
 /// or a negative real `q`.
 ///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[q;4], [out;4]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_quat_log(q: *const f64, out: *mut f64) -> Status {
@@ -328,6 +361,9 @@ pub unsafe extern "C" fn nls_quat_log(q: *const f64, out: *mut f64) -> Status {
 
 /// The exponential `e^w [cos|v|, v/|v| sin|v|]`. Errors: `NLS_STATUS_NUMERICAL_FAILURE` on
 /// overflow.
+///
+/// Stack on Cortex-M4F: at most 2,048 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[q;4], [out;4]]
 #[unsafe(no_mangle)]
@@ -340,6 +376,9 @@ pub unsafe extern "C" fn nls_quat_exp(q: *const f64, out: *mut f64) -> Status {
 /// is cospherical. `closed` is 1 for an interior vertex (cyclic ring), 0 for a boundary
 /// vertex (ring from one boundary neighbour to the other); other values are
 /// `NLS_STATUS_INVALID_ARGUMENT`.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]
@@ -366,6 +405,9 @@ pub unsafe extern "C" fn nls_star_willmore_energy(
 /// The Möbius-regularity defect of the vertex star `v ring…`: the sum of squared differences
 /// of consecutive cross-ratios `cr[v, u_{i−1}, u_i, u_{i+1}]` (seed 000 Fig. 15); 0 iff the
 /// star is Möbius regular. `closed` as for `nls_star_willmore_energy`.
+///
+/// Stack on Cortex-M4F: at most 1,536 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[v;3]]
 #[unsafe(no_mangle)]
@@ -399,6 +441,9 @@ pub unsafe extern "C" fn nls_star_mobius_regularity(
 /// Errors: `NLS_STATUS_TOO_FEW_POINTS` (`count < 3`), `NLS_STATUS_VALENCE_TOO_HIGH`, and
 /// those of `nls_f4` and `nls_f6`.
 ///
+/// Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[out;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_face_point(
@@ -426,6 +471,9 @@ pub unsafe extern "C" fn nls_face_point(
 /// tier-1 rules should call it with its own vertex indices.
 ///
 /// Errors: those of `nls_face_point`.
+///
+/// Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[out;3]]
 #[unsafe(no_mangle)]

@@ -121,6 +121,9 @@ fn disjoint(outputs: &[(usize, usize)], inputs: &[(usize, usize)]) -> Result<(),
 /// `NLS_STATUS_NULL_PARAMETER`, `NLS_STATUS_MISALIGNED_POINTER`, `NLS_STATUS_SIZE_OVERFLOW`,
 /// `NLS_STATUS_ALIASING_BUFFERS`, `NLS_STATUS_FP_ENVIRONMENT`. Nothing is written on error.
 ///
+/// Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
+///
 /// cbindgen:ptrs-as-arrays=[[out_vertex_point;3]]
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_loop_star(
@@ -197,6 +200,9 @@ pub unsafe extern "C" fn nls_mobius_loop_star(
 /// (`face_count` does not fit `ring_count` and `closed`, or a face does not contain `v`),
 /// `NLS_STATUS_BAD_OFFSETS`, `NLS_STATUS_FACE_TOO_SMALL`, `NLS_STATUS_VALENCE_TOO_HIGH` (a face
 /// above `nls_max_face_size()` corners), `NLS_STATUS_NON_FINITE_INPUT` (also a face corner).
+///
+/// Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 ///
 /// cbindgen:ptrs-as-arrays=[[out_vertex_point;3]]
 #[unsafe(no_mangle)]
@@ -293,6 +299,8 @@ pub unsafe extern "C" fn nls_mobius_catmull_clark_star(
 /// the star has no canonical form); `NLS_STATUS_INVALID_ARGUMENT` also for a flag not 0 or 1;
 /// `NLS_STATUS_TOO_FEW_POINTS` for fewer than 2 neighbours. Nothing is written on error.
 ///
+/// Stack on Cortex-M4F: at most 5,632 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mobius_butterfly_star(
     star: *const nls_star_view,

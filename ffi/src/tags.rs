@@ -289,6 +289,9 @@ pub unsafe extern "C" fn nls_mesh_plan_tagged(
 /// error (see `nls_mesh_plan_tagged` and `nls_mesh_subdivide`), or `NLS_NO_ELEMENT`.
 /// @return `NLS_STATUS_OK`, the errors of `nls_mesh_plan_tagged` and of
 /// `nls_mesh_subdivide`.
+///
+/// Stack on Cortex-M4F: at most 8,192 bytes in a firmware build
+/// (`NLSUBDIV_MAX_CHUNKS=1`: `docs/firmware.md`, "Stack").
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn nls_mesh_subdivide_tagged(
     mesh: *const nls_mesh_view,
