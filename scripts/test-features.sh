@@ -91,5 +91,25 @@ caps_refused() {
 }
 check "capacities outside 8..4096 stop the build with a message" caps_refused
 
+# One chunk per pass (NLSUBDIV_MAX_CHUNKS=1, the firmware configuration: docs/firmware.md,
+# "Stack"): the Möbius and threading tests pass (every executor then runs each pass in one
+# chunk, and the plan's scratch holds one chunk's workspaces), and a value outside 1..64
+# stops the build. Their own target folder.
+chunks_one() {
+    NLSUBDIV_MAX_CHUNKS=1 cargo test -q --locked --release -p nlsubdiv --target-dir target/chunks1 \
+        --test mesh_mobius --test parallel --test mesh_schemes
+}
+check "NLSUBDIV_MAX_CHUNKS=1: the Möbius, parallel and scheme tests" chunks_one
+chunks_refused() {
+    local v out
+    for v in 0 65 8x ""; do
+        out=$(NLSUBDIV_MAX_CHUNKS="$v" cargo check -q --locked -p nlsubdiv --target-dir target/caps 2>&1) && {
+            echo "NLSUBDIV_MAX_CHUNKS='$v' built"; return 1; }
+        grep -q "NLSUBDIV_MAX_CHUNKS must be a decimal number from 1 to 64" <<<"$out" || {
+            echo "NLSUBDIV_MAX_CHUNKS='$v': no message"; return 1; }
+    done
+}
+check "NLSUBDIV_MAX_CHUNKS outside 1..64 stops the build with a message" chunks_refused
+
 echo "test-features: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -371,6 +371,8 @@ fn the_vertex_pass_is_split() {
         };
         let opts = Options::new(s).mobius(true).literal(true);
         run_with(&m, &opts, &census).unwrap();
+        // A build with one chunk per pass (NLSUBDIV_MAX_CHUNKS=1) never calls the executor.
+        let passes = if MAX_CHUNKS == 1 { vec![] } else { passes };
         assert_eq!(census.passes.into_inner().unwrap(), passes, "{s:?}");
     }
 }
