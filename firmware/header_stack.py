@@ -20,7 +20,7 @@ import sys
 # Harness entry point -> the exports it calls (an entry point not listed here is an export of
 # its own name).
 GROUPS = [
-    (re.compile(r"^mesh .* tagged \(linear\)$"), ["nls_mesh_subdivide_tagged"]),
+    (re.compile(r"^mesh .* tagged \((linear|Möbius)\)$"), ["nls_mesh_subdivide_tagged"]),
     (re.compile(r"^mesh "), ["nls_mesh_subdivide"]),
     (re.compile(r"^star rules$"),
      ["nls_mobius_loop_star", "nls_mobius_catmull_clark_star", "nls_mobius_butterfly_star"]),

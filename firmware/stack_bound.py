@@ -73,7 +73,8 @@ import sys
 # measurement (fw_case_end): the C ABI function named like the entry point, or the adapter of
 # firmware/harness/calls.c the case calls for a scheme group.
 GROUP_ROOTS = [
-    (re.compile(r"^mesh .* tagged \(linear\)$"), ["fw_mesh_subdivide_tagged"]),
+    (re.compile(r"^mesh .* tagged \((linear|Möbius)\)$"), ["fw_mesh_subdivide_tagged"]),
+    (re.compile(r"^mesh options \(Möbius\)$"), ["fw_mesh_subdivide_spectrum"]),
     (re.compile(r"^mesh .* \((linear|Möbius)\)$"), ["fw_mesh_subdivide"]),
     (re.compile(r"^curve subdivide$"), ["fw_curve_subdivide"]),
     (re.compile(r"^differential subdivide$"), ["fw_differential_subdivide"]),

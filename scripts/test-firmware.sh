@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Cross-architecture bit-identity of nlsubdiv (docs/firmware.md). The harness of firmware/
-# (304 cases over the public C ABI: primitives, every curve scheme, every mesh scheme linear
-# and Möbius, spherelike, differential, star rules; plus the FP-environment tests) is built
+# (368 cases over the public C ABI: primitives, every curve scheme, every mesh scheme linear
+# and Möbius, tags linear and Möbius, the Möbius options, spherelike, differential, star rules;
+# plus the FP-environment tests) is built
 # for x86_64 (the reference) and run there, then built and run for:
 #
 #   aarch64  Linux, under qemu-aarch64

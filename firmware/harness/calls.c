@@ -55,7 +55,7 @@ static uint32_t buffers_of(const nls_plan *plan, fw_mesh_result *out, nls_scratc
 /* nls_mesh_plan_scratch_size (the input's topology), nls_mesh_plan, nls_mesh_subdivide; their
  * _tagged forms when `tags` is not NULL. */
 static uint32_t mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
-                               const nls_tags *tags, fw_mesh_result *out) {
+                               const nls_tags *tags, const fw_spectrum *spectrum, fw_mesh_result *out) {
     nls_mesh_view view = view_of(m);
     nls_subdivide_options options;
     nls_plan plan;
@@ -72,6 +72,10 @@ static uint32_t mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels,
     options.scheme = scheme;
     options.flags = flags;
     options.levels = levels;
+    if (spectrum != NULL) {
+        options.linear_weight = spectrum->linear_weight;
+        options.linear_weights = spectrum->linear_weights;
+    }
     s = tags ? nls_mesh_plan_scratch_size_tagged(&view, tags, &topo_u32) : nls_mesh_plan_scratch_size(&view, &topo_u32);
     if (s != NLS_STATUS_OK) return s;
     if ((topo = ALLOC(uint32_t, topo_u32)) == NULL) return FW_STATUS_NO_MEMORY;
@@ -94,7 +98,12 @@ static uint32_t mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels,
 
 uint32_t fw_mesh_subdivide(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
                            fw_mesh_result *out) {
-    return mesh_subdivide(scheme, flags, levels, m, NULL, out);
+    return mesh_subdivide(scheme, flags, levels, m, NULL, NULL, out);
+}
+
+uint32_t fw_mesh_subdivide_spectrum(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
+                                    const fw_spectrum *spectrum, fw_mesh_result *out) {
+    return mesh_subdivide(scheme, flags, levels, m, NULL, spectrum, out);
 }
 
 uint32_t fw_mesh_subdivide_tagged(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *m,
@@ -107,7 +116,7 @@ uint32_t fw_mesh_subdivide_tagged(uint32_t scheme, uint32_t flags, uint32_t leve
     tags.corner_sharpness = t->corner_sharpness;
     tags.corner_count = t->corner_count;
     tags.method = t->method;
-    return mesh_subdivide(scheme, flags, levels, m, &tags, out);
+    return mesh_subdivide(scheme, flags, levels, m, &tags, NULL, out);
 }
 
 uint32_t fw_curve_subdivide(uint32_t scheme, const double *points, size_t count, uint32_t closed,

@@ -55,6 +55,18 @@ typedef struct fw_tags {
 uint32_t fw_mesh_subdivide_tagged(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *mesh,
                                   const fw_tags *tags, fw_mesh_result *out);
 
+/* The Möbius–linear spectrum (nls_subdivide_options.linear_weight, .linear_weights): the weight
+ * of the linear result, global, or one per input vertex (NULL: the global one). */
+typedef struct fw_spectrum {
+    double linear_weight;
+    const double *linear_weights;
+} fw_spectrum;
+
+/* fw_mesh_subdivide with the spectrum's weights in the options (flags as there, for instance
+ * NLS_SUBDIVIDE_MOBIUS | NLS_SUBDIVIDE_LITERAL). */
+uint32_t fw_mesh_subdivide_spectrum(uint32_t scheme, uint32_t flags, uint32_t levels, const fw_mesh *mesh,
+                                    const fw_spectrum *spectrum, fw_mesh_result *out);
+
 typedef struct fw_curve_result {
     double *points;
     size_t count;

@@ -1,5 +1,6 @@
 /* Every mesh scheme, linear and Möbius, 1 and 2 levels, on every built-in mesh whose faces it
- * accepts; spherelike (linear only); documented errors; the differential schemes; the
+ * accepts; the tagged schemes, linear and Möbius; the Möbius options (literal, strict, the
+ * spectrum's weights); spherelike (linear only); documented errors; the differential schemes; the
  * tier-1 star rules. */
 #include <math.h>
 #include <stdio.h>
@@ -82,7 +83,7 @@ static void one(size_t k, const fw_named_mesh *m, int mobius, uint32_t levels, u
  * Butterfly, Kobbelt: interpolating creases) on mesh `m`: the first face's first two edges
  * tagged semi-sharp and its third corner a semi-sharp corner, so that both levels run the
  * crease, corner and fractional blend rules. */
-static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32_t levels) {
+static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32_t levels, int mobius) {
     char name[96], entry[64];
     const uint32_t *f = &m->mesh.indices[m->mesh.offsets[0]];
     const uint32_t creases[4] = {f[0], f[1], f[1], f[2]}, corners[1] = {f[2]};
@@ -91,11 +92,13 @@ static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32
     fw_mesh_result r;
     fw_hash *h;
     uint32_t s;
-    snprintf(name, sizeof name, "mesh/%s/tagged_%s/%s/L%u", SCHEMES[k].name,
-             method == NLS_CREASE_CHAIKIN ? "chaikin" : "uniform", m->name, (unsigned)levels);
-    snprintf(entry, sizeof entry, "mesh %s tagged (linear)", SCHEMES[k].name);
+    snprintf(name, sizeof name, "mesh/%s/tagged_%s%s/%s/L%u", SCHEMES[k].name,
+             method == NLS_CREASE_CHAIKIN ? "chaikin" : "uniform", mobius ? "_mobius" : "", m->name,
+             (unsigned)levels);
+    snprintf(entry, sizeof entry, "mesh %s tagged (%s)", SCHEMES[k].name, mobius ? "Möbius" : "linear");
     h = fw_case_begin(entry, name);
-    s = fw_mesh_subdivide_tagged(SCHEMES[k].scheme, 0, levels, &m->mesh, &tags, &r);
+    s = fw_mesh_subdivide_tagged(SCHEMES[k].scheme, mobius ? NLS_SUBDIVIDE_MOBIUS : 0, levels, &m->mesh, &tags,
+                                 &r);
     if (s == NLS_STATUS_OK) {
         hash_mesh(h, &r);
         fw_check(r.offsets[0] == 0 && r.offsets[r.face_count] == r.index_count, "malformed output offsets");
@@ -106,7 +109,7 @@ static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32
         /* Loop and Catmull–Clark, one level: f[1] lies on two sharp edges (1.5 and 3.0, both
          * still sharp after the step), so its vertex point is the cubic B-spline crease rule
          * 3/4 v + 1/8 (f[0] + f[2]) (OpenSubdiv's crease mask), bit for bit */
-        if (!SCHEMES[k].interpolating && levels == 1) {
+        if (!SCHEMES[k].interpolating && levels == 1 && !mobius) {
             const double *v = &m->mesh.positions[3 * f[1]], *a = &m->mesh.positions[3 * f[0]],
                          *b = &m->mesh.positions[3 * f[2]];
             double crease[3];
@@ -120,6 +123,42 @@ static void one_tagged(size_t k, const fw_named_mesh *m, uint32_t method, uint32
     fw_case_end(s, NLS_STATUS_OK);
 }
 
+/* One Möbius mesh call with options, as the "mesh options (Möbius)" entry point. */
+static void one_option(size_t k, const fw_named_mesh *m, uint32_t levels, const char *what, uint32_t flags,
+                       const fw_spectrum *spectrum, uint32_t expected) {
+    char name[96];
+    fw_mesh_result r;
+    fw_hash *h;
+    uint32_t s;
+    snprintf(name, sizeof name, "mesh/%s/mobius_%s/%s/L%u", SCHEMES[k].name, what, m->name, (unsigned)levels);
+    h = fw_case_begin("mesh options (Möbius)", name);
+    s = fw_mesh_subdivide_spectrum(SCHEMES[k].scheme, NLS_SUBDIVIDE_MOBIUS | flags, levels, &m->mesh, spectrum, &r);
+    if (s == NLS_STATUS_OK) {
+        hash_mesh(h, &r);
+        fw_hash_u32(h, r.fallbacks);
+        fw_hash_u32(h, r.first_fallback);
+        fw_hash_u32(h, r.first_fallback_level);
+        fw_check(r.offsets[0] == 0 && r.offsets[r.face_count] == r.index_count, "malformed output offsets");
+    } else {
+        fw_hash_u32(h, r.element);
+    }
+    fw_case_end(s, expected);
+}
+
+/* The Möbius options on mesh `m`: literal (the paper's rules, no fold guard), strict, the
+ * spectrum at the global linear weight 0.25, and per-vertex weights (exact multiples of 1/4,
+ * so that every architecture reads the same doubles). */
+static void one_options(size_t k, const fw_named_mesh *m, uint32_t levels) {
+    static double weights[64];
+    fw_spectrum global = {0.25, NULL}, per_vertex = {0.0, weights};
+    size_t i;
+    for (i = 0; i < m->mesh.vertex_count && i < 64; i++) weights[i] = 0.25 * (double)(i % 5);
+    one_option(k, m, levels, "literal", NLS_SUBDIVIDE_LITERAL, NULL, NLS_STATUS_OK);
+    one_option(k, m, levels, "strict", NLS_SUBDIVIDE_STRICT, NULL, NLS_STATUS_OK);
+    one_option(k, m, levels, "spectrum", 0, &global, NLS_STATUS_OK);
+    if (m->mesh.vertex_count <= 64) one_option(k, m, levels, "weights", 0, &per_vertex, NLS_STATUS_OK);
+}
+
 void fw_cases_meshes(void) {
     size_t k, i;
     int mobius;
@@ -131,15 +170,25 @@ void fw_cases_meshes(void) {
                 for (levels = 1; levels <= 2; levels++)
                     if (accepts(SCHEMES[k].faces, fw_meshes[i].faces))
                         one(k, &fw_meshes[i], mobius, levels, NLS_STATUS_OK);
-    /* sharp-feature tags: the four schemes that take them, both crease methods */
+    /* sharp-feature tags: the four schemes that take them, both crease methods, linear and
+     * Möbius (the Möbius tagged rules, docs/creases.md) */
     for (levels = 1; levels <= 2; levels++) {
         uint32_t method;
-        for (method = NLS_CREASE_UNIFORM; method <= NLS_CREASE_CHAIKIN; method++) {
-            one_tagged(0, &fw_meshes[1], method, levels); /* Loop, octa */
-            one_tagged(1, &fw_meshes[2], method, levels); /* Catmull–Clark, cube */
-            one_tagged(2, &fw_meshes[1], method, levels); /* Modified Butterfly, octa */
-            one_tagged(3, &fw_meshes[2], method, levels); /* Kobbelt, cube */
-        }
+        for (mobius = 0; mobius <= 1; mobius++)
+            for (method = NLS_CREASE_UNIFORM; method <= NLS_CREASE_CHAIKIN; method++) {
+                one_tagged(0, &fw_meshes[1], method, levels, mobius); /* Loop, octa */
+                one_tagged(1, &fw_meshes[2], method, levels, mobius); /* Catmull–Clark, cube */
+                one_tagged(2, &fw_meshes[1], method, levels, mobius); /* Modified Butterfly, octa */
+                one_tagged(3, &fw_meshes[2], method, levels, mobius); /* Kobbelt, cube */
+            }
+    }
+    /* the Möbius options: the paper's literal rules, the spectrum's global weight and its
+     * per-vertex weights, and strict mode */
+    for (levels = 1; levels <= 2; levels++) {
+        one_options(0, &fw_meshes[1], levels); /* Loop, octa */
+        one_options(1, &fw_meshes[2], levels); /* Catmull–Clark, cube */
+        one_options(2, &fw_meshes[1], levels); /* Modified Butterfly, octa */
+        one_options(4, &fw_meshes[2], levels); /* Doo–Sabin, cube */
     }
     /* documented errors: Loop on quads; spherelike has no Möbius form */
     one(0, &fw_meshes[2], 0, 1, NLS_STATUS_UNSUPPORTED_FACE_TYPE);
