@@ -998,3 +998,51 @@ fn every_mobius_scheme_is_independent_of_where_faces_start() {
     }
     println!("face-start independence: {runs} (mesh, scheme) runs at 2 levels, worst {worst:.2e}");
 }
+
+/// Strict mode refuses the first output vertex that the lenient run counts, whichever pass
+/// computes it: Kobbelt's interior edge points run in edge ranges and its boundary edge
+/// points after them, so the refusal must still name the lowest counted vertex (the one a walk
+/// over the outputs in order meets first). An open grid with one vertex moved onto its
+/// neighbour, at several places (interior and boundary), literal and guarded.
+#[test]
+fn strict_refuses_the_lowest_counted_vertex() {
+    for s in [Scheme::Kobbelt, Scheme::CatmullClark, Scheme::DooSabin] {
+        let mut refused = 0;
+        let base = jitter(&quad_grid(5, 4), 0.05, 57);
+        for (v, onto) in [(7usize, 8usize), (1, 2), (0, 1), (13, 14), (29, 28)] {
+            let mut m = base.clone();
+            if onto >= m.positions.len() || v >= m.positions.len() {
+                continue;
+            }
+            m.positions[v] = m.positions[onto];
+            for literal in [true, false] {
+                let opts = Options::new(s).mobius(true).literal(literal);
+                let lenient = run(&m, &opts);
+                let strict = run(&m, &opts.strict(true));
+                let Ok((_, r)) = lenient else {
+                    // Refused before any rule (the same refusal in strict mode).
+                    assert_eq!(lenient.unwrap_err().status, strict.unwrap_err().status);
+                    continue;
+                };
+                let counted = r.fallbacks + r.guarded;
+                if counted == 0 {
+                    assert!(strict.is_ok(), "{s:?} v{v} literal {literal}");
+                    continue;
+                }
+                let first = match (r.fallbacks, r.guarded) {
+                    (0, _) => r.first_guarded,
+                    (_, 0) => r.first_fallback,
+                    _ => r.first_fallback.min(r.first_guarded),
+                };
+                let e = strict.unwrap_err();
+                assert_eq!(
+                    (e.status, e.element),
+                    (Status::FallbackInStrictMode, first),
+                    "{s:?} v{v} literal {literal}: {r:?}"
+                );
+                refused += 1;
+            }
+        }
+        assert!(refused >= 4, "{s:?}: {refused} refusals");
+    }
+}

@@ -5,13 +5,15 @@
 //! (boundary edges: along their boundary loop), and a face point the F6 blend of the two
 //! grid lines of new edge points through the face.
 
-use super::super::driver::Driver;
+use super::super::driver::{chunk_fallback, Driver};
 use super::super::form::{present, MISSING};
 use super::super::rules::kobbelt_beyond_in_form;
+use super::super::slots::slot_of;
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::blend::{self, f4, f4_hinted};
-use crate::error::Result;
+use crate::error::{Error, Result, Status};
+use crate::exec::{pass, Tally};
 use crate::mesh::gather::apex;
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{midpoint, Point};
@@ -76,121 +78,171 @@ fn beyond_in_workspace(
 
 /// Edge points `F4(r0, a0, a1, r1)` of the points beyond both ends (boundary edges: their
 /// boundary loop's neighbours); the linear rule where one is missing or the blend fails.
+///
+/// The interior edges in edge ranges through the executor, then the boundary edges, which
+/// read their boundary loops, on the calling thread: each edge point is computed alone, so
+/// the bits do not depend on the order. Every fallback (and fold-guard substitution) is
+/// tallied; strict mode then refuses the lowest such output vertex, the one the serial walk
+/// over the edges met first.
 fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let (nv, ne) = (topo.num_vertices(), topo.num_edges());
+    let (edge_c, slots): (&[Point], &[f64]) = (d.edge_c, d.slots);
+    let out = d.pos.get_mut(nv..nv + ne).ok_or(internal())?;
+    let interior = pass(d.exec, out, |first, out, tally| {
+        for (i, p) in out.iter_mut().enumerate() {
+            let e = (first + i) as u32;
+            let h = topo.edge_half_edge(e)?;
+            let t = topo.twin(h)?;
+            if t == NONE {
+                continue;
+            }
+            let (a0, a1) = (
+                topo.position(topo.origin(h)?)?,
+                topo.position(topo.dest(h)?)?,
+            );
+            let hint = topo.position(topo.dest(topo.next(h)?)?)?;
+            let q = match (beyond_of(edge_c, slots, h)?, beyond_of(edge_c, slots, t)?) {
+                (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
+                _ => None,
+            };
+            *p = match q {
+                Some(q) => q,
+                None => {
+                    tally.add((nv + first + i) as u32);
+                    kobbelt_edge(topo, e)?
+                }
+            };
+        }
+        Ok(())
+    })?;
+    let (mut fallbacks, mut guarded) = (interior, Tally::new());
     for e in 0..ne as u32 {
         let h = topo.edge_half_edge(e)?;
-        let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
-        let (a0, a1) = (topo.position(i0)?, topo.position(i1)?);
+        if topo.twin(h)? != NONE {
+            continue;
+        }
+        let (a0, a1) = (
+            topo.position(topo.origin(h)?)?,
+            topo.position(topo.dest(h)?)?,
+        );
         let k = nv + e as usize;
-        let boundary = topo.twin(h)? == NONE;
-        let (r0, r1) = if boundary {
-            let (o0, o3) = d.boundary_outer(h)?;
-            (Some(topo.position(o0)?), Some(topo.position(o3)?))
-        } else {
-            (beyond_of(d, h)?, beyond_of(d, topo.twin(h)?)?)
-        };
+        let (o0, o3) = d.boundary_outer(h)?;
+        let (r0, r1) = (topo.position(o0)?, topo.position(o3)?);
         let hint = topo.position(topo.dest(topo.next(h)?)?)?;
-        let cut_curve = boundary && d.corner_ends(h)? != (false, false);
-        if boundary && d.short_curve(h)? {
+        let cut_curve = d.corner_ends(h)? != (false, false);
+        if d.short_curve(h)? {
             // A crease curve of three points (`boundary.rs`): the linear 4-point rule.
-            d.guarded(k)?;
+            guarded.add(k as u32);
             let p = d.boundary_segment(h)?.0;
             set(d.pos, k, kobbelt::four_point(p[0], p[1], p[2], p[3]))?;
             continue;
         }
-        let q = match (r0, r1) {
+        let q = if cut_curve {
             // A boundary curve ending at a corner (sharp features): the open-curve rule.
-            _ if cut_curve => d.boundary_segment(h)?.1.ok(),
-            (Some(r0), Some(r1)) => f4_hinted(r0, a0, a1, r1, hint).ok(),
-            _ => None,
+            d.boundary_segment(h)?.1.ok()
+        } else {
+            f4_hinted(r0, a0, a1, r1, hint).ok()
         };
         let q = match q {
             Some(q) => q,
             None if cut_curve => {
                 // The 4-point rule of the open curve (virtual end points past a corner).
-                d.fallback(k)?;
+                fallbacks.add(k as u32);
                 let p = d.boundary_segment(h)?.0;
                 kobbelt::four_point(p[0], p[1], p[2], p[3])
             }
             None => {
-                d.fallback(k)?;
+                fallbacks.add(k as u32);
                 kobbelt_edge(topo, e)?
             }
         };
         set(d.pos, k, q)?;
     }
+    if d.strict && fallbacks.merge(guarded).count > 0 {
+        let first = fallbacks.merge(guarded).first;
+        return Err(Error::at(Status::FallbackInStrictMode, first));
+    }
+    d.add_fallbacks(fallbacks);
+    d.add_guarded(guarded);
     Ok(())
 }
 
 /// Face points: `F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7)` over the two grid lines of new
-/// edge points through the face (Fig. 14); the linear rule where a blend fails.
+/// edge points through the face (Fig. 14); the linear rule where a blend fails. In face
+/// ranges through the executor: a face point reads only the edge points.
 fn face_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
-    for f in 0..topo.num_faces() as u32 {
-        let r = topo.face_half_edges(f)?;
-        let (h0, h1, h2, h3) = lines(topo, r.start)?;
-        let k = nv + ne + f as usize;
-        let line = |d: &Driver<'_, '_, '_, '_>, hx: u32, hy: u32| -> Result<[Point; 4]> {
-            Ok([
-                outer_edge_point(d, hx, hy)?,
-                edge_point(d, hx)?,
-                edge_point(d, hy)?,
-                outer_edge_point(d, hy, hx)?,
-            ])
-        };
-        let w = line(d, h0, h2)?;
-        let x = line(d, h1, h3)?;
-        let q = f4(w[0], w[1], w[2], w[3])
-            .and_then(|pa| {
-                let pb = f4(x[0], x[1], x[2], x[3])?;
-                blend::f6(w[1], pa, w[2], x[1], pb, x[2])
-            })
-            .ok();
-        let q = match q {
-            Some(q) => q,
-            None => {
-                d.fallback(k)?;
-                let fa = kobbelt::four_point(w[0], w[1], w[2], w[3]);
-                let fb = kobbelt::four_point(x[0], x[1], x[2], x[3]);
-                midpoint(fa, fb)
-            }
-        };
-        set(d.pos, k, q)?;
-    }
+    let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
+    let strict = d.strict;
+    let (pos, rest) = d.pos.split_at_mut_checked(nv + ne).ok_or(internal())?;
+    let pos: &[Point] = pos;
+    let out = rest.get_mut(..nf).ok_or(internal())?;
+    let t = pass(d.exec, out, |first, out, tally| {
+        for (i, p) in out.iter_mut().enumerate() {
+            let f = (first + i) as u32;
+            let r = topo.face_half_edges(f)?;
+            let (h0, h1, h2, h3) = lines(topo, r.start)?;
+            let line = |hx: u32, hy: u32| -> Result<[Point; 4]> {
+                Ok([
+                    outer_edge_point(topo, pos, hx, hy)?,
+                    edge_point(topo, pos, hx)?,
+                    edge_point(topo, pos, hy)?,
+                    outer_edge_point(topo, pos, hy, hx)?,
+                ])
+            };
+            let w = line(h0, h2)?;
+            let x = line(h1, h3)?;
+            let q = f4(w[0], w[1], w[2], w[3])
+                .and_then(|pa| {
+                    let pb = f4(x[0], x[1], x[2], x[3])?;
+                    blend::f6(w[1], pa, w[2], x[1], pb, x[2])
+                })
+                .ok();
+            *p = match q {
+                Some(q) => q,
+                None => {
+                    chunk_fallback(strict, tally, nv + ne + first + i)?;
+                    let fa = kobbelt::four_point(w[0], w[1], w[2], w[3]);
+                    let fb = kobbelt::four_point(x[0], x[1], x[2], x[3]);
+                    midpoint(fa, fb)
+                }
+            };
+        }
+        Ok(())
+    })?;
+    d.add_fallbacks(t);
     Ok(())
 }
 
 /// The point beyond the origin of half-edge `h` on the line from its far end, as the vertex
-/// pass left it; `None` when the origin has no form.
-fn beyond_of(d: &Driver<'_, '_, '_, '_>, h: u32) -> Result<Option<Point>> {
-    let c = get(d.edge_c, d.slot(h)?)?;
+/// pass left it in the candidate slots; `None` when the origin has no form.
+fn beyond_of(edge_c: &[Point], slots: &[f64], h: u32) -> Result<Option<Point>> {
+    let c = get(edge_c, slot_of(slots, h)?)?;
     Ok(present(&c).then_some(c))
 }
 
-/// The new edge point of the edge of half-edge `h`.
-fn edge_point(d: &Driver<'_, '_, '_, '_>, h: u32) -> Result<Point> {
-    get(d.pos, d.topo.num_vertices() + d.topo.edge(h)? as usize)
+/// The new edge point of the edge of half-edge `h` (`pos`: the old vertices, then the edge
+/// points).
+fn edge_point(topo: &Topology<'_, '_>, pos: &[Point], h: u32) -> Result<Point> {
+    get(pos, topo.num_vertices() + topo.edge(h)? as usize)
 }
 
 /// The new edge point beyond edge `hx` of a quad, away from its opposite edge `hy`: the
 /// edge point of the neighbouring quad's opposite edge, or at the boundary an extrapolation.
-fn outer_edge_point(d: &Driver<'_, '_, '_, '_>, hx: u32, hy: u32) -> Result<Point> {
-    let topo = d.topo;
+fn outer_edge_point(topo: &Topology<'_, '_>, pos: &[Point], hx: u32, hy: u32) -> Result<Point> {
     let t = topo.twin(hx)?;
     if t != NONE {
-        return edge_point(d, topo.next(topo.next(t)?)?);
+        return edge_point(topo, pos, topo.next(topo.next(t)?)?);
     }
     // The Möbius-invariant open-end extrapolation of the curve rules
     // (`cr[P_2, P_1, P_0, P_−1] = −1/3`, on the circle through the first three points) along
     // the face's grid line; a strip one face wide has no third point and takes the linear
     // `2e − e'` of the 4-point curve.
-    let (e0, e1) = (edge_point(d, hx)?, edge_point(d, hy)?);
+    let (e0, e1) = (edge_point(topo, pos, hx)?, edge_point(topo, pos, hy)?);
     let ty = topo.twin(hy)?;
     if ty != NONE {
-        let e2 = edge_point(d, topo.next(topo.next(ty)?)?)?;
+        let e2 = edge_point(topo, pos, topo.next(topo.next(ty)?)?)?;
         if let Ok(p) = crate::curve::mobius::virtual_end_point(e0, e1, e2) {
             return Ok(p);
         }
