@@ -16,6 +16,11 @@
 #
 #   firmware/size.sh                 # both tables
 #   firmware/size.sh loop kobbelt    # table 2 for these schemes only (and table 1)
+#   SIZE_OPTS=3 firmware/size.sh     # opt-level 3 only (the other columns "—"; about 4 min)
+#   SIZE_CHECK=1 firmware/size.sh    # also fails (exit 1) unless every one-scheme image is
+#                                    # smaller than the image with every scheme
+#
+# scripts/test-firmware.sh runs SIZE_OPTS=3 SIZE_CHECK=1 (target/firmware/size-m4f.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -27,7 +32,7 @@ mkdir -p "$OUT"
 CPU="-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard"
 BARE=$ROOT/c_examples/bare-metal
 H=$ROOT/firmware/harness
-OPTS=(3 s z)
+read -ra OPTS <<<"${SIZE_OPTS:-3 s z}"
 
 probes=(baseline f4 curve mesh_linear mesh_mobius mesh_runtime all_exports)
 declare -A what=(
@@ -111,13 +116,19 @@ for opt in "${OPTS[@]}"; do
     done
 done
 
+# share KEY OPT: KEY's .text at OPT minus the baseline image's, "—" when not measured.
+share() {
+    local t=${text[$1,$2]:-}
+    if [ -z "$t" ]; then echo "—"; else echo $((t - text[baseline,$2])); fi
+}
+
 echo "Default features (every scheme); bytes, opt-level 3, \"s\" and \"z\":"
 echo
 echo "| image (Cortex-M4F) | .text o3 | .text s | .text z | .rodata o3 | .rodata s | .rodata z |"
 echo "|---|---:|---:|---:|---:|---:|---:|"
 for p in "${probes[@]}"; do
-    printf "| %s | %s | %s | %s | %s | %s | %s |\n" "${what[$p]}" "${text[$p,3]}" "${text[$p,s]}" "${text[$p,z]}" \
-        "${rodata[$p,3]}" "${rodata[$p,s]}" "${rodata[$p,z]}"
+    printf "| %s | %s | %s | %s | %s | %s | %s |\n" "${what[$p]}" "${text[$p,3]:-—}" "${text[$p,s]:-—}" \
+        "${text[$p,z]:-—}" "${rodata[$p,3]:-—}" "${rodata[$p,s]:-—}" "${rodata[$p,z]:-—}"
 done
 echo
 echo "Library share (.text minus the baseline image's):"
@@ -125,8 +136,7 @@ echo
 echo "| path | o3 | s | z |"
 echo "|---|---:|---:|---:|"
 for p in "${probes[@]:1}"; do
-    printf "| %s | %d | %d | %d |\n" "${what[$p]}" $((text[$p,3]-text[baseline,3])) \
-        $((text[$p,s]-text[baseline,s])) $((text[$p,z]-text[baseline,z]))
+    printf "| %s | %s | %s | %s |\n" "${what[$p]}" "$(share "$p" 3)" "$(share "$p" s)" "$(share "$p" z)"
 done
 echo
 echo "One mesh scheme alone: the library built with only its feature (linear), or with it and"
@@ -134,10 +144,6 @@ echo "\`mobius\` (Möbius); library share of .text (the image's minus the baseli
 echo
 echo "| scheme (features) | linear o3 | linear s | linear z | Möbius o3 | Möbius s | Möbius z |"
 echo "|---|---:|---:|---:|---:|---:|---:|"
-share() { # share KEY OPT
-    local t=${text[$1,$2]:-}
-    if [ -z "$t" ]; then echo "—"; else echo $((t - text[baseline,$2])); fi
-}
 for s in "${schemes[@]}"; do
     features="\`$s\`"
     [ "$s" != spherelike ] && features="\`$s\`, \`$s,mobius\`"
@@ -149,3 +155,23 @@ echo
 echo "Largest .rodata of a one-scheme image (bytes): $(for k in "${!rodata[@]}"; do
     case $k in */*) echo "${rodata[$k]}" ;; esac
 done | sort -n | tail -1)"
+
+# Link only what you use: every one-scheme image below the image that reads the scheme at run
+# time from a library with every scheme (docs/firmware.md, "Code size").
+if [ "${SIZE_CHECK:-0}" = 1 ]; then
+    bad=0
+    for opt in "${OPTS[@]}"; do
+        for k in "${!text[@]}"; do
+            case $k in
+                */*,"$opt")
+                    if [ "${text[$k]}" -ge "${text[mesh_runtime,$opt]}" ]; then
+                        echo "size check: ${k%,*} at opt-level $opt links ${text[$k]} bytes of .text," \
+                            "not less than every scheme's ${text[mesh_runtime,$opt]}"
+                        bad=1
+                    fi ;;
+            esac
+        done
+    done
+    [ "$bad" -eq 0 ] || exit 1
+    echo "size check: every one-scheme image is smaller than the image with every scheme"
+fi

@@ -19,8 +19,10 @@
 # point (firmware/stack_bound.py, on a nightly build with -Z emit-stack-sizes) must be at least
 # that mark and at most its ceiling in firmware/stack-static-bounds.txt (the "static stack
 # bound" check, counted like a target; skipped without nightly). The C header must state each
-# measured export's stack ceiling (firmware/header_stack.py, one more check). The bare-metal
-# targets are built for one core (NLSUBDIV_MAX_CHUNKS=1, firmware/build.sh).
+# measured export's stack ceiling (firmware/header_stack.py, one more check), and with m4f the
+# code-size table at opt-level 3 is regenerated (firmware/size.sh; one-scheme images must be
+# smaller than the image with every scheme). The bare-metal targets are built for one core
+# (NLSUBDIV_MAX_CHUNKS=1, firmware/build.sh).
 #
 # A target whose tools are missing is SKIPPED (scripts/setup.sh installs them); nothing is
 # installed here. The last line is "test-firmware: N passed, M failed, K skipped" (one per
@@ -261,6 +263,26 @@ header_stack() {
     fi
 }
 
+# The code-size table at opt-level 3 (firmware/size.sh, docs/firmware.md "Code size") into
+# target/firmware/size-m4f.md; fails unless every one-scheme image is smaller than the image
+# with every scheme (link only what you use). Runs with the M4F target.
+size_table() {
+    local t0=$SECONDS lacking table=$OUT/size-m4f.md
+    lacking=$(missing m4f)
+    if [ -n "$lacking" ]; then
+        echo "SKIP  size table — missing: $lacking (scripts/setup.sh installs it)"
+        skipped=$((skipped+1)); return
+    fi
+    if SIZE_OPTS=3 SIZE_CHECK=1 firmware/size.sh >"$table" 2>&1; then
+        echo "PASS  size table ($((SECONDS-t0)) s): $(tail -n 1 "$table" | sed 's/^size check: //') ($table)"
+        passed=$((passed+1))
+    else
+        echo "FAIL  size table ($table):"
+        tail -n 15 "$table" | sed 's/^/      /'
+        failed=$((failed+1))
+    fi
+}
+
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(x86_64 aarch64 m4f m7 riscv32 example)
 # The reference first: every other target is compared with it.
@@ -277,6 +299,7 @@ stack_table
 stack_bounds
 static_bound
 header_stack
+[[ " ${targets[*]} " == *" m4f "* ]] && size_table
 echo "test-firmware: $((SECONDS-t_start)) s"
 echo "test-firmware: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -83,7 +83,9 @@ fn beyond_in_workspace(
 /// read their boundary loops, on the calling thread: each edge point is computed alone, so
 /// the bits do not depend on the order. Every fallback (and fold-guard substitution) is
 /// tallied; strict mode then refuses the lowest such output vertex, the one the serial walk
-/// over the edges met first.
+/// over the edges met first. Out of line, as [`face_points`]: the driver's frame holds
+/// neither pass's locals (`docs/firmware.md`, "Stack").
+#[inline(never)]
 fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let (nv, ne) = (topo.num_vertices(), topo.num_edges());
@@ -171,6 +173,7 @@ fn edge_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
 /// Face points: `F6(w2, F4(w1..w4), w3, w6, F4(w5..w8), w7)` over the two grid lines of new
 /// edge points through the face (Fig. 14); the linear rule where a blend fails. In face
 /// ranges through the executor: a face point reads only the edge points.
+#[inline(never)]
 fn face_points(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
     let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
