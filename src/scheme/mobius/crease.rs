@@ -280,6 +280,19 @@ fn cut_edges(
             u = s.neighbour;
         }
     }
+    // An interior corner whose sharp edges were all given up (every chain through it ended
+    // at a dart) and that carries no corner tag is a smooth vertex: no crease ends there any
+    // more, and a vertex kept in place inside a smooth Möbius surface makes a spike that
+    // folds the faces around it (module docs).
+    for v in 0..topo.num_vertices() as u32 {
+        if get(corner, v as usize)? != 0
+            && get(count, v as usize)? == 0
+            && !sharp(sh.vertex(v)?)
+            && !topo.is_boundary_vertex(v)?
+        {
+            set(corner, v as usize, 0)?;
+        }
+    }
     Ok(count.iter().any(|&c| c > 0))
 }
 

@@ -63,6 +63,19 @@ impl Frame for Spectrum {
     }
 }
 
+/// Which interior edges with an end on a crease the guard judges as elements
+/// ([`Driver::trust_edges`]), per scheme.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum CreaseEdges {
+    /// None (Catmull–Clark).
+    Off,
+    /// The F4-angle term of the edges that blend two candidates (Loop).
+    F4Angle,
+    /// That, and the linear rule for the edges from a corner to a non-corner (Modified
+    /// Butterfly, whose single partial candidate there is half a stencil).
+    CornersLinear,
+}
+
 /// Which output vertices a scheme computes from a star's frame, which the guard moves toward
 /// the linear rule and counts (`toward_linear.rs`): the vertex point (`vertex`), the edge
 /// points at `edges + e`, the face points at `faces + f` (`None`: no face points), and how many
@@ -109,7 +122,7 @@ impl Driver<'_, '_, '_, '_> {
     /// ([`f4_trust`]; no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
-    pub(super) fn trust_edges(&mut self) -> Result<()> {
+    pub(super) fn trust_edges(&mut self, crease_edges: CreaseEdges) -> Result<()> {
         // Two passes over disjoint output ranges, so that both run on the executor's threads
         // (a pass that lowers both ends of each edge would write scattered vertices): the
         // F4-angle term of every edge into `edge_trust` (edge ranges), then every interior
@@ -181,7 +194,74 @@ impl Driver<'_, '_, '_, '_> {
             &least_terms,
         )?;
         self.edge_trust = g_all;
-        Ok(())
+        self.crease_edge_terms(crease_edges)
+    }
+
+    /// The trust of every interior edge with an end on a crease (a boundary vertex of a
+    /// level cut along its sharp edges, `crease.rs`), kept per edge in `edge_trust` for the
+    /// blend toward the linear rule (`toward_linear.rs`), which moves such an edge point
+    /// alone, by `1 − τ²`; 1 for every other edge, and for every edge of an untagged level
+    /// or with [`CreaseEdges::Off`]. The boundary stars at a crease are exempt from the
+    /// star trust (their forms' conditioning is their own, `trust.rs`), so an edge between
+    /// two crease vertices, or from a crease vertex into the smooth region, is judged here
+    /// as an element:
+    ///
+    /// * an edge that blends two candidates takes the F4-angle term of the blend
+    ///   ([`f4_trust`]): the two stars' candidates disagree, whatever their forms;
+    /// * with [`CreaseEdges::CornersLinear`] (Modified Butterfly), an edge from a corner to a
+    ///   non-corner takes 0, the linear rule (module docs of `crease.rs`, docs/creases.md);
+    /// * an edge that takes a single candidate (the corner rule of `edges.rs`, a missing
+    ///   candidate) keeps 1 otherwise.
+    ///
+    /// The terms read the paper's candidates (before the guarded pass) and the tags, so
+    /// which edges move, and by how much, is Möbius-invariant.
+    fn crease_edge_terms(&mut self, crease_edges: CreaseEdges) -> Result<()> {
+        let topo = self.topo;
+        let ne = topo.num_edges();
+        let tagged = crease_edges != CreaseEdges::Off && !self.corners.is_empty();
+        let corners_linear = crease_edges == CreaseEdges::CornersLinear;
+        let edge_c: &[Point] = self.edge_c;
+        let slots = self.slots;
+        let corners: &[u32] = self.corners;
+        let corner = |v: u32| corners.get(v as usize).is_some_and(|&c| c != 0);
+        let terms = |e0: usize, out: &mut [f64]| -> Result<()> {
+            for (i, ge) in out.iter_mut().enumerate() {
+                *ge = 1.0;
+                if !tagged {
+                    continue;
+                }
+                let e = (e0 + i) as u32;
+                let h = topo.edge_half_edge(e)?;
+                let t = topo.twin(h)?;
+                if t == NONE {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                if !topo.is_boundary_vertex(a)? && !topo.is_boundary_vertex(b)? {
+                    continue;
+                }
+                if corner(a) != corner(b) {
+                    if corners_linear {
+                        *ge = 0.0;
+                    }
+                    continue;
+                }
+                let (ca, cb) = (
+                    get(edge_c, slot_of(slots, h)?)?,
+                    get(edge_c, slot_of(slots, t)?)?,
+                );
+                if !present(&ca) || !present(&cb) {
+                    continue;
+                }
+                *ge = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
+            }
+            Ok(())
+        };
+        f64_ranges(
+            self.exec,
+            self.edge_trust.get_mut(..ne).ok_or(internal())?,
+            &terms,
+        )
     }
 
     /// Steps 4 and 5 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated
