@@ -89,16 +89,18 @@ impl Driver<'_, '_, '_, '_> {
                 // a → b → c: c a corner, or the loop a → b → c → a closing at the corner a.
                 let n = topo.next_boundary(h)?;
                 let c = topo.dest(n)?;
-                self.is_corner(c) || topo.dest(topo.next_boundary(n)?)? == topo.origin(h)?
+                let d = topo.dest(topo.next_boundary(n)?)?;
+                self.is_corner(c) || d == topo.origin(h)? || self.is_corner(d)
             }
             (false, true) => {
                 let p = topo.prev_boundary(h)?;
                 let c = topo.origin(p)?;
-                self.is_corner(c) || topo.origin(topo.prev_boundary(p)?)? == topo.dest(h)?
+                let d = topo.origin(topo.prev_boundary(p)?)?;
+                self.is_corner(c) || d == topo.dest(h)? || self.is_corner(d)
             }
             (false, false) => {
                 let (i0, i3) = self.boundary_outer(h)?;
-                i0 == i3
+                i0 == i3 || (self.is_corner(i0) && self.is_corner(i3))
             }
         })
     }

@@ -246,6 +246,14 @@ impl Driver<'_, '_, '_, '_> {
                     }
                     continue;
                 }
+                if topo.is_boundary_vertex(a)?
+                    && topo.is_boundary_vertex(b)?
+                    && topo.is_boundary_vertex(topo.dest(topo.next(h)?)?)?
+                    && topo.is_boundary_vertex(topo.dest(topo.next(t)?)?)?
+                {
+                    *ge = 0.0;
+                    continue;
+                }
                 let (ca, cb) = (
                     get(edge_c, slot_of(slots, h)?)?,
                     get(edge_c, slot_of(slots, t)?)?,
