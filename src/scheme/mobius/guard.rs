@@ -41,6 +41,13 @@ use super::memo::StarForm;
 use super::slots::{first_slot, slot_of};
 use super::spectrum::Spectrum;
 use super::trust::{f4_trust, position_trust, ramp, sphericity, spread_trust};
+use super::vertex_pass::{retarget, Arrays, Part, Star};
+use super::MobiusReport;
+use crate::error::Result;
+use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
+use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::mobius::{CanonicalForm, StarKind};
+use crate::point::Point;
 
 /// Distance (over the spoke's length) of a partial candidate from its place on a
 /// Möbius-regular star, at or below which an edge from a corner trusts it
@@ -60,13 +67,6 @@ fn partial_trust(e: Point, c: Point) -> f64 {
     let d = crate::sqrt::sqrt(crate::point::dot(m, m) / crate::point::dot(c, c));
     ramp(d, PARTIAL_DISTRUSTED, PARTIAL_TRUSTED)
 }
-use super::vertex_pass::{retarget, Arrays, Part, Star};
-use super::MobiusReport;
-use crate::error::Result;
-use crate::exec::{chunk_count, chunk_range, parts, take_front, Executor, Tally, MAX_CHUNKS};
-use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::mobius::{CanonicalForm, StarKind};
-use crate::point::Point;
 
 /// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
 /// F4-angle term ([`Driver::trust_edges`]) can tell it from an interior star without a
@@ -95,7 +95,7 @@ pub(super) enum CreaseEdges {
     F4Angle,
     /// That, and the place of the single partial candidate of an edge from a corner to a
     /// non-corner (Modified Butterfly, whose partial candidate is half a stencil).
-    CornersLinear,
+    ButterflyCorners,
 }
 
 /// Which output vertices a scheme computes from a star's frame, which the guard moves toward
@@ -228,7 +228,7 @@ impl Driver<'_, '_, '_, '_> {
     /// vertex into the smooth region, is judged here as an element (docs/creases.md,
     /// "Folds next to corners"):
     ///
-    /// * with [`CreaseEdges::CornersLinear`] (Modified Butterfly), an edge from a corner to
+    /// * with [`CreaseEdges::ButterflyCorners`] (Modified Butterfly), an edge from a corner to
     ///   a non-corner: the corner rule of `edges.rs` leaves it the other end's partial
     ///   candidate alone, half of the Butterfly stencil doubled (seed 000 §4.3: the edge
     ///   point is the blend of both halves). On a Möbius-regular star that half lands at ¾
@@ -236,7 +236,7 @@ impl Driver<'_, '_, '_, '_> {
     ///   there ([`partial_trust`], in the star's normalised frame) it folded planar faces
     ///   next to reflex corners (fandisk), and the edge moves to the linear rule (the blend
     ///   with the corner's own half folded as much). A non-corner without a kept form (a
-    ///   crease vertex) keeps 1;
+    ///   crease vertex), or of valence other than 6 (Zorin's whole stencil), keeps 1;
     /// * an edge whose two ends and the two apexes of its faces all lie on creases takes 0:
     ///   every star its point is made from is an open fan of a piece whose vertices are all
     ///   on its crease (a face enclosed by crease edges, once refined), which the crease
@@ -248,14 +248,14 @@ impl Driver<'_, '_, '_, '_> {
     ///
     /// The second decision depends on the tags and the connectivity only; the others read
     /// the paper's candidates (before the guarded pass) in a star's normalised frame, or the
-    /// cross-ratio of the blend, whose `arg ρ` is a Möbius invariant (`trust.rs`). So which edges move, and by how much, is the same on
-    /// every Möbius image; the moved points, like every fallback toward the linear rule, are
-    /// equivariant under similarities only.
+    /// cross-ratio of the blend, whose `arg ρ` is a Möbius invariant (`trust.rs`). So which
+    /// edges move, and by how much, is the same on every Möbius image; the moved points,
+    /// like every fallback toward the linear rule, are equivariant under similarities only.
     fn crease_edge_terms(&mut self, crease_edges: CreaseEdges) -> Result<()> {
         let topo = self.topo;
         let ne = topo.num_edges();
         let tagged = crease_edges != CreaseEdges::Off && !self.corners.is_empty();
-        let corners_linear = crease_edges == CreaseEdges::CornersLinear;
+        let butterfly_corners = crease_edges == CreaseEdges::ButterflyCorners;
         let edge_c: &[Point] = self.edge_c;
         let slots = self.slots;
         let corners: &[u32] = self.corners;
@@ -279,13 +279,18 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 if corner(a) != corner(b) {
-                    if corners_linear {
+                    if butterfly_corners {
                         // The candidate the corner rule takes: the non-corner's, at the
                         // position along its spoke to the corner in its own frame.
                         let (u, w, hu) = if corner(a) { (b, a, t) } else { (a, b, h) };
                         let cu = get(edge_c, slot_of(slots, hu)?)?;
                         let r = get(radius, u as usize)?;
-                        if present(&cu) && r != 0.0 && get(trust, u as usize)? <= 1.0 {
+                        // An interior star with a kept form, of valence 6: an irregular
+                        // one gives Zorin's whole stencil, the paper's rule for an edge to
+                        // a singular vertex.
+                        let partial =
+                            r != 0.0 && get(trust, u as usize)? <= 1.0 && topo.valence(u)? == 6;
+                        if present(&cu) && partial {
                             let cf = CanonicalForm {
                                 v: topo.position(u)?,
                                 c: get(centre, u as usize)?,

@@ -38,7 +38,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges(CreaseEdges::CornersLinear)?;
+        d.trust_edges(CreaseEdges::ButterflyCorners)?;
         d.audit(Children::Triangles {
             edges: nv,
             middles: true,
