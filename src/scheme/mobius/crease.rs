@@ -23,12 +23,13 @@
 //!   edge keeps it in place too, while a corner by three or more sharp edges that were all
 //!   given up as darts (below) is a smooth vertex (kept in place inside a smooth surface it
 //!   made spikes that folded the faces around it). A smooth edge from a corner to a
-//!   non-corner takes the non-corner's candidate alone where it has one (`edges.rs`; Loop, Catmull–Clark and Butterfly, whose
-//!   edge points blend two candidates): a corner is no smooth point, and the canonical form
-//!   of its sector extrapolates one — on fandisk the blend with that candidate flipped thin
-//!   triangles next to the corners of planar faces. In the default mode (the fold guard,
-//!   `guard.rs`) Butterfly's such edges take the linear rule: its single candidate there is
-//!   half a stencil (seed 000 §4.3, partial candidates), not the scheme's edge rule.
+//!   non-corner takes the non-corner's candidate alone where it has one (`edges.rs`; Loop,
+//!   Catmull–Clark and Butterfly, whose edge points blend two candidates): a corner is no
+//!   smooth point, and the canonical form of its sector extrapolates one — on fandisk the
+//!   blend with that candidate flipped thin triangles next to the corners of planar faces. In the default mode (the fold guard,
+//!   `guard.rs`) Butterfly's such edge moves toward the linear rule where its candidate,
+//!   half a stencil doubled (seed 000 §4.3, partial candidates), lands far from its place
+//!   on a Möbius-regular star.
 //!
 //! The cut is combinatorial and the curve and star rules are Möbius-equivariant, so a
 //! tagged circle stays a circle and a tagged great circle of a spherical cage stays on the
