@@ -69,15 +69,17 @@ impl Driver<'_, '_, '_, '_> {
         Ok(([p0, a, b, p3], q))
     }
 
-    /// Whether boundary half-edge `h` lies on a crease curve of three points — an open curve
-    /// of two segments between corners, or a closed loop of three segments (with or without
-    /// a corner on it) — on a level cut
-    /// along its sharp edges with the fold guard on (module docs). Any three points are
-    /// Möbius images of any other three, so the Möbius curve rules cannot tell a thin
-    /// triangle of crease edges from a fat one and put its curve on its circumcircle, far
-    /// off the edges of a thin one; such a curve takes the linear curve rule, counted as
-    /// guarded. The decision depends on the tags only, so it is the same on every Möbius
-    /// image.
+    /// Whether boundary half-edge `h` lies on a short crease curve — a closed loop of three
+    /// segments (with or without a corner on it), or an open curve of two or three segments
+    /// between corners — on a level cut along its sharp edges with the fold guard on (module
+    /// docs). Any three points are Möbius images of any other three, so the Möbius curve
+    /// rules cannot tell a thin triangle of crease edges from a fat one and put its curve on
+    /// its circumcircle, far off the edges of a thin one; an open curve of four points is
+    /// made by those rules almost alone, since each end segment's rule (`end_edge_point`)
+    /// sees only its three first points, and on a scanned mesh such curves turn back sharply
+    /// at their inner points (docs/creases.md, "Folds next to corners"). Such a curve takes
+    /// the linear curve rule, counted as guarded. The decision depends on the tags only, so
+    /// it is the same on every Möbius image.
     pub(super) fn short_curve(&self, h: u32) -> Result<bool> {
         if !self.guard || self.corners.is_empty() {
             return Ok(false);
@@ -86,19 +88,23 @@ impl Driver<'_, '_, '_, '_> {
         Ok(match self.corner_ends(h)? {
             (true, true) => false,
             (true, false) => {
-                // a → b → c: c a corner, or the loop a → b → c → a closing at the corner a.
+                // a → b → c: c a corner, the loop a → b → c → a closing at the corner a, or
+                // a → b → c → d with d a corner.
                 let n = topo.next_boundary(h)?;
                 let c = topo.dest(n)?;
-                self.is_corner(c) || topo.dest(topo.next_boundary(n)?)? == topo.origin(h)?
+                let d = topo.dest(topo.next_boundary(n)?)?;
+                self.is_corner(c) || d == topo.origin(h)? || self.is_corner(d)
             }
             (false, true) => {
                 let p = topo.prev_boundary(h)?;
                 let c = topo.origin(p)?;
-                self.is_corner(c) || topo.origin(topo.prev_boundary(p)?)? == topo.dest(h)?
+                let d = topo.origin(topo.prev_boundary(p)?)?;
+                self.is_corner(c) || d == topo.dest(h)? || self.is_corner(d)
             }
             (false, false) => {
+                // The loop of three, or the middle segment of i0 → a → b → i3 between corners.
                 let (i0, i3) = self.boundary_outer(h)?;
-                i0 == i3
+                i0 == i3 || (self.is_corner(i0) && self.is_corner(i3))
             }
         })
     }

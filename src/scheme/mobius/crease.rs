@@ -19,20 +19,27 @@
 //!   edges included, counted before darts are given up: the linear rules' classification
 //!   for values of at least ½) meet — ends the curves through it: its copies are marked for
 //!   the boundary rules, which use the open-curve rules of [`crate::curve::mobius`] next to
-//!   it and keep it in place; a corner of Loop or Catmull–Clark left with no cut edge stays
-//!   in place too. A smooth edge from a corner to a non-corner takes the non-corner's
-//!   candidate alone where it has one (`edges.rs`; Loop, Catmull–Clark and Butterfly, whose
-//!   edge points blend two candidates): a corner is no smooth point, and the canonical form
-//!   of its sector extrapolates one — on fandisk the blend with that candidate flipped thin
-//!   triangles next to the corners of planar faces.
+//!   it and keep it in place; a corner tag on a vertex of Loop or Catmull–Clark with no cut
+//!   edge keeps it in place too, while a corner by three or more sharp edges that were all
+//!   given up as darts (below) is a smooth vertex (kept in place inside a smooth surface it
+//!   made spikes that folded the faces around it). A smooth edge from a corner to a
+//!   non-corner takes the non-corner's candidate alone where it has one (`edges.rs`; Loop,
+//!   Catmull–Clark and Butterfly, whose edge points blend two candidates): a corner is no
+//!   smooth point, and the canonical form of its sector extrapolates one — on fandisk the
+//!   blend with that candidate flipped thin triangles next to the corners of planar faces. In the default mode (the fold guard,
+//!   `guard.rs`) Butterfly's such edge moves toward the linear rule where its candidate,
+//!   half a stencil doubled (seed 000 §4.3, partial candidates), lands far from its place
+//!   on a Möbius-regular star.
 //!
 //! The cut is combinatorial and the curve and star rules are Möbius-equivariant, so a
 //! tagged circle stays a circle and a tagged great circle of a spherical cage stays on the
 //! sphere. The exceptions are those of the open curves and of the guard: a crease of one
 //! segment between two corners takes its midpoint (a curve of two points, as in
 //! [`crate::curve::mobius`]), a face enclosed by sharp edges whose form does not exist takes
-//! the linear rule (a fallback), and in the default mode a crease curve of three points
-//! takes the linear curve rule (`boundary.rs`, counted as guarded).
+//! the linear rule (a fallback), and in the default mode a short crease curve (three
+//! points, or four between corners) takes the linear curve rule (`boundary.rs`), and some
+//! interior edges at a crease take the linear rule (`guard.rs`, `Driver::trust_edges`),
+//! counted as guarded.
 //!
 //! The report's fallbacks and guarded elements are counted on the cut level: both sides of
 //! a crease count, and the first one is renamed to the uncut level's output vertex.
@@ -50,10 +57,12 @@
 //!   sharp edge (a Y of three creases, two of them ending at darts, keeps none): a crease
 //!   chain stays sharp when it is closed, or ends at corners with two or more remaining
 //!   sharp edges, or on the boundary. A corner tag at the end of a chain does not change
-//!   this.
+//!   this. An interior vertex whose sharp edges are all given up is no corner (unless
+//!   tagged as one), whatever their number.
 //!
 //! Output bits: an untagged level, and a tagged level with nothing sharp at it and no
-//! corner (not even one left by peeled darts), run the untagged step itself.
+//! corner tag (nor a boundary vertex left a corner by peeled darts), run the untagged step
+//! itself.
 
 use super::{MobiusOptions, MobiusReport};
 use crate::error::{Error, Result, Status};
@@ -216,7 +225,8 @@ pub(crate) fn step(
         }
     }
     // A corner of an approximating scheme stays (the boundary rules keep those on a curve;
-    // this keeps those in a smooth region: a corner tag there, or sharp edges all peeled).
+    // this keeps those in a smooth region: a corner tag there; `cut_edges` unmarks a corner
+    // whose sharp edges were all given up as darts).
     if matches!(scheme, Scheme::Loop | Scheme::CatmullClark) {
         for v in 0..nv {
             if get(corner, v)? != 0 {
@@ -240,7 +250,8 @@ pub(crate) fn step(
 /// A corner is a vertex tagged as one, or one where three or more sharp edges meet,
 /// boundary edges counted, **before** the darts are given up: the classification of the
 /// linear rules (OpenSubdiv's), so a vertex that is a corner there is one here, even when a
-/// chain through it ends at a dart.
+/// chain through it ends at a dart — unless every chain through it does: an interior vertex
+/// left with no cut edge and no corner tag is smooth (module docs).
 fn cut_edges(
     topo: &Topology<'_, '_>,
     sh: &Sharpness<'_>,
@@ -278,6 +289,19 @@ fn cut_edges(
             let w = s.neighbour as usize;
             set(count, w, get(count, w)?.checked_sub(1).ok_or(internal())?)?;
             u = s.neighbour;
+        }
+    }
+    // An interior corner whose sharp edges were all given up (every chain through it ended
+    // at a dart) and that carries no corner tag is a smooth vertex: no crease ends there any
+    // more, and a vertex kept in place inside a smooth Möbius surface makes a spike that
+    // folds the faces around it (module docs).
+    for v in 0..topo.num_vertices() as u32 {
+        if get(corner, v as usize)? != 0
+            && get(count, v as usize)? == 0
+            && !sharp(sh.vertex(v)?)
+            && !topo.is_boundary_vertex(v)?
+        {
+            set(corner, v as usize, 0)?;
         }
     }
     Ok(count.iter().any(|&c| c > 0))

@@ -13,7 +13,9 @@
 //! 3. the F4-angle term over the interior edges between two interior stars, from the
 //!    candidates of step 1 ([`Driver::trust_edges`]), and the output audit (`audit.rs`): the
 //!    paper's output seen from each interior star's frame, where child faces that fold or
-//!    collapse lower the trust of the star and its neighbours;
+//!    collapse lower the trust of the star and its neighbours; on a level cut along its
+//!    sharp edges, the interior edges with an end on a crease (whose boundary stars are
+//!    exempt) are judged as elements ([`Driver::trust_edges`]);
 //! 4. spherical stars of valence 4 or more have their trust raised toward 1 by their
 //!    sphericity (`trust::sphericity`: on a sphere the paper's rules keep the sphere and
 //!    commute with every Möbius map);
@@ -21,9 +23,10 @@
 //!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]);
 //! 6. when step 5 evaluated any star, the blends again, on the guarded candidates, and the
 //!    boundary curves;
-//! 7. every point near a distrusted star moves toward the linear rule's point by `1 − τ²`
-//!    (`toward_linear.rs`), so that a fully distrusted element is the linear rule; these
-//!    points are counted (or the first refused in strict mode).
+//! 7. every point near a distrusted star, and every distrusted edge at a crease, moves
+//!    toward the linear rule's point by `1 − τ²` (`toward_linear.rs`), so that a fully
+//!    distrusted element is the linear rule; these points are counted (or the first refused
+//!    in strict mode).
 //!
 //! The trust is decided on the paper's candidates and output only (steps 1–3), never on
 //! re-evaluated ones, so it does not depend on the order of the stars and stays
@@ -37,7 +40,7 @@ use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
 use super::slots::{first_slot, slot_of};
 use super::spectrum::Spectrum;
-use super::trust::{f4_trust, position_trust, sphericity, spread_trust};
+use super::trust::{f4_trust, position_trust, ramp, sphericity, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
@@ -45,8 +48,27 @@ use crate::exec::{
     chunk_count, chunk_range, own_frame, parts, take_front, Executor, Tally, MAX_CHUNKS,
 };
 use crate::mesh::{get, internal, set, Topology, NONE};
-use crate::mobius::CanonicalForm;
+use crate::mobius::{CanonicalForm, StarKind};
 use crate::point::Point;
+
+/// Distance (over the spoke's length) of a partial candidate from its place on a
+/// Möbius-regular star, at or below which an edge from a corner trusts it
+/// ([`partial_trust`]).
+const PARTIAL_TRUSTED: f64 = 0.1;
+/// The same distance at or above which it takes the linear rule.
+const PARTIAL_DISTRUSTED: f64 = 0.2;
+
+/// The trust of Modified Butterfly's partial candidate `e` of the spoke whose neighbour's
+/// image is `c`, both in the star's normalised frame (seed 000 §4.3: the star's half of the
+/// stencil, doubled), by its distance from `¾ c` over `|c|`. On a Möbius-regular star (a
+/// regular hexagon in that frame) the doubled half stencil lands exactly at `¾ c` (and the
+/// other end's at `¼ c`: their mean is the midpoint); ratios of lengths in the normalised
+/// frame are Möbius-invariant (`trust.rs`).
+fn partial_trust(e: Point, c: Point) -> f64 {
+    let m = crate::point::sub(e, crate::point::scale(c, 0.75));
+    let d = crate::sqrt::sqrt(crate::point::dot(m, m) / crate::point::dot(c, c));
+    ramp(d, PARTIAL_DISTRUSTED, PARTIAL_TRUSTED)
+}
 
 /// The trust of a boundary star: above 1, so that it keeps the paper's rules and the
 /// F4-angle term ([`Driver::trust_edges`]) can tell it from an interior star without a
@@ -63,6 +85,19 @@ impl Frame for Spectrum {
     fn image(&mut self, topo: &Topology<'_, '_>, u: u32) -> Result<Point> {
         self.to(topo.position(u)?)
     }
+}
+
+/// Which interior edges with an end on a crease the guard judges as elements
+/// ([`Driver::trust_edges`]), per scheme.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum CreaseEdges {
+    /// None (Catmull–Clark).
+    Off,
+    /// The F4-angle term of the edges that blend two candidates (Loop).
+    F4Angle,
+    /// That, and the place of the single partial candidate of an edge from a corner to a
+    /// non-corner (Modified Butterfly, whose partial candidate is half a stencil).
+    ButterflyCorners,
 }
 
 /// Which output vertices a scheme computes from a star's frame, which the guard moves toward
@@ -111,7 +146,7 @@ impl Driver<'_, '_, '_, '_> {
     /// ([`f4_trust`]; no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
-    pub(super) fn trust_edges(&mut self) -> Result<()> {
+    pub(super) fn trust_edges(&mut self, crease_edges: CreaseEdges) -> Result<()> {
         // Two passes over disjoint output ranges, so that both run on the executor's threads
         // (a pass that lowers both ends of each edge would write scattered vertices): the
         // F4-angle term of every edge into `edge_trust` (edge ranges), then every interior
@@ -183,7 +218,120 @@ impl Driver<'_, '_, '_, '_> {
             &least_terms,
         )?;
         self.edge_trust = g_all;
-        Ok(())
+        self.crease_edge_terms(crease_edges)
+    }
+
+    /// The trust of every interior edge with an end on a crease (a boundary vertex of a
+    /// level cut along its sharp edges, `crease.rs`), kept per edge in `edge_trust` for the
+    /// blend toward the linear rule (`toward_linear.rs`), which moves such an edge point
+    /// alone, by `1 − τ²`; 1 for every other edge, and for every edge of an untagged level
+    /// or with [`CreaseEdges::Off`]. The boundary stars at a crease are exempt from the
+    /// star trust (`trust.rs`), so an edge between two crease vertices, or from a crease
+    /// vertex into the smooth region, is judged here as an element (docs/creases.md,
+    /// "Folds next to corners"):
+    ///
+    /// * with [`CreaseEdges::ButterflyCorners`] (Modified Butterfly), an edge from a corner to
+    ///   a non-corner: the corner rule of `edges.rs` leaves it the other end's partial
+    ///   candidate alone, half of the Butterfly stencil doubled (seed 000 §4.3: the edge
+    ///   point is the blend of both halves). On a Möbius-regular star that half lands at ¾
+    ///   of the spoke, a fixed place the scheme's output tolerates; where it lands far from
+    ///   there ([`partial_trust`], in the star's normalised frame) it folded planar faces
+    ///   next to reflex corners (fandisk), and the edge moves to the linear rule (the blend
+    ///   with the corner's own half folded as much). A non-corner without a kept form (a
+    ///   crease vertex), or of valence other than 6 (Zorin's whole stencil), keeps 1;
+    /// * an edge whose two ends and the two apexes of its faces all lie on creases takes 0:
+    ///   every star its point is made from is an open fan of a piece whose vertices are all
+    ///   on its crease (a face enclosed by crease edges, once refined), which the crease
+    ///   curves alone shape;
+    /// * another edge that blends two candidates takes the F4-angle term of the blend
+    ///   ([`f4_trust`]): the two stars' candidates disagree, whatever their forms;
+    /// * an edge that takes a single candidate (the corner rule, a missing candidate) keeps
+    ///   1.
+    ///
+    /// The second decision depends on the tags and the connectivity only; the others read
+    /// the paper's candidates (before the guarded pass) in a star's normalised frame, or the
+    /// cross-ratio of the blend, whose `arg ρ` is a Möbius invariant (`trust.rs`). So which
+    /// edges move, and by how much, is the same on every Möbius image; the moved points,
+    /// like every fallback toward the linear rule, are equivariant under similarities only.
+    fn crease_edge_terms(&mut self, crease_edges: CreaseEdges) -> Result<()> {
+        let topo = self.topo;
+        let ne = topo.num_edges();
+        let tagged = crease_edges != CreaseEdges::Off && !self.corners.is_empty();
+        let butterfly_corners = crease_edges == CreaseEdges::ButterflyCorners;
+        let edge_c: &[Point] = self.edge_c;
+        let slots = self.slots;
+        let corners: &[u32] = self.corners;
+        let (trust, centre, radius): (&[f64], &[Point], &[f64]) =
+            (self.trust, self.centre, self.radius);
+        let corner = |v: u32| corners.get(v as usize).is_some_and(|&c| c != 0);
+        let terms = |e0: usize, out: &mut [f64]| -> Result<()> {
+            for (i, ge) in out.iter_mut().enumerate() {
+                *ge = 1.0;
+                if !tagged {
+                    continue;
+                }
+                let e = (e0 + i) as u32;
+                let h = topo.edge_half_edge(e)?;
+                let t = topo.twin(h)?;
+                if t == NONE {
+                    continue;
+                }
+                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                if !topo.is_boundary_vertex(a)? && !topo.is_boundary_vertex(b)? {
+                    continue;
+                }
+                if corner(a) != corner(b) {
+                    if butterfly_corners {
+                        // The candidate the corner rule takes: the non-corner's, at the
+                        // position along its spoke to the corner in its own frame.
+                        let (u, w, hu) = if corner(a) { (b, a, t) } else { (a, b, h) };
+                        let cu = get(edge_c, slot_of(slots, hu)?)?;
+                        let r = get(radius, u as usize)?;
+                        // An interior star with a kept form, of valence 6: an irregular
+                        // one gives Zorin's whole stencil, the paper's rule for an edge to
+                        // a singular vertex.
+                        let partial =
+                            r != 0.0 && get(trust, u as usize)? <= 1.0 && topo.valence(u)? == 6;
+                        if present(&cu) && partial {
+                            let cf = CanonicalForm {
+                                v: topo.position(u)?,
+                                c: get(centre, u as usize)?,
+                                r,
+                                kind: StarKind::Interior,
+                            };
+                            *ge = match (cf.to_normalised(cu), cf.to_normalised(topo.position(w)?))
+                            {
+                                (Ok(e), Ok(c)) => partial_trust(e, c),
+                                _ => 0.0,
+                            };
+                        }
+                    }
+                    continue;
+                }
+                if topo.is_boundary_vertex(a)?
+                    && topo.is_boundary_vertex(b)?
+                    && topo.is_boundary_vertex(topo.dest(topo.next(h)?)?)?
+                    && topo.is_boundary_vertex(topo.dest(topo.next(t)?)?)?
+                {
+                    *ge = 0.0;
+                    continue;
+                }
+                let (ca, cb) = (
+                    get(edge_c, slot_of(slots, h)?)?,
+                    get(edge_c, slot_of(slots, t)?)?,
+                );
+                if !present(&ca) || !present(&cb) {
+                    continue;
+                }
+                *ge = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
+            }
+            Ok(())
+        };
+        f64_ranges(
+            self.exec,
+            self.edge_trust.get_mut(..ne).ok_or(internal())?,
+            &terms,
+        )
     }
 
     /// Steps 4 and 5 (module docs): runs `rule` on every star with `τ_v < 1` in its interpolated

@@ -114,6 +114,11 @@ impl Driver<'_, '_, '_, '_> {
         Ok(())
     }
 
+    /// Whether an edge with an end on a crease is distrusted (`Driver::trust_edges`).
+    pub(super) fn any_crease_edge_term(&self) -> bool {
+        self.edge_trust.iter().any(|&t| t < 1.0)
+    }
+
     /// One pass over each kind of point `out` names, split into ranges ([`crate::exec`]: a
     /// point depends only on itself and the trust), for every point whose `τ` is below 1:
     /// counts it (strict: refuses it), or with `blend` moves it.
@@ -170,6 +175,7 @@ impl Driver<'_, '_, '_, '_> {
             tally = tally.merge(t);
         }
         let (start, ne) = (out.edges, topo.num_edges());
+        let edge_trust: &[f64] = self.edge_trust;
         let pts = self.pos.get_mut(start..start + ne).ok_or(internal())?;
         let t = pass(self.exec, pts, |first, pts, t| {
             for (e, o) in (first as u32..).zip(pts.iter_mut()) {
@@ -179,7 +185,8 @@ impl Driver<'_, '_, '_, '_> {
                 }
                 let (a, b) = (topo.origin(h)?, topo.dest(h)?);
                 let tau = near_trust(trust, ring, rings2, a, rings)?
-                    .min(near_trust(trust, ring, rings2, b, rings)?);
+                    .min(near_trust(trust, ring, rings2, b, rings)?)
+                    .min(get(edge_trust, e as usize)?);
                 if tau < 1.0 {
                     act(t, start + e as usize, tau, o, &|| linear_edge(topo, e))?;
                 }

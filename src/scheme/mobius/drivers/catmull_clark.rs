@@ -7,7 +7,7 @@
 use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
-use super::super::guard::Outputs;
+use super::super::guard::{CreaseEdges, Outputs};
 use super::super::rules::catmull_clark_star_in_form;
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
@@ -62,7 +62,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges()?;
+        d.trust_edges(CreaseEdges::Off)?;
         d.audit(Children::Quads {
             edges: nv,
             faces: fp0,

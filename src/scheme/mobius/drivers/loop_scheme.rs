@@ -5,7 +5,7 @@
 use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
-use super::super::guard::Outputs;
+use super::super::guard::{CreaseEdges, Outputs};
 use super::super::rules::loop_star_in_form;
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
@@ -49,7 +49,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges()?;
+        d.trust_edges(CreaseEdges::F4Angle)?;
         d.audit(Children::Triangles {
             edges: nv,
             middles: false,
@@ -60,9 +60,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             faces: None,
             rings: RINGS,
         };
-        if d.guarded_pass(out, || (), star_rule)? {
+        let again = d.guarded_pass(out, || (), star_rule)?;
+        if again {
             d.rewind_fallbacks(before);
             d.blend_interior_edges(nv, &linear)?;
+        }
+        if again || d.any_crease_edge_term() {
             d.blend_toward_linear(out, &linear_vertex, &linear)?;
         }
     }
