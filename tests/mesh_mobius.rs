@@ -1046,3 +1046,46 @@ fn strict_refuses_the_lowest_counted_vertex() {
         assert!(refused >= 4, "{s:?}: {refused} refusals");
     }
 }
+
+/// A face whose canonical centroid overflows (two corners at a point the star's form sends
+/// almost to infinity) has no face candidate: NaN, never the overflowed value. Found by the
+/// `primitives` fuzz target (`fuzz/regressions/primitives/cc-star-overflowing-centroid`).
+#[test]
+fn catmull_clark_star_gives_no_candidate_for_an_overflowing_centroid() {
+    let v = [3.0517578125e-5, 5.30498947746e-313, 1.06101859786e-312];
+    let mut ring = vec![
+        [0.0, 0.0, 5.299808824e-315],
+        [
+            1.590978778e-314,
+            4.5480509667887196e-305,
+            4.5480509667887196e-305,
+        ],
+        [
+            1.1125369292536007e-308,
+            4.548050968908643e-305,
+            1.7765824089018436e-307,
+        ],
+        [-1.000000000000032, 0.0, 0.0],
+    ];
+    ring.extend([[0.0; 3]; 89]);
+    let faces = ring.len() - 1; // open star: triangles (v, ring[j], ring[j + 1])
+    let offsets: Vec<u32> = (0..=faces as u32).map(|j| 3 * j).collect();
+    let corners: Vec<Point> = (0..faces).flat_map(|j| [v, ring[j], ring[j + 1]]).collect();
+    let mut edges = vec![[0.0; 3]; ring.len()];
+    let mut face_c = vec![[0.0; 3]; faces];
+    let vp =
+        mobius::catmull_clark_star(v, &ring, false, &offsets, &corners, &mut edges, &mut face_c)
+            .unwrap();
+    assert!(
+        face_c.iter().any(|p| p[0].is_nan()),
+        "no face without a candidate"
+    );
+    for p in edges.iter().chain(face_c.iter()).chain(vp.iter()) {
+        for x in p {
+            assert!(
+                x.is_finite() || x.is_nan(),
+                "{x} in {edges:?} {face_c:?} {vp:?}"
+            );
+        }
+    }
+}

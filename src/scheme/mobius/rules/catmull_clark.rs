@@ -126,9 +126,12 @@ pub fn catmull_clark_star(
     // spokes and, closed, all of them).
     let vertex = catmull_clark_star_in_form(&images, centroids, closed, &cf, edge_candidates)?;
     for c in centroids.iter_mut() {
-        if present(c) {
-            *c = cf.from_normalised(*c).unwrap_or(MISSING);
-        }
+        // A centroid that is not finite (its images' sum overflowed) has no candidate.
+        *c = if present(c) {
+            cf.from_normalised(*c).unwrap_or(MISSING)
+        } else {
+            MISSING
+        };
     }
     Ok(vertex)
 }
