@@ -45,7 +45,7 @@ use crate::exec::{
 };
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::mobius::{CanonicalForm, StarKind};
-use crate::point::{cross, dot, sub, Point};
+use crate::point::{add, cross, dot, sub, Point};
 use arrayvec::ArrayVec;
 
 /// Cosine between two adjacent child faces at or above which the audit trusts a star: 80°.
@@ -68,11 +68,6 @@ pub(super) enum Children {
     /// Catmull–Clark: the corner quads `(v', e_i, f_i, e_{i+1})`, `f_i` the point of the
     /// face after spoke `i` (output vertex `faces + face`).
     Quads { edges: usize, faces: usize },
-}
-
-/// A child face's area vector (Newell), or `None` when a corner is missing.
-fn area(corners: &[Point]) -> Option<Point> {
-    corners.iter().all(present).then(|| newell(corners))
 }
 
 /// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
@@ -230,10 +225,10 @@ fn star_audit(
     children: Children,
     work: &mut [Point],
 ) -> Result<f64> {
-    // A point the frame cannot map (at the form's pole, or not finite) is missing: the
-    // terms then distrust the star.
-    let map = |p: Point| cf.to_normalised(p).unwrap_or([f64::NAN; 3]);
+    // A point the frame cannot map (at the form's pole, or not finite) is missing.
+    let map = |p: Point| cf.to_normalised_or_nan(p);
     let centre = map(get(pos, v as usize)?);
+    let mut all_present = present(&centre);
     let half = work.len() / 2;
     let (fan, outer) = work.split_at_mut_checked(half).ok_or(internal())?;
     let (mut nf, mut no) = (0, 0);
@@ -254,81 +249,112 @@ fn star_audit(
                 (edges + s.edge as usize, Some(faces + s.face as usize))
             }
         };
-        set(fan, nf, map(get(pos, e)?))?;
+        let p = map(get(pos, e)?);
+        all_present &= present(&p);
+        set(fan, nf, p)?;
         nf += 1;
         if let Some(o) = o {
-            set(outer, no, map(get(pos, o)?))?;
+            let p = map(get(pos, o)?);
+            all_present &= present(&p);
+            set(outer, no, p)?;
             no += 1;
         }
     }
+    // Every mapped point is a corner of a child face whose pair the first term measures,
+    // and a face with a missing corner is a fold (`-1`, trust 0): the star's trust is 0
+    // whatever the rest measures.
+    if !all_present {
+        return Ok(0.0);
+    }
     let fan = fan.get(..nf).ok_or(internal())?;
     let outer = outer.get(..no).ok_or(internal())?;
-    let pair = pair_cos(centre, fan, outer, children);
-    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan_sine(centre, fan), FAN_DISTRUSTED, FAN_TRUSTED)))
+    let (pair, fan_normal) = pair_cos(centre, fan, outer, children);
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(
+        fan_sine_about(centre, fan, fan_normal),
+        FAN_DISTRUSTED,
+        FAN_TRUSTED,
+    )))
 }
 
-/// The least cosine between adjacent child faces around `centre` (module docs, term 1);
-/// -1 when a child face cannot be measured. A cosine above [`PAIR_TRUSTED`] may count as 1
-/// ([`cos_between`]): the trust of the star is the same.
-fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> f64 {
+/// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
+/// the fan's Newell normal [`newell`]`(fan)` that the second term reads; every point
+/// present (finite). A cosine above [`PAIR_TRUSTED`] may count as 1 ([`cos_between`]): the
+/// trust of the star is the same.
+///
+/// Each child face's area vector is its Newell sum, term for term: `c × e_i` of the corner
+/// at spoke `i` is the negated last term `e_i × c` of the corner before it (a cross product
+/// changes sign exactly when its factors swap), and `e_i × e_{i+1}` of a triangle corner is
+/// both the fan normal's term and the negated last term of the middle triangle; so each
+/// product is formed once, and every sum is the same bits as [`newell`] of the face
+/// (`pair_cos_reference` in the tests).
+fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -> (f64, Point) {
     let k = fan.len();
-    // Spoke `i`'s child edge point, the point after it (face point or opposite edge's)
-    // and the next spoke's edge point, cyclically.
-    let at = |i: usize| -> Option<(Point, Option<Point>, Point)> {
-        let next = if i + 1 < k { i + 1 } else { 0 };
-        Some((*fan.get(i)?, outer.get(i).copied(), *fan.get(next)?))
+    let Some(&e_first) = fan.first() else {
+        return (f64::INFINITY, [0.0; 3]);
     };
-    let corner = |i: usize| -> Option<Point> {
-        let (e0, o, e1) = at(i)?;
-        match children {
-            Children::Triangles { .. } => area(&[centre, e0, e1]),
-            Children::Quads { .. } => area(&[centre, e0, o?, e1]),
-        }
-    };
-    if k == 0 {
-        return f64::INFINITY;
-    }
-    // Each corner face's area vector once: it is the `next` of one pair and the `this` of
-    // the following one.
-    let Some(first) = corner(0) else {
-        return -1.0;
-    };
-    let mut this = first;
+    let x_first = cross(centre, e_first);
+    let mut normal = [0.0; 3];
     let mut least = f64::INFINITY;
+    let (mut e, mut x) = (e_first, x_first);
+    let mut first_corner = [0.0; 3];
+    let mut prev = [0.0; 3];
     for i in 0..k {
-        let next = if i + 1 < k {
-            corner(i + 1)
-        } else {
-            Some(first)
+        let (e1, x1) = match fan.get(i + 1) {
+            Some(&e1) => (e1, cross(centre, e1)),
+            None => (e_first, x_first),
         };
-        let Some(next) = next else {
-            return -1.0;
+        let y = cross(e, e1);
+        normal = add(normal, y);
+        let o = outer.get(i).copied().unwrap_or([0.0; 3]);
+        // `newell([c, e, e1])` or `newell([c, e, o, e1])`: `((0 + c×e) + …) + e1×c`.
+        let corner = match children {
+            Children::Triangles { .. } => sub(add(add([0.0; 3], x), y), x1),
+            Children::Quads { .. } => {
+                sub(add(add(add([0.0; 3], x), cross(e, o)), cross(o, e1)), x1)
+            }
         };
-        least = least.min(cos_between(this, next));
         if let Children::Triangles { middles: true, .. } = children {
-            let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o?, e1])) else {
-                return -1.0;
-            };
-            least = least.min(cos_between(this, middle));
+            // `newell([e, o, e1])`: `((0 + e×o) + o×e1) + e1×e`.
+            let middle = sub(add(add([0.0; 3], cross(e, o)), cross(o, e1)), y);
+            least = least.min(cos_between(corner, middle));
         }
-        this = next;
+        if i == 0 {
+            first_corner = corner;
+        } else {
+            least = least.min(cos_between(prev, corner));
+        }
+        prev = corner;
+        (e, x) = (e1, x1);
     }
-    least
+    (least.min(cos_between(prev, first_corner)), normal)
 }
 
 /// The least signed sine of the angles at `centre` between consecutive points of the closed
-/// fan `fan`, signed by the fan polygon's normal (module docs, term 2); -1 when it cannot be
-/// measured. A sine above [`FAN_TRUSTED`] may count as 1 ([`clearly_above`]): the trust of the
-/// star is the same.
+/// fan `fan` (module docs, term 2); -1 when it cannot be measured. A sine above
+/// [`FAN_TRUSTED`] may count as 1 ([`clearly_above`]): the trust of the star is the same.
+#[cfg(test)]
 fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
-    let n = newell(fan);
+    fan_sine_about(centre, fan, newell(fan))
+}
+
+/// [`fan_sine`] signed by `n`, the fan polygon's normal `newell(fan)`.
+fn fan_sine_about(centre: Point, fan: &[Point], n: Point) -> f64 {
     let n2 = dot(n, n);
     let nn = crate::sqrt::sqrt(n2);
     let mut least = f64::INFINITY;
-    for (i, e) in fan.iter().enumerate() {
-        let next = fan.get(i + 1).or(fan.first()).copied().unwrap_or(*e);
-        let (p, q) = (sub(*e, centre), sub(next, centre));
-        let (x, pq) = (dot(cross(p, q), n), dot(p, p) * dot(q, q));
+    let Some(&first) = fan.first() else {
+        return least;
+    };
+    let p_first = sub(first, centre);
+    let (mut p, mut pp) = (p_first, dot(p_first, p_first));
+    for i in 0..fan.len() {
+        let q = match fan.get(i + 1) {
+            Some(&next) => sub(next, centre),
+            None => p_first,
+        };
+        let qq = dot(q, q);
+        let (x, pq) = (dot(cross(p, q), n), pp * qq);
+        (p, pp) = (q, qq);
         if clearly_above(x, n2 * pq, FAN_TRUSTED_SQ) {
             least = least.min(1.0);
             continue;
@@ -394,6 +420,118 @@ mod tests {
             }
         }
         assert!(bounded > 1000 && quotient > 1000, "{bounded} {quotient}");
+    }
+
+    /// The pair term as first written: each child face's Newell sum on its own.
+    fn pair_cos_reference(
+        centre: Point,
+        fan: &[Point],
+        outer: &[Point],
+        children: Children,
+    ) -> f64 {
+        let area = |c: &[Point]| c.iter().all(present).then(|| newell(c));
+        let k = fan.len();
+        let at = |i: usize| -> Option<(Point, Option<Point>, Point)> {
+            let next = if i + 1 < k { i + 1 } else { 0 };
+            Some((*fan.get(i)?, outer.get(i).copied(), *fan.get(next)?))
+        };
+        let corner = |i: usize| -> Option<Point> {
+            let (e0, o, e1) = at(i)?;
+            match children {
+                Children::Triangles { .. } => area(&[centre, e0, e1]),
+                Children::Quads { .. } => area(&[centre, e0, o?, e1]),
+            }
+        };
+        if k == 0 {
+            return f64::INFINITY;
+        }
+        let Some(first) = corner(0) else {
+            return -1.0;
+        };
+        let (mut this, mut least) = (first, f64::INFINITY);
+        for i in 0..k {
+            let Some(next) = (if i + 1 < k {
+                corner(i + 1)
+            } else {
+                Some(first)
+            }) else {
+                return -1.0;
+            };
+            least = least.min(cos_between(this, next));
+            if let Children::Triangles { middles: true, .. } = children {
+                let Some(middle) = at(i).and_then(|(e0, o, e1)| area(&[e0, o?, e1])) else {
+                    return -1.0;
+                };
+                least = least.min(cos_between(this, middle));
+            }
+            this = next;
+        }
+        least
+    }
+
+    #[test]
+    fn the_shared_products_give_each_face_its_own_newell_sum() {
+        let mut rnd = stream(31);
+        let kinds = [
+            Children::Triangles {
+                edges: 0,
+                middles: false,
+            },
+            Children::Triangles {
+                edges: 0,
+                middles: true,
+            },
+            Children::Quads { edges: 0, faces: 0 },
+        ];
+        let mut seen = [false; 3];
+        for i in 0..30_000 {
+            let k = 1 + i % 9;
+            let s = SCALES[(i / 9) % 6];
+            let kind = kinds[i % 3];
+            // A fan around the centre, planar with noise, sometimes with a point folded
+            // over, a collapsed pair or a repeated point.
+            let (mut fan, mut outer) = ([[0.0; 3]; 9], [[0.0; 3]; 9]);
+            let noise = [0.0, 1e-3, 0.5][(i / 3) % 3];
+            for j in 0..k {
+                let a = 2.0 * core::f64::consts::PI * (j as f64 + 0.4 * rnd()) / k as f64;
+                let r = s * (1.0 + 0.5 * rnd());
+                fan[j] = [r * libm::cos(a), r * libm::sin(a), s * noise * rnd()];
+                let b = a + core::f64::consts::PI / k as f64;
+                outer[j] = [
+                    2.0 * r * libm::cos(b),
+                    2.0 * r * libm::sin(b),
+                    s * noise * rnd(),
+                ];
+            }
+            match i % 7 {
+                0 => fan[0] = [-fan[0][0], -fan[0][1], fan[0][2]],
+                1 if k > 1 => fan[1] = fan[0],
+                2 => outer[0] = fan[0],
+                _ => {}
+            }
+            let centre = [s * noise * rnd(), s * noise * rnd(), s * noise * rnd()];
+            let outer = match kind {
+                Children::Triangles { middles: false, .. } => &outer[..0],
+                _ => &outer[..k],
+            };
+            let (got, normal) = pair_cos(centre, &fan[..k], outer, kind);
+            let want = pair_cos_reference(centre, &fan[..k], outer, kind);
+            let (g, w) = (ramp(got, 0.0, PAIR_TRUSTED), ramp(want, 0.0, PAIR_TRUSTED));
+            assert_eq!(g.to_bits(), w.to_bits(), "{i}: {got} {want}");
+            assert_eq!(
+                normal.map(f64::to_bits),
+                newell(&fan[..k]).map(f64::to_bits),
+                "{i}"
+            );
+            seen[if w == 1.0 {
+                0
+            } else if w == 0.0 {
+                2
+            } else {
+                1
+            }] = true;
+        }
+        assert_eq!(seen, [true; 3], "every part of the ramp exercised");
     }
 
     #[test]
