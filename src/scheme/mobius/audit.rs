@@ -38,7 +38,7 @@
 
 use super::driver::Driver;
 use super::form::present;
-use super::trust::{newell, ramp};
+use super::trust::ramp;
 use crate::error::Result;
 use crate::exec::{
     chunk_count, chunk_range, own_frame, parts, take_front, Executor, Tally, MAX_CHUNKS,
@@ -277,7 +277,7 @@ fn star_audit(
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
-/// the fan's Newell normal [`newell`]`(fan)` that the second term reads; every point
+/// the fan's Newell normal [`newell`](super::trust::newell)`(fan)` that the second term reads; every point
 /// present (finite). A cosine above [`PAIR_TRUSTED`] may count as 1 ([`cos_between`]): the
 /// trust of the star is the same.
 ///
@@ -334,7 +334,7 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
 /// [`FAN_TRUSTED`] may count as 1 ([`clearly_above`]): the trust of the star is the same.
 #[cfg(test)]
 fn fan_sine(centre: Point, fan: &[Point]) -> f64 {
-    fan_sine_about(centre, fan, newell(fan))
+    fan_sine_about(centre, fan, super::trust::newell(fan))
 }
 
 /// [`fan_sine`] signed by `n`, the fan polygon's normal `newell(fan)`.
@@ -367,6 +367,7 @@ fn fan_sine_about(centre: Point, fan: &[Point], n: Point) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::trust::newell;
     use super::*;
     use crate::sqrt::sqrt;
 
