@@ -391,9 +391,29 @@ mod tests {
         let v = [0.1, 0.0, 0.2];
         let ring = [[1.0, 0.1, 0.0], [0.3, 1.0, 0.2], [-0.9, 0.4, 0.1]];
         let cf = CanonicalForm::new(v, &ring, StarKind::Interior).unwrap();
+        let check = |x: Point| {
+            let lean = cf.to_normalised_or_nan(x);
+            match cf.to_normalised(x) {
+                Ok(y) => assert_eq!(lean.map(f64::to_bits), y.map(f64::to_bits), "{x:?}"),
+                Err(_) => assert!(lean.iter().all(|c| c.is_nan()), "{x:?} {lean:?}"),
+            }
+        };
         // The pole (`T = c`), points next to it, at `v`, far, tiny, subnormal, non-finite.
         let pole = add(v, inverse_point(cf.c).unwrap());
-        let mut xs = alloc_free_points(v, pole);
+        for p in [
+            v,
+            pole,
+            add(pole, [1e-300, 0.0, 0.0]),
+            add(pole, [1e-12, 0.0, 0.0]),
+            add(v, [1e-310, 0.0, 0.0]),
+            add(v, [1e-160, 0.0, 0.0]),
+            [1e300, 1e300, 0.0],
+            [f64::NAN, 0.0, 0.0],
+            [0.0, f64::INFINITY, 0.0],
+            [f64::NEG_INFINITY, 0.0, 1.0],
+        ] {
+            check(p);
+        }
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         for _ in 0..2000 {
             let mut p = [0.0; 3];
@@ -403,34 +423,7 @@ mod tests {
                     .wrapping_add(1442695040888963407);
                 *c = ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 4.0;
             }
-            xs.push(p);
-        }
-        for x in xs {
-            let lean = cf.to_normalised_or_nan(x);
-            match cf.to_normalised(x) {
-                Ok(y) => assert_eq!(lean.map(f64::to_bits), y.map(f64::to_bits), "{x:?}"),
-                Err(_) => assert!(lean.iter().all(|c| c.is_nan()), "{x:?} {lean:?}"),
-            }
-        }
-
-        /// The special points of the test (no allocation: an `ArrayVec`).
-        fn alloc_free_points(v: Point, pole: Point) -> ArrayVec<Point, 2100> {
-            let mut xs = ArrayVec::new();
-            for p in [
-                v,
-                pole,
-                add(pole, [1e-300, 0.0, 0.0]),
-                add(pole, [1e-12, 0.0, 0.0]),
-                add(v, [1e-310, 0.0, 0.0]),
-                add(v, [1e-160, 0.0, 0.0]),
-                [1e300, 1e300, 0.0],
-                [f64::NAN, 0.0, 0.0],
-                [0.0, f64::INFINITY, 0.0],
-                [f64::NEG_INFINITY, 0.0, 1.0],
-            ] {
-                xs.push(p);
-            }
-            xs
+            check(p);
         }
     }
 
