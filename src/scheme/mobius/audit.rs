@@ -232,22 +232,29 @@ fn star_audit(
     let half = work.len() / 2;
     let (fan, outer) = work.split_at_mut_checked(half).ok_or(internal())?;
     let (mut nf, mut no) = (0, 0);
-    for s in topo.star(v) {
+    // The star's spokes counter-clockwise from its first outgoing half-edge, as
+    // `Topology::star` walks them (the same order, so the same sums), on the raw arrays: an
+    // interior star has an outgoing half-edge for every spoke.
+    let r = topo.raw();
+    let first = get(r.vert_he, v as usize)?;
+    let mut h = first;
+    for _ in 0..get(r.valence, v as usize)? {
+        if h == NONE {
+            return Err(internal());
+        }
+        let (next, prev, face) = r.next_prev_face(h)?;
+        let edge = get(r.edge_of, h as usize)? as usize;
         let (e, o) = match children {
-            Children::Triangles { edges, middles } => {
-                // Interior stars: every spoke has its outgoing half-edge.
-                if s.half_edge == NONE {
-                    return Err(internal());
-                }
-                let opposite = topo.edge(topo.next(s.half_edge)?)?;
-                (
-                    edges + s.edge as usize,
-                    middles.then_some(edges + opposite as usize),
-                )
-            }
-            Children::Quads { edges, faces } => {
-                (edges + s.edge as usize, Some(faces + s.face as usize))
-            }
+            Children::Triangles { edges, middles } => (
+                edges + edge,
+                // The point of the face's edge opposite `v`.
+                if middles {
+                    Some(edges + get(r.edge_of, next as usize)? as usize)
+                } else {
+                    None
+                },
+            ),
+            Children::Quads { edges, faces } => (edges + edge, Some(faces + face as usize)),
         };
         let p = map(get(pos, e)?);
         all_present &= present(&p);
@@ -259,6 +266,7 @@ fn star_audit(
             set(outer, no, p)?;
             no += 1;
         }
+        h = get(r.twin, prev as usize)?;
     }
     // Every mapped point is a corner of a child face whose pair the first term measures,
     // and a face with a missing corner is a fold (`-1`, trust 0): the star's trust is 0
