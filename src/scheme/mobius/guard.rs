@@ -173,7 +173,8 @@ impl Driver<'_, '_, '_, '_> {
                 if !present(&ca) || !present(&cb) {
                     continue;
                 }
-                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                // The twin starts where `h` ends (no walk around `h`'s face for `dest`).
+                let (a, b) = (topo.origin(h)?, topo.origin(t)?);
                 if get(trust, a as usize)? > 1.0 || get(trust, b as usize)? > 1.0 {
                     continue; // a boundary star (`EXEMPT`)
                 }
