@@ -9,15 +9,32 @@
 # load hits both alike; prints the median core time of each (subdivide_off's time_ms: plan,
 # topology and every level, no file I/O) and their ratio, and the load average before and
 # after.
+#
+# With ICOUNT=1 it counts instructions instead (valgrind callgrind, one thread; an
+# instruction count does not depend on the machine's load): the inclusive count of
+# `scheme::levels::run`, the core's work without file I/O, once per mode (docs/folds.md,
+# "Cost").
 set -u
 reps=${1:-9}
 here=$(cd "$(dirname "$0")/.." && pwd)
 bin=$here/target/release/examples/subdivide_off
 meshes=${NLS_SHARED_DATA:-$here/../shared/data/meshes}
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-14s %-28s %6s %10s %10s %7s\n' scheme mesh levels literal_ms default_ms ratio
 run() { "$bin" "$1" "$3" "$meshes/$2.off" /tmp/guard_cost.$$.off --mobius $4 2>&1 >/dev/null |
         sed -n 's/.*time_ms=//p'; }
+if [ "${ICOUNT:-0}" = 1 ]; then
+  run() {
+    local cg=/tmp/guard_cost.$$.cg
+    valgrind --tool=callgrind --callgrind-out-file=$cg "$bin" "$1" "$3" "$meshes/$2.off" \
+      /tmp/guard_cost.$$.off --mobius --threads 1 $4 >/dev/null 2>&1
+    callgrind_annotate --inclusive=yes $cg 2>/dev/null |
+      awk '/levels::run::\{\{closure\}\}/ {gsub(",", "", $1); printf "%.1f\n", $1 / 1e6; exit}'
+    rm -f $cg
+  }
+  reps=1
+  unit=Mi
+fi
+printf '%-14s %-28s %6s %10s %10s %7s\n' scheme mesh levels "literal_${unit:-ms}" "default_${unit:-ms}" ratio
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 while read -r s m l; do
   [ -f "$meshes/$m.off" ] || { echo "SKIP $m (not found)"; continue; }
