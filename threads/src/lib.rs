@@ -23,6 +23,8 @@
 //! nlsubdiv_threads::subdivide(mesh, &opts, scratch, &mut out, 2).unwrap();
 //! ```
 
+use std::sync::{Mutex, PoisonError};
+
 use nlsubdiv::exec::{Chunk, Executor};
 use nlsubdiv::{Mesh, MeshOut, Options, Report, Result, Scratch};
 
@@ -36,13 +38,21 @@ pub const MIN_CHUNK: usize = 2048;
 /// are worth splitting.
 pub const DIFFERENTIAL_MIN_CHUNK: usize = 32768;
 
-/// Runs every pass on up to `n` scoped std threads, one contiguous group of chunks each (the
-/// calling thread takes the first group).
+/// Chunks per thread of a pass long enough ([`MIN_CHUNK`] elements each): the threads take
+/// the next chunk as they finish one, so a range that costs more than its length says (the
+/// fold guard's distrusted stars, which a level keeps among its first, old vertices) is
+/// shared out instead of left to one thread.
+pub const CHUNKS_PER_THREAD: usize = 4;
+
+/// Runs every pass on up to `n` scoped std threads: the calling thread and `n − 1` others
+/// each take the next chunk not yet taken until none is left, so the work balances while
+/// every chunk still writes only its own range (the output does not depend on which thread
+/// ran which chunk, nor on their order).
 #[derive(Clone, Copy, Debug)]
 pub struct Threads {
     n: usize,
-    /// A fixed number of chunks per pass (tests of odd chunkings), or `None`: one chunk per
-    /// thread, each of at least `min_chunk` elements.
+    /// A fixed number of chunks per pass (tests of odd chunkings), or `None`: up to
+    /// [`CHUNKS_PER_THREAD`] chunks per thread, each of at least `min_chunk` elements.
     fixed: Option<usize>,
     /// The smallest chunk without `fixed` ([`MIN_CHUNK`] unless set).
     min_chunk: usize,
@@ -93,25 +103,31 @@ impl Executor for Threads {
     fn chunks(&self, len: usize) -> usize {
         match self.fixed {
             Some(k) => k,
-            None => (len / self.min_chunk).clamp(1, self.n),
+            None => (len / self.min_chunk).clamp(1, self.n.saturating_mul(CHUNKS_PER_THREAD)),
         }
     }
 
     fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
-        let per = chunks.len().div_ceil(self.n).max(1);
-        if per >= chunks.len() {
+        let workers = self.n.min(chunks.len());
+        if workers <= 1 {
             chunks.iter_mut().for_each(task);
             return;
         }
+        // The chunks not yet taken; a worker holds the lock only to take one. The core never
+        // panics, so a poisoned lock cannot happen; were it to, the queue is still sound.
+        let queue = Mutex::new(chunks.iter_mut());
+        let work = || loop {
+            let next = queue.lock().unwrap_or_else(PoisonError::into_inner).next();
+            match next {
+                Some(c) => task(c),
+                None => break,
+            }
+        };
         std::thread::scope(|s| {
-            let mut groups = chunks.chunks_mut(per);
-            let mine = groups.next();
-            for g in groups {
-                s.spawn(move || g.iter_mut().for_each(task));
+            for _ in 1..workers {
+                s.spawn(work);
             }
-            if let Some(g) = mine {
-                g.iter_mut().for_each(task);
-            }
+            work();
         });
     }
 }

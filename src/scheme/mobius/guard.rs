@@ -518,11 +518,11 @@ struct Guarded<'a, 'm, 's> {
 type GuardedFn<'f> = dyn Fn(&mut Guarded<'_, '_, '_>, &mut Tally) -> Result<()> + Sync + 'f;
 
 /// The work of one range of an `f64` pass: its first index and its values.
-type F64Fn<'f> = dyn Fn(usize, &mut [f64]) -> Result<()> + Sync + 'f;
+pub(super) type F64Fn<'f> = dyn Fn(usize, &mut [f64]) -> Result<()> + Sync + 'f;
 
 /// Runs `f(first, range)` over the disjoint ranges of `out` that `exec` asks for
 /// ([`crate::exec::chunk_range`]); one range runs inline.
-fn f64_ranges(exec: &dyn Executor, out: &mut [f64], f: &F64Fn<'_>) -> Result<()> {
+pub(super) fn f64_ranges(exec: &dyn Executor, out: &mut [f64], f: &F64Fn<'_>) -> Result<()> {
     let k = chunk_count(exec, out.len());
     if k <= 1 {
         return own_frame(|| f(0, out));

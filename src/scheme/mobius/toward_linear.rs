@@ -23,7 +23,7 @@
 
 use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
-use super::guard::Outputs;
+use super::guard::{f64_ranges, Outputs};
 use crate::error::Result;
 use crate::exec::{pass, Executor, Tally};
 use crate::mesh::gather::face_sum;
@@ -77,9 +77,13 @@ fn ring_trust(
         }
         Ok(t)
     };
-    for (v, r) in (0u32..).zip(ring.iter_mut()) {
-        *r = least(trust, v)?;
-    }
+    // Both in vertex ranges on the executor: each vertex writes only its own entry.
+    f64_ranges(exec, ring, &|first, out: &mut [f64]| {
+        for (v, r) in (first as u32..).zip(out.iter_mut()) {
+            *r = least(trust, v)?;
+        }
+        Ok(())
+    })?;
     let ring: &[f64] = ring;
     pass(exec, rings2, |first, out, _| {
         for (v, o) in (first as u32..).zip(out.iter_mut()) {
