@@ -324,6 +324,51 @@ where
     Ok(total)
 }
 
+/// The largest value of `values` (0 when empty), chunk by chunk: one branch-free pass per
+/// chunk (vectorised by the compiler), then the largest of the chunks'.
+pub(crate) fn largest(exec: &dyn Executor, values: &[u32]) -> Result<u32> {
+    let k = chunk_count(exec, values.len());
+    if k <= 1 {
+        return Ok(largest_of(values));
+    }
+    split_largest(exec, values, k)
+}
+
+/// The largest value of a slice, 0 when empty.
+fn largest_of(values: &[u32]) -> u32 {
+    values.iter().fold(0u32, |m, &i| m.max(i))
+}
+
+/// [`largest`] in `k ≥ 2` chunks (out of line: the one-chunk path keeps a small stack
+/// frame).
+#[inline(never)]
+fn split_largest(exec: &dyn Executor, values: &[u32], k: usize) -> Result<u32> {
+    /// One chunk: its values and, once run, their largest.
+    struct Part<'a> {
+        values: &'a [u32],
+        largest: u32,
+    }
+    let mut ranges = ArrayVec::<Part<'_>, MAX_CHUNKS>::new();
+    for i in 0..k {
+        let (a, b) = chunk_range(values.len(), k, i);
+        let part = Part {
+            values: values.get(a..b).ok_or(internal())?,
+            largest: 0,
+        };
+        ranges.try_push(part).map_err(|_| internal())?;
+    }
+    parts(
+        exec,
+        &mut ranges,
+        |p| p.values.len(),
+        |p, _| {
+            p.largest = largest_of(p.values);
+            Ok(())
+        },
+    )?;
+    Ok(ranges.iter().fold(0, |m, p| m.max(p.largest)))
+}
+
 /// The index of the first point of `pos` with a NaN or infinite coordinate, found chunk by
 /// chunk. A branch-free test per chunk first (`|x| ≤ f64::MAX` is false exactly for NaN and
 /// ±∞), the search only in a chunk where it fails.
@@ -341,4 +386,43 @@ pub(crate) fn first_non_finite(exec: &dyn Executor, pos: &mut [Point]) -> Result
         Ok(())
     })?;
     Ok((t.count > 0).then_some(t.first as usize))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `k` chunks per pass, run last to first.
+    struct Reverse(usize);
+    impl Executor for Reverse {
+        fn chunks(&self, _len: usize) -> usize {
+            self.0
+        }
+        fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
+            chunks.iter_mut().rev().for_each(task);
+        }
+    }
+
+    #[test]
+    fn the_largest_value_is_found_in_every_chunking() {
+        let mut values = [0u32; 1000];
+        let mut x = 7u32;
+        for v in values.iter_mut() {
+            x = x.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            *v = x >> 12;
+        }
+        let want = values.iter().copied().max().unwrap_or(0);
+        for n in [0, 1, 2, 5, 999, 1000] {
+            // The largest value at every place a chunk boundary can put it.
+            let mut v = values;
+            if let Some(last) = v.get_mut(n.min(999)) {
+                *last = u32::MAX - 1;
+            }
+            for k in [1, 2, 3, 7, 64] {
+                assert_eq!(largest(&Reverse(k), &v).unwrap(), u32::MAX - 1, "{n} {k}");
+                assert_eq!(largest(&Reverse(k), &values).unwrap(), want, "{k}");
+                assert_eq!(largest(&Reverse(k), &[]).unwrap(), 0);
+            }
+        }
+    }
 }

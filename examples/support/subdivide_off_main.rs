@@ -59,7 +59,7 @@ fn levels_call(
             scheme::plan(m.view(), opts, &mut su)?;
         }
         let scratch = Scratch::new(&mut su, &mut sp);
-        scheme::subdivide_with(m.view(), opts, scratch, &mut mo, exec)?;
+        kernel_call(m.view(), opts, scratch, &mut mo, exec)?;
         if call == 0 {
             cold = t0.elapsed().as_secs_f64() * 1e3;
         } else {
@@ -73,6 +73,19 @@ fn levels_call(
     let scratch_bytes = 4 * su.len() + 24 * sp.len();
     eprintln!("subdivide_off: output_bytes={out_bytes} scratch_bytes={scratch_bytes}");
     Ok((out, cold, warm))
+}
+
+/// The kernel's call, in a frame of its own: `benches/serial_share.sh` counts the
+/// instructions under this symbol (the library's own functions may be inlined into it).
+#[inline(never)]
+fn kernel_call(
+    mesh: nlsubdiv::Mesh<'_>,
+    opts: &Options,
+    scratch: Scratch<'_>,
+    out: &mut MeshOut<'_>,
+    exec: &dyn Executor,
+) -> nlsubdiv::Result<nlsubdiv::Report> {
+    scheme::subdivide_with(mesh, opts, scratch, out, exec)
 }
 
 /// The OFF text of `write_off` (tests/common), streamed through a buffer instead of built

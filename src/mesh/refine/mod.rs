@@ -178,8 +178,8 @@ pub(crate) fn write_pattern_with(
     }
     // The output numbering must stay within the vertex count (checked, never trusted).
     let used = indices.get(..sizes.indices).ok_or(internal())?;
-    // One branch-free pass (the largest index), vectorised by the compiler.
-    let largest = used.iter().fold(0u32, |m, &i| m.max(i));
+    // The largest index, in the chunks of `exec` (one vectorised pass each).
+    let largest = exec::largest(exec, used)?;
     if !used.is_empty() && largest as usize >= sizes.vertices {
         return Err(internal());
     }

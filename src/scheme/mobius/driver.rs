@@ -8,10 +8,11 @@
 //! owns a contiguous range of them.
 
 use super::form::MISSING;
+use super::guard::f64_ranges;
 use super::slots::slot_of;
 use super::{MobiusOptions, MobiusReport};
 use crate::error::{Error, Result, Status, NO_ELEMENT};
-use crate::exec::{Executor, Tally};
+use crate::exec::{pass, Executor, Tally};
 use crate::mesh::Topology;
 use crate::point::Point;
 
@@ -62,7 +63,7 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
     /// A driver with every candidate [`MISSING`]; `cands` holds the edge and face candidates
     /// and their slots (`slots.rs`), `form` the per-vertex trust, centres and radii of the
-    /// fold guard.
+    /// fold guard; an error only when a pass of `exec` fails (internal).
     pub(super) fn new(
         topo: &'t Topology<'m, 's>,
         pos: &'o mut [Point],
@@ -70,19 +71,26 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
         form: (&'o mut [f64], &'o mut [Point], &'o mut [f64]),
         opts: MobiusOptions,
         exec: &'o dyn Executor,
-    ) -> Self {
+    ) -> Result<Self> {
         let (edge_c, face_c, slots) = cands;
         let (trust, centre, radius) = form;
-        for c in edge_c.iter_mut().chain(face_c.iter_mut()) {
-            *c = MISSING;
+        // In the chunks of `exec`: the candidate arrays are two points per half-edge, tens of
+        // megabytes on a large level, and filling them was the largest serial write of a step.
+        for c in [&mut *edge_c, &mut *face_c] {
+            pass(exec, c, |_, out, _| {
+                out.fill(MISSING);
+                Ok(())
+            })?;
         }
-        for t in trust.iter_mut() {
-            *t = 1.0;
-        }
-        for r in radius.iter_mut() {
-            *r = 0.0;
-        }
-        Driver {
+        f64_ranges(exec, trust, &|_, out: &mut [f64]| {
+            out.fill(1.0);
+            Ok(())
+        })?;
+        f64_ranges(exec, radius, &|_, out: &mut [f64]| {
+            out.fill(0.0);
+            Ok(())
+        })?;
+        Ok(Driver {
             topo,
             pos,
             edge_c,
@@ -99,7 +107,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             work: &mut [],
             spoke_work: &mut [],
             edge_trust: &mut [],
-        }
+        })
     }
 
     /// The slot of half-edge `h` in `edge_c` and `face_c`.

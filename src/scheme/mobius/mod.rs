@@ -223,7 +223,7 @@ pub(crate) fn step(
     let edge_trust = rest.get_mut(..topo.num_edges()).ok_or(internal())?;
     slots::write(topo, slot_map)?;
     let form = (trust, centre, radius);
-    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
+    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec)?;
     d.work = work;
     d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
