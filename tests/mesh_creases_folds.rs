@@ -118,7 +118,7 @@ fn folds(m: &OwnedMesh, creases: &BTreeSet<[u32; 2]>) -> usize {
         .count()
 }
 
-const ROWS: [(Scheme, &str, usize); 7] = [
+const ROWS: [(Scheme, &str, usize); 17] = [
     (Scheme::Loop, "fandisk", 3),
     (Scheme::Loop, "rocker_arm", 2),
     (Scheme::ModifiedButterfly, "fandisk", 2),
@@ -126,13 +126,31 @@ const ROWS: [(Scheme, &str, usize); 7] = [
     (Scheme::CatmullClark, "helmet_quad", 2),
     (Scheme::Kobbelt, "polycastle_quad", 2),
     (Scheme::CatmullClark, "spot_quad", 2),
+    (Scheme::Loop, "epcot", 3),
+    (Scheme::Loop, "pawn_tri", 2),
+    (Scheme::ModifiedButterfly, "pawn_tri", 2),
+    (Scheme::CatmullClark, "horse_quad", 2),
+    (Scheme::CatmullClark, "vase_quad", 3),
+    (Scheme::Kobbelt, "helmet_quad", 2),
+    // Scanned meshes, where a 30° angle tags noise as creases (the `OPEN` rows).
+    (Scheme::Loop, "cow", 2),
+    (Scheme::Loop, "fertility", 2),
+    (Scheme::ModifiedButterfly, "cow", 2),
+    (Scheme::Kobbelt, "horse_quad", 2),
 ];
 
 /// Rows where the tagged Möbius output still folds more than the tagged linear output at
 /// level 2 (`docs/creases.md`, "Folds next to corners"): the test checks that they still do,
-/// so that a change that fixes one must take it off this list, and prints the counts. None
-/// today.
-const OPEN: [(Scheme, &str); 0] = [];
+/// so that a change that fixes one must take it off this list, and prints the counts. All
+/// are scanned meshes whose 30° crease angle tags a fifth of the edges (cow) or scattered
+/// ones (fertility, horse_quad): the crease vertices are boundary stars of the cut level,
+/// which the fold guard exempts, and Kobbelt's Möbius form is not guarded at all.
+const OPEN: [(Scheme, &str); 4] = [
+    (Scheme::Loop, "cow"),
+    (Scheme::Loop, "fertility"),
+    (Scheme::ModifiedButterfly, "cow"),
+    (Scheme::Kobbelt, "horse_quad"),
+];
 
 #[test]
 fn tagged_mobius_folds_no_more_than_tagged_linear() {
