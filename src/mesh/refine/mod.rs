@@ -170,7 +170,10 @@ pub(crate) fn write_pattern_with(
             // The closing offset (each range writes the offsets of its own faces).
             set(offsets, sizes.faces, idx(sizes.indices)?)?;
         }
-        Pattern::CornerCut => corner_cut::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::CornerCut => {
+            corner_cut::write(topo, &sizes, offsets, indices, exec)?;
+            set(offsets, sizes.faces, idx(sizes.indices)?)?;
+        }
         Pattern::MidEdge => mid_edge::write(topo, n, &sizes, offsets, indices)?,
         Pattern::Dual => dual::write(topo, n, &sizes, offsets, indices)?,
         Pattern::VertexInsertion => vertex_insertion::write(topo, n, &sizes, offsets, indices)?,
