@@ -42,7 +42,8 @@ pub(super) fn size(topo: &Topology<'_, '_>) -> Result<MeshSizes> {
 /// starts at its parent face's offset; the E-faces and V-faces of a range start after the
 /// interior edges and the interior valences of the ranges before it, counted per chunk first
 /// ([`count_range`]; on a closed mesh from the valences alone) and summed in chunk order, so
-/// every executor and chunking writes the same bits. One chunk: inline, with the totals of `topo` and without a counting pass.
+/// every executor and chunking writes the same bits. One chunk: inline, with the totals of
+/// `topo` and without a counting pass.
 pub(super) fn write(
     topo: &Topology<'_, '_>,
     sizes: &MeshSizes,
