@@ -140,10 +140,13 @@ pub fn write_pattern(
     write_pattern_with(pattern, topo, offsets, indices, &Serial)
 }
 
-/// [`write_pattern`] with the faces of [`Pattern::Split1To4`] and [`Pattern::Quads`] written
-/// in parent-face ranges run by `exec` ([`crate::exec`]): every output face of these patterns
-/// is a function of one parent face, at an output position known from the parent's offsets,
-/// so the ranges are disjoint and the result is the same for every executor. The other
+/// [`write_pattern`] with the faces of [`Pattern::Split1To4`], [`Pattern::Quads`] and
+/// [`Pattern::CornerCut`] written in ranges run by `exec` ([`crate::exec`]): every output face
+/// of the first two is a function of one parent face, at an output position known from the
+/// parent's offsets, so the parent-face ranges are disjoint and the result is the same for
+/// every executor. [`Pattern::CornerCut`] writes its F-faces the same way and its E-faces and
+/// V-faces in edge and vertex ranges, placed after the interior edges and valences of the
+/// ranges before (counted per chunk, then summed in chunk order: `corner_cut.rs`). The other
 /// patterns are written on the calling thread (their output positions are running counts).
 pub(crate) fn write_pattern_with(
     pattern: Pattern,
@@ -170,7 +173,10 @@ pub(crate) fn write_pattern_with(
             // The closing offset (each range writes the offsets of its own faces).
             set(offsets, sizes.faces, idx(sizes.indices)?)?;
         }
-        Pattern::CornerCut => corner_cut::write(topo, n, &sizes, offsets, indices)?,
+        Pattern::CornerCut => {
+            corner_cut::write(topo, &sizes, offsets, indices, exec)?;
+            set(offsets, sizes.faces, idx(sizes.indices)?)?;
+        }
         Pattern::MidEdge => mid_edge::write(topo, n, &sizes, offsets, indices)?,
         Pattern::Dual => dual::write(topo, n, &sizes, offsets, indices)?,
         Pattern::VertexInsertion => vertex_insertion::write(topo, n, &sizes, offsets, indices)?,
