@@ -60,10 +60,36 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     pub(super) edge_trust: &'o mut [f64],
 }
 
+/// Sets every candidate [`MISSING`] and each `f64` array to its value, in the chunks of
+/// `exec`, before a step builds its [`Driver`]: the candidate arrays are two points per
+/// half-edge, tens of megabytes on a large level, and filling them was the largest serial
+/// write of a step. Out of line, so that the passes' frames are not part of the step's
+/// (`docs/firmware.md`, "Stack").
+#[inline(never)]
+pub(super) fn clear(
+    exec: &dyn Executor,
+    cands: [&mut [Point]; 2],
+    values: [(&mut [f64], f64); 2],
+) -> Result<()> {
+    for c in cands {
+        pass(exec, c, |_, out, _| {
+            out.fill(MISSING);
+            Ok(())
+        })?;
+    }
+    for (out, v) in values {
+        f64_ranges(exec, out, &|_, out: &mut [f64]| {
+            out.fill(v);
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
 impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
-    /// A driver with every candidate [`MISSING`]; `cands` holds the edge and face candidates
-    /// and their slots (`slots.rs`), `form` the per-vertex trust, centres and radii of the
-    /// fold guard; an error only when a pass of `exec` fails (internal).
+    /// A driver on `cands`, the edge and face candidates (every one [`MISSING`], by
+    /// [`clear`]) and their slots (`slots.rs`), and `form`, the per-vertex trust (1), centres
+    /// and radii (0) of the fold guard.
     pub(super) fn new(
         topo: &'t Topology<'m, 's>,
         pos: &'o mut [Point],
@@ -71,26 +97,10 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
         form: (&'o mut [f64], &'o mut [Point], &'o mut [f64]),
         opts: MobiusOptions,
         exec: &'o dyn Executor,
-    ) -> Result<Self> {
+    ) -> Self {
         let (edge_c, face_c, slots) = cands;
         let (trust, centre, radius) = form;
-        // In the chunks of `exec`: the candidate arrays are two points per half-edge, tens of
-        // megabytes on a large level, and filling them was the largest serial write of a step.
-        for c in [&mut *edge_c, &mut *face_c] {
-            pass(exec, c, |_, out, _| {
-                out.fill(MISSING);
-                Ok(())
-            })?;
-        }
-        f64_ranges(exec, trust, &|_, out: &mut [f64]| {
-            out.fill(1.0);
-            Ok(())
-        })?;
-        f64_ranges(exec, radius, &|_, out: &mut [f64]| {
-            out.fill(0.0);
-            Ok(())
-        })?;
-        Ok(Driver {
+        Driver {
             topo,
             pos,
             edge_c,
@@ -107,7 +117,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             work: &mut [],
             spoke_work: &mut [],
             edge_trust: &mut [],
-        })
+        }
     }
 
     /// The slot of half-edge `h` in `edge_c` and `face_c`.

@@ -222,8 +222,13 @@ pub(crate) fn step(
     let (slot_map, rest) = rest.split_at_mut_checked(nh).ok_or(internal())?;
     let edge_trust = rest.get_mut(..topo.num_edges()).ok_or(internal())?;
     slots::write(topo, slot_map)?;
+    driver::clear(
+        exec,
+        [&mut *edge_c, &mut *face_c],
+        [(&mut *trust, 1.0), (&mut *radius, 0.0)],
+    )?;
     let form = (trust, centre, radius);
-    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec)?;
+    let mut d = Driver::new(topo, pos, (edge_c, face_c, slot_map), form, opts, exec);
     d.work = work;
     d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
