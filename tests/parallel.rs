@@ -353,17 +353,23 @@ impl Executor for Census {
 }
 
 /// The Möbius vertex pass itself is split: a literal Loop step on a closed mesh hands the
-/// executor the connectivity pass over the `F` parent faces, two passes over the `V`
-/// vertices (the vertex pass and the completion of the vertex points), then the `E` edge
-/// blends and the finiteness check; Catmull–Clark also the face blends.
+/// executor the connectivity pass over the `F` parent faces and the check of its `12 F`
+/// indices, the fills of the `H` edge and `H` face candidates and of the `V` trusts and
+/// radii, two passes over the `V` vertices (the vertex pass and the completion of the vertex
+/// points), then the `E` edge blends and the finiteness check; Catmull–Clark also the face
+/// blends.
 #[test]
 fn the_vertex_pass_is_split() {
     let m = jitter(&tri_torus(6, 5), 0.03, 4);
     let (nv, nf) = (m.positions.len(), m.num_faces());
-    let ne = m.indices.len() / 2;
+    let (nh, ne) = (m.indices.len(), m.indices.len() / 2);
+    let start = |nv| vec![nf, 12 * nf, nh, nh, nv, nv, nv, nv];
     for (s, passes) in [
-        (Scheme::Loop, vec![nf, nv, nv, ne, nv + ne]),
-        (Scheme::CatmullClark, vec![nf, nv, nv, nf, ne, nv + ne + nf]),
+        (Scheme::Loop, [start(nv), vec![ne, nv + ne]].concat()),
+        (
+            Scheme::CatmullClark,
+            [start(nv), vec![nf, ne, nv + ne + nf]].concat(),
+        ),
     ] {
         let census = Census {
             chunks: 3,
