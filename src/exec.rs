@@ -388,12 +388,16 @@ pub(crate) fn first_non_finite(exec: &dyn Executor, pos: &mut [Point]) -> Result
     Ok((t.count > 0).then_some(t.first as usize))
 }
 
+/// What the unit tests of the passes share: an executor that runs the chunks in reverse,
+/// and the arenas their buffers are carved from (no allocation in the core, not even in its
+/// tests).
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod testing {
+    use super::{Chunk, Executor};
 
     /// `k` chunks per pass, run last to first.
-    struct Reverse(usize);
+    pub(crate) struct Reverse(pub(crate) usize);
+
     impl Executor for Reverse {
         fn chunks(&self, _len: usize) -> usize {
             self.0
@@ -402,6 +406,19 @@ mod tests {
             chunks.iter_mut().rev().for_each(task);
         }
     }
+
+    /// Takes the first `n` elements of `*arena`, leaving the rest there.
+    pub(crate) fn take<'a, T>(arena: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+        let (head, rest) = core::mem::take(arena).split_at_mut(n);
+        *arena = rest;
+        head
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::testing::Reverse;
+    use super::*;
 
     #[test]
     fn the_largest_value_is_found_in_every_chunking() {

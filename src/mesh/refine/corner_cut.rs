@@ -388,7 +388,8 @@ pub(super) fn next(s: &LevelCounts) -> Result<LevelCounts> {
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::super::face_writer::FaceWriter;
-    use crate::exec::{Chunk, Executor, MAX_CHUNKS};
+    use crate::exec::testing::{take, Reverse};
+    use crate::exec::MAX_CHUNKS;
     use crate::mesh::refine::{pattern_size, write_pattern, write_pattern_with, Pattern};
     use crate::mesh::{topology_scratch_size, Mesh, MeshSizes, Topology, NONE};
     use crate::point::Point;
@@ -397,23 +398,6 @@ mod tests {
     /// core, not even in its tests).
     const ARENA_U32: usize = 1 << 17;
     const ARENA_POINTS: usize = 1 << 12;
-
-    fn take<'a, T>(arena: &mut &'a mut [T], n: usize) -> &'a mut [T] {
-        let (head, rest) = core::mem::take(arena).split_at_mut(n);
-        *arena = rest;
-        head
-    }
-
-    /// `k` chunks per pass, run last to first.
-    struct Reverse(usize);
-    impl Executor for Reverse {
-        fn chunks(&self, _len: usize) -> usize {
-            self.0
-        }
-        fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
-            chunks.iter_mut().rev().for_each(task);
-        }
-    }
 
     /// The faces as written with a running cursor, one after the other (the serial writer
     /// the chunked one replaced): the reference.

@@ -198,7 +198,8 @@ pub(super) fn old_vertices(
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use crate::error::Error;
-    use crate::exec::{Chunk, Executor, Serial};
+    use crate::exec::testing::{take, Reverse};
+    use crate::exec::Serial;
     use crate::mesh::refine::{
         child_topology, derivable, pattern_size, write_pattern, write_pattern_with, Pattern,
     };
@@ -210,24 +211,6 @@ mod tests {
     /// core, not even in its tests): every level keeps its buffers while the next is built.
     const ARENA_U32: usize = 1 << 17;
     const ARENA_POINTS: usize = 1 << 12;
-
-    /// Takes the first `n` elements of `*arena`, leaving the rest there.
-    fn take<'a, T>(arena: &mut &'a mut [T], n: usize) -> &'a mut [T] {
-        let (head, rest) = core::mem::take(arena).split_at_mut(n);
-        *arena = rest;
-        head
-    }
-
-    /// `k` chunks per pass, run last to first.
-    struct Reverse(usize);
-    impl Executor for Reverse {
-        fn chunks(&self, _len: usize) -> usize {
-            self.0
-        }
-        fn run(&self, chunks: &mut [Chunk<'_>], task: &(dyn Fn(&mut Chunk<'_>) + Sync)) {
-            chunks.iter_mut().rev().for_each(task);
-        }
-    }
 
     /// Every array and count of two topologies of the same mesh.
     fn assert_same(a: &Topology<'_, '_>, b: &Topology<'_, '_>, what: (Pattern, usize)) {
