@@ -390,6 +390,7 @@ mod tests {
     use super::super::face_writer::FaceWriter;
     use crate::exec::testing::{take, Reverse};
     use crate::exec::MAX_CHUNKS;
+    use crate::mesh::refine::fixtures::{cube, grid_positions};
     use crate::mesh::refine::{pattern_size, write_pattern, write_pattern_with, Pattern};
     use crate::mesh::{topology_scratch_size, Mesh, MeshSizes, Topology, NONE};
     use crate::point::Point;
@@ -471,18 +472,9 @@ mod tests {
         }
     }
 
-    fn grid_positions<const N: usize>() -> [Point; N] {
-        core::array::from_fn(|v| [(v % 4) as f64, (v / 4) as f64, 0.0])
-    }
-
     #[test]
     fn chunked_cube() {
-        let pos: [Point; 8] =
-            core::array::from_fn(|v| [(v & 1) as f64, ((v >> 1) & 1) as f64, (v >> 2) as f64]);
-        let idx = [
-            0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
-        ];
-        let offs = [0, 4, 8, 12, 16, 20, 24];
+        let (pos, offs, idx) = cube();
         chunked_equals_serial(&pos, &offs, &idx, 3);
     }
 

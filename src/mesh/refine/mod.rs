@@ -54,6 +54,27 @@ mod quads;
 mod split_1to4;
 mod vertex_insertion;
 
+/// Meshes the unit tests of the patterns share.
+#[cfg(test)]
+pub(crate) mod fixtures {
+    use crate::point::Point;
+
+    /// `N` points on a grid four points wide, in the plane `z = 0`.
+    pub(crate) fn grid_positions<const N: usize>() -> [Point; N] {
+        core::array::from_fn(|v| [(v % 4) as f64, (v / 4) as f64, 0.0])
+    }
+
+    /// The unit cube as six outward quads: positions, offsets, indices.
+    pub(crate) fn cube() -> ([Point; 8], [u32; 7], [u32; 24]) {
+        let pos =
+            core::array::from_fn(|v| [(v & 1) as f64, ((v >> 1) & 1) as f64, (v >> 2) as f64]);
+        let idx = [
+            0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
+        ];
+        (pos, [0, 4, 8, 12, 16, 20, 24], idx)
+    }
+}
+
 pub(crate) use counts::LevelCounts;
 
 use arrayvec::ArrayVec;
