@@ -470,6 +470,23 @@ fn kobbelt_positions(
     })?;
     let pos: &[Point] = ve;
     let ep = |h: u32| -> Result<Point> { get(pos, nv + topo.edge(h)? as usize) };
+    pass(exec, fpos, |start, out, _| {
+        for (f, out) in (start as u32..).zip(out.iter_mut()) {
+            *out = kobbelt_face_by(topo, f, &ep)?;
+        }
+        Ok(())
+    })
+    .map(|_| ())
+}
+
+/// Kobbelt's face point of quad `f` from the new edge points `ep(h)` (of the edge of
+/// half-edge `h`): the 4-point rule along each of the face's two grid lines of edge points,
+/// the two results averaged; past a boundary edge the line is extrapolated.
+fn kobbelt_face_by(
+    topo: &Topology<'_, '_>,
+    f: u32,
+    ep: &dyn Fn(u32) -> Result<Point>,
+) -> Result<Point> {
     // The edge point beyond edge `hx` of a quad, away from its opposite edge `hy`.
     let outer = |hx: u32, hy: u32| -> Result<Point> {
         let t = topo.twin(hx)?;
@@ -479,17 +496,17 @@ fn kobbelt_positions(
             ep(topo.next(topo.next(t)?)?)
         }
     };
-    pass(exec, fpos, |start, out, _| {
-        for (f, out) in (start as u32..).zip(out.iter_mut()) {
-            let r = topo.face_half_edges(f)?;
-            let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
-            let fa = kobbelt::four_point(outer(h0, h2)?, ep(h0)?, ep(h2)?, outer(h2, h0)?);
-            let fb = kobbelt::four_point(outer(h1, h3)?, ep(h1)?, ep(h3)?, outer(h3, h1)?);
-            *out = crate::point::midpoint(fa, fb);
-        }
-        Ok(())
-    })
-    .map(|_| ())
+    let r = topo.face_half_edges(f)?;
+    let (h0, h1, h2, h3) = (r.start, r.start + 1, r.start + 2, r.start + 3);
+    let fa = kobbelt::four_point(outer(h0, h2)?, ep(h0)?, ep(h2)?, outer(h2, h0)?);
+    let fb = kobbelt::four_point(outer(h1, h3)?, ep(h1)?, ep(h3)?, outer(h3, h1)?);
+    Ok(crate::point::midpoint(fa, fb))
+}
+
+/// The linear Kobbelt face point of quad `f`, its edge points evaluated where they are read
+/// ([`kobbelt_edge`]): the linear scheme's face point without its level's edge points.
+pub(crate) fn kobbelt_face(topo: &Topology<'_, '_>, f: u32) -> Result<Point> {
+    kobbelt_face_by(topo, f, &|h| kobbelt_edge(topo, topo.edge(h)?))
 }
 
 // ---- Doo–Sabin, Simplest, Akleman ----

@@ -67,7 +67,35 @@ pub(super) enum Children {
     Triangles { edges: usize, middles: bool },
     /// Catmull–Clark: the corner quads `(v', e_i, f_i, e_{i+1})`, `f_i` the point of the
     /// face after spoke `i` (output vertex `faces + face`).
-    Quads { edges: usize, faces: usize },
+    /// With `edge_places`, also the place of each edge point `e_i` in the frame: its
+    /// distance from the middle `½ C_i` of the spoke to the neighbour's image `C_i`, over
+    /// `|C_i|` ([`edge_place_trust`]; Kobbelt, whose interpolating edge points carry the
+    /// whole shape to the next level).
+    Quads {
+        edges: usize,
+        faces: usize,
+        edge_places: bool,
+    },
+}
+
+/// Distance of an edge point from the middle of its spoke (over the spoke's length, in the
+/// star's normalised frame) at or below which the audit trusts the star.
+const PLACE_TRUSTED: f64 = 0.25;
+/// The same distance at or above which it distrusts the star.
+const PLACE_DISTRUSTED: f64 = 0.35;
+
+/// The trust of the place of edge point `e` on the spoke whose neighbour's image is `c`, both
+/// in the star's normalised frame: by its distance from `½ c` over `|c|`. On a Möbius-regular
+/// star the 4-point rule puts it at `½ c`; ratios of lengths in the normalised frame are
+/// Möbius-invariant (`trust.rs`).
+fn edge_place_trust(e: Point, c: Point) -> f64 {
+    let m = sub(e, crate::point::scale(c, 0.5));
+    let d = crate::sqrt::sqrt(dot(m, m) / dot(c, c));
+    if d.is_finite() {
+        ramp(d, PLACE_DISTRUSTED, PLACE_TRUSTED)
+    } else {
+        0.0
+    }
 }
 
 /// The cosine between two area vectors; -1 (a fold) when either is zero or not finite.
@@ -125,15 +153,18 @@ impl Driver<'_, '_, '_, '_> {
         let measure = |part: &mut AuditPart<'_>, _: &mut Tally| -> Result<()> {
             for (v, c) in (part.first as u32..).zip(part.out.iter_mut()) {
                 let r = get(radius, v as usize)?;
-                let a = if r == 0.0 || get(trust, v as usize)? > 1.0 {
+                let cf = CanonicalForm {
+                    v: topo.position(v)?,
+                    c: *c,
+                    r,
+                    kind: StarKind::Interior,
+                };
+                let a = if r == 0.0 {
                     1.0
+                } else if get(trust, v as usize)? > 1.0 {
+                    // A boundary star whose form the scheme kept (Kobbelt).
+                    open_star_audit(topo, pos, &cf, v, children)?
                 } else {
-                    let cf = CanonicalForm {
-                        v: topo.position(v)?,
-                        c: *c,
-                        r,
-                        kind: StarKind::Interior,
-                    };
                     star_audit(topo, pos, &cf, v, children, part.work)?
                 };
                 *c = [a, 0.0, 0.0];
@@ -232,6 +263,7 @@ fn star_audit(
     let half = work.len() / 2;
     let (fan, outer) = work.split_at_mut_checked(half).ok_or(internal())?;
     let (mut nf, mut no) = (0, 0);
+    let mut place = 1.0f64;
     // The star's spokes counter-clockwise from its first outgoing half-edge, as
     // `Topology::star` walks them (the same order, so the same sums), on the raw arrays: an
     // interior star has an outgoing half-edge for every spoke.
@@ -254,10 +286,17 @@ fn star_audit(
                     None
                 },
             ),
-            Children::Quads { edges, faces } => (edges + edge, Some(faces + face as usize)),
+            Children::Quads { edges, faces, .. } => (edges + edge, Some(faces + face as usize)),
         };
         let p = map(get(pos, e)?);
         all_present &= present(&p);
+        if let Children::Quads {
+            edge_places: true, ..
+        } = children
+        {
+            let c = map(topo.position(get(r.indices, next as usize)?)?);
+            place = place.min(edge_place_trust(p, c));
+        }
         set(fan, nf, p)?;
         nf += 1;
         if let Some(o) = o {
@@ -277,11 +316,101 @@ fn star_audit(
     let fan = fan.get(..nf).ok_or(internal())?;
     let outer = outer.get(..no).ok_or(internal())?;
     let (pair, fan_normal) = pair_cos(centre, fan, outer, children);
-    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(
-        fan_sine_about(centre, fan, fan_normal),
-        FAN_DISTRUSTED,
-        FAN_TRUSTED,
-    )))
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED)
+        .min(ramp(
+            fan_sine_about(centre, fan, fan_normal),
+            FAN_DISTRUSTED,
+            FAN_TRUSTED,
+        ))
+        .min(place))
+}
+
+/// The audit's trust of boundary star `v` whose form `cf` the scheme kept (Kobbelt; the other
+/// schemes keep none, and their boundary stars stay exempt): [`star_audit`] on the open fan of
+/// child quads `(v', e_i, f_i, e_{i+1})` of the star's faces. The pair angle across every
+/// child edge `(v', e_i)` between two of them, the fan angle between consecutive `e_i`
+/// signed by the fan's area vector (the sum of the quads' Newell normals), and, with
+/// `edge_places`, the place of the points of the interior spokes' edges. Walked with
+/// [`Topology::star`] and each face's Newell sum on its own: boundary stars are few.
+fn open_star_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    children: Children,
+) -> Result<f64> {
+    let Children::Quads {
+        edges,
+        faces,
+        edge_places,
+    } = children
+    else {
+        return Ok(1.0);
+    };
+    let map = |p: Point| cf.to_normalised_or_nan(p);
+    let centre = map(get(pos, v as usize)?);
+    if !present(&centre) {
+        return Ok(0.0);
+    }
+    let mut place = 1.0f64;
+    let mut pair = f64::INFINITY;
+    let mut area = [0.0; 3];
+    let mut prev: Option<Point> = None;
+    let mut e_prev: Option<Point> = None;
+    let n = topo.valence(v)?;
+    // The fan's sides `e_i − v'` and the corner normals, for the fan angle after the walk.
+    let mut sides = ArrayVec::<(Point, Point), { crate::MAX_VALENCE }>::new();
+    for (i, s) in topo.star(v).enumerate() {
+        let e = map(get(pos, edges + s.edge as usize)?);
+        if !present(&e) {
+            return Ok(0.0);
+        }
+        let interior = i > 0 && i + 1 < n;
+        if edge_places && interior {
+            place = place.min(edge_place_trust(e, map(topo.position(s.neighbour)?)));
+        }
+        if let Some(ep) = e_prev {
+            sides.try_push((ep, e)).map_err(|_| internal())?;
+        }
+        e_prev = Some(e);
+    }
+    // The corner quads, face by face (a second walk: the face point and the next spoke's
+    // edge point are needed together).
+    let mut first = true;
+    let spokes = topo.star(v);
+    let mut it = spokes.peekable();
+    while let Some(s) = it.next() {
+        let Some(nx) = it.peek() else { break };
+        if s.face == NONE {
+            break;
+        }
+        let e0 = map(get(pos, edges + s.edge as usize)?);
+        let e1 = map(get(pos, edges + nx.edge as usize)?);
+        let f = map(get(pos, faces + s.face as usize)?);
+        if !present(&f) {
+            return Ok(0.0);
+        }
+        let corner = super::trust::newell(&[centre, e0, f, e1]);
+        area = add(area, corner);
+        if let Some(p) = prev {
+            pair = pair.min(cos_between(p, corner));
+        }
+        prev = Some(corner);
+        first = false;
+    }
+    if first {
+        return Ok(1.0);
+    }
+    let mut fan = f64::INFINITY;
+    let nn = crate::sqrt::sqrt(dot(area, area));
+    for (p, q) in sides {
+        let (p, q) = (sub(p, centre), sub(q, centre));
+        let s = dot(cross(p, q), area) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
+        fan = fan.min(if s.is_finite() { s } else { -1.0 });
+    }
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED)
+        .min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED))
+        .min(place))
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
@@ -490,7 +619,11 @@ mod tests {
                 edges: 0,
                 middles: true,
             },
-            Children::Quads { edges: 0, faces: 0 },
+            Children::Quads {
+                edges: 0,
+                faces: 0,
+                edge_places: false,
+            },
         ];
         let mut seen = [false; 3];
         for i in 0..30_000 {

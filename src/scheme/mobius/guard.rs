@@ -40,7 +40,7 @@ use super::form::{present, Frame, Spokes};
 use super::memo::StarForm;
 use super::slots::{first_slot, slot_of};
 use super::spectrum::Spectrum;
-use super::trust::{f4_trust, position_trust, ramp, sphericity, spread_trust};
+use super::trust::{f4_trust, position_trust, ramp, sphericity, sphericity_with, spread_trust};
 use super::vertex_pass::{retarget, Arrays, Part, Star};
 use super::MobiusReport;
 use crate::error::Result;
@@ -87,6 +87,20 @@ impl Frame for Spectrum {
     }
 }
 
+/// How a scheme blends an interior edge's two candidates, which the F4-angle term of
+/// [`Driver::trust_edges`] reads: `e_a` is the candidate kept at the slot of the half-edge
+/// leaving `a`, `e_b` that of its twin.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum EdgeBlend {
+    /// `F4(a, e_a, e_b, b)`, two candidates of the edge point (Loop, Modified Butterfly,
+    /// Catmull–Clark; seed 000 §4.4.3).
+    Candidates,
+    /// `F4(e_a, a, b, e_b)`, the points beyond both ends on the edge's grid line (Kobbelt's
+    /// 4-point rule, seed 000 §4.3): on a regular grid the four points lie on a line in this
+    /// order and `arg ρ = 0`.
+    Beyond,
+}
+
 /// Which interior edges with an end on a crease the guard judges as elements
 /// ([`Driver::trust_edges`]), per scheme.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -122,14 +136,16 @@ impl Part<'_, '_, '_> {
         star: &Star<'_, F>,
         ring: &[Point],
         normalised: &[Point],
+        keep_boundary_form: bool,
     ) -> Result<()> {
         if !self.guard || !F::CANONICAL {
             return Ok(());
         }
-        if star.boundary {
-            return self.set_trust(star.v, EXEMPT, None);
-        }
         let form = star.form.canonical().map(|cf| (cf.c, cf.r));
+        if star.boundary {
+            // Exempt; its form kept only for a scheme that audits open stars (Kobbelt).
+            return self.set_trust(star.v, EXEMPT, form.filter(|_| keep_boundary_form));
+        }
         let mut tau = spread_trust(ring);
         for (c, e) in ring.iter().zip(normalised.iter()) {
             if present(e) {
@@ -146,7 +162,11 @@ impl Driver<'_, '_, '_, '_> {
     /// ([`f4_trust`]; no cross-ratio formed).
     /// Only between interior stars: a boundary star's candidate can vanish exactly (the
     /// paper's rule drops a candidate at infinity) and reappear in a Möbius image.
-    pub(super) fn trust_edges(&mut self, crease_edges: CreaseEdges) -> Result<()> {
+    pub(super) fn trust_edges(
+        &mut self,
+        blend: EdgeBlend,
+        crease_edges: CreaseEdges,
+    ) -> Result<()> {
         // Two passes over disjoint output ranges, so that both run on the executor's threads
         // (a pass that lowers both ends of each edge would write scattered vertices): the
         // F4-angle term of every edge into `edge_trust` (edge ranges), then every interior
@@ -178,7 +198,11 @@ impl Driver<'_, '_, '_, '_> {
                 if get(trust, a as usize)? > 1.0 || get(trust, b as usize)? > 1.0 {
                     continue; // a boundary star (`EXEMPT`)
                 }
-                *ge = f4_trust(topo.position(a)?, ca, cb, topo.position(b)?);
+                let (pa, pb) = (topo.position(a)?, topo.position(b)?);
+                *ge = match blend {
+                    EdgeBlend::Candidates => f4_trust(pa, ca, cb, pb),
+                    EdgeBlend::Beyond => f4_trust(ca, pa, pb, cb),
+                };
             }
             Ok(())
         };
@@ -436,6 +460,46 @@ impl Driver<'_, '_, '_, '_> {
                     let s = sphericity(t, form.centre());
                     set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
                 }
+            }
+            Ok(())
+        })();
+        self.work = tangents;
+        self.spoke_work = spoke_work;
+        r
+    }
+
+    /// [`Driver::raise_spherical`] for every distrusted star, with the diagonals of its quads
+    /// (the corners opposite `v`) as further evidence of its sphere
+    /// ([`trust::sphericity_with`](super::trust::sphericity_with)): Kobbelt, whose rules read
+    /// them (seed 000 §4.3), and whose fallback is the blend toward the linear rule alone, so
+    /// that a star of valence 3 on a sphere must keep the paper's rules by this evidence.
+    #[inline(never)]
+    pub(super) fn raise_spherical_quads(&mut self) -> Result<()> {
+        let mut form = StarForm::blank();
+        let spoke_work = core::mem::take(&mut self.spoke_work);
+        let mut spokes = Spokes::new(&mut *spoke_work);
+        let tangents = core::mem::take(&mut self.work);
+        let topo = self.topo;
+        let r = (|| {
+            for v in 0..topo.num_vertices() as u32 {
+                let tau = get(self.trust, v as usize)?;
+                if tau >= 1.0
+                    || self
+                        .retarget(v, &mut form, &mut spokes, tangents)?
+                        .is_none()
+                {
+                    continue;
+                }
+                let pv = topo.position(v)?;
+                let mut diagonals = topo.star(v).filter(|s| s.half_edge != NONE).map(|s| {
+                    crate::mesh::gather::apex(topo, s.half_edge)
+                        .and_then(|a| topo.position(a))
+                        .ok()
+                        .and_then(|d| CanonicalForm::tangent(pv, d))
+                });
+                let t = tangents.get(..spokes.len()).ok_or(internal())?;
+                let s = sphericity_with(t, form.centre(), &mut diagonals);
+                set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
             }
             Ok(())
         })();

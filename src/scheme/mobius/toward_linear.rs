@@ -35,6 +35,28 @@ use crate::stencil::centroid_of_sum;
 pub(super) type LinearVertex<'f> =
     dyn Fn(&Topology<'_, '_>, u32, Point) -> Result<Point> + Sync + 'f;
 
+/// The linear rule of face `f`'s face point.
+pub(super) type LinearFace<'f> = dyn Fn(&Topology<'_, '_>, u32) -> Result<Point> + Sync + 'f;
+
+/// The linear rules of a scheme's output points, the ends of the blend toward them.
+#[derive(Clone, Copy)]
+pub(super) struct LinearRules<'a> {
+    /// The interior vertex points (read when [`Outputs::vertex`]).
+    pub(super) vertex: &'a LinearVertex<'a>,
+    /// The interior edge points.
+    pub(super) edge: &'a LinearEdge<'a>,
+    /// The face points (read when [`Outputs::faces`] is set).
+    pub(super) face: &'a LinearFace<'a>,
+}
+
+/// The centroid of face `f`'s corners, summed as the face is walked (no array of points on
+/// the stack): [`crate::stencil::centroid`] of the face's points bit for bit. The linear face
+/// point of Catmull–Clark.
+pub(super) fn face_centroid(t: &Topology<'_, '_>, f: u32) -> Result<Point> {
+    let (n, s) = face_sum(t, f)?;
+    centroid_of_sum(s, n)
+}
+
 /// `τ² p + (1 − τ²) p_lin`: exactly `p_lin` at `τ ≤ 0` (no signed zero or non-finite `p`
 /// leaks through `0 · p`), exactly `p` at `τ ≥ 1`.
 pub(super) fn toward_linear(tau: f64, p: Point, p_lin: Point) -> Point {
@@ -95,26 +117,28 @@ fn ring_trust(
 }
 
 impl Driver<'_, '_, '_, '_> {
-    /// Moves the points `out` names toward the linear rule (module docs): the interior vertex
-    /// points by `linear_vertex` (when `out.vertex`), the interior edge points by
-    /// `linear_edge`, the face points (when `out.faces`) toward their face's centroid.
+    /// Moves the points `out` names toward the linear rules `linear` (module docs): the
+    /// interior vertex points (when `out.vertex`), the interior edge points, the face points
+    /// (when `out.faces`).
     ///
     /// First it counts in the report every point within reach of a distrusted star (or
     /// refuses the first in strict mode): these include every point step 6 evaluated again.
-    /// Then a spherical star of valence 3, which step 6 evaluated on its sphere
-    /// (`spectrum.rs`), has its trust raised as the others' were (`Driver::raise_spherical`),
-    /// since this blend would leave the sphere (sphere reproduction, `tests/mesh_mobius.rs`).
-    /// Then it blends.
+    /// Then, with `raise_valence_3`, a spherical star of valence 3, which step 6 evaluated on
+    /// its sphere (`spectrum.rs`), has its trust raised as the others' were
+    /// (`Driver::raise_spherical`), since this blend would leave the sphere (sphere
+    /// reproduction, `tests/mesh_mobius.rs`). Then it blends.
     pub(super) fn blend_toward_linear(
         &mut self,
         out: Outputs,
-        linear_vertex: &LinearVertex<'_>,
-        linear_edge: &LinearEdge<'_>,
+        linear: LinearRules<'_>,
+        raise_valence_3: bool,
     ) -> Result<()> {
-        let counted = self.each_point(out, false, linear_vertex, linear_edge)?;
+        let counted = self.each_point(out, false, linear)?;
         self.add_guarded(counted);
-        self.raise_spherical(|valence| valence == 3)?;
-        self.each_point(out, true, linear_vertex, linear_edge)?;
+        if raise_valence_3 {
+            self.raise_spherical(|valence| valence == 3)?;
+        }
+        self.each_point(out, true, linear)?;
         Ok(())
     }
 
@@ -126,13 +150,8 @@ impl Driver<'_, '_, '_, '_> {
     /// One pass over each kind of point `out` names, split into ranges ([`crate::exec`]: a
     /// point depends only on itself and the trust), for every point whose `τ` is below 1:
     /// counts it (strict: refuses it), or with `blend` moves it.
-    fn each_point(
-        &mut self,
-        out: Outputs,
-        blend: bool,
-        linear_vertex: &LinearVertex<'_>,
-        linear_edge: &LinearEdge<'_>,
-    ) -> Result<Tally> {
+    fn each_point(&mut self, out: Outputs, blend: bool, linear: LinearRules<'_>) -> Result<Tally> {
+        let (linear_vertex, linear_edge, linear_face) = (linear.vertex, linear.edge, linear.face);
         let topo = self.topo;
         let trust: &[f64] = self.trust;
         let (strict, rings) = (self.strict, out.rings);
@@ -208,12 +227,7 @@ impl Driver<'_, '_, '_, '_> {
                         tau = tau.min(near_trust(trust, ring, rings2, u, rings)?);
                     }
                     if tau < 1.0 {
-                        // The linear face point, summed as the face is walked (no array of
-                        // points on the stack): `centroid` of the face's points bit for bit.
-                        act(t, start + f as usize, tau, o, &|| {
-                            let (n, s) = face_sum(topo, f)?;
-                            centroid_of_sum(s, n)
-                        })?;
+                        act(t, start + f as usize, tau, o, &|| linear_face(topo, f))?;
                     }
                 }
                 Ok(())

@@ -167,6 +167,18 @@ pub(super) fn newell(polygon: &[Point]) -> Point {
 /// * three points always lie in a plane, so a valence-3 star gives no such evidence and
 ///   stays guarded, but its fallback keeps it on its sphere (`spectrum.rs`).
 pub(super) fn sphericity(tangents: &[Point], c: Point) -> f64 {
+    sphericity_with(tangents, c, &mut core::iter::empty())
+}
+
+/// [`sphericity`] with more evidence: `more` are the images `(x − v)⁻¹` of further points
+/// near the star (Kobbelt's diagonals), which must lie in the tangent polygon's plane too,
+/// that is on the star's sphere. A star of valence 3 then gives evidence (its three
+/// neighbours alone always lie on a sphere with the vertex); a non-finite image is none.
+pub(super) fn sphericity_with(
+    tangents: &[Point],
+    c: Point,
+    more: &mut dyn Iterator<Item = Option<Point>>,
+) -> f64 {
     let n = newell(tangents);
     let nn = dot(n, n);
     if !(nn.is_finite() && nn > 0.0) {
@@ -175,6 +187,15 @@ pub(super) fn sphericity(tangents: &[Point], c: Point) -> f64 {
     let (mut off, mut spread) = (0.0f64, 0.0f64);
     for t in tangents {
         let d = sub(*t, c);
+        let h = dot(d, n);
+        off = off.max(h * h / nn);
+        spread = spread.max(dot(d, d));
+    }
+    for t in more {
+        let Some(t) = t else {
+            return 0.0;
+        };
+        let d = sub(t, c);
         let h = dot(d, n);
         off = off.max(h * h / nn);
         spread = spread.max(dot(d, d));

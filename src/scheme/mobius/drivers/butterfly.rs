@@ -7,8 +7,9 @@
 use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, MISSING};
-use super::super::guard::{CreaseEdges, Outputs};
+use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::butterfly_star_in_form;
+use super::super::toward_linear::{face_centroid, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
@@ -38,7 +39,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges(CreaseEdges::ButterflyCorners)?;
+        d.trust_edges(EdgeBlend::Candidates, CreaseEdges::ButterflyCorners)?;
         d.audit(Children::Triangles {
             edges: nv,
             middles: true,
@@ -55,7 +56,15 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             d.blend_interior_edges(nv, &linear)?;
         }
         if again || d.any_crease_edge_term() {
-            d.blend_toward_linear(out, &|_, _, p| Ok(p), &linear)?;
+            d.blend_toward_linear(
+                out,
+                LinearRules {
+                    vertex: &|_, _, p| Ok(p),
+                    edge: &linear,
+                    face: &face_centroid,
+                },
+                true,
+            )?;
         }
     }
     Ok(())
@@ -92,6 +101,6 @@ fn star_rule_in<F: Frame>(
             *c = p;
         }
     }
-    p.trust_star(star, ring, cands)?;
+    p.trust_star(star, ring, cands, false)?;
     p.keep_edges_from(star, cands)
 }

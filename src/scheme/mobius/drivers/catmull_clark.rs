@@ -7,15 +7,15 @@
 use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
-use super::super::guard::{CreaseEdges, Outputs};
+use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::catmull_clark_star_in_form;
+use super::super::toward_linear::{face_centroid, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
-use crate::mesh::gather::face_sum;
 use crate::mesh::Topology;
 use crate::point::{add, Point};
-use crate::stencil::{catmull_clark, centroid_of_sum};
+use crate::stencil::catmull_clark;
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
 /// (`toward_linear.rs`): one ring, measured (`docs/folds.md` section 8: with two rings,
@@ -62,10 +62,11 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges(CreaseEdges::Off)?;
+        d.trust_edges(EdgeBlend::Candidates, CreaseEdges::Off)?;
         d.audit(Children::Quads {
             edges: nv,
             faces: fp0,
+            edge_places: false,
         })?;
         let out = Outputs {
             vertex: true,
@@ -77,17 +78,18 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             d.rewind_fallbacks(before);
             d.blend_faces(fp0)?;
             d.blend_interior_edges(nv, &linear)?;
-            d.blend_toward_linear(out, &linear_vertex, &linear)?;
+            d.blend_toward_linear(
+                out,
+                LinearRules {
+                    vertex: &linear_vertex,
+                    edge: &linear,
+                    face: &face_centroid,
+                },
+                true,
+            )?;
         }
     }
     Ok(())
-}
-
-/// The centroid of face `f`'s corners (the linear face point), summed as the face is walked:
-/// [`crate::stencil::centroid`] of its points bit for bit, with no array of points.
-fn face_centroid(t: &Topology<'_, '_>, f: u32) -> Result<Point> {
-    let (n, s) = face_sum(t, f)?;
-    centroid_of_sum(s, n)
 }
 
 /// The Catmull–Clark rules of one star in its frame (the canonical form, or the guard's
@@ -107,7 +109,7 @@ fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut
         p.keep_face_candidates(star, fc)?;
         star.ring_images(topo, ring)?;
         let vertex = catmull_clark_star_in_form(ring, fc, !star.boundary, &Normalised, cands)?;
-        p.trust_star(star, ring, cands)?;
+        p.trust_star(star, ring, cands, false)?;
         p.keep_edges_from(star, cands)?;
         p.keep_vertex_from(star, vertex)
     })

@@ -5,10 +5,13 @@
 //! (boundary edges: along their boundary loop), and a face point the F6 blend of the two
 //! grid lines of new edge points through the face.
 
+use super::super::audit::Children;
 use super::super::driver::{chunk_fallback, Driver};
 use super::super::form::{present, MISSING};
+use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::kobbelt_beyond_in_form;
 use super::super::slots::slot_of;
+use super::super::toward_linear::LinearRules;
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::blend::{self, f4, f4_hinted};
@@ -18,14 +21,58 @@ use crate::mesh::gather::apex;
 use crate::mesh::{get, internal, set, Topology, NONE};
 use crate::point::{midpoint, Point};
 use crate::scheme::carry::copy_old;
-use crate::scheme::linear::kobbelt_edge;
+use crate::scheme::linear::{kobbelt_edge, kobbelt_face};
 use crate::stencil::kobbelt;
+
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`), measured (`docs/folds.md` section 8).
+const RINGS: u8 = 1;
 
 pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     copy_old(d.topo, d.pos)?;
     points_beyond(d)?;
     edge_points(d)?;
-    face_points(d)
+    face_points(d)?;
+    if d.guard {
+        fold_guard(d)?;
+    }
+    Ok(())
+}
+
+/// The fold guard (`guard.rs`) on the paper's output of the step: the spread term of every
+/// interior star (kept by the vertex pass), the F4-angle term of every interior edge's
+/// 4-point blend `F4(r_a, a, b, r_b)`, and the output audit of the corner quads around every
+/// interior star (Kobbelt's children are Catmull–Clark's: `(v', e_i, f_i, e_{i+1})`). The
+/// stars are not evaluated again in `m_τ`: the old vertices stay, and the points beyond a
+/// star only enter the blends, so the blend toward the linear rule (`toward_linear.rs`) is the
+/// whole fallback. Spherical stars keep the paper's rules (`trust::sphericity`); a star of
+/// valence 3, which gives no evidence of a sphere, is not raised.
+#[inline(never)]
+fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    let topo = d.topo;
+    let (nv, ne) = (topo.num_vertices(), topo.num_edges());
+    d.trust_edges(EdgeBlend::Beyond, CreaseEdges::Off)?;
+    d.audit(Children::Quads {
+        edges: nv,
+        faces: nv + ne,
+        edge_places: true,
+    })?;
+    d.raise_spherical_quads()?;
+    if d.trust.iter().all(|&t| t >= 1.0) {
+        return Ok(());
+    }
+    let out = Outputs {
+        vertex: false,
+        edges: nv,
+        faces: Some(nv + ne),
+        rings: RINGS,
+    };
+    let linear = LinearRules {
+        vertex: &|_, _, p| Ok(p),
+        edge: &kobbelt_edge,
+        face: &kobbelt_face,
+    };
+    d.blend_toward_linear(out, linear, false)
 }
 
 /// The vertex pass: per half-edge `h = (v → u)`, the point beyond `v` away from `u`, from
@@ -67,6 +114,8 @@ fn beyond_in_workspace(
             complete &= present(&c);
         }
     }
+    // The guard's spread term, from the ring in the normalised frame (`guard.rs`).
+    p.trust_star(star, ring, &[], true)?;
     for j in 0..star.spokes.len() {
         let q = kobbelt_beyond_in_form(ring, diagonals, !star.boundary, complete, j, &*star.form);
         if let (Some(q), true) = (q, star.spokes.get(j).is_some_and(|s| s.half_edge != NONE)) {

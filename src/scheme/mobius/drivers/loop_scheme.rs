@@ -5,8 +5,9 @@
 use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
-use super::super::guard::{CreaseEdges, Outputs};
+use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::loop_star_in_form;
+use super::super::toward_linear::{face_centroid, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
@@ -49,7 +50,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         // The fold guard (`guard.rs`): judge the paper's output, re-evaluate the distrusted
         // stars, blend again.
-        d.trust_edges(CreaseEdges::F4Angle)?;
+        d.trust_edges(EdgeBlend::Candidates, CreaseEdges::F4Angle)?;
         d.audit(Children::Triangles {
             edges: nv,
             middles: false,
@@ -66,7 +67,15 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             d.blend_interior_edges(nv, &linear)?;
         }
         if again || d.any_crease_edge_term() {
-            d.blend_toward_linear(out, &linear_vertex, &linear)?;
+            d.blend_toward_linear(
+                out,
+                LinearRules {
+                    vertex: &linear_vertex,
+                    edge: &linear,
+                    face: &face_centroid,
+                },
+                true,
+            )?;
         }
     }
     Ok(())
@@ -87,7 +96,7 @@ fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut
         let cands = take(&mut work, n)?;
         // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
         let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
-        p.trust_star(star, ring, cands)?;
+        p.trust_star(star, ring, cands, false)?;
         p.keep_edges_from(star, cands)?;
         p.keep_vertex_from(star, vertex)
     })
