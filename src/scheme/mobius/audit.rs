@@ -352,43 +352,26 @@ fn open_star_audit(
     if !present(&centre) {
         return Ok(0.0);
     }
-    let mut place = 1.0f64;
-    let mut pair = f64::INFINITY;
-    let mut area = [0.0; 3];
+    // First walk, face by face: each corner quad `(v', e_i, f_i, e_{i+1})`, the pair angle
+    // between consecutive ones, the fan's area vector, the places of the interior spokes'
+    // edge points (spoke `i + 1` of face `i` is interior unless it is the closing spoke).
+    let (mut place, mut pair, mut area) = (1.0f64, f64::INFINITY, [0.0; 3]);
     let mut prev: Option<Point> = None;
-    let mut e_prev: Option<Point> = None;
-    let n = topo.valence(v)?;
-    // The fan's sides `e_i − v'` and the corner normals, for the fan angle after the walk.
-    let mut sides = ArrayVec::<(Point, Point), { crate::MAX_VALENCE }>::new();
-    for (i, s) in topo.star(v).enumerate() {
-        let e = map(get(pos, edges + s.edge as usize)?);
-        if !present(&e) {
-            return Ok(0.0);
-        }
-        let interior = i > 0 && i + 1 < n;
-        if edge_places && interior {
-            place = place.min(edge_place_trust(e, map(topo.position(s.neighbour)?)));
-        }
-        if let Some(ep) = e_prev {
-            sides.try_push((ep, e)).map_err(|_| internal())?;
-        }
-        e_prev = Some(e);
-    }
-    // The corner quads, face by face (a second walk: the face point and the next spoke's
-    // edge point are needed together).
-    let mut first = true;
-    let spokes = topo.star(v);
-    let mut it = spokes.peekable();
-    while let Some(s) = it.next() {
-        let Some(nx) = it.peek() else { break };
+    let mut spokes = topo.star(v).peekable();
+    while let (Some(s), Some(nx)) = (spokes.next(), spokes.peek()) {
         if s.face == NONE {
             break;
         }
-        let e0 = map(get(pos, edges + s.edge as usize)?);
-        let e1 = map(get(pos, edges + nx.edge as usize)?);
+        let (e0, e1) = (
+            map(get(pos, edges + s.edge as usize)?),
+            map(get(pos, edges + nx.edge as usize)?),
+        );
         let f = map(get(pos, faces + s.face as usize)?);
-        if !present(&f) {
+        if !present(&e0) || !present(&e1) || !present(&f) {
             return Ok(0.0);
+        }
+        if edge_places && nx.face != NONE {
+            place = place.min(edge_place_trust(e1, map(topo.position(nx.neighbour)?)));
         }
         let corner = super::trust::newell(&[centre, e0, f, e1]);
         area = add(area, corner);
@@ -396,17 +379,19 @@ fn open_star_audit(
             pair = pair.min(cos_between(p, corner));
         }
         prev = Some(corner);
-        first = false;
     }
-    if first {
+    if prev.is_none() {
         return Ok(1.0);
     }
+    // Second walk: the fan angle at `v'` of each face, signed by the fan's area vector.
     let mut fan = f64::INFINITY;
     let nn = crate::sqrt::sqrt(dot(area, area));
-    for (p, q) in sides {
-        let (p, q) = (sub(p, centre), sub(q, centre));
-        let s = dot(cross(p, q), area) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
-        fan = fan.min(if s.is_finite() { s } else { -1.0 });
+    let mut spokes = topo.star(v).peekable();
+    while let (Some(s), Some(nx)) = (spokes.next(), spokes.peek()) {
+        let p = sub(map(get(pos, edges + s.edge as usize)?), centre);
+        let q = sub(map(get(pos, edges + nx.edge as usize)?), centre);
+        let x = dot(cross(p, q), area) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
+        fan = fan.min(if x.is_finite() { x } else { -1.0 });
     }
     Ok(ramp(pair, 0.0, PAIR_TRUSTED)
         .min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED))
