@@ -53,6 +53,9 @@ catmull-clark torus_quad 3
 butterfly sphere_octahedron_perturbed 5
 loop rocker_arm 2
 catmull-clark helmet_quad 3
+kobbelt sphere_cube_quads_perturbed 3
+kobbelt torus_quad 3
+kobbelt spot_quad 2
 ROWS
 rm -f /tmp/guard_cost.$$.off
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -468,14 +468,27 @@ fn tagged_mobius_subdivision_commutes_with_mobius_maps() {
             let f = random_mobius(&m, 17 + seed as u64);
             let image = m.map_positions(|p| f.apply(p).unwrap());
             for literal in [true, false] {
+                // Which elements the fold guard changes is Möbius-invariant: on one level, whose
+                // input is the Möbius image; on two levels when the first changed nothing (a
+                // point moved toward the linear rule follows similarities only, so the second
+                // level's input is then no longer the Möbius image of the other's).
+                let (_, r1a) = run_tagged(&image, &mobius(s, 1).literal(literal), &tags).unwrap();
+                let (_, r1b) = run_tagged(&m, &mobius(s, 1).literal(literal), &tags).unwrap();
+                assert_eq!(
+                    (r1a.guarded, r1a.first_guarded),
+                    (r1b.guarded, r1b.first_guarded),
+                    "{s:?} case {seed} literal {literal}, one level"
+                );
                 let opts = mobius(s, 2).literal(literal);
                 let (a, ra) = run_tagged(&image, &opts, &tags).unwrap();
                 let (b, rb) = run_tagged(&m, &opts, &tags).unwrap();
-                // Which elements the fold guard changes is Möbius-invariant.
-                assert_eq!(
-                    (ra.guarded, ra.first_guarded),
-                    (rb.guarded, rb.first_guarded)
-                );
+                if r1b.guarded == 0 {
+                    assert_eq!(
+                        (ra.guarded, ra.first_guarded),
+                        (rb.guarded, rb.first_guarded),
+                        "{s:?} case {seed} literal {literal}"
+                    );
+                }
                 assert_eq!(ra.fallbacks, rb.fallbacks);
                 if !literal && rb.guarded > 0 {
                     continue;
