@@ -56,6 +56,8 @@ catmull-clark helmet_quad 3
 kobbelt sphere_cube_quads_perturbed 3
 kobbelt torus_quad 3
 kobbelt spot_quad 2
+doo-sabin sphere_cube_quads_perturbed 3
+doo-sabin spot_quad 2
 ROWS
 rm -f /tmp/guard_cost.$$.off
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -160,9 +160,9 @@ fn the_default_folds_no_more_than_the_linear_scheme() {
 /// triangles, camelhead's open boundary, polycastle_quad's 90° blocks; for Butterfly, cow
 /// and camelhead, which needed the blend to reach two rings; Kobbelt on the quad meshes, where
 /// the paper's rules fold untagged (its guard has no re-evaluation: the blend toward the
-/// linear rule is its whole fallback). Asserted at every level from 1, where these folds
-/// started.
-const BEYOND: [(Scheme, &str); 10] = [
+/// linear rule is its whole fallback), and Doo–Sabin likewise. Asserted at every level from 1,
+/// where these folds started.
+const BEYOND: [(Scheme, &str); 13] = [
     (Scheme::Loop, "epcot"),
     (Scheme::Loop, "cow"),
     (Scheme::Loop, "camelhead"),
@@ -173,6 +173,9 @@ const BEYOND: [(Scheme, &str); 10] = [
     (Scheme::Kobbelt, "spot_quad"),
     (Scheme::Kobbelt, "helmet_quad"),
     (Scheme::Kobbelt, "polycastle_quad"),
+    (Scheme::DooSabin, "horse_quad"),
+    (Scheme::DooSabin, "spot_quad"),
+    (Scheme::DooSabin, "yas_island_quad"),
 ];
 
 #[test]
@@ -271,6 +274,8 @@ fn what_the_guard_changes_is_the_same_on_every_mobius_image() {
         (Scheme::CatmullClark, "spot_quad"),
         (Scheme::Kobbelt, "helmet_quad"),
         (Scheme::Kobbelt, "spot_quad"),
+        (Scheme::DooSabin, "horse_quad"),
+        (Scheme::DooSabin, "spot_quad"),
     ];
     for (s, name) in rows {
         let path = dir.join(format!("{name}.off"));

@@ -76,6 +76,11 @@ pub(super) enum Children {
         faces: usize,
         edge_places: bool,
     },
+    /// Doo–Sabin (every vertex cut to a V-face): the V-face `(q_0, …, q_{n−1})` of `v`'s
+    /// corner points `q_i` in the faces `f_i` after each spoke (output vertex `h_i`, the
+    /// corner's half-edge), the E-face of each spoke and the F-faces `f_i`
+    /// ([`corner_star_audit`]).
+    Corners,
 }
 
 /// Distance of an edge point from the middle of its spoke (over the spoke's length, in the
@@ -164,6 +169,8 @@ impl Driver<'_, '_, '_, '_> {
                 } else if get(trust, v as usize)? > 1.0 {
                     // A boundary star whose form the scheme kept (Kobbelt).
                     open_star_audit(topo, pos, &cf, v, children)?
+                } else if let Children::Corners = children {
+                    corner_star_audit(topo, pos, &cf, v, part.work)?
                 } else {
                     star_audit(topo, pos, &cf, v, children, part.work)?
                 };
@@ -287,6 +294,7 @@ fn star_audit(
                 },
             ),
             Children::Quads { edges, faces, .. } => (edges + edge, Some(faces + face as usize)),
+            Children::Corners => return Err(internal()),
         };
         let p = map(get(pos, e)?);
         all_present &= present(&p);
@@ -398,6 +406,93 @@ fn open_star_audit(
         .min(place))
 }
 
+/// The audit's trust of interior star `v` of a Doo–Sabin step, whose canonical form is `cf`
+/// ([`Children::Corners`]): its V-face `q_i` (the corner points of `v`, one per face `f_i`
+/// after spoke `i`), mapped into the frame and kept in `work`, then per spoke `i` (to `u_i`,
+/// between faces `f_{i−1}` and `f_i`) the E-face `(q_i, q_{i−1}, q(u_i, f_{i−1}), q(u_i, f_i))`
+/// and the F-face `f_i` (its corner points in the face's order). Pair angles: the V-face
+/// against every E-face, every E-face against the two F-faces it meets. Fan angle: the signed
+/// sine at each corner of the V-face, signed by its Newell normal (a V-face turned over or
+/// collapsed at a corner). The faces are in the orientation of the output mesh, so adjacent
+/// faces run their common edge in opposite directions.
+fn corner_star_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    work: &mut [Point],
+) -> Result<f64> {
+    let map = |p: Point| cf.to_normalised_or_nan(p);
+    let at = |h: u32| -> Result<Point> { Ok(map(get(pos, h as usize)?)) };
+    // The V-face, in the star's (counter-clockwise) order.
+    let mut n = 0;
+    for s in topo.star(v) {
+        let q = at(s.half_edge)?;
+        if !present(&q) {
+            return Ok(0.0);
+        }
+        set(work, n, q)?;
+        n += 1;
+    }
+    let vface = work.get(..n).ok_or(internal())?;
+    let vn = super::trust::newell(vface);
+    let q = |i: usize| -> Result<Point> { get(vface, i % n.max(1)) };
+    // The F-face area vector of face `f`, its corners mapped as the face is walked.
+    let face_area = |f: u32| -> Result<Option<Point>> {
+        let r = topo.face_half_edges(f)?;
+        let first = at(r.start)?;
+        let (mut a, mut prev) = ([0.0; 3], first);
+        for h in r.start + 1..r.end {
+            let p = at(h)?;
+            if !present(&p) {
+                return Ok(None);
+            }
+            a = add(a, cross(prev, p));
+            prev = p;
+        }
+        Ok(present(&first).then(|| add(a, cross(prev, first))))
+    };
+    let (mut pair, mut fan) = (f64::INFINITY, f64::INFINITY);
+    let mut f_prev: Option<Point> = None;
+    let mut e_first: Option<Point> = None;
+    let nn = crate::sqrt::sqrt(dot(vn, vn));
+    for (i, s) in topo.star(v).enumerate() {
+        let h = s.half_edge;
+        let t = topo.twin(h)?;
+        if t == NONE {
+            return Err(internal());
+        }
+        // E-face of spoke i: q_i, q_{i−1}, q(u_i, f_{i−1}) (the twin's corner), q(u_i, f_i)
+        // (the corner after `h` in f_i).
+        let (qi, qp) = (q(i)?, q(i + n - 1)?);
+        let (a, b) = (at(t)?, at(topo.next(h)?)?);
+        if !present(&a) || !present(&b) {
+            return Ok(0.0);
+        }
+        let e = super::trust::newell(&[qi, qp, a, b]);
+        let Some(fi) = face_area(s.face)? else {
+            return Ok(0.0);
+        };
+        pair = pair.min(cos_between(vn, e)).min(cos_between(e, fi));
+        // The F-face before spoke i is the one after spoke i − 1.
+        if let Some(fp) = f_prev {
+            pair = pair.min(cos_between(e, fp));
+        } else {
+            e_first = Some(e);
+        }
+        f_prev = Some(fi);
+        // The V-face's corner at q_i: between its sides to q_{i+1} and q_{i−1}.
+        let (x, y) = (sub(q(i + 1)?, qi), sub(qp, qi));
+        let sine = dot(cross(x, y), vn) / (nn * crate::sqrt::sqrt(dot(x, x) * dot(y, y)));
+        fan = fan.min(if sine.is_finite() { sine } else { -1.0 });
+    }
+    // The first E-face against the F-face before it (the last spoke's face).
+    if let (Some(e0), Some(fl)) = (e_first, f_prev) {
+        pair = pair.min(cos_between(e0, fl));
+    }
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
 /// the fan's Newell normal [`newell`](super::trust::newell)`(fan)` that the second term reads; every point
 /// present (finite). A cosine above [`PAIR_TRUSTED`] may count as 1 ([`cos_between`]): the
@@ -431,7 +526,7 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
         // `newell([c, e, e1])` or `newell([c, e, o, e1])`: `((0 + c×e) + …) + e1×c`.
         let corner = match children {
             Children::Triangles { .. } => sub(add(add([0.0; 3], x), y), x1),
-            Children::Quads { .. } => {
+            Children::Quads { .. } | Children::Corners => {
                 sub(add(add(add([0.0; 3], x), cross(e, o)), cross(o, e1)), x1)
             }
         };

@@ -1,5 +1,5 @@
-//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt runs
-//! steps 1–4 and 7 of it, `drivers/kobbelt.rs`): seed 000
+//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt and
+//! Doo–Sabin run steps 1–4 and 7 of it, `drivers/{kobbelt,doo_sabin}.rs`): seed 000
 //! §7.1 notes that canonical Möbius subdivision can fold a mesh; `docs/folds.md` traces the
 //! folds to ill-conditioned canonical forms. The guard keeps the paper's rules wherever the
 //! star's trust `τ_v` (`trust.rs`) is 1 and evaluates the other stars' rules in the form
@@ -117,13 +117,16 @@ pub(super) enum CreaseEdges {
 
 /// Which output vertices a scheme computes from a star's frame, which the guard moves toward
 /// the linear rule and counts (`toward_linear.rs`): the vertex point (`vertex`), the edge
-/// points at `edges + e`, the face points at `faces + f` (`None`: no face points), and how many
-/// rings around a distrusted star that reaches (`rings`, measured per scheme).
+/// points at `edges + e` (`None`: no edge points), the face points at `faces + f` (`None`: no
+/// face points), the corner points at `h` of every half-edge `h` (`corners`: Doo–Sabin's, made
+/// in the form of `h`'s origin), and how many rings around a distrusted star that reaches
+/// (`rings`, measured per scheme).
 #[derive(Clone, Copy)]
 pub(super) struct Outputs {
     pub(super) vertex: bool,
-    pub(super) edges: usize,
+    pub(super) edges: Option<usize>,
     pub(super) faces: Option<usize>,
+    pub(super) corners: bool,
     pub(super) rings: u8,
 }
 

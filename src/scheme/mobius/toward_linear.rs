@@ -47,6 +47,16 @@ pub(super) struct LinearRules<'a> {
     pub(super) edge: &'a LinearEdge<'a>,
     /// The face points (read when [`Outputs::faces`] is set).
     pub(super) face: &'a LinearFace<'a>,
+    /// The corner point of half-edge `h` (read with [`Outputs::corners`]).
+    pub(super) corner: &'a LinearCorner<'a>,
+}
+
+/// The linear rule of the corner point of half-edge `h` (Doo–Sabin).
+pub(super) type LinearCorner<'f> = dyn Fn(&Topology<'_, '_>, u32) -> Result<Point> + Sync + 'f;
+
+/// For a scheme without corner points (never read).
+pub(super) fn no_corner(_: &Topology<'_, '_>, _: u32) -> Result<Point> {
+    Err(crate::mesh::internal())
 }
 
 /// The centroid of face `f`'s corners, summed as the face is walked (no array of points on
@@ -118,8 +128,9 @@ fn ring_trust(
 
 impl Driver<'_, '_, '_, '_> {
     /// Moves the points `out` names toward the linear rules `linear` (module docs): the
-    /// interior vertex points (when `out.vertex`), the interior edge points, the face points
-    /// (when `out.faces`).
+    /// interior vertex points (when `out.vertex`), the interior edge points (when
+    /// `out.edges`), the face points (when `out.faces`), the corner points (when
+    /// `out.corners`).
     ///
     /// First it counts in the report every point within reach of a distrusted star (or
     /// refuses the first in strict mode): these include every point step 6 evaluated again.
@@ -152,6 +163,7 @@ impl Driver<'_, '_, '_, '_> {
     /// counts it (strict: refuses it), or with `blend` moves it.
     fn each_point(&mut self, out: Outputs, blend: bool, linear: LinearRules<'_>) -> Result<Tally> {
         let (linear_vertex, linear_edge, linear_face) = (linear.vertex, linear.edge, linear.face);
+        let linear_corner = linear.corner;
         let topo = self.topo;
         let trust: &[f64] = self.trust;
         let (strict, rings) = (self.strict, out.rings);
@@ -177,6 +189,8 @@ impl Driver<'_, '_, '_, '_> {
                 chunk_fallback(strict, t, element)
             }
         };
+        // The least trust within `rings` rings of vertex `v` (`near_trust`).
+        let near = |v: u32| near_trust(trust, ring, rings2, v, rings);
         let mut tally = Tally::new();
         if out.vertex {
             let nv = topo.num_vertices();
@@ -197,26 +211,40 @@ impl Driver<'_, '_, '_, '_> {
             })?;
             tally = tally.merge(t);
         }
-        let (start, ne) = (out.edges, topo.num_edges());
-        let edge_trust: &[f64] = self.edge_trust;
-        let pts = self.pos.get_mut(start..start + ne).ok_or(internal())?;
-        let t = pass(self.exec, pts, |first, pts, t| {
-            for (e, o) in (first as u32..).zip(pts.iter_mut()) {
-                let h = topo.edge_half_edge(e)?;
-                if topo.twin(h)? == NONE {
-                    continue;
+        if let Some(start) = out.edges {
+            let ne = topo.num_edges();
+            let edge_trust: &[f64] = self.edge_trust;
+            let pts = self.pos.get_mut(start..start + ne).ok_or(internal())?;
+            let t = pass(self.exec, pts, |first, pts, t| {
+                for (e, o) in (first as u32..).zip(pts.iter_mut()) {
+                    let h = topo.edge_half_edge(e)?;
+                    if topo.twin(h)? == NONE {
+                        continue;
+                    }
+                    let (a, b) = (topo.origin(h)?, topo.dest(h)?);
+                    let tau = near(a)?.min(near(b)?).min(get(edge_trust, e as usize)?);
+                    if tau < 1.0 {
+                        act(t, start + e as usize, tau, o, &|| linear_edge(topo, e))?;
+                    }
                 }
-                let (a, b) = (topo.origin(h)?, topo.dest(h)?);
-                let tau = near_trust(trust, ring, rings2, a, rings)?
-                    .min(near_trust(trust, ring, rings2, b, rings)?)
-                    .min(get(edge_trust, e as usize)?);
-                if tau < 1.0 {
-                    act(t, start + e as usize, tau, o, &|| linear_edge(topo, e))?;
+                Ok(())
+            })?;
+            tally = tally.merge(t);
+        }
+        if out.corners {
+            let nh = topo.num_half_edges();
+            let pts = self.pos.get_mut(..nh).ok_or(internal())?;
+            let t = pass(self.exec, pts, |first, pts, t| {
+                for (h, o) in (first as u32..).zip(pts.iter_mut()) {
+                    let tau = near(topo.origin(h)?)?;
+                    if tau < 1.0 {
+                        act(t, h as usize, tau, o, &|| linear_corner(topo, h))?;
+                    }
                 }
-            }
-            Ok(())
-        })?;
-        tally = tally.merge(t);
+                Ok(())
+            })?;
+            tally = tally.merge(t);
+        }
         if let Some(start) = out.faces {
             let nf = topo.num_faces();
             let pts = self.pos.get_mut(start..start + nf).ok_or(internal())?;

@@ -9,7 +9,7 @@ use super::super::driver::Driver;
 use super::super::form::{Frame, MISSING};
 use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::butterfly_star_in_form;
-use super::super::toward_linear::{face_centroid, LinearRules};
+use super::super::toward_linear::{face_centroid, no_corner, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
@@ -46,8 +46,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         })?;
         let out = Outputs {
             vertex: false,
-            edges: nv,
+            edges: Some(nv),
             faces: None,
+            corners: false,
             rings: RINGS,
         };
         let again = d.guarded_pass(out, || (), star_rule)?;
@@ -62,6 +63,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                     vertex: &|_, _, p| Ok(p),
                     edge: &linear,
                     face: &face_centroid,
+                    corner: &no_corner,
                 },
                 true,
             )?;

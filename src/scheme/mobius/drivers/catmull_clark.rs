@@ -9,7 +9,7 @@ use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
 use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::catmull_clark_star_in_form;
-use super::super::toward_linear::{face_centroid, LinearRules};
+use super::super::toward_linear::{face_centroid, no_corner, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
@@ -70,8 +70,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         })?;
         let out = Outputs {
             vertex: true,
-            edges: nv,
+            edges: Some(nv),
             faces: Some(fp0),
+            corners: false,
             rings: RINGS,
         };
         if d.guarded_pass(out, || (), star_rule)? {
@@ -84,6 +85,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                     vertex: &linear_vertex,
                     edge: &linear,
                     face: &face_centroid,
+                    corner: &no_corner,
                 },
                 true,
             )?;

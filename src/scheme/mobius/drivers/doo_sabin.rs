@@ -3,10 +3,14 @@
 //! ear's corner in a substitute's form; a corner point that cannot be computed takes the
 //! linear rule, counted as a fallback.
 
+use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{present, MapBack, Spokes};
+use super::super::guard::Outputs;
 use super::super::memo::StarForm;
 use super::super::slots::slot_of;
+use super::super::toward_linear::LinearRules;
+use super::super::workspace::take;
 use crate::error::Result;
 use crate::exec::pass;
 use crate::mesh::{get, internal, set, Topology, NONE};
@@ -24,6 +28,15 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         false,
         || (),
         |p, star, _| {
+            // The fold guard's spread term, from the ring's images (`guard.rs`); the form's
+            // memo keeps them for the corner rules below.
+            if p.guard {
+                p.with_work(|p, mut work| {
+                    let ring = take(&mut work, star.spokes.len())?;
+                    star.ring_images(topo, ring)?;
+                    p.trust_star(star, ring, &[], false)
+                })?;
+            }
             for (j, s) in star.spokes.iter().enumerate() {
                 if s.face == NONE {
                     continue;
@@ -47,7 +60,57 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     })?;
     // Ears in a substitute's form; anything still missing takes the linear rule.
     missing_corners(d)?;
+    if d.guard {
+        fold_guard(d)?;
+    }
     append_isolated(topo, d.pos, nh)
+}
+
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`), measured (`docs/folds.md` section 10).
+const RINGS: u8 = 1;
+
+/// The fold guard (`guard.rs`) on the paper's output of the step, as Kobbelt's: the spread
+/// term of every interior star (kept by the vertex pass) and the output audit of its V-face,
+/// E-faces and F-faces (`audit.rs`, [`Children::Corners`]); spherical stars keep the paper's
+/// rules, with the far corners of their faces as further evidence of the sphere; then every
+/// corner point within one ring of a distrusted star moves toward the linear Doo–Sabin
+/// corner point (`toward_linear.rs`). A star's corner points are all made in its own form
+/// and feed no blend, so there is nothing to evaluate again in `m_τ`.
+#[inline(never)]
+fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    d.audit(Children::Corners)?;
+    d.raise_spherical_quads()?;
+    if d.trust.iter().all(|&t| t >= 1.0) {
+        return Ok(());
+    }
+    let out = Outputs {
+        vertex: false,
+        edges: None,
+        faces: None,
+        corners: true,
+        rings: RINGS,
+    };
+    let linear = LinearRules {
+        vertex: &|_, _, p| Ok(p),
+        edge: &|_, _| Err(internal()),
+        face: &|_, _| Err(internal()),
+        corner: &linear_corner,
+    };
+    d.blend_toward_linear(out, linear, false)
+}
+
+/// The linear Doo–Sabin corner point of half-edge `h` (its origin's corner in its face),
+/// reading the face's positions as it walks.
+fn linear_corner(topo: &Topology<'_, '_>, h: u32) -> Result<Point> {
+    let f = topo.face(h)?;
+    let verts = topo.face_vertices(f)?;
+    let i = (h - topo.face_half_edges(f)?.start) as usize;
+    let corner = |c: usize| match verts.get(c) {
+        Some(&u) => topo.position(u),
+        None => Err(internal()),
+    };
+    doo_sabin::corner_point_by(verts.len(), i, corner)
 }
 
 /// The corner point of corner `i` of face `f` in `form` (seed 000 §4.3: the linear rule on

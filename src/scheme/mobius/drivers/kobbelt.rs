@@ -11,7 +11,7 @@ use super::super::form::{present, MISSING};
 use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::kobbelt_beyond_in_form;
 use super::super::slots::slot_of;
-use super::super::toward_linear::LinearRules;
+use super::super::toward_linear::{no_corner, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::blend::{self, f4, f4_hinted};
@@ -63,14 +63,16 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     }
     let out = Outputs {
         vertex: false,
-        edges: nv,
+        edges: Some(nv),
         faces: Some(nv + ne),
+        corners: false,
         rings: RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
         edge: &kobbelt_edge,
         face: &kobbelt_face,
+        corner: &no_corner,
     };
     d.blend_toward_linear(out, linear, false)
 }

@@ -7,7 +7,7 @@ use super::super::driver::Driver;
 use super::super::form::{Frame, Normalised};
 use super::super::guard::{CreaseEdges, EdgeBlend, Outputs};
 use super::super::rules::loop_star_in_form;
-use super::super::toward_linear::{face_centroid, LinearRules};
+use super::super::toward_linear::{face_centroid, no_corner, LinearRules};
 use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
 use crate::error::Result;
@@ -57,8 +57,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         })?;
         let out = Outputs {
             vertex: true,
-            edges: nv,
+            edges: Some(nv),
             faces: None,
+            corners: false,
             rings: RINGS,
         };
         let again = d.guarded_pass(out, || (), star_rule)?;
@@ -73,6 +74,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                     vertex: &linear_vertex,
                     edge: &linear,
                     face: &face_centroid,
+                    corner: &no_corner,
                 },
                 true,
             )?;
