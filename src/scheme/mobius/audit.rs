@@ -658,6 +658,7 @@ mod tests {
             match children {
                 Children::Triangles { .. } => area(&[centre, e0, e1]),
                 Children::Quads { .. } => area(&[centre, e0, o?, e1]),
+                Children::Corners => None,
             }
         };
         if k == 0 {
