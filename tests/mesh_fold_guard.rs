@@ -160,9 +160,9 @@ fn the_default_folds_no_more_than_the_linear_scheme() {
 /// triangles, camelhead's open boundary, polycastle_quad's 90° blocks; for Butterfly, cow
 /// and camelhead, which needed the blend to reach two rings; Kobbelt on the quad meshes, where
 /// the paper's rules fold untagged (its guard has no re-evaluation: the blend toward the
-/// linear rule is its whole fallback), and Doo–Sabin likewise. Asserted at every level from 1,
-/// where these folds started.
-const BEYOND: [(Scheme, &str); 13] = [
+/// linear rule is its whole fallback), and Doo–Sabin and the simplest scheme likewise.
+/// Asserted at every level from 1, where these folds started.
+const BEYOND: [(Scheme, &str); 17] = [
     (Scheme::Loop, "epcot"),
     (Scheme::Loop, "cow"),
     (Scheme::Loop, "camelhead"),
@@ -176,6 +176,10 @@ const BEYOND: [(Scheme, &str); 13] = [
     (Scheme::DooSabin, "horse_quad"),
     (Scheme::DooSabin, "spot_quad"),
     (Scheme::DooSabin, "yas_island_quad"),
+    (Scheme::Simplest, "horse_quad"),
+    (Scheme::Simplest, "spot_quad"),
+    (Scheme::Simplest, "helmet_quad"),
+    (Scheme::Simplest, "vase_quad"),
 ];
 
 #[test]
@@ -276,6 +280,8 @@ fn what_the_guard_changes_is_the_same_on_every_mobius_image() {
         (Scheme::Kobbelt, "spot_quad"),
         (Scheme::DooSabin, "horse_quad"),
         (Scheme::DooSabin, "spot_quad"),
+        (Scheme::Simplest, "spot_quad"),
+        (Scheme::Simplest, "helmet_quad"),
     ];
     for (s, name) in rows {
         let path = dir.join(format!("{name}.off"));

@@ -81,6 +81,10 @@ pub(super) enum Children {
     /// corner's half-edge), the E-face of each spoke and the F-faces `f_i`
     /// ([`corner_star_audit`]).
     Corners,
+    /// The simplest scheme (Peters–Reif, every vertex and face cut to the polygon of its edge
+    /// points): the V-face `(e_0, …, e_{n−1})` of `v`'s edge points (output vertex
+    /// `edges + edge`) and the F-faces `f_i` of the faces around `v` ([`mid_edge_star_audit`]).
+    MidEdges { edges: usize },
 }
 
 /// Distance of an edge point from the middle of its spoke (over the spoke's length, in the
@@ -167,10 +171,17 @@ impl Driver<'_, '_, '_, '_> {
                 let a = if r == 0.0 {
                     1.0
                 } else if get(trust, v as usize)? > 1.0 {
-                    // A boundary star whose form the scheme kept (Kobbelt).
-                    open_star_audit(topo, pos, &cf, v, children)?
+                    // A boundary star whose form the scheme kept (Kobbelt, the simplest scheme).
+                    match children {
+                        Children::MidEdges { edges } => {
+                            mid_edge_star_audit(topo, pos, &cf, v, edges, part.work)?
+                        }
+                        _ => open_star_audit(topo, pos, &cf, v, children)?,
+                    }
                 } else if let Children::Corners = children {
                     corner_star_audit(topo, pos, &cf, v, part.work)?
+                } else if let Children::MidEdges { edges } = children {
+                    mid_edge_star_audit(topo, pos, &cf, v, edges, part.work)?
                 } else {
                     star_audit(topo, pos, &cf, v, children, part.work)?
                 };
@@ -294,7 +305,7 @@ fn star_audit(
                 },
             ),
             Children::Quads { edges, faces, .. } => (edges + edge, Some(faces + face as usize)),
-            Children::Corners => return Err(internal()),
+            Children::Corners | Children::MidEdges { .. } => return Err(internal()),
         };
         let p = map(get(pos, e)?);
         all_present &= present(&p);
@@ -437,21 +448,6 @@ fn corner_star_audit(
     let vface = work.get(..n).ok_or(internal())?;
     let vn = super::trust::newell(vface);
     let q = |i: usize| -> Result<Point> { get(vface, i % n.max(1)) };
-    // The F-face area vector of face `f`, its corners mapped as the face is walked.
-    let face_area = |f: u32| -> Result<Option<Point>> {
-        let r = topo.face_half_edges(f)?;
-        let first = at(r.start)?;
-        let (mut a, mut prev) = ([0.0; 3], first);
-        for h in r.start + 1..r.end {
-            let p = at(h)?;
-            if !present(&p) {
-                return Ok(None);
-            }
-            a = add(a, cross(prev, p));
-            prev = p;
-        }
-        Ok(present(&first).then(|| add(a, cross(prev, first))))
-    };
     let (mut pair, mut fan) = (f64::INFINITY, f64::INFINITY);
     let mut f_prev: Option<Point> = None;
     let mut e_first: Option<Point> = None;
@@ -470,7 +466,7 @@ fn corner_star_audit(
             return Ok(0.0);
         }
         let e = super::trust::newell(&[qi, qp, a, b]);
-        let Some(fi) = face_area(s.face)? else {
+        let Some(fi) = face_area(topo, s.face, &at)? else {
             return Ok(0.0);
         };
         pair = pair.min(cos_between(vn, e)).min(cos_between(e, fi));
@@ -491,6 +487,88 @@ fn corner_star_audit(
         pair = pair.min(cos_between(e0, fl));
     }
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
+/// The audit's trust of interior star `v` of a step of the simplest scheme, whose canonical
+/// form is `cf` ([`Children::MidEdges`]): its V-face of edge points `e_i` (output vertex
+/// `edges + edge`, counter-clockwise), mapped into the frame and kept in `work`, and each
+/// face `f_i` after spoke `i` as the F-face of its edge points (in the face's order, so that
+/// it runs `e_{i+1} → e_i` where the V-face runs `e_i → e_{i+1}`). Pair angles: the V-face
+/// against every F-face (every edge of the V-face is one of theirs). Fan angle: the signed
+/// sine at each corner of the V-face, signed by its Newell normal. A boundary star (whose form
+/// the scheme kept) is audited the same way: its V-face is closed by the vertex itself (output
+/// vertex `edges + E + rank`, the mid-edge pattern), and only its faces are F-faces.
+fn mid_edge_star_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    edges: usize,
+    work: &mut [Point],
+) -> Result<f64> {
+    let map = |p: Point| cf.to_normalised_or_nan(p);
+    let at_edge = |e: u32| -> Result<Point> { Ok(map(get(pos, edges + e as usize)?)) };
+    let at = |h: u32| -> Result<Point> { at_edge(topo.edge(h)?) };
+    // The V-face: the spokes' edge points, closed on the boundary by the vertex itself.
+    let mut n = 0;
+    for s in topo.star(v) {
+        set(work, n, at_edge(s.edge)?)?;
+        n += 1;
+    }
+    let rank = topo.boundary_vertex_rank(v)?;
+    if rank != NONE {
+        let own = edges + topo.num_edges() + rank as usize;
+        set(work, n, map(get(pos, own)?))?;
+        n += 1;
+    }
+    let vface = work.get(..n).ok_or(internal())?;
+    if !vface.iter().all(present) {
+        return Ok(0.0);
+    }
+    let vn = super::trust::newell(vface);
+    let nn = crate::sqrt::sqrt(dot(vn, vn));
+    let mut pair = f64::INFINITY;
+    for s in topo.star(v) {
+        if s.face == NONE {
+            continue;
+        }
+        let Some(fi) = face_area(topo, s.face, &at)? else {
+            return Ok(0.0);
+        };
+        pair = pair.min(cos_between(vn, fi));
+    }
+    let mut fan = f64::INFINITY;
+    for i in 0..n {
+        let qi = get(vface, i)?;
+        let (x, y) = (
+            sub(get(vface, (i + 1) % n.max(1))?, qi),
+            sub(get(vface, (i + n - 1) % n.max(1))?, qi),
+        );
+        let sine = dot(cross(x, y), vn) / (nn * crate::sqrt::sqrt(dot(x, x) * dot(y, y)));
+        fan = fan.min(if sine.is_finite() { sine } else { -1.0 });
+    }
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
+/// The area vector (Newell sum) of the child face of face `f` whose corner at half-edge `h`
+/// is `at(h)` (already mapped); `None` when a corner is missing.
+fn face_area(
+    topo: &Topology<'_, '_>,
+    f: u32,
+    at: &dyn Fn(u32) -> Result<Point>,
+) -> Result<Option<Point>> {
+    let r = topo.face_half_edges(f)?;
+    let first = at(r.start)?;
+    let (mut a, mut prev) = ([0.0; 3], first);
+    for h in r.start + 1..r.end {
+        let p = at(h)?;
+        if !present(&p) {
+            return Ok(None);
+        }
+        a = add(a, cross(prev, p));
+        prev = p;
+    }
+    Ok(present(&first).then(|| add(a, cross(prev, first))))
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
@@ -526,7 +604,7 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
         // `newell([c, e, e1])` or `newell([c, e, o, e1])`: `((0 + c×e) + …) + e1×c`.
         let corner = match children {
             Children::Triangles { .. } => sub(add(add([0.0; 3], x), y), x1),
-            Children::Quads { .. } | Children::Corners => {
+            Children::Quads { .. } | Children::Corners | Children::MidEdges { .. } => {
                 sub(add(add(add([0.0; 3], x), cross(e, o)), cross(o, e1)), x1)
             }
         };
@@ -658,7 +736,7 @@ mod tests {
             match children {
                 Children::Triangles { .. } => area(&[centre, e0, e1]),
                 Children::Quads { .. } => area(&[centre, e0, o?, e1]),
-                Children::Corners => None,
+                Children::Corners | Children::MidEdges { .. } => None,
             }
         };
         if k == 0 {

@@ -1,5 +1,6 @@
-//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt and
-//! Doo–Sabin run steps 1–4 and 7 of it, `drivers/{kobbelt,doo_sabin}.rs`): seed 000
+//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt,
+//! Doo–Sabin and Simplest run steps 1–4 and 7 of it, `drivers/{kobbelt,doo_sabin,simplest}.rs`):
+//! seed 000
 //! §7.1 notes that canonical Möbius subdivision can fold a mesh; `docs/folds.md` traces the
 //! folds to ill-conditioned canonical forms. The guard keeps the paper's rules wherever the
 //! star's trust `τ_v` (`trust.rs`) is 1 and evaluates the other stars' rules in the form
@@ -127,6 +128,9 @@ pub(super) struct Outputs {
     pub(super) edges: Option<usize>,
     pub(super) faces: Option<usize>,
     pub(super) corners: bool,
+    /// Whether the boundary edge points move too (the simplest scheme, whose boundary stars
+    /// are audited); otherwise the boundary curves keep the paper's points.
+    pub(super) boundary_edges: bool,
     pub(super) rings: u8,
 }
 

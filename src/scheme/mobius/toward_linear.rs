@@ -191,6 +191,7 @@ impl Driver<'_, '_, '_, '_> {
         };
         // The least trust within `rings` rings of vertex `v` (`near_trust`).
         let near = |v: u32| near_trust(trust, ring, rings2, v, rings);
+        let boundary_edges = out.boundary_edges;
         let mut tally = Tally::new();
         if out.vertex {
             let nv = topo.num_vertices();
@@ -218,7 +219,7 @@ impl Driver<'_, '_, '_, '_> {
             let t = pass(self.exec, pts, |first, pts, t| {
                 for (e, o) in (first as u32..).zip(pts.iter_mut()) {
                     let h = topo.edge_half_edge(e)?;
-                    if topo.twin(h)? == NONE {
+                    if topo.twin(h)? == NONE && !boundary_edges {
                         continue;
                     }
                     let (a, b) = (topo.origin(h)?, topo.dest(h)?);

@@ -49,6 +49,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: Some(nv),
             faces: None,
             corners: false,
+            boundary_edges: false,
             rings: RINGS,
         };
         let again = d.guarded_pass(out, || (), star_rule)?;

@@ -73,6 +73,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             edges: Some(nv),
             faces: Some(fp0),
             corners: false,
+            boundary_edges: false,
             rings: RINGS,
         };
         if d.guarded_pass(out, || (), star_rule)? {

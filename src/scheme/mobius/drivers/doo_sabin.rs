@@ -89,6 +89,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         edges: None,
         faces: None,
         corners: true,
+        boundary_edges: false,
         rings: RINGS,
     };
     let linear = LinearRules {

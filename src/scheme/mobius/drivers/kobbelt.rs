@@ -66,6 +66,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         edges: Some(nv),
         faces: Some(nv + ne),
         corners: false,
+        boundary_edges: false,
         rings: RINGS,
     };
     let linear = LinearRules {
