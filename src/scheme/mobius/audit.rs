@@ -85,6 +85,16 @@ pub(super) enum Children {
     /// points): the V-face `(e_0, …, e_{n−1})` of `v`'s edge points (output vertex
     /// `edges + edge`) and the F-faces `f_i` of the faces around `v` ([`mid_edge_star_audit`]).
     MidEdges { edges: usize },
+    /// Akleman's vertex insertion (every face a fan of triangles to its face point, the old
+    /// edges kept): around `v` the triangles `(v', u_i, p_i)` and `(v', p_i, u_{i+1})`, `u_i`
+    /// the old neighbour (output vertex `u_i`) and `p_i` the point of the face after spoke
+    /// `i` (output vertex `faces + face`): Loop's corner fan on the ring
+    /// `(u_0, p_0, u_1, p_1, …)`.
+    Insertion { faces: usize },
+    /// Akleman's dual truncation (the √3 connectivity): around `v` the triangles
+    /// `(v', p_{i−1}, p_i)`, `p_i` the point of the face after spoke `i` (output vertex
+    /// `faces + face`): Loop's corner fan on the ring `(p_0, p_1, …)`.
+    FacePoints { faces: usize },
 }
 
 /// Distance of an edge point from the middle of its spoke (over the spoke's length, in the
@@ -175,6 +185,9 @@ impl Driver<'_, '_, '_, '_> {
                     match children {
                         Children::MidEdges { edges } => {
                             mid_edge_star_audit(topo, pos, &cf, v, edges, part.work)?
+                        }
+                        Children::FacePoints { faces } => {
+                            open_face_point_audit(topo, pos, &cf, v, faces, part.work)?
                         }
                         _ => open_star_audit(topo, pos, &cf, v, children)?,
                     }
@@ -305,6 +318,11 @@ fn star_audit(
                 },
             ),
             Children::Quads { edges, faces, .. } => (edges + edge, Some(faces + face as usize)),
+            Children::Insertion { faces } => (
+                get(r.indices, next as usize)? as usize,
+                Some(faces + face as usize),
+            ),
+            Children::FacePoints { faces } => (faces + face as usize, None),
             Children::Corners | Children::MidEdges { .. } => return Err(internal()),
         };
         let p = map(get(pos, e)?);
@@ -321,8 +339,14 @@ fn star_audit(
         if let Some(o) = o {
             let p = map(get(pos, o)?);
             all_present &= present(&p);
-            set(outer, no, p)?;
-            no += 1;
+            if let Children::Insertion { .. } = children {
+                // The face point follows the neighbour on the fan.
+                set(fan, nf, p)?;
+                nf += 1;
+            } else {
+                set(outer, no, p)?;
+                no += 1;
+            }
         }
         h = get(r.twin, prev as usize)?;
     }
@@ -334,7 +358,14 @@ fn star_audit(
     }
     let fan = fan.get(..nf).ok_or(internal())?;
     let outer = outer.get(..no).ok_or(internal())?;
-    let (pair, fan_normal) = pair_cos(centre, fan, outer, children);
+    let corners = match children {
+        Children::Insertion { .. } | Children::FacePoints { .. } => Children::Triangles {
+            edges: 0,
+            middles: false,
+        },
+        c => c,
+    };
+    let (pair, fan_normal) = pair_cos(centre, fan, outer, corners);
     Ok(ramp(pair, 0.0, PAIR_TRUSTED)
         .min(ramp(
             fan_sine_about(centre, fan, fan_normal),
@@ -550,6 +581,69 @@ fn mid_edge_star_audit(
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
 }
 
+/// The audit's trust of boundary star `v` of a dual-truncation step whose form `cf` the scheme
+/// kept: the open fan of triangles around `v'` on the ring `(u_0, p_0, …, p_{k−1}, u_n)`, the
+/// boundary neighbours (which stay) closing the faces' points `p_i` (output vertex
+/// `faces + face`) at both ends (the pattern's boundary triangles `(a, b, f)`). Pair angles
+/// between consecutive triangles, and the fan angle between consecutive ring points signed by
+/// the fan's area vector (the sum of its triangles' normals), as [`open_star_audit`].
+fn open_face_point_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    faces: usize,
+    work: &mut [Point],
+) -> Result<f64> {
+    let map = |p: Point| cf.to_normalised_or_nan(p);
+    let centre = map(get(pos, v as usize)?);
+    let mut n = 0;
+    let mut last = NONE;
+    for (i, s) in topo.star(v).enumerate() {
+        if i == 0 {
+            set(work, n, map(get(pos, s.neighbour as usize)?))?;
+            n += 1;
+        }
+        if s.face == NONE {
+            last = s.neighbour;
+            break;
+        }
+        set(work, n, map(get(pos, faces + s.face as usize)?))?;
+        n += 1;
+    }
+    if last == NONE {
+        return Err(internal());
+    }
+    set(work, n, map(get(pos, last as usize)?))?;
+    n += 1;
+    let ring = work.get(..n).ok_or(internal())?;
+    if !present(&centre) || !ring.iter().all(present) {
+        return Ok(0.0);
+    }
+    let (mut pair, mut area) = (f64::INFINITY, [0.0; 3]);
+    let mut prev: Option<Point> = None;
+    for w in ring.windows(2) {
+        if let [a, b] = w {
+            let t = super::trust::newell(&[centre, *a, *b]);
+            area = add(area, t);
+            if let Some(p) = prev {
+                pair = pair.min(cos_between(p, t));
+            }
+            prev = Some(t);
+        }
+    }
+    let nn = crate::sqrt::sqrt(dot(area, area));
+    let mut fan = f64::INFINITY;
+    for w in ring.windows(2) {
+        if let [a, b] = w {
+            let (p, q) = (sub(*a, centre), sub(*b, centre));
+            let x = dot(cross(p, q), area) / (nn * crate::sqrt::sqrt(dot(p, p) * dot(q, q)));
+            fan = fan.min(if x.is_finite() { x } else { -1.0 });
+        }
+    }
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
 /// The area vector (Newell sum) of the child face of face `f` whose corner at half-edge `h`
 /// is `at(h)` (already mapped); `None` when a corner is missing.
 fn face_area(
@@ -604,7 +698,11 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
         // `newell([c, e, e1])` or `newell([c, e, o, e1])`: `((0 + c×e) + …) + e1×c`.
         let corner = match children {
             Children::Triangles { .. } => sub(add(add([0.0; 3], x), y), x1),
-            Children::Quads { .. } | Children::Corners | Children::MidEdges { .. } => {
+            Children::Quads { .. }
+            | Children::Corners
+            | Children::MidEdges { .. }
+            | Children::Insertion { .. }
+            | Children::FacePoints { .. } => {
                 sub(add(add(add([0.0; 3], x), cross(e, o)), cross(o, e1)), x1)
             }
         };
@@ -736,7 +834,10 @@ mod tests {
             match children {
                 Children::Triangles { .. } => area(&[centre, e0, e1]),
                 Children::Quads { .. } => area(&[centre, e0, o?, e1]),
-                Children::Corners | Children::MidEdges { .. } => None,
+                Children::Corners
+                | Children::MidEdges { .. }
+                | Children::Insertion { .. }
+                | Children::FacePoints { .. } => None,
             }
         };
         if k == 0 {

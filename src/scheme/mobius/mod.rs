@@ -23,14 +23,12 @@
 //! which keeps the rule Möbius-invariant and exact on Möbius images of regular grids. A face
 //! of ears only takes its linear centroid, counted as a fallback.
 //!
-//! **The fold guard** (Loop, Modified Butterfly, Catmull–Clark, Kobbelt, Doo–Sabin, Simplest;
-//! the default, off with [`Options::literal`](super::Options::literal)): seed 000 §7.1 notes
-//! that the scheme
+//! **The fold guard** (every scheme but Akleman's dual; the default, off with
+//! [`Options::literal`](super::Options::literal)): seed 000 §7.1 notes that the scheme
 //! can fold non-Delaunay meshes, and `docs/folds.md` traces the folds to ill-conditioned
 //! canonical forms. Stars whose Möbius-invariant trust (`trust.rs`) is below 1 are evaluated
 //! again in their form interpolated toward the linear rule (`spectrum.rs`, §7.2; not
-//! Kobbelt, Doo–Sabin and Simplest, whose stars only feed blends or their own corners), and
-//! the points
+//! the other schemes, whose stars only feed blends or their own points), and the points
 //! near them blend toward the linear
 //! rule (`toward_linear.rs`); the changed
 //! elements are counted in the [`Report`](super::Report) (`guarded`) or refused in strict

@@ -4,19 +4,27 @@
 //! their own forms; the dual's boundary edge points follow the Möbius interpolating curve
 //! rule. Layouts are the linear schemes'.
 
+use super::super::audit::Children;
 use super::super::driver::Driver;
 use super::super::form::{MapBack, ORIGIN};
+use super::super::guard::Outputs;
+use super::super::toward_linear::{face_centroid, no_corner, LinearRules};
 use super::super::workspace::take;
 use crate::blend::f4;
 use crate::error::Result;
 use crate::mesh::gather::ring_sum;
-use crate::mesh::{set, NONE};
+use crate::mesh::{set, Topology, NONE};
+use crate::point::Point;
 use crate::scheme::carry::{append_isolated, boundary_vertices, copy_old};
 use crate::stencil::akleman;
 
 /// The face candidates of every corner (the face centroid in the corner's form, ears in a
 /// substitute's) blended into face points at `start + f`.
-fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
+fn face_points(
+    d: &mut Driver<'_, '_, '_, '_>,
+    start: usize,
+    keep_boundary_forms: bool,
+) -> Result<()> {
     let topo = d.topo;
     d.vertex_pass(
         false,
@@ -24,6 +32,11 @@ fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
         |p, star, _| {
             p.with_work(|p, mut work| {
                 let fc = take(&mut work, star.spokes.len())?;
+                if p.guard {
+                    // The fold guard's spread term (`guard.rs`), from the ring's images.
+                    star.ring_images(topo, fc)?;
+                    p.trust_star(star, fc, &[], keep_boundary_forms)?;
+                }
                 star.face_centroids(topo, fc)?;
                 p.keep_face_candidates(star, fc)
             })
@@ -37,7 +50,7 @@ fn face_points(d: &mut Driver<'_, '_, '_, '_>, start: usize) -> Result<()> {
 /// (the linear midpoint becomes the Möbius interpolating curve rule), then the boundary
 /// vertices themselves, then the isolated vertices (the linear layout).
 pub(in crate::scheme::mobius) fn dual(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
-    face_points(d, 0)?;
+    face_points(d, 0, false)?;
     let topo = d.topo;
     let (nf, vb) = (topo.num_faces(), topo.num_boundary_vertices());
     for v in 0..topo.num_vertices() as u32 {
@@ -62,17 +75,57 @@ pub(in crate::scheme::mobius) fn dual(d: &mut Driver<'_, '_, '_, '_>) -> Result<
     append_isolated(topo, d.pos, nf + 2 * vb)
 }
 
-/// Akleman's vertex insertion: the old vertices, then the face points.
+/// Akleman's vertex insertion: the old vertices, then the face points; then the fold guard.
 pub(in crate::scheme::mobius) fn vertex_insertion(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     copy_old(d.topo, d.pos)?;
-    face_points(d, d.topo.num_vertices())
+    let nv = d.topo.num_vertices();
+    face_points(d, nv, false)?;
+    if d.guard {
+        insertion_guard(d, nv)?;
+    }
+    Ok(())
+}
+
+/// How far around a distrusted star the fold guard's blend toward the linear rule reaches
+/// (`toward_linear.rs`), measured (`docs/folds.md` section 11).
+const RINGS: u8 = 1;
+
+/// The fold guard (`guard.rs`) of vertex insertion on the paper's output of the step: the
+/// spread term of every interior star (kept by the vertex pass) and the output audit of the
+/// fan of triangles around it (`audit.rs`, [`Children::Insertion`]); spherical stars keep
+/// the paper's rules; then every face point with a corner within one ring of a distrusted
+/// star moves toward the face's centroid (the linear face point). The old vertices stay, and
+/// a star's face candidates only feed the face blends, so there is no re-evaluation in
+/// `m_τ`.
+#[inline(never)]
+fn insertion_guard(d: &mut Driver<'_, '_, '_, '_>, faces: usize) -> Result<()> {
+    d.audit(Children::Insertion { faces })?;
+    d.raise_spherical_quads()?;
+    if d.trust.iter().all(|&t| t >= 1.0) {
+        return Ok(());
+    }
+    let out = Outputs {
+        vertex: false,
+        edges: None,
+        faces: Some(faces),
+        corners: false,
+        boundary_edges: false,
+        rings: RINGS,
+    };
+    let linear = LinearRules {
+        vertex: &|_, _, p| Ok(p),
+        edge: &|_, _| Err(crate::mesh::internal()),
+        face: &face_centroid,
+        corner: &no_corner,
+    };
+    d.blend_toward_linear(out, linear, false)
 }
 
 /// Akleman's dual truncation: the face points, then every interior old vertex moved by the
 /// truncation rule in its own form; boundary vertices stay (as in the linear scheme).
 pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    face_points(d, topo.num_vertices())?;
+    face_points(d, topo.num_vertices(), true)?;
     d.clear_vertex_points()?;
     d.vertex_pass(
         true,
@@ -90,8 +143,36 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
             })
         },
     )?;
-    d.finish_vertex_points(true, |t, v, p| {
+    let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         let (n, ring) = ring_sum(t, v)?;
         akleman::truncated_vertex_sum(p, n, ring)
-    })
+    };
+    d.finish_vertex_points(true, linear_vertex)?;
+    if !d.guard {
+        return Ok(());
+    }
+    // The fold guard, as vertex insertion's ([`insertion_guard`]), on the fan of triangles
+    // `(v', p_{i−1}, p_i)` around each moved vertex; the vertex points move toward the linear
+    // truncation rule too.
+    let faces = topo.num_vertices();
+    d.audit(Children::FacePoints { faces })?;
+    d.raise_spherical_quads()?;
+    if d.trust.iter().all(|&t| t >= 1.0) {
+        return Ok(());
+    }
+    let out = Outputs {
+        vertex: true,
+        edges: None,
+        faces: Some(faces),
+        corners: false,
+        boundary_edges: false,
+        rings: RINGS,
+    };
+    let linear = LinearRules {
+        vertex: &linear_vertex,
+        edge: &|_, _| Err(crate::mesh::internal()),
+        face: &face_centroid,
+        corner: &no_corner,
+    };
+    d.blend_toward_linear(out, linear, false)
 }
