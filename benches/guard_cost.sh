@@ -58,6 +58,12 @@ kobbelt torus_quad 3
 kobbelt spot_quad 2
 doo-sabin sphere_cube_quads_perturbed 3
 doo-sabin spot_quad 2
+simplest sphere_cube_quads_perturbed 3
+simplest spot_quad 2
+vertex-insertion sphere_icosphere2_perturbed 3
+vertex-insertion bunny 2
+dual-truncation sphere_icosphere2_perturbed 3
+dual-truncation bunny 2
 ROWS
 rm -f /tmp/guard_cost.$$.off
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

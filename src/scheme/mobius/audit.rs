@@ -466,40 +466,55 @@ fn corner_star_audit(
 ) -> Result<f64> {
     let map = |p: Point| cf.to_normalised_or_nan(p);
     let at = |h: u32| -> Result<Point> { Ok(map(get(pos, h as usize)?)) };
-    // The V-face, in the star's (counter-clockwise) order.
-    let mut n = 0;
-    for s in topo.star(v) {
-        let q = at(s.half_edge)?;
-        if !present(&q) {
-            return Ok(0.0);
-        }
-        set(work, n, q)?;
-        n += 1;
-    }
-    let vface = work.get(..n).ok_or(internal())?;
-    let vn = super::trust::newell(vface);
-    let q = |i: usize| -> Result<Point> { get(vface, i % n.max(1)) };
-    let (mut pair, mut fan) = (f64::INFINITY, f64::INFINITY);
-    let mut f_prev: Option<Point> = None;
-    let mut e_first: Option<Point> = None;
-    let nn = crate::sqrt::sqrt(dot(vn, vn));
+    // Per spoke `i` (counter-clockwise): the V-face's corner `q_i = q(v, f_i)`, and the other
+    // end's corners `a_i = q(u_i, f_{i−1})` (the twin's) and `b_i = q(u_i, f_i)` (after `h_i`),
+    // each mapped once: every E-face is `(q_i, q_{i−1}, a_i, b_i)`, and the F-face `f_i` runs
+    // `q_i, b_i, …, a_{i+1}` (its other corners between).
+    let n = topo.valence(v)?;
+    let (vface, rest) = work.split_at_mut_checked(n).ok_or(internal())?;
+    let (a, rest) = rest.split_at_mut_checked(n).ok_or(internal())?;
+    let b = rest.get_mut(..n).ok_or(internal())?;
     for (i, s) in topo.star(v).enumerate() {
         let h = s.half_edge;
         let t = topo.twin(h)?;
         if t == NONE {
             return Err(internal());
         }
-        // E-face of spoke i: q_i, q_{i−1}, q(u_i, f_{i−1}) (the twin's corner), q(u_i, f_i)
-        // (the corner after `h` in f_i).
-        let (qi, qp) = (q(i)?, q(i + n - 1)?);
-        let (a, b) = (at(t)?, at(topo.next(h)?)?);
-        if !present(&a) || !present(&b) {
+        let (q, ai, bi) = (at(h)?, at(t)?, at(topo.next(h)?)?);
+        if !present(&q) || !present(&ai) || !present(&bi) {
             return Ok(0.0);
         }
-        let e = super::trust::newell(&[qi, qp, a, b]);
-        let Some(fi) = face_area(topo, s.face, &at)? else {
-            return Ok(0.0);
-        };
+        set(vface, i, q)?;
+        set(a, i, ai)?;
+        set(b, i, bi)?;
+    }
+    let (vface, a, b): (&[Point], &[Point], &[Point]) = (vface, a, b);
+    let vn = super::trust::newell(vface);
+    let cyc = |x: &[Point], i: usize| -> Result<Point> { get(x, i % n.max(1)) };
+    let (mut pair, mut fan) = (f64::INFINITY, f64::INFINITY);
+    let mut f_prev: Option<Point> = None;
+    let mut e_first: Option<Point> = None;
+    let nn = crate::sqrt::sqrt(dot(vn, vn));
+    for (i, s) in topo.star(v).enumerate() {
+        let h = s.half_edge;
+        let (qi, qp) = (cyc(vface, i)?, cyc(vface, i + n - 1)?);
+        let e = super::trust::newell(&[qi, qp, get(a, i)?, get(b, i)?]);
+        // The F-face f_i's Newell sum, its middle corners mapped as the face is walked.
+        let last = cyc(a, i + 1)?;
+        let end = topo.prev(h)?;
+        let mut fi = cross(qi, get(b, i)?);
+        let mut p = get(b, i)?;
+        let mut c = topo.next(topo.next(h)?)?;
+        while c != end {
+            let m = at(c)?;
+            if !present(&m) {
+                return Ok(0.0);
+            }
+            fi = add(fi, cross(p, m));
+            p = m;
+            c = topo.next(c)?;
+        }
+        fi = add(add(fi, cross(p, last)), cross(last, qi));
         pair = pair.min(cos_between(vn, e)).min(cos_between(e, fi));
         // The F-face before spoke i is the one after spoke i − 1.
         if let Some(fp) = f_prev {
@@ -509,7 +524,7 @@ fn corner_star_audit(
         }
         f_prev = Some(fi);
         // The V-face's corner at q_i: between its sides to q_{i+1} and q_{i−1}.
-        let (x, y) = (sub(q(i + 1)?, qi), sub(qp, qi));
+        let (x, y) = (sub(cyc(vface, i + 1)?, qi), sub(qp, qi));
         let sine = dot(cross(x, y), vn) / (nn * crate::sqrt::sqrt(dot(x, x) * dot(y, y)));
         fan = fan.min(if sine.is_finite() { sine } else { -1.0 });
     }
@@ -546,6 +561,7 @@ fn mid_edge_star_audit(
         set(work, n, at_edge(s.edge)?)?;
         n += 1;
     }
+    let spokes = n;
     let rank = topo.boundary_vertex_rank(v)?;
     if rank != NONE {
         let own = edges + topo.num_edges() + rank as usize;
@@ -558,14 +574,29 @@ fn mid_edge_star_audit(
     }
     let vn = super::trust::newell(vface);
     let nn = crate::sqrt::sqrt(dot(vn, vn));
+    // Each F-face `f_i` runs `e_i, …, e_{i+1}` in the face's order from `h_i`: its two
+    // corners on the V-face are mapped already, the others as the face is walked.
     let mut pair = f64::INFINITY;
-    for s in topo.star(v) {
+    for (i, s) in topo.star(v).enumerate() {
         if s.face == NONE {
             continue;
         }
-        let Some(fi) = face_area(topo, s.face, &at)? else {
-            return Ok(0.0);
-        };
+        // The next spoke's edge point (an interior star's last face closes on spoke 0).
+        let next = if i + 1 < spokes { i + 1 } else { 0 };
+        let (first, last) = (get(vface, i)?, get(vface, next)?);
+        let end = topo.prev(s.half_edge)?;
+        let (mut fi, mut p) = ([0.0; 3], first);
+        let mut c = topo.next(s.half_edge)?;
+        while c != end {
+            let m = at(c)?;
+            if !present(&m) {
+                return Ok(0.0);
+            }
+            fi = add(fi, cross(p, m));
+            p = m;
+            c = topo.next(c)?;
+        }
+        fi = add(add(fi, cross(p, last)), cross(last, first));
         pair = pair.min(cos_between(vn, fi));
     }
     let mut fan = f64::INFINITY;
@@ -642,27 +673,6 @@ fn open_face_point_audit(
         }
     }
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
-}
-
-/// The area vector (Newell sum) of the child face of face `f` whose corner at half-edge `h`
-/// is `at(h)` (already mapped); `None` when a corner is missing.
-fn face_area(
-    topo: &Topology<'_, '_>,
-    f: u32,
-    at: &dyn Fn(u32) -> Result<Point>,
-) -> Result<Option<Point>> {
-    let r = topo.face_half_edges(f)?;
-    let first = at(r.start)?;
-    let (mut a, mut prev) = ([0.0; 3], first);
-    for h in r.start + 1..r.end {
-        let p = at(h)?;
-        if !present(&p) {
-            return Ok(None);
-        }
-        a = add(a, cross(prev, p));
-        prev = p;
-    }
-    Ok(present(&first).then(|| add(a, cross(prev, first))))
 }
 
 /// The least cosine between adjacent child faces around `centre` (module docs, term 1), and
