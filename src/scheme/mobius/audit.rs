@@ -166,6 +166,7 @@ impl Driver<'_, '_, '_, '_> {
     pub(super) fn audit(&mut self, children: Children) -> Result<()> {
         let topo = self.topo;
         let (pos, radius, trust): (&[Point], &[f64], &[f64]) = (self.pos, self.radius, self.trust);
+        let tagged = !self.corners.is_empty();
         // Measure every star (vertex ranges, `crate::exec`): the star's trust from the audit
         // replaces the first coordinate of its kept centre, which nothing reads afterwards.
         // Each range's fan arrays are its share of the star workspace (`workspace.rs`).
@@ -181,8 +182,14 @@ impl Driver<'_, '_, '_, '_> {
                 let a = if r == 0.0 {
                     1.0
                 } else if get(trust, v as usize)? > 1.0 {
-                    // A boundary star whose form the scheme kept (Kobbelt, the simplest scheme).
+                    // A boundary star whose form the scheme kept (Kobbelt, the simplest scheme,
+                    // dual truncation; Loop, Butterfly and Catmull–Clark on a level cut along
+                    // its sharp edges, whose boundary stars are crease vertices).
                     match children {
+                        Children::Triangles { .. }
+                        | Children::Quads {
+                            edge_places: false, ..
+                        } if !tagged => 1.0,
                         Children::MidEdges { edges } => {
                             mid_edge_star_audit(topo, pos, &cf, v, edges, part.work)?
                         }
@@ -389,13 +396,14 @@ fn open_star_audit(
     v: u32,
     children: Children,
 ) -> Result<f64> {
-    let Children::Quads {
-        edges,
-        faces,
-        edge_places,
-    } = children
-    else {
-        return Ok(1.0);
+    let (edges, faces, middles, edge_places) = match children {
+        Children::Quads {
+            edges,
+            faces,
+            edge_places,
+        } => (edges, Some(faces), false, edge_places),
+        Children::Triangles { edges, middles } => (edges, None, middles, false),
+        _ => return Ok(1.0),
     };
     let map = |p: Point| cf.to_normalised_or_nan(p);
     let centre = map(get(pos, v as usize)?);
@@ -416,14 +424,31 @@ fn open_star_audit(
             map(get(pos, edges + s.edge as usize)?),
             map(get(pos, edges + nx.edge as usize)?),
         );
-        let f = map(get(pos, faces + s.face as usize)?);
-        if !present(&e0) || !present(&e1) || !present(&f) {
+        if !present(&e0) || !present(&e1) {
             return Ok(0.0);
         }
         if edge_places && nx.face != NONE {
             place = place.min(edge_place_trust(e1, map(topo.position(nx.neighbour)?)));
         }
-        let corner = super::trust::newell(&[centre, e0, f, e1]);
+        let corner = match faces {
+            Some(faces) => {
+                let f = map(get(pos, faces + s.face as usize)?);
+                if !present(&f) {
+                    return Ok(0.0);
+                }
+                super::trust::newell(&[centre, e0, f, e1])
+            }
+            None => super::trust::newell(&[centre, e0, e1]),
+        };
+        if middles {
+            // The middle triangle `(e_i, m_i, e_{i+1})`, `m_i` the point of the face's edge
+            // opposite `v`.
+            let m = map(get(pos, edges + topo.edge(topo.next(s.half_edge)?)? as usize)?);
+            if !present(&m) {
+                return Ok(0.0);
+            }
+            pair = pair.min(cos_between(corner, super::trust::newell(&[e0, m, e1])));
+        }
         area = add(area, corner);
         if let Some(p) = prev {
             pair = pair.min(cos_between(p, corner));

@@ -397,9 +397,13 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 // Only interior stars with a form are ever distrusted (`trust_star`).
-                let Some(boundary) = retarget(topo, v, &mut form, &mut spokes, tangents)? else {
+                // Interior stars only: a boundary star is distrusted only by the audit of a
+                // level cut along its sharp edges, and keeps its rules (its crease curves are
+                // the paper's); the blend toward the linear rule moves the points around it.
+                let Some(false) = retarget(topo, v, &mut form, &mut spokes, tangents)? else {
                     continue;
                 };
+                let boundary = false;
                 let slot = first_slot(topo, slots, v)?.ok_or(internal())?;
                 let cf = form.form();
                 let t = tangents.get(..spokes.len()).ok_or(internal())?;

@@ -104,6 +104,6 @@ fn star_rule_in<F: Frame>(
             *c = p;
         }
     }
-    p.trust_star(star, ring, cands, false)?;
+    p.trust_star(star, ring, cands, true)?;
     p.keep_edges_from(star, cands)
 }

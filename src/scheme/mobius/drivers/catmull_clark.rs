@@ -112,7 +112,7 @@ fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut
         p.keep_face_candidates(star, fc)?;
         star.ring_images(topo, ring)?;
         let vertex = catmull_clark_star_in_form(ring, fc, !star.boundary, &Normalised, cands)?;
-        p.trust_star(star, ring, cands, false)?;
+        p.trust_star(star, ring, cands, true)?;
         p.keep_edges_from(star, cands)?;
         p.keep_vertex_from(star, vertex)
     })

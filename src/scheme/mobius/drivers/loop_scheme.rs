@@ -99,7 +99,7 @@ fn star_rule<F: Frame>(p: &mut Part<'_, '_, '_>, star: &mut Star<'_, F>, _: &mut
         let cands = take(&mut work, n)?;
         // The apexes of spoke j's triangles are ring[j ± 1] (stars are CCW).
         let vertex = loop_star_in_form(ring, !star.boundary, &Normalised, cands)?;
-        p.trust_star(star, ring, cands, false)?;
+        p.trust_star(star, ring, cands, true)?;
         p.keep_edges_from(star, cands)?;
         p.keep_vertex_from(star, vertex)
     })
