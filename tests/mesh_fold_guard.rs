@@ -160,10 +160,9 @@ fn the_default_folds_no_more_than_the_linear_scheme() {
 /// triangles, camelhead's open boundary, polycastle_quad's 90° blocks; for Butterfly, cow
 /// and camelhead, which needed the blend to reach two rings; Kobbelt on the quad meshes, where
 /// the paper's rules fold untagged (its guard has no re-evaluation: the blend toward the
-/// linear rule is its whole fallback), and Doo–Sabin, the simplest scheme and Akleman's vertex
-/// insertion and dual truncation likewise. Asserted at every level from 1, where these folds
-/// started.
-const BEYOND: [(Scheme, &str); 24] = [
+/// linear rule is its whole fallback), and Doo–Sabin, the simplest scheme and Akleman's
+/// operators likewise. Asserted at every level from 1, where these folds started.
+const BEYOND: [(Scheme, &str); 27] = [
     (Scheme::Loop, "epcot"),
     (Scheme::Loop, "cow"),
     (Scheme::Loop, "camelhead"),
@@ -188,14 +187,19 @@ const BEYOND: [(Scheme, &str); 24] = [
     (Scheme::DualTruncation, "horse_quad"),
     (Scheme::DualTruncation, "spot_quad"),
     (Scheme::DualTruncation, "helmet_quad"),
+    (Scheme::Dual, "horse_quad"),
+    (Scheme::Dual, "bunny"),
+    (Scheme::Dual, "camelhead"),
 ];
 
 /// Rows where the guard folds less than the paper's rules but more than the linear scheme at
 /// some level (`docs/folds.md`, section 11): asserted no worse than the paper's rules at every
 /// level, the counts printed.
-const PARTIAL: [(Scheme, &str); 2] = [
+const PARTIAL: [(Scheme, &str); 4] = [
     (Scheme::DualTruncation, "bunny"),
     (Scheme::DualTruncation, "cow"),
+    (Scheme::Dual, "helmet_quad"),
+    (Scheme::Dual, "cow"),
 ];
 
 #[test]

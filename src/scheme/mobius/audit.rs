@@ -95,6 +95,10 @@ pub(super) enum Children {
     /// `(v', p_{i−1}, p_i)`, `p_i` the point of the face after spoke `i` (output vertex
     /// `faces + face`): Loop's corner fan on the ring `(p_0, p_1, …)`.
     FacePoints { faces: usize },
+    /// Akleman's dual (one face per vertex, of the points of the faces around it): `v`'s face
+    /// `(p_0, …, p_{n−1})` (output vertex `faces + face`) and the faces of its interior
+    /// neighbours, which share its sides ([`dual_star_audit`]).
+    DualFaces { faces: usize },
 }
 
 /// Distance of an edge point from the middle of its spoke (over the spoke's length, in the
@@ -196,10 +200,15 @@ impl Driver<'_, '_, '_, '_> {
                         Children::FacePoints { faces } => {
                             open_face_point_audit(topo, pos, &cf, v, faces, part.work)?
                         }
+                        Children::DualFaces { faces } => {
+                            dual_star_audit(topo, pos, &cf, v, faces, part.work)?
+                        }
                         _ => open_star_audit(topo, pos, &cf, v, children)?,
                     }
                 } else if let Children::Corners = children {
                     corner_star_audit(topo, pos, &cf, v, part.work)?
+                } else if let Children::DualFaces { faces } = children {
+                    dual_star_audit(topo, pos, &cf, v, faces, part.work)?
                 } else if let Children::MidEdges { edges } = children {
                     mid_edge_star_audit(topo, pos, &cf, v, edges, part.work)?
                 } else {
@@ -330,7 +339,9 @@ fn star_audit(
                 Some(faces + face as usize),
             ),
             Children::FacePoints { faces } => (faces + face as usize, None),
-            Children::Corners | Children::MidEdges { .. } => return Err(internal()),
+            Children::Corners | Children::MidEdges { .. } | Children::DualFaces { .. } => {
+                return Err(internal())
+            }
         };
         let p = map(get(pos, e)?);
         all_present &= present(&p);
@@ -443,7 +454,10 @@ fn open_star_audit(
         if middles {
             // The middle triangle `(e_i, m_i, e_{i+1})`, `m_i` the point of the face's edge
             // opposite `v`.
-            let m = map(get(pos, edges + topo.edge(topo.next(s.half_edge)?)? as usize)?);
+            let m = map(get(
+                pos,
+                edges + topo.edge(topo.next(s.half_edge)?)? as usize,
+            )?);
             if !present(&m) {
                 return Ok(0.0);
             }
@@ -556,6 +570,101 @@ fn corner_star_audit(
     // The first E-face against the F-face before it (the last spoke's face).
     if let (Some(e0), Some(fl)) = (e_first, f_prev) {
         pair = pair.min(cos_between(e0, fl));
+    }
+    Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
+/// The audit's trust of interior star `v` of a step of Akleman's dual, whose canonical form is
+/// `cf` ([`Children::DualFaces`]): `v`'s face of the face points `p_i` (output vertex
+/// `faces + face`, counter-clockwise), mapped into the frame and kept in `work`, against the
+/// face of each interior neighbour `u_i` (its face points counter-clockwise around `u_i`,
+/// mapped as its star is walked), with which it shares the side `(p_{i−1}, p_i)`; and the fan
+/// angle at each corner of `v`'s face, signed by its Newell normal. A boundary neighbour's face
+/// also holds edge points and the vertex itself, and is not compared; a boundary star (whose
+/// form the scheme kept) is audited with that face against its interior neighbours'.
+fn dual_star_audit(
+    topo: &Topology<'_, '_>,
+    pos: &[Point],
+    cf: &CanonicalForm,
+    v: u32,
+    faces: usize,
+    work: &mut [Point],
+) -> Result<f64> {
+    let map = |p: Point| cf.to_normalised_or_nan(p);
+    let at = |f: u32| -> Result<Point> { Ok(map(get(pos, faces + f as usize)?)) };
+    let rank = topo.boundary_vertex_rank(v)?;
+    let mut n = 0;
+    if rank == NONE {
+        for s in topo.star(v) {
+            set(work, n, at(s.face)?)?;
+            n += 1;
+        }
+    } else {
+        // A boundary vertex's face (the dual's layout): the point of its outgoing boundary
+        // edge, the face points, the point of the incoming boundary edge (its start's
+        // outgoing one), the vertex itself.
+        let (nf, vb) = (topo.num_faces(), topo.num_boundary_vertices());
+        let edge_point = |u: u32| -> Result<Point> {
+            let r = topo.boundary_vertex_rank(u)? as usize;
+            Ok(map(get(pos, faces + nf + r)?))
+        };
+        set(work, n, edge_point(v)?)?;
+        n += 1;
+        let mut last = NONE;
+        for s in topo.star(v) {
+            if s.face == NONE {
+                last = s.neighbour;
+                break;
+            }
+            set(work, n, at(s.face)?)?;
+            n += 1;
+        }
+        if last == NONE {
+            return Err(internal());
+        }
+        set(work, n, edge_point(last)?)?;
+        set(work, n + 1, map(get(pos, faces + nf + vb + rank as usize)?))?;
+        n += 2;
+    }
+    let vface = work.get(..n).ok_or(internal())?;
+    if !vface.iter().all(present) {
+        return Ok(0.0);
+    }
+    let vn = super::trust::newell(vface);
+    let nn = crate::sqrt::sqrt(dot(vn, vn));
+    let mut pair = f64::INFINITY;
+    for s in topo.star(v) {
+        let u = s.neighbour;
+        if topo.is_boundary_vertex(u)? || topo.is_isolated(u)? {
+            continue;
+        }
+        // The neighbour's face, its Newell sum as its star is walked.
+        let (mut un, mut first, mut prev) = ([0.0; 3], None, [0.0; 3]);
+        for t in topo.star(u) {
+            let p = at(t.face)?;
+            if !present(&p) {
+                return Ok(0.0);
+            }
+            match first {
+                None => first = Some(p),
+                Some(_) => un = add(un, cross(prev, p)),
+            }
+            prev = p;
+        }
+        if let Some(f) = first {
+            un = add(un, cross(prev, f));
+        }
+        pair = pair.min(cos_between(vn, un));
+    }
+    let mut fan = f64::INFINITY;
+    for i in 0..n {
+        let qi = get(vface, i)?;
+        let (x, y) = (
+            sub(get(vface, (i + 1) % n.max(1))?, qi),
+            sub(get(vface, (i + n - 1) % n.max(1))?, qi),
+        );
+        let sine = dot(cross(x, y), vn) / (nn * crate::sqrt::sqrt(dot(x, x) * dot(y, y)));
+        fan = fan.min(if sine.is_finite() { sine } else { -1.0 });
     }
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
 }
@@ -737,7 +846,8 @@ fn pair_cos(centre: Point, fan: &[Point], outer: &[Point], children: Children) -
             | Children::Corners
             | Children::MidEdges { .. }
             | Children::Insertion { .. }
-            | Children::FacePoints { .. } => {
+            | Children::FacePoints { .. }
+            | Children::DualFaces { .. } => {
                 sub(add(add(add([0.0; 3], x), cross(e, o)), cross(o, e1)), x1)
             }
         };
@@ -872,7 +982,8 @@ mod tests {
                 Children::Corners
                 | Children::MidEdges { .. }
                 | Children::Insertion { .. }
-                | Children::FacePoints { .. } => None,
+                | Children::FacePoints { .. }
+                | Children::DualFaces { .. } => None,
             }
         };
         if k == 0 {

@@ -1,6 +1,6 @@
 //! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt,
-//! Doo–Sabin, Simplest, vertex insertion and dual truncation run steps 1–4 and 7 of it, in
-//! their drivers): seed 000
+//! Doo–Sabin, Simplest and Akleman's operators run steps 1–4 and 7 of it, in their drivers):
+//! seed 000
 //! §7.1 notes that canonical Möbius subdivision can fold a mesh; `docs/folds.md` traces the
 //! folds to ill-conditioned canonical forms. The guard keeps the paper's rules wherever the
 //! star's trust `τ_v` (`trust.rs`) is 1 and evaluates the other stars' rules in the form

@@ -23,7 +23,7 @@
 //! which keeps the rule Möbius-invariant and exact on Möbius images of regular grids. A face
 //! of ears only takes its linear centroid, counted as a fallback.
 //!
-//! **The fold guard** (every scheme but Akleman's dual; the default, off with
+//! **The fold guard** (every scheme with a Möbius form; the default, off with
 //! [`Options::literal`](super::Options::literal)): seed 000 §7.1 notes that the scheme
 //! can fold non-Delaunay meshes, and `docs/folds.md` traces the folds to ill-conditioned
 //! canonical forms. Stars whose Möbius-invariant trust (`trust.rs`) is below 1 are evaluated

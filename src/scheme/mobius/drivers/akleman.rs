@@ -50,7 +50,7 @@ fn face_points(
 /// (the linear midpoint becomes the Möbius interpolating curve rule), then the boundary
 /// vertices themselves, then the isolated vertices (the linear layout).
 pub(in crate::scheme::mobius) fn dual(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
-    face_points(d, 0, false)?;
+    face_points(d, 0, true)?;
     let topo = d.topo;
     let (nf, vb) = (topo.num_faces(), topo.num_boundary_vertices());
     for v in 0..topo.num_vertices() as u32 {
@@ -72,7 +72,42 @@ pub(in crate::scheme::mobius) fn dual(d: &mut Driver<'_, '_, '_, '_>) -> Result<
         set(d.pos, k, q)?;
     }
     boundary_vertices(topo, d.pos, nf + vb)?;
-    append_isolated(topo, d.pos, nf + 2 * vb)
+    append_isolated(topo, d.pos, nf + 2 * vb)?;
+    if d.guard {
+        dual_guard(d)?;
+    }
+    Ok(())
+}
+
+/// How far the dual's blend reaches (`docs/folds.md` section 12).
+const DUAL_RINGS: u8 = 2;
+
+/// The fold guard of the dual, as vertex insertion's ([`insertion_guard`]): the audit of each
+/// interior vertex's face against its neighbours' faces (`audit.rs`,
+/// [`Children::DualFaces`]); the face points around a distrusted star move toward the face
+/// centroids, the boundary's edge points and vertices keep the paper's.
+#[inline(never)]
+fn dual_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
+    d.audit(Children::DualFaces { faces: 0 })?;
+    d.raise_spherical_quads()?;
+    if d.trust.iter().all(|&t| t >= 1.0) {
+        return Ok(());
+    }
+    let out = Outputs {
+        vertex: false,
+        edges: None,
+        faces: Some(0),
+        corners: false,
+        boundary_edges: false,
+        rings: DUAL_RINGS,
+    };
+    let linear = LinearRules {
+        vertex: &|_, _, p| Ok(p),
+        edge: &|_, _| Err(crate::mesh::internal()),
+        face: &face_centroid,
+        corner: &no_corner,
+    };
+    d.blend_toward_linear(out, linear, false)
 }
 
 /// Akleman's vertex insertion: the old vertices, then the face points; then the fold guard.
