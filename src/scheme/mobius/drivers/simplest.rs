@@ -52,13 +52,16 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     };
     d.blend_interior_edges(0, &linear)?;
     d.boundary_edges(0, |_, a, b, _| midpoint(a, b))?;
+    // Then the boundary vertices and the isolated vertices, as the linear layout. Before the
+    // fold guard: its audit reads a boundary star's own output vertex, which closes the
+    // star's V-face.
+    let ne = topo.num_edges();
+    boundary_vertices(topo, d.pos, ne)?;
+    append_isolated(topo, d.pos, ne + topo.num_boundary_vertices())?;
     if d.guard {
         fold_guard(d, &linear)?;
     }
-    // Then the boundary vertices and the isolated vertices, as the linear layout.
-    let ne = topo.num_edges();
-    boundary_vertices(topo, d.pos, ne)?;
-    append_isolated(topo, d.pos, ne + topo.num_boundary_vertices())
+    Ok(())
 }
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
