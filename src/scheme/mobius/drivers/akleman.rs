@@ -122,7 +122,7 @@ pub(in crate::scheme::mobius) fn vertex_insertion(d: &mut Driver<'_, '_, '_, '_>
 }
 
 /// How far around a distrusted star the fold guard's blend toward the linear rule reaches
-/// (`toward_linear.rs`), measured (`docs/folds.md` section 11).
+/// (`toward_linear.rs`), measured (`docs/folds.md` section 12).
 const RINGS: u8 = 1;
 
 /// The fold guard (`guard.rs`) of vertex insertion on the paper's output of the step: the
