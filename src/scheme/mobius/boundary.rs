@@ -13,6 +13,8 @@
 //! through the same points. Without corners every loop is closed, as above.
 
 use super::driver::Driver;
+use super::toward_linear::toward_linear;
+use super::trust::{curve_turn_trust, f4_trust};
 use crate::blend::f4;
 use crate::curve::four_point::virtual_end_point;
 use crate::curve::mobius::end_edge_point;
@@ -107,6 +109,131 @@ impl Driver<'_, '_, '_, '_> {
                 i0 == i3 || (self.is_corner(i0) && self.is_corner(i3))
             }
         })
+    }
+
+    /// The fold guard's trust of the Möbius curve segment of boundary half-edge `h` on a
+    /// crease curve (a level cut along its sharp edges, the default mode; 1 otherwise): the
+    /// least of the F4-angle term ([`f4_trust`]) and the turn term ([`curve_turn_trust`]) of
+    /// the segment `(P_{i−1}, a, b, P_{i+2})` whose blend `F4(P_{i−1}, a, b, P_{i+2})` makes
+    /// the edge point, both functions of its cross-ratio and so Möbius-invariant. Next to a
+    /// corner the end rule reads three points only, which a Möbius map can send to any other
+    /// three, so the segment after it on the curve (the same three points and one more)
+    /// judges it. A short curve ([`Driver::short_curve`]), which takes the linear rule
+    /// whole, is 1 here.
+    ///
+    /// Why: a 30° crease angle on a scanned mesh tags noise, and its crease curves turn back
+    /// on themselves (angles of 17°–40° between consecutive crease edges on `cow`). The
+    /// circle through such a hairpin is small, and the curve rules put their points on it,
+    /// most of an edge length off the polyline, where the faces beside the crease fold
+    /// (docs/creases.md, "Folds next to corners").
+    pub(super) fn curve_trust(&self, h: u32) -> Result<f64> {
+        if !self.guard || self.corners.is_empty() || self.short_curve(h)? {
+            return Ok(1.0);
+        }
+        let topo = self.topo;
+        let segment = match self.corner_ends(h)? {
+            (false, false) => h,
+            (true, false) => topo.next_boundary(h)?,
+            (false, true) => topo.prev_boundary(h)?,
+            (true, true) => return Ok(1.0),
+        };
+        if self.corner_ends(segment)? != (false, false) {
+            return Ok(1.0);
+        }
+        let (i0, i3) = self.boundary_outer(segment)?;
+        if i0 == i3 {
+            return Ok(1.0);
+        }
+        let (p0, p1, p2, p3) = (
+            topo.position(i0)?,
+            topo.position(topo.origin(segment)?)?,
+            topo.position(topo.dest(segment)?)?,
+            topo.position(i3)?,
+        );
+        Ok(f4_trust(p0, p1, p2, p3).min(curve_turn_trust(p0, p1, p2, p3)))
+    }
+
+    /// The trust the step's guard gave star `v` (`guard.rs`), at most 1: on a cut level the
+    /// audit (`audit.rs`) judges a crease vertex's star as an open fan of its child faces,
+    /// crease points included, and lowers its trust where they fold or collapse in its
+    /// frame. 1 for a star that was not judged.
+    fn star_trust(&self, v: u32) -> f64 {
+        self.trust.get(v as usize).copied().unwrap_or(1.0).min(1.0)
+    }
+
+    /// The fold guard of the crease curves, after the rest of the step's guard (whose audit
+    /// has read the paper's curve points): every edge point of a crease curve moves toward
+    /// the linear curve rule `linear(P_{i−1}, a, b, P_{i+2})`, and with `approximating`
+    /// every vertex point that is no corner toward the linear crease vertex rule
+    /// `¾ v + ⅛ (b_0 + b_1)`, by `τ` as `toward_linear.rs` blends interior points
+    /// (`τ² p + (1 − τ²) p_lin`: the linear rule at `τ = 0`, the paper's point at `τ = 1`,
+    /// continuous between). `τ` of an edge point is the least of its segment's trust
+    /// ([`Driver::curve_trust`]) and its two ends' star trusts, of a vertex point the least
+    /// of its two segments' and its own star's: the crease points are the corners of the
+    /// child faces the audit judged in those stars' frames. Every decision is a function of
+    /// cross-ratios and of the audit's trusts, so it is the same on every Möbius image. The
+    /// points it moves are counted as guarded (strict mode refuses the first). Nothing
+    /// happens on an untagged level (the bits of the untagged step) or in literal mode; short
+    /// curves keep the linear rule they took.
+    pub(super) fn guard_curves(
+        &mut self,
+        start: usize,
+        linear: fn(Point, Point, Point, Point) -> Point,
+        approximating: bool,
+    ) -> Result<()> {
+        if !self.guard || self.corners.is_empty() {
+            return Ok(());
+        }
+        let topo = self.topo;
+        if approximating {
+            for v in 0..topo.num_vertices() as u32 {
+                if !topo.is_boundary_vertex(v)? || self.is_corner(v) {
+                    continue;
+                }
+                let out_h = topo.vertex_half_edge(v)?; // v → b0
+                let in_h = topo.prev_boundary(out_h)?; // b1 → v
+                if self.short_curve(out_h)? {
+                    continue;
+                }
+                let tau = self
+                    .curve_trust(out_h)?
+                    .min(self.curve_trust(in_h)?)
+                    .min(self.star_trust(v));
+                if tau < 1.0 {
+                    self.guarded(v as usize)?;
+                    let (b0, b1) = (topo.dest(out_h)?, topo.origin(in_h)?);
+                    let lin = crate::stencil::crease_vertex(
+                        topo.position(v)?,
+                        topo.position(b0)?,
+                        topo.position(b1)?,
+                    );
+                    let p = get(self.pos, v as usize)?;
+                    set(self.pos, v as usize, toward_linear(tau, p, lin))?;
+                }
+            }
+        }
+        for e in 0..topo.num_edges() as u32 {
+            let h = topo.edge_half_edge(e)?;
+            if topo.twin(h)? != NONE || self.short_curve(h)? {
+                continue;
+            }
+            let tau = self
+                .curve_trust(h)?
+                .min(self.star_trust(topo.origin(h)?))
+                .min(self.star_trust(topo.dest(h)?));
+            if tau < 1.0 {
+                let k = start + e as usize;
+                self.guarded(k)?;
+                let p = self.boundary_segment(h)?.0;
+                let q = get(self.pos, k)?;
+                set(
+                    self.pos,
+                    k,
+                    toward_linear(tau, q, linear(p[0], p[1], p[2], p[3])),
+                )?;
+            }
+        }
+        Ok(())
     }
 
     /// Odd points of every boundary loop by the Möbius curve rule

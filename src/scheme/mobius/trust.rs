@@ -132,6 +132,47 @@ pub(super) fn f4_trust(a: Point, ea: Point, eb: Point, b: Point) -> f64 {
     ramp(libm::acos(cos.max(-1.0)), RHO_DISTRUSTED, RHO_TRUSTED)
 }
 
+/// `Re √ρ` of a curve segment at or above which its turn term trusts it
+/// ([`curve_turn_trust`]): a single turn of up to 144° between equal segments (an angle of
+/// 36° between them), every turn up to 126° of a circle's equally spaced points.
+const TURN_TRUSTED: f64 = 0.9;
+/// The same value at or below which it distrusts it: a single turn of 162° (an angle of
+/// 18° between the segments).
+const TURN_DISTRUSTED: f64 = 0.6;
+
+/// The turn term of a crease or boundary curve segment `(p0, p1, p2, p3)` whose edge point
+/// is the blend `F4(p0, p1, p2, p3)` (seed 000 §4.4.1, Eq. (3); the Möbius curve rules of
+/// §4.3), from `Re √ρ`, `ρ = cr[p2, p0, p1, p3]`: F4 puts its point where the cross-ratio is
+/// `−√ρ`, and `√ρ` reads how the four points sit.
+///
+/// In order on a line `ρ > 1` is real, so `Re √ρ > 1` (2 equally spaced); on a staircase
+/// (turns of ±90°, steps `t` times the treads) `√ρ = 1 + i t`; equally spaced on a circle,
+/// turning `θ` at each point, `√ρ = 2 cos(θ/2)`; a single turn `φ` between equal segments
+/// gives `√ρ = 2 √cos(φ/2) e^{iφ/4}`. Where the curve turns back on itself (a hairpin at
+/// `p1` or `p2`: turns of 150° and more, as the crease curves of a scanned mesh tagged at
+/// 30° make), `Re √ρ` falls toward 0 and the circle through the points is small: F4 and
+/// the curve's vertex rule put their points on it, off the polyline by most of an edge
+/// length (docs/creases.md, "Folds next to corners"), while `arg ρ` (the F4-angle term,
+/// [`f4_trust`]) can stay near 50°. A function of `ρ`, so Möbius-invariant: trust 1 at or
+/// above [`TURN_TRUSTED`], 0 at or below [`TURN_DISTRUSTED`]. With the differences of
+/// [`f4_trust`] (`A = p0 − p2`, `B = p1 − p0`, `C = p3 − p1`, `D = p2 − p3`),
+/// `ρ = A B C D / (|B|² |D|²)`, and `Re √ρ = √((|ρ| + Re ρ) / 2)`. A degenerate segment
+/// (a zero difference) gives 1: the blend's own fallback handles it.
+pub(super) fn curve_turn_trust(p0: Point, p1: Point, p2: Point, p3: Point) -> f64 {
+    let (qa, qb, qc, qd) = (sub(p0, p2), sub(p1, p0), sub(p3, p1), sub(p2, p3));
+    let re = dot(qa, qb) * dot(qc, qd) - dot(qa, qc) * dot(qb, qd) + dot(qa, qd) * dot(qb, qc);
+    let bd = dot(qb, qb) * dot(qd, qd);
+    let p2 = dot(qa, qa) * dot(qb, qb) * dot(qc, qc) * dot(qd, qd);
+    if !(p2 > 0.0 && p2.is_finite() && bd > 0.0) {
+        return 1.0;
+    }
+    let x = (crate::sqrt::sqrt(p2) + re) / (2.0 * bd);
+    if !x.is_finite() {
+        return 1.0;
+    }
+    ramp(crate::sqrt::sqrt(x.max(0.0)), TURN_DISTRUSTED, TURN_TRUSTED)
+}
+
 /// Out-of-plane spread of the tangent polygon, over its in-plane spread, at or below which a
 /// star counts as spherical, and at or above which it does not; linear between.
 const PLANAR: f64 = 1e-6;
@@ -316,6 +357,90 @@ mod tests {
         // Agreeing candidates: angle 0.
         assert_eq!(
             f4_trust([0.0; 3], [0.5, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            1.0
+        );
+    }
+    /// The turn term against `Re √ρ` of the quaternion cross-ratio itself, on random
+    /// quadruplets and on the configurations its documentation names.
+    #[test]
+    fn the_turn_term_reads_the_root_of_the_cross_ratio() {
+        use crate::mobius::MobiusMap;
+        use crate::quat::cross_ratio;
+        let mut x: u64 = 19;
+        let mut rnd = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let direct = |p: [Point; 4]| {
+            let root = cross_ratio(p[2], p[0], p[1], p[3]).unwrap().sqrt().unwrap();
+            ramp(root.w, TURN_DISTRUSTED, TURN_TRUSTED)
+        };
+        let mut seen = [false; 3];
+        for _ in 0..4000 {
+            let p: [Point; 4] = core::array::from_fn(|_| [rnd(), rnd(), rnd()]);
+            let (got, want) = (curve_turn_trust(p[0], p[1], p[2], p[3]), direct(p));
+            assert!((got - want).abs() < 1e-9, "{p:?}: {got} {want}");
+            seen[if want == 1.0 {
+                0
+            } else if want == 0.0 {
+                2
+            } else {
+                1
+            }] = true;
+            // Möbius-invariant: the same on the image under an inversion and a rotation.
+            let f = MobiusMap::inversion([3.0 * rnd(), 3.0 * rnd(), 3.0], 1.0 + rnd().abs())
+                .compose(&MobiusMap::rotation([rnd(), rnd(), 1.0], 3.0 * rnd()));
+            let q = p.map(|x| f.apply(x).unwrap());
+            let image = curve_turn_trust(q[0], q[1], q[2], q[3]);
+            assert!((image - got).abs() < 1e-7, "{p:?}: {image} {got}");
+        }
+        assert_eq!(seen, [true; 3], "every part of the ramp exercised");
+        // A single turn by `phi` (degrees) at p1 between unit segments, in the plane.
+        let turn = |phi: f64| {
+            let (c, s) = (libm::cos(phi.to_radians()), libm::sin(phi.to_radians()));
+            curve_turn_trust(
+                [-1.0, 0.0, 0.0],
+                [0.0; 3],
+                [c, s, 0.0],
+                [2.0 * c, 2.0 * s, 0.0],
+            )
+        };
+        assert_eq!(turn(0.0), 1.0);
+        assert_eq!(turn(90.0), 1.0);
+        assert_eq!(turn(143.0), 1.0);
+        assert!(turn(150.0) > 0.0 && turn(150.0) < 1.0);
+        assert_eq!(turn(163.0), 0.0);
+        assert_eq!(turn(175.0), 0.0);
+        // A staircase (Re √ρ = 1) and a short middle segment on a line (Re √ρ = 1.1):
+        // trusted.
+        let stair = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.4, 0.0],
+            [2.0, 0.4, 0.0],
+        ];
+        assert_eq!(
+            curve_turn_trust(stair[0], stair[1], stair[2], stair[3]),
+            1.0
+        );
+        // Equally spaced on a circle, `θ` apart: `√ρ = 2 cos(θ/2)`, trusted up to 126°.
+        let circle = |theta: f64| {
+            let c = [0.0, 1.0, 2.0, 3.0].map(|k: f64| {
+                let a = (theta * k).to_radians();
+                [libm::cos(a), libm::sin(a), 0.0]
+            });
+            curve_turn_trust(c[0], c[1], c[2], c[3])
+        };
+        assert_eq!(circle(100.0), 1.0);
+        assert_eq!(circle(125.0), 1.0);
+        assert_eq!(circle(150.0), 0.0);
+        let line = [[0.0; 3], [1.0, 0.0, 0.0], [1.1, 0.0, 0.0], [2.1, 0.0, 0.0]];
+        assert_eq!(curve_turn_trust(line[0], line[1], line[2], line[3]), 1.0);
+        // Degenerate segments are left to the blend's own fallback.
+        assert_eq!(
+            curve_turn_trust([0.0; 3], [0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]),
             1.0
         );
     }
