@@ -46,29 +46,69 @@ impl Driver<'_, '_, '_, '_> {
         start: usize,
         linear: &LinearEdge<'_>,
     ) -> Result<()> {
+        self.blend_edges(start, linear, false)
+    }
+
+    /// [`Driver::blend_interior_edges`] again after the fold guard's re-evaluation (step 6
+    /// of `guard.rs`). With `near_distrusted` (see [`Driver::rewind_for_blends_again`]) only
+    /// the edges with an end whose trust is below 1 are blended: the guarded pass rewrote
+    /// the candidates of such stars only, so every other edge reads the same inputs as in
+    /// the first blends and keeps their point, bit for bit.
+    pub(super) fn blend_interior_edges_again(
+        &mut self,
+        start: usize,
+        linear: &LinearEdge<'_>,
+        near_distrusted: bool,
+    ) -> Result<()> {
+        self.blend_edges(start, linear, near_distrusted)
+    }
+
+    fn blend_edges(
+        &mut self,
+        start: usize,
+        linear: &LinearEdge<'_>,
+        near_distrusted: bool,
+    ) -> Result<()> {
         let topo = self.topo;
         let ne = topo.num_edges();
         let edge_c: &[Point] = self.edge_c;
         let slots: &[f64] = self.slots;
         let corners: &[u32] = self.corners;
+        let only: Option<&[f64]> = near_distrusted.then_some(&*self.trust);
         let strict = self.strict;
         let out = self.pos.get_mut(start..start + ne).ok_or(internal())?;
         let t = pass(self.exec, out, |first, out, tally| {
             let mut f = |k: usize| chunk_fallback(strict, tally, start + k);
-            blend_edge_range(topo, (edge_c, slots), corners, first, out, &mut f, linear)
+            let inputs = EdgeSources {
+                edge_c,
+                slots,
+                corners,
+                only,
+            };
+            blend_edge_range(topo, inputs, first, out, &mut f, linear)
         })?;
         self.add_fallbacks(t);
         Ok(())
     }
 }
 
-/// The interior edge points of edges `first..first + out.len()` (boundary edges untouched),
-/// `fallback(e)` counting an edge that takes `linear(e)`.
-#[allow(clippy::too_many_arguments)]
+/// What [`blend_edge_range`] reads besides the topology: the edge candidates and their
+/// slots, the corner flags, and with `only` the star trusts that pick the edges to blend
+/// (an edge with an end below 1).
+#[derive(Clone, Copy)]
+struct EdgeSources<'a> {
+    edge_c: &'a [Point],
+    slots: &'a [f64],
+    corners: &'a [u32],
+    only: Option<&'a [f64]>,
+}
+
+/// The interior edge points of edges `first..first + out.len()` (boundary edges untouched,
+/// and with `src.only` the edges whose ends both have trust 1 or more), `fallback(e)`
+/// counting an edge that takes `linear(e)`.
 fn blend_edge_range(
     topo: &Topology<'_, '_>,
-    (edge_c, slots): (&[Point], &[f64]),
-    corners: &[u32],
+    src: EdgeSources<'_>,
     first: usize,
     out: &mut [Point],
     fallback: &mut dyn FnMut(usize) -> Result<()>,
@@ -95,6 +135,17 @@ fn blend_edge_range(
                 continue;
             }
             let (va, vb) = (topo.origin(h)?, topo.dest(h)?);
+            if let Some(trust) = src.only {
+                if get(trust, va as usize)? >= 1.0 && get(trust, vb as usize)? >= 1.0 {
+                    continue;
+                }
+            }
+            let EdgeSources {
+                edge_c,
+                slots,
+                corners,
+                ..
+            } = src;
             // Next to a corner of a sharp feature (`crease.rs`), the other end's candidate
             // alone where it has one (unless it is a corner too): a corner is no smooth
             // point, and its sector's form extrapolates one (docs/creases.md).

@@ -54,14 +54,37 @@ impl Driver<'_, '_, '_, '_> {
     /// chain's arrays are the range's share of the star workspace (nothing sized by the
     /// face-size cap on the stack, `docs/firmware.md`).
     pub(super) fn blend_faces(&mut self, start: usize) -> Result<()> {
+        self.blend_faces_where(start, false)
+    }
+
+    /// [`Driver::blend_faces`] again after the fold guard's re-evaluation (step 6 of
+    /// `guard.rs`). With `near_distrusted` (see [`Driver::rewind_for_blends_again`]) only
+    /// the faces with a corner whose trust is below 1 are blended: the guarded pass rewrote
+    /// the candidates of such stars only, so every other face reads the same inputs as in
+    /// the first blends and keeps its point, bit for bit.
+    pub(super) fn blend_faces_again(&mut self, start: usize, near_distrusted: bool) -> Result<()> {
+        self.blend_faces_where(start, near_distrusted)
+    }
+
+    fn blend_faces_where(&mut self, start: usize, near_distrusted: bool) -> Result<()> {
         let topo = self.topo;
         let nf = topo.num_faces();
         let face_c: &[Point] = self.face_c;
         let slots: &[f64] = self.slots;
+        let only: Option<&[f64]> = near_distrusted.then_some(&*self.trust);
         let strict = self.strict;
         let run = |part: &mut FacePart<'_>, tally: &mut Tally| -> Result<()> {
             for (f, o) in (part.first as u32..).zip(part.out.iter_mut()) {
                 let verts = topo.face_vertices(f)?;
+                if let Some(trust) = only {
+                    let mut all_trusted = true;
+                    for &u in verts {
+                        all_trusted &= get(trust, u as usize)? >= 1.0;
+                    }
+                    if all_trusted {
+                        continue;
+                    }
+                }
                 let face = MeshFace {
                     topo,
                     verts,

@@ -576,6 +576,20 @@ impl Driver<'_, '_, '_, '_> {
     /// Keeps the fallbacks the blends of the paper's candidates counted out of the report
     /// before they run again on the guarded candidates: `before` is the report from before
     /// the first blends, and the guard's own counts stay.
+    /// Before the blends run again on the guarded candidates (step 6): rewinds the
+    /// fallbacks to `before` (the report before the first blends) and says whether the
+    /// blends again may skip the elements next to no star of trust below 1
+    /// (`blend_interior_edges_again`, `blend_faces_again`). They may when the first blends
+    /// and the guarded pass counted no fallback: a skipped element then reads the inputs it
+    /// read the first time, where it was no fallback, so the report after the blends again
+    /// (the fallbacks among the blended elements) is the report of blending every element,
+    /// count and first element alike. Otherwise every element is blended again.
+    pub(super) fn rewind_for_blends_again(&mut self, before: MobiusReport) -> bool {
+        let none_since = self.report.fallbacks == before.fallbacks;
+        self.rewind_fallbacks(before);
+        none_since
+    }
+
     pub(super) fn rewind_fallbacks(&mut self, before: MobiusReport) {
         self.report.fallbacks = before.fallbacks;
         self.report.first_fallback = before.first_fallback;

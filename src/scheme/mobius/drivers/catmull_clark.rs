@@ -77,9 +77,9 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             rings: RINGS,
         };
         if d.guarded_pass(out, || (), star_rule)? {
-            d.rewind_fallbacks(before);
-            d.blend_faces(fp0)?;
-            d.blend_interior_edges(nv, &linear)?;
+            let near = d.rewind_for_blends_again(before);
+            d.blend_faces_again(fp0, near)?;
+            d.blend_interior_edges_again(nv, &linear, near)?;
             d.blend_toward_linear(
                 out,
                 LinearRules {

@@ -65,8 +65,8 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         };
         let again = d.guarded_pass(out, || (), star_rule)?;
         if again {
-            d.rewind_fallbacks(before);
-            d.blend_interior_edges(nv, &linear)?;
+            let near = d.rewind_for_blends_again(before);
+            d.blend_interior_edges_again(nv, &linear, near)?;
         }
         if again || d.any_crease_edge_term() {
             d.blend_toward_linear(
