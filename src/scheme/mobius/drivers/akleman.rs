@@ -206,8 +206,8 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
     // §7.2), its face candidates and its vertex point, as Catmull–Clark's, whose vertex
     // point is also made in the star's own form; then the face blends again on the guarded
     // candidates, with the fallbacks of the first blends rewound (the vertex points' stay).
-    // Without it, cow folded 21 edges at level 3 against the linear operator's 20 (a
-    // face point next to a valence-3 vertex whose paper's candidate sat far off its face).
+    // Without it, cow folded 21 edges at level 3 against the linear operator's 20 (one at a
+    // normal angle of 90.04°, `docs/folds.md` section 12).
     if d.reevaluate(out, || (), truncation_star_rule)? {
         d.rewind_fallbacks(before);
         d.blend_faces(faces)?;
