@@ -122,7 +122,7 @@ pub(super) enum CreaseEdges {
 /// points at `edges + e` (`None`: no edge points), the face points at `faces + f` (`None`: no
 /// face points), the corner points at `h` of every half-edge `h` (`corners`: Doo–Sabin's, made
 /// in the form of `h`'s origin), and how many rings around a distrusted star that reaches
-/// (`rings`, measured per scheme).
+/// (`rings`, `vertex_rings` for the vertex points, measured per scheme).
 #[derive(Clone, Copy)]
 pub(super) struct Outputs {
     pub(super) vertex: bool,
@@ -133,6 +133,10 @@ pub(super) struct Outputs {
     /// are audited); otherwise the boundary curves keep the paper's points.
     pub(super) boundary_edges: bool,
     pub(super) rings: u8,
+    /// How many rings around a distrusted star the vertex points reach: `rings` for every
+    /// scheme but dual truncation, whose vertex points take two rings, the least trust of
+    /// the face points around them (`docs/folds.md` section 12).
+    pub(super) vertex_rings: u8,
 }
 
 impl Part<'_, '_, '_> {

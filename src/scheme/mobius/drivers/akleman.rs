@@ -105,6 +105,7 @@ fn dual_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         corners: false,
         boundary_edges: false,
         rings: DUAL_RINGS,
+        vertex_rings: DUAL_RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -151,6 +152,7 @@ fn insertion_guard(d: &mut Driver<'_, '_, '_, '_>, faces: usize) -> Result<()> {
         corners: false,
         boundary_edges: false,
         rings: RINGS,
+        vertex_rings: RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -200,7 +202,8 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         faces: Some(faces),
         corners: false,
         boundary_edges: false,
-        rings: TRUNCATION_VERTEX_RINGS,
+        rings: RINGS,
+        vertex_rings: TRUNCATION_VERTEX_RINGS,
     };
     // Step 5 of `guard.rs`: the rules of every distrusted star again in `m_τ` (seed 000
     // §7.2), its face candidates and its vertex point, as Catmull–Clark's, whose vertex
@@ -221,16 +224,7 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         face: &face_centroid,
         corner: &no_corner,
     };
-    d.blend_toward_linear(Outputs { faces: None, ..out }, linear, false)?;
-    d.blend_toward_linear(
-        Outputs {
-            vertex: false,
-            rings: RINGS,
-            ..out
-        },
-        linear,
-        false,
-    )
+    d.blend_toward_linear(out, linear, false)
 }
 
 /// The rules of dual truncation at one star in its frame (the canonical form, or the guard's
