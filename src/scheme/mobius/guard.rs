@@ -1,5 +1,6 @@
-//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark; Kobbelt,
-//! Doo–Sabin, Simplest and Akleman's operators run steps 1–4 and 7 of it, in their drivers):
+//! The fold guard of the Möbius drivers (Loop, Modified Butterfly, Catmull–Clark, and dual
+//! truncation in its driver; Kobbelt, Doo–Sabin, Simplest, Akleman's dual and vertex insertion
+//! run steps 1–4 and 7 of it, in their drivers):
 //! seed 000
 //! §7.1 notes that canonical Möbius subdivision can fold a mesh; `docs/folds.md` traces the
 //! folds to ill-conditioned canonical forms. The guard keeps the paper's rules wherever the
@@ -121,7 +122,7 @@ pub(super) enum CreaseEdges {
 /// points at `edges + e` (`None`: no edge points), the face points at `faces + f` (`None`: no
 /// face points), the corner points at `h` of every half-edge `h` (`corners`: Doo–Sabin's, made
 /// in the form of `h`'s origin), and how many rings around a distrusted star that reaches
-/// (`rings`, measured per scheme).
+/// (`rings`, `vertex_rings` for the vertex points, measured per scheme).
 #[derive(Clone, Copy)]
 pub(super) struct Outputs {
     pub(super) vertex: bool,
@@ -132,6 +133,10 @@ pub(super) struct Outputs {
     /// are audited); otherwise the boundary curves keep the paper's points.
     pub(super) boundary_edges: bool,
     pub(super) rings: u8,
+    /// How many rings around a distrusted star the vertex points reach: `rings` for every
+    /// scheme but dual truncation, whose vertex points take two rings, the least trust of
+    /// the face points around them (`docs/folds.md` section 12).
+    pub(super) vertex_rings: u8,
 }
 
 impl Part<'_, '_, '_> {
@@ -382,10 +387,26 @@ impl Driver<'_, '_, '_, '_> {
         if !self.guard {
             return Ok(false);
         }
-        let topo = self.topo;
         // Spherical stars of valence 4 or more keep the paper's rule (`trust::sphericity`),
         // before any star is evaluated again.
         self.raise_spherical(|valence| valence >= 4)?;
+        self.reevaluate(out, bufs, rule)
+    }
+
+    /// Step 5 (module docs) alone, on the trust as it stands: [`Driver::guarded_pass`]
+    /// without its raise of spherical stars, for a driver that raised them already
+    /// (dual truncation, by [`Driver::raise_spherical_quads`]; raising twice would move the
+    /// trust the audit decided). Whether any star was evaluated; without the guard, nothing.
+    pub(super) fn reevaluate<B>(
+        &mut self,
+        out: Outputs,
+        bufs: impl Fn() -> B + Sync,
+        rule: impl Fn(&mut Part<'_, '_, '_>, &mut Star<'_, Spectrum>, &mut B) -> Result<()> + Sync,
+    ) -> Result<bool> {
+        if !self.guard {
+            return Ok(false);
+        }
+        let topo = self.topo;
         let slots = self.slots;
         let run = |g: &mut Guarded<'_, '_, '_>, _: &mut Tally| -> Result<()> {
             let mut form = StarForm::blank();

@@ -15,7 +15,9 @@
 //! point). Moving only the points of the distrusted stars themselves put linear points next
 //! to the paper's points, and that seam folded (Loop epcot: 240 folded edges at level 1 with
 //! every distrusted point fully linear); reaching two rings further (Loop, Butterfly) or one
-//! (Catmull–Clark) spreads the change over the stars around. The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
+//! (Catmull–Clark) spreads the change over the stars around; dual truncation's vertex points
+//! reach two rings and its face points one (`Outputs::vertex_rings`), so that a vertex point
+//! is no more trusted than the face points around it (`docs/folds.md` section 12). The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
 //! points move, and by how much, is decided by `τ` alone, so it stays Möbius-invariant; the
 //! blend itself is equivariant under similarities only, like every fallback toward the
 //! linear rule. This runs only when some star is distrusted (`Driver::guarded_pass`), so a
@@ -172,7 +174,8 @@ impl Driver<'_, '_, '_, '_> {
         let nv = topo.num_vertices();
         let ring = self.radius.get_mut(..nv).ok_or(internal())?;
         let rings2 = self.centre.get_mut(..nv).ok_or(internal())?;
-        if rings > 0 {
+        let vertex_rings = out.vertex_rings;
+        if rings > 0 || (out.vertex && vertex_rings > 0) {
             ring_trust(self.exec, topo, trust, ring, rings2)?;
         }
         let (ring, rings2): (&[f64], &[Point]) = (ring, rings2);
@@ -201,7 +204,7 @@ impl Driver<'_, '_, '_, '_> {
                     if topo.is_isolated(v)? || topo.is_boundary_vertex(v)? {
                         continue;
                     }
-                    let tau = near_trust(trust, ring, rings2, v, rings)?;
+                    let tau = near_trust(trust, ring, rings2, v, vertex_rings)?;
                     if tau < 1.0 {
                         act(t, v as usize, tau, o, &|| {
                             linear_vertex(topo, v, topo.position(v)?)

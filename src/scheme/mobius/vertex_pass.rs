@@ -498,6 +498,19 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
         keep_boundary: bool,
         linear: impl Fn(&Topology<'_, '_>, u32, Point) -> Result<Point> + Sync,
     ) -> Result<()> {
+        self.finish_vertex_points_counted(keep_boundary, linear)?;
+        Ok(())
+    }
+
+    /// [`Driver::finish_vertex_points`], which also returns the fallbacks it counted: a
+    /// driver that blends its face points again after the fold guard's re-evaluation
+    /// (dual truncation, whose face blends run before its vertex pass) rewinds the report to
+    /// before its first face blends and adds these back.
+    pub(super) fn finish_vertex_points_counted(
+        &mut self,
+        keep_boundary: bool,
+        linear: impl Fn(&Topology<'_, '_>, u32, Point) -> Result<Point> + Sync,
+    ) -> Result<Tally> {
         let topo = self.topo;
         let strict = self.strict;
         let nv = topo.num_vertices();
@@ -523,6 +536,6 @@ impl<'m, 's> Driver<'_, 'm, 's, '_> {
             Ok(())
         })?;
         self.add_fallbacks(t);
-        Ok(())
+        Ok(t)
     }
 }

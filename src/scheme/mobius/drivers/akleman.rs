@@ -6,10 +6,12 @@
 
 use super::super::audit::Children;
 use super::super::driver::Driver;
-use super::super::form::{MapBack, ORIGIN};
+use super::super::form::{Frame, ORIGIN};
 use super::super::guard::Outputs;
 use super::super::toward_linear::{face_centroid, no_corner, LinearRules};
+use super::super::vertex_pass::{Part, Star};
 use super::super::workspace::take;
+use super::super::MobiusReport;
 use crate::blend::f4;
 use crate::error::Result;
 use crate::mesh::gather::ring_sum;
@@ -19,12 +21,13 @@ use crate::scheme::carry::{append_isolated, boundary_vertices, copy_old};
 use crate::stencil::akleman;
 
 /// The face candidates of every corner (the face centroid in the corner's form, ears in a
-/// substitute's) blended into face points at `start + f`.
+/// substitute's) blended into face points at `start + f`; the report from before the blends
+/// (dual truncation blends again after its guard's re-evaluation, [`dual_truncation`]).
 fn face_points(
     d: &mut Driver<'_, '_, '_, '_>,
     start: usize,
     keep_boundary_forms: bool,
-) -> Result<()> {
+) -> Result<MobiusReport> {
     let topo = d.topo;
     d.vertex_pass(
         false,
@@ -43,7 +46,9 @@ fn face_points(
         },
     )?;
     d.ear_face_candidates()?;
-    d.blend_faces(start)
+    let before = d.report;
+    d.blend_faces(start)?;
+    Ok(before)
 }
 
 /// Akleman's dual: face points, then a point on each boundary vertex's outgoing boundary edge
@@ -100,6 +105,7 @@ fn dual_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         corners: false,
         boundary_edges: false,
         rings: DUAL_RINGS,
+        vertex_rings: DUAL_RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -146,6 +152,7 @@ fn insertion_guard(d: &mut Driver<'_, '_, '_, '_>, faces: usize) -> Result<()> {
         corners: false,
         boundary_edges: false,
         rings: RINGS,
+        vertex_rings: RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -156,40 +163,34 @@ fn insertion_guard(d: &mut Driver<'_, '_, '_, '_>, faces: usize) -> Result<()> {
     d.blend_toward_linear(out, linear, false)
 }
 
+/// How far around a distrusted star dual truncation's vertex points move toward the linear
+/// rule: two rings, the least trust of the face points around the vertex (each takes the
+/// least of its corners' closed 1-rings, [`RINGS`]), measured (`docs/folds.md` section 12).
+/// With one ring, a vertex two rings from a distrusted star kept the paper's point while a
+/// face point next to it took the linear one, and the child triangle `(v', p_{i−1}, p_i)`
+/// between them folded (bunny: 2 / 2 / 1 folded edges at levels 1 / 2 / 3, linear
+/// 1 / 0 / 0).
+const TRUNCATION_VERTEX_RINGS: u8 = 2;
+
 /// Akleman's dual truncation: the face points, then every interior old vertex moved by the
-/// truncation rule in its own form; boundary vertices stay (as in the linear scheme).
+/// truncation rule in its own form; boundary vertices stay (as in the linear scheme). Then the
+/// fold guard.
 pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
     let topo = d.topo;
-    face_points(d, topo.num_vertices(), true)?;
+    let faces = topo.num_vertices();
+    let before = face_points(d, faces, true)?;
     d.clear_vertex_points()?;
-    d.vertex_pass(
-        true,
-        || (),
-        |p, star, _| {
-            p.with_work(|p, mut work| {
-                let ring = take(&mut work, star.spokes.len())?;
-                if !star.boundary && star.ring_images(topo, ring)? {
-                    let t = akleman::truncated_vertex(ORIGIN, ring);
-                    if let Ok(q) = t.and_then(|t| star.form.back(t)) {
-                        p.set_vertex(star.v, q)?;
-                    }
-                }
-                Ok(())
-            })
-        },
-    )?;
+    d.vertex_pass(true, || (), truncation_star_rule)?;
     let linear_vertex = |t: &Topology<'_, '_>, v: u32, p: Point| -> Result<Point> {
         let (n, ring) = ring_sum(t, v)?;
         akleman::truncated_vertex_sum(p, n, ring)
     };
-    d.finish_vertex_points(true, linear_vertex)?;
+    let vertex_fallbacks = d.finish_vertex_points_counted(true, linear_vertex)?;
     if !d.guard {
         return Ok(());
     }
-    // The fold guard, as vertex insertion's ([`insertion_guard`]), on the fan of triangles
-    // `(v', p_{i−1}, p_i)` around each moved vertex; the vertex points move toward the linear
-    // truncation rule too.
-    let faces = topo.num_vertices();
+    // The fold guard (`guard.rs`), as vertex insertion's ([`insertion_guard`]), on the fan of
+    // triangles `(v', p_{i−1}, p_i)` around each moved vertex.
     d.audit(Children::FacePoints { faces })?;
     d.raise_spherical_quads()?;
     if d.trust.iter().all(|&t| t >= 1.0) {
@@ -202,7 +203,21 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         corners: false,
         boundary_edges: false,
         rings: RINGS,
+        vertex_rings: TRUNCATION_VERTEX_RINGS,
     };
+    // Step 5 of `guard.rs`: the rules of every distrusted star again in `m_τ` (seed 000
+    // §7.2), its face candidates and its vertex point, as Catmull–Clark's, whose vertex
+    // point is also made in the star's own form; then the face blends again on the guarded
+    // candidates, with the fallbacks of the first blends rewound (the vertex points' stay).
+    // Without it, cow folded 21 edges at level 3 against the linear operator's 20 (one at a
+    // normal angle of 90.04°, `docs/folds.md` section 12).
+    if d.reevaluate(out, || (), truncation_star_rule)? {
+        d.rewind_fallbacks(before);
+        d.blend_faces(faces)?;
+        d.add_fallbacks(vertex_fallbacks);
+    }
+    // Step 7: every point near a distrusted star toward the linear rule, the vertex points
+    // within two rings, the face points within one ring of their corners.
     let linear = LinearRules {
         vertex: &linear_vertex,
         edge: &|_, _| Err(crate::mesh::internal()),
@@ -210,4 +225,33 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         corner: &no_corner,
     };
     d.blend_toward_linear(out, linear, false)
+}
+
+/// The rules of dual truncation at one star in its frame (the canonical form, or the guard's
+/// `m_τ`): the truncation rule `(1 − t) v + t · mean(ring)` on the ring's images, mapped
+/// back, for an interior star whose ring the frame maps; in `m_τ` (the guard's
+/// re-evaluation, `guard.rs` step 5) also its face candidates, the face centroids in the
+/// frame, which the canonical pass kept from [`face_points`].
+fn truncation_star_rule<F: Frame>(
+    p: &mut Part<'_, '_, '_>,
+    star: &mut Star<'_, F>,
+    _: &mut (),
+) -> Result<()> {
+    let topo = p.topo;
+    p.with_work(|p, mut work| {
+        let n = star.spokes.len();
+        if !F::CANONICAL {
+            let fc = take(&mut work, n)?;
+            star.face_centroids(topo, fc)?;
+            p.keep_face_candidates(star, fc)?;
+        }
+        let ring = take(&mut work, n)?;
+        if !star.boundary && star.ring_images(topo, ring)? {
+            let t = akleman::truncated_vertex(ORIGIN, ring);
+            if let Ok(q) = t.and_then(|t| star.form.back(t)) {
+                p.set_vertex(star.v, q)?;
+            }
+        }
+        Ok(())
+    })
 }

@@ -51,6 +51,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             corners: false,
             boundary_edges: false,
             rings: RINGS,
+            vertex_rings: RINGS,
         };
         let again = d.guarded_pass(out, || (), star_rule)?;
         if again {

@@ -75,6 +75,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             corners: false,
             boundary_edges: false,
             rings: RINGS,
+            vertex_rings: RINGS,
         };
         if d.guarded_pass(out, || (), star_rule)? {
             let near = d.rewind_for_blends_again(before);

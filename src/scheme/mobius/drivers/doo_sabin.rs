@@ -91,6 +91,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         corners: true,
         boundary_edges: false,
         rings: RINGS,
+        vertex_rings: RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),

@@ -70,6 +70,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         corners: false,
         boundary_edges: false,
         rings: RINGS,
+        vertex_rings: RINGS,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),

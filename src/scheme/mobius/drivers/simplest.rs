@@ -91,6 +91,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>, linear: &LinearEdge<'_>) -> Result
         corners: false,
         boundary_edges: true,
         rings: RINGS,
+        vertex_rings: RINGS,
     };
     let rules = LinearRules {
         vertex: &|_, _, p| Ok(p),
