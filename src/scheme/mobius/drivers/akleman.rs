@@ -212,8 +212,8 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
     // Without it, cow folded 21 edges at level 3 against the linear operator's 20 (one at a
     // normal angle of 90.04°, `docs/folds.md` section 12).
     if d.reevaluate(out, || (), truncation_star_rule)? {
-        d.rewind_fallbacks(before);
-        d.blend_faces(faces)?;
+        let near = d.rewind_for_blends_again(before);
+        d.blend_faces_again(faces, near)?;
         d.add_fallbacks(vertex_fallbacks);
     }
     // Step 7: every point near a distrusted star toward the linear rule, the vertex points
