@@ -468,12 +468,14 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// Raises the trust of every distrusted star whose valence `pick` selects toward 1 by its
-    /// sphericity, `τ ← τ + (1 − τ)·s` (`trust::sphericity`; step 4 of the module docs).
+    /// sphericity, `τ ← τ + (1 − τ)·s` (`trust::sphericity`; step 4 of the module docs), and
+    /// says whether it changed any trust.
     /// Out of line, so that its star form is off the stack before the re-evaluation makes
     /// its own.
     #[inline(never)]
-    pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<()> {
+    pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<bool> {
         let mut form = StarForm::blank();
+        let mut raised = false;
         // The spokes and tangent polygons in the workspaces (no other pass holds them now).
         let spoke_work = core::mem::take(&mut self.spoke_work);
         let mut spokes = Spokes::new(&mut *spoke_work);
@@ -491,10 +493,12 @@ impl Driver<'_, '_, '_, '_> {
                 if pick(spokes.len()) {
                     let t = tangents.get(..spokes.len()).ok_or(internal())?;
                     let s = sphericity(t, form.centre());
-                    set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
+                    let raised_tau = tau + (1.0 - tau) * s;
+                    raised |= raised_tau != tau;
+                    set(self.trust, v as usize, raised_tau)?;
                 }
             }
-            Ok(())
+            Ok(raised)
         })();
         self.work = tangents;
         self.spoke_work = spoke_work;

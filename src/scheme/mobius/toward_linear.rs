@@ -146,12 +146,11 @@ impl Driver<'_, '_, '_, '_> {
         linear: LinearRules<'_>,
         raise_valence_3: bool,
     ) -> Result<()> {
-        let counted = self.each_point(out, false, linear)?;
+        let counted = self.each_point(out, false, linear, true)?;
         self.add_guarded(counted);
-        if raise_valence_3 {
-            self.raise_spherical(|valence| valence == 3)?;
-        }
-        self.each_point(out, true, linear)?;
+        let raised = raise_valence_3 && self.raise_spherical(|valence| valence == 3)?;
+        // The ring trusts of the count serve the blend unless the raise changed a trust.
+        self.each_point(out, true, linear, raised)?;
         Ok(())
     }
 
@@ -162,8 +161,16 @@ impl Driver<'_, '_, '_, '_> {
 
     /// One pass over each kind of point `out` names, split into ranges ([`crate::exec`]: a
     /// point depends only on itself and the trust), for every point whose `τ` is below 1:
-    /// counts it (strict: refuses it), or with `blend` moves it.
-    fn each_point(&mut self, out: Outputs, blend: bool, linear: LinearRules<'_>) -> Result<Tally> {
+    /// counts it (strict: refuses it), or with `blend` moves it. With `find_rings` it first
+    /// finds each vertex's least trust within one and two rings ([`ring_trust`]); without,
+    /// it reads those of the pass before, on the same trusts.
+    fn each_point(
+        &mut self,
+        out: Outputs,
+        blend: bool,
+        linear: LinearRules<'_>,
+        find_rings: bool,
+    ) -> Result<Tally> {
         let (linear_vertex, linear_edge, linear_face) = (linear.vertex, linear.edge, linear.face);
         let linear_corner = linear.corner;
         let topo = self.topo;
@@ -175,7 +182,7 @@ impl Driver<'_, '_, '_, '_> {
         let ring = self.radius.get_mut(..nv).ok_or(internal())?;
         let rings2 = self.centre.get_mut(..nv).ok_or(internal())?;
         let vertex_rings = out.vertex_rings;
-        if rings > 0 || (out.vertex && vertex_rings > 0) {
+        if find_rings && (rings > 0 || (out.vertex && vertex_rings > 0)) {
             ring_trust(self.exec, topo, trust, ring, rings2)?;
         }
         let (ring, rings2): (&[f64], &[Point]) = (ring, rings2);
