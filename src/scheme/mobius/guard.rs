@@ -24,12 +24,16 @@
 //!    commute with every Möbius map);
 //! 5. for every star with `τ_v < 1`, in vertex order, the same rules again in `m_τ`,
 //!    overwriting that star's candidates and vertex point ([`Driver::guarded_pass`]);
-//! 6. when step 5 evaluated any star, the blends again, on the guarded candidates, and the
-//!    boundary curves;
+//! 6. when step 5 evaluated any star, the blends again, on the guarded candidates, of the
+//!    edges and faces next to a star of trust below 1 (of every one when the step has
+//!    counted a fallback; [`Driver::rewind_for_blends_again`]);
 //! 7. every point near a distrusted star, and every distrusted edge at a crease, moves
 //!    toward the linear rule's point by `1 − τ²` (`toward_linear.rs`), so that a fully
 //!    distrusted element is the linear rule; these points are counted (or the first refused
-//!    in strict mode).
+//!    in strict mode);
+//! 8. on a level cut along its sharp edges (Loop, Butterfly, Catmull–Clark, Kobbelt), the
+//!    crease curves' points toward the linear curve rule by the trust of their segments'
+//!    cross-ratios and of their crease stars (`boundary.rs`, [`Driver::guard_curves`]).
 //!
 //! The trust is decided on the paper's candidates and output only (steps 1–3), never on
 //! re-evaluated ones, so it does not depend on the order of the stars and stays
