@@ -256,6 +256,17 @@ pub(super) fn sphericity_with(
 mod tests {
     use super::*;
 
+    /// A reproducible stream in `[-1, 1)`.
+    fn stream(seed: u64) -> impl FnMut() -> f64 {
+        let mut x = seed;
+        move || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
     #[test]
     fn constants_are_the_documented_thresholds() {
         assert!((LN_SPREAD_TRUSTED - libm::log(4.0)).abs() < 1e-15);
@@ -329,13 +340,7 @@ mod tests {
     #[test]
     fn f4_angle_matches_the_cross_ratio() {
         use crate::quat::cross_ratio;
-        let mut x: u64 = 7;
-        let mut rnd = || {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = stream(7);
         let mut seen = [false; 3];
         for _ in 0..2000 {
             let p: [Point; 4] = core::array::from_fn(|_| [rnd(), rnd(), rnd()]);
@@ -366,13 +371,7 @@ mod tests {
     fn the_turn_term_reads_the_root_of_the_cross_ratio() {
         use crate::mobius::MobiusMap;
         use crate::quat::cross_ratio;
-        let mut x: u64 = 19;
-        let mut rnd = || {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = stream(19);
         let direct = |p: [Point; 4]| {
             let root = cross_ratio(p[2], p[0], p[1], p[3]).unwrap().sqrt().unwrap();
             ramp(root.w, TURN_DISTRUSTED, TURN_TRUSTED)
