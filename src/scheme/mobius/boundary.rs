@@ -214,7 +214,10 @@ impl Driver<'_, '_, '_, '_> {
         }
         for e in 0..topo.num_edges() as u32 {
             let h = topo.edge_half_edge(e)?;
-            if topo.twin(h)? != NONE || self.short_curve(h)? {
+            // A short curve, and a segment between two corners (its midpoint, `boundary_segment`),
+            // already take the linear curve rule.
+            if topo.twin(h)? != NONE || self.short_curve(h)? || self.corner_ends(h)? == (true, true)
+            {
                 continue;
             }
             let tau = self
