@@ -906,19 +906,9 @@ fn fan_sine_about(centre: Point, fan: &[Point], n: Point) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::super::trust::newell;
+    use super::super::trust::tests::stream;
     use super::*;
     use crate::sqrt::sqrt;
-
-    /// A reproducible stream in `[-1, 1)`.
-    fn stream(seed: u64) -> impl FnMut() -> f64 {
-        let mut x = seed;
-        move || {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
-    }
 
     /// Scales from subnormal products to overflowing ones.
     const SCALES: [f64; 6] = [1e-170, 1e-80, 1.0, 3.0, 1e80, 1e160];

@@ -253,11 +253,11 @@ pub(super) fn sphericity_with(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    /// A reproducible stream in `[-1, 1)`.
-    fn stream(seed: u64) -> impl FnMut() -> f64 {
+    /// A reproducible stream in `[-1, 1)` (the audit's tests use it too).
+    pub(in crate::scheme::mobius) fn stream(seed: u64) -> impl FnMut() -> f64 {
         let mut x = seed;
         move || {
             x = x
