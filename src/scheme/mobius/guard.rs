@@ -136,6 +136,7 @@ pub(super) struct Outputs {
     /// Whether the boundary edge points move too (the simplest scheme, whose boundary stars
     /// are audited); otherwise the boundary curves keep the paper's points.
     pub(super) boundary_edges: bool,
+    /// 0 to 3 rings: 1 for most schemes, 2 for Loop and Butterfly, 3 for Akleman's dual.
     pub(super) rings: u8,
     /// How many rings around a distrusted star the vertex points reach: `rings` for every
     /// scheme but dual truncation, whose vertex points take two rings, the least trust of

@@ -17,7 +17,8 @@
 //! every distrusted point fully linear); reaching two rings further (Loop, Butterfly) or one
 //! (Catmull–Clark) spreads the change over the stars around; dual truncation's vertex points
 //! reach two rings and its face points one (`Outputs::vertex_rings`), so that a vertex point
-//! is no more trusted than the face points around it (`docs/folds.md` section 12). The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
+//! is no more trusted than the face points around it, and the dual's face points reach three
+//! rings (`docs/folds.md` section 12). The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
 //! points move, and by how much, is decided by `τ` alone, so it stays Möbius-invariant; the
 //! blend itself is equivariant under similarities only, like every fallback toward the
 //! linear rule. This runs only when some star is distrusted (`Driver::guarded_pass`), so a
@@ -29,7 +30,7 @@ use super::guard::Outputs;
 use crate::error::Result;
 use crate::exec::{pass, Tally};
 use crate::mesh::gather::face_sum;
-use crate::mesh::{get, internal, set, Topology, NONE};
+use crate::mesh::{get, internal, Topology, NONE};
 use crate::point::{lin2, Point};
 use crate::stencil::centroid_of_sum;
 
@@ -82,55 +83,74 @@ pub(super) fn toward_linear(tau: f64, p: Point, p_lin: Point) -> Point {
     lin2(w, p, 1.0 - w, p_lin)
 }
 
-/// The least trust of the stars within `rings` (0, 1 or 2) rings of `v`, `v` included: its
+/// The least trust of the stars within `rings` (0, 1, 2 or 3) rings of `v`, `v` included: its
 /// trust, or the minimum [`ring_trust`] kept for it.
 fn near_trust(trust: &[f64], ring: &[f64], rings2: &[Point], v: u32, rings: u8) -> Result<f64> {
     match rings {
         0 => get(trust, v as usize),
         1 => get(ring, v as usize),
-        _ => Ok(get(rings2, v as usize)?[0]),
+        2 => Ok(get(rings2, v as usize)?[0]),
+        _ => Ok(get(rings2, v as usize)?[1]),
     }
 }
 
 /// Keeps, for every vertex `v`, the least trust of its closed 1-ring (`v` and its
-/// neighbours) in `ring[v]`, and that of its closed 2-ring in the first coordinate of
-/// `rings2[v]`, each where it is below 1, and 1 elsewhere (a point whose `τ` is 1 or more
-/// keeps the paper's point, whatever the value): the closed 2-ring of `v` is the union of
-/// the closed 1-rings of `v` and its neighbours, so each point's `τ` is one look-up instead of
-/// a walk over two rings per point ([`near_trust`]).
+/// neighbours) in `ring[v]`, that of its closed 2-ring in the first coordinate of
+/// `rings2[v]` and, with `three`, that of its closed 3-ring in the second, each where it is
+/// below 1, and 1 elsewhere (a point whose `τ` is 1 or more keeps the paper's point, whatever
+/// the value): the closed `k + 1`-ring of `v` is the union of the closed `k`-rings of `v`
+/// and its neighbours, so each point's `τ` is one look-up instead of a walk over the rings
+/// per point ([`near_trust`]).
 ///
 /// Found by scattering each trust below 1 to its closed 1-ring (and each such 1-ring value to
-/// its closed 1-ring), not by gathering at every vertex: the guard distrusts few stars (on
-/// Catmull–Clark spot_quad, 3 levels, about 1 % of the output), so the walks are few. A
-/// least value is the same in whatever order its set is walked, so the result is the
-/// gathering's for every value below 1, bit for bit; the scatter runs on the calling
-/// thread (two stars may share a neighbour).
+/// its closed 1-ring, and so on), not by gathering at every vertex: the guard distrusts few
+/// stars (on Catmull–Clark spot_quad, 3 levels, about 1 % of the output), so the walks are
+/// few. A least value is the same in whatever order its set is walked, so the result is the
+/// gathering's for every value below 1, bit for bit; the scatter runs on the calling thread
+/// (two stars may share a neighbour).
 fn ring_trust(
     topo: &Topology<'_, '_>,
     trust: &[f64],
     ring: &mut [f64],
     rings2: &mut [Point],
+    three: bool,
 ) -> Result<()> {
     ring.fill(1.0);
-    rings2.fill([1.0, 0.0, 0.0]);
+    rings2.fill([1.0, 1.0, 0.0]);
+    // Lowers the value `field` picks in `xs[u]` to `t` for `u` in the closed 1-ring of `v`.
+    fn spread<T>(
+        topo: &Topology<'_, '_>,
+        v: u32,
+        t: f64,
+        xs: &mut [T],
+        field: fn(&mut T) -> &mut f64,
+    ) -> Result<()> {
+        let mut lower = |u: usize| -> Result<()> {
+            let x = field(xs.get_mut(u).ok_or(internal())?);
+            *x = x.min(t);
+            Ok(())
+        };
+        lower(v as usize)?;
+        for s in topo.star(v) {
+            lower(s.neighbour as usize)?;
+        }
+        Ok(())
+    }
     for (v, &t) in (0u32..).zip(trust.iter()) {
         if t < 1.0 {
-            set(ring, v as usize, get(ring, v as usize)?.min(t))?;
-            for s in topo.star(v) {
-                let u = s.neighbour as usize;
-                set(ring, u, get(ring, u)?.min(t))?;
-            }
+            spread(topo, v, t, ring, |x| x)?;
         }
     }
     for (v, &t) in (0u32..).zip(ring.iter()) {
         if t < 1.0 {
-            let spread = |rings2: &mut [Point], u: usize| -> Result<()> {
-                let r = get(rings2, u)?;
-                set(rings2, u, [r[0].min(t), 0.0, 0.0])
-            };
-            spread(rings2, v as usize)?;
-            for s in topo.star(v) {
-                spread(rings2, s.neighbour as usize)?;
+            spread(topo, v, t, rings2, |r| &mut r[0])?;
+        }
+    }
+    if three {
+        for v in 0..rings2.len() as u32 {
+            let t = get(rings2, v as usize)?[0];
+            if t < 1.0 {
+                spread(topo, v, t, rings2, |r| &mut r[1])?;
             }
         }
     }
@@ -192,7 +212,8 @@ impl Driver<'_, '_, '_, '_> {
         let rings2 = self.centre.get_mut(..nv).ok_or(internal())?;
         let vertex_rings = out.vertex_rings;
         if find_rings && (rings > 0 || (out.vertex && vertex_rings > 0)) {
-            ring_trust(topo, trust, ring, rings2)?;
+            let three = rings > 2 || (out.vertex && vertex_rings > 2);
+            ring_trust(topo, trust, ring, rings2, three)?;
         }
         let (ring, rings2): (&[f64], &[Point]) = (ring, rings2);
         // Counts the point at `element`, or moves `o` to `toward_linear(τ, o, lin())`.
