@@ -268,7 +268,11 @@ fn an_open_crease_between_corners_is_the_open_mobius_curve() {
         let infs = vec![INF; creases.len()];
         let tags = Tags::new().creases(&creases, &infs);
         let poly: Vec<Point> = row.iter().map(|&v| m.positions[v as usize]).collect();
-        let levels = level_meshes(&m, mobius(s, 1), &tags, 3);
+        // The paper's rules (`literal`): the fold guard may move crease points of this
+        // jittered grid toward the linear curve rule with the interior points around them,
+        // counted (below).
+        let levels = level_meshes(&m, mobius(s, 1).literal(true), &tags, 3);
+        guarded_where_it_differs(s, &m, &tags, &levels);
         let scale = diameter(&poly);
         for k in 1..=3 {
             let chain = descendants(&levels[..=k], &row, false);

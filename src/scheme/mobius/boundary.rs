@@ -161,6 +161,26 @@ impl Driver<'_, '_, '_, '_> {
         self.trust.get(v as usize).copied().unwrap_or(1.0).min(1.0)
     }
 
+    /// The least trust of the elements near crease vertex `v` (an end of a crease edge
+    /// point, or a crease vertex point): of the stars within `rings` rings of `v` (`v`
+    /// included; [`Driver::star_trust`]), the reach of the blend toward the linear rule of the
+    /// scheme's interior points (`toward_linear.rs`), and of the edges at those stars (their
+    /// crease edge terms, `Driver::crease_edge_terms`, which move those edges' points). So a
+    /// crease point moves with the interior points around it instead of keeping the paper's
+    /// point between linear ones, a seam that folded next to the corners of tagged scanned
+    /// meshes (`docs/creases.md`, "Folds next to corners"). Walked per point: only crease
+    /// points ask, and only when some element is distrusted.
+    fn near_trust(&self, v: u32, rings: u8) -> Result<f64> {
+        let mut t = self.star_trust(v);
+        for s in self.topo.star(v) {
+            t = t.min(self.edge_trust.get(s.edge as usize).copied().unwrap_or(1.0));
+            if rings > 0 {
+                t = t.min(self.near_trust(s.neighbour, rings - 1)?);
+            }
+        }
+        Ok(t)
+    }
+
     /// The fold guard of the crease curves, after the rest of the step's guard (whose audit
     /// has read the paper's curve points): every edge point of a crease curve moves toward
     /// the linear curve rule `linear(P_{i−1}, a, b, P_{i+2})`, and with `approximating`
@@ -180,10 +200,17 @@ impl Driver<'_, '_, '_, '_> {
         start: usize,
         linear: fn(Point, Point, Point, Point) -> Point,
         approximating: bool,
+        rings: u8,
     ) -> Result<()> {
         if !self.guard || self.corners.is_empty() {
             return Ok(());
         }
+        // Without a distrusted star or edge every term is 1: no walks.
+        let rings = if self.trust.iter().all(|&t| t >= 1.0) && !self.any_crease_edge_term() {
+            0
+        } else {
+            rings
+        };
         let topo = self.topo;
         if approximating {
             for v in 0..topo.num_vertices() as u32 {
@@ -198,7 +225,7 @@ impl Driver<'_, '_, '_, '_> {
                 let tau = self
                     .curve_trust(out_h)?
                     .min(self.curve_trust(in_h)?)
-                    .min(self.star_trust(v));
+                    .min(self.near_trust(v, rings)?);
                 if tau < 1.0 {
                     self.guarded(v as usize)?;
                     let (b0, b1) = (topo.dest(out_h)?, topo.origin(in_h)?);
@@ -222,8 +249,8 @@ impl Driver<'_, '_, '_, '_> {
             }
             let tau = self
                 .curve_trust(h)?
-                .min(self.star_trust(topo.origin(h)?))
-                .min(self.star_trust(topo.dest(h)?));
+                .min(self.near_trust(topo.origin(h)?, rings)?)
+                .min(self.near_trust(topo.dest(h)?, rings)?);
             if tau < 1.0 {
                 let k = start + e as usize;
                 self.guarded(k)?;

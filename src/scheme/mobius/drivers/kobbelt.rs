@@ -36,7 +36,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     if d.guard {
         fold_guard(d)?;
         // The crease curves (`boundary.rs`), on a level cut along its sharp edges.
-        d.guard_curves(d.topo.num_vertices(), kobbelt::four_point, false)?;
+        d.guard_curves(d.topo.num_vertices(), kobbelt::four_point, false, RINGS)?;
     }
     Ok(())
 }

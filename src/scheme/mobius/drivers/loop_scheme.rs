@@ -82,7 +82,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             )?;
         }
         // The crease curves (`boundary.rs`), on a level cut along its sharp edges.
-        d.guard_curves(nv, |_, a, b, _| loop_scheme::edge_boundary(a, b), true)?;
+        d.guard_curves(
+            nv,
+            |_, a, b, _| loop_scheme::edge_boundary(a, b),
+            true,
+            RINGS,
+        )?;
     }
     Ok(())
 }
