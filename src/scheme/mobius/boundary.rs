@@ -171,12 +171,27 @@ impl Driver<'_, '_, '_, '_> {
     /// meshes (`docs/creases.md`, "Folds next to corners"). Walked per point: only crease
     /// points ask, and only when some element is distrusted.
     fn near_trust(&self, v: u32, rings: u8) -> Result<f64> {
+        // Nested walks rather than recursion: the firmware's static stack bound needs a call
+        // graph without cycles (`docs/firmware.md`). `rings` is at most 2 (`Outputs::rings`).
+        let mut t = self.star_and_edges_trust(v)?;
+        if rings > 0 {
+            for s in self.topo.star(v) {
+                t = t.min(self.star_and_edges_trust(s.neighbour)?);
+                if rings > 1 {
+                    for s2 in self.topo.star(s.neighbour) {
+                        t = t.min(self.star_and_edges_trust(s2.neighbour)?);
+                    }
+                }
+            }
+        }
+        Ok(t)
+    }
+
+    /// The least of star `v`'s trust and of the crease edge terms of the edges at `v`.
+    fn star_and_edges_trust(&self, v: u32) -> Result<f64> {
         let mut t = self.star_trust(v);
         for s in self.topo.star(v) {
             t = t.min(self.edge_trust.get(s.edge as usize).copied().unwrap_or(1.0));
-            if rings > 0 {
-                t = t.min(self.near_trust(s.neighbour, rings - 1)?);
-            }
         }
         Ok(t)
     }
