@@ -170,7 +170,7 @@ impl Driver<'_, '_, '_, '_> {
     /// point between linear ones, a seam that folded next to the corners of tagged scanned
     /// meshes (`docs/creases.md`, "Folds next to corners"). Walked per point: only crease
     /// points ask, and only when some element is distrusted.
-    fn near_trust(&self, v: u32, rings: u8) -> Result<f64> {
+    fn crease_near_trust(&self, v: u32, rings: u8) -> Result<f64> {
         // Nested walks rather than recursion: the firmware's static stack bound needs a call
         // graph without cycles (`docs/firmware.md`). `rings` is at most 2 (`Outputs::rings`).
         let mut t = self.star_and_edges_trust(v)?;
@@ -240,7 +240,7 @@ impl Driver<'_, '_, '_, '_> {
                 let tau = self
                     .curve_trust(out_h)?
                     .min(self.curve_trust(in_h)?)
-                    .min(self.near_trust(v, rings)?);
+                    .min(self.crease_near_trust(v, rings)?);
                 if tau < 1.0 {
                     self.guarded(v as usize)?;
                     let (b0, b1) = (topo.dest(out_h)?, topo.origin(in_h)?);
@@ -264,8 +264,8 @@ impl Driver<'_, '_, '_, '_> {
             }
             let tau = self
                 .curve_trust(h)?
-                .min(self.near_trust(topo.origin(h)?, rings)?)
-                .min(self.near_trust(topo.dest(h)?, rings)?);
+                .min(self.crease_near_trust(topo.origin(h)?, rings)?)
+                .min(self.crease_near_trust(topo.dest(h)?, rings)?);
             if tau < 1.0 {
                 let k = start + e as usize;
                 self.guarded(k)?;

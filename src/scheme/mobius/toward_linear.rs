@@ -18,11 +18,11 @@
 //! (Catmull–Clark) spreads the change over the stars around; dual truncation's vertex points
 //! reach two rings and its face points one (`Outputs::vertex_rings`), so that a vertex point
 //! is no more trusted than the face points around it, and the dual's face points reach three
-//! rings (`docs/folds.md` section 12). The weight `τ²` and the rings are measured (`docs/folds.md` section 8). Which
-//! points move, and by how much, is decided by `τ` alone, so it stays Möbius-invariant; the
-//! blend itself is equivariant under similarities only, like every fallback toward the
-//! linear rule. This runs only when some star is distrusted (`Driver::guarded_pass`), so a
-//! mesh that needs nothing pays nothing.
+//! rings (`docs/folds.md` section 12). The weight `τ²` and the rings are measured
+//! (`docs/folds.md` section 8). Which points move, and by how much, is decided by `τ` alone,
+//! so it stays Möbius-invariant; the blend itself is equivariant under similarities only,
+//! like every fallback toward the linear rule. This runs only when some star is distrusted
+//! (`Driver::guarded_pass`), so a mesh that needs nothing pays nothing.
 
 use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
