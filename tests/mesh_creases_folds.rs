@@ -146,8 +146,7 @@ const ROWS: [(Scheme, &str, usize); 17] = [
 /// ones (horse_quad): what is left are edges from a corner (where three or more creases
 /// meet), whose edge point is the single candidate of the smooth end, and the seams of the
 /// blend toward the linear rule.
-const OPEN: [(Scheme, &str); 3] = [
-    (Scheme::Loop, "cow"),
+const OPEN: [(Scheme, &str); 2] = [
     (Scheme::ModifiedButterfly, "cow"),
     (Scheme::Kobbelt, "horse_quad"),
 ];

@@ -203,6 +203,21 @@ impl Driver<'_, '_, '_, '_> {
                         Children::DualFaces { faces } => {
                             dual_star_audit(topo, pos, &cf, v, faces, part.work)?
                         }
+                        // A crease star's open fan with its middle triangles, for Loop
+                        // too: the interior edge point from a corner takes one candidate,
+                        // and on tagged scanned meshes it folded the middle triangle
+                        // against the crease star's corner triangle (`docs/creases.md`,
+                        // "Folds next to corners", (e)). Interior stars keep Loop's audit.
+                        Children::Triangles { edges, .. } => open_star_audit(
+                            topo,
+                            pos,
+                            &cf,
+                            v,
+                            Children::Triangles {
+                                edges,
+                                middles: true,
+                            },
+                        )?,
                         _ => open_star_audit(topo, pos, &cf, v, children)?,
                     }
                 } else if let Children::Corners = children {

@@ -58,7 +58,8 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             let near = d.rewind_for_blends_again(before);
             d.blend_interior_edges_again(nv, &linear, near)?;
         }
-        if again || d.any_crease_edge_term() {
+        let curves = d.curve_terms_into_trust()?;
+        if again || curves || d.any_crease_edge_term() {
             d.blend_toward_linear(
                 out,
                 LinearRules {

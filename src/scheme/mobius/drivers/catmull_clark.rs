@@ -77,10 +77,14 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             rings: RINGS,
             vertex_rings: RINGS,
         };
-        if d.guarded_pass(out, || (), star_rule)? {
+        let again = d.guarded_pass(out, || (), star_rule)?;
+        if again {
             let near = d.rewind_for_blends_again(before);
             d.blend_faces_again(fp0, near)?;
             d.blend_interior_edges_again(nv, &linear, near)?;
+        }
+        let curves = d.curve_terms_into_trust()?;
+        if again || curves {
             d.blend_toward_linear(
                 out,
                 LinearRules {

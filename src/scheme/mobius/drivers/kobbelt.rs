@@ -60,6 +60,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         edge_places: true,
     })?;
     d.raise_spherical_quads()?;
+    d.curve_terms_into_trust()?;
     if d.trust.iter().all(|&t| t >= 1.0) {
         return Ok(());
     }
