@@ -408,12 +408,14 @@ fn star_audit(
         .min(place))
 }
 
-/// The audit's trust of boundary star `v` whose form `cf` the scheme kept (Kobbelt; the other
-/// schemes keep none, and their boundary stars stay exempt): [`star_audit`] on the open fan of
-/// child quads `(v', e_i, f_i, e_{i+1})` of the star's faces. The pair angle across every
-/// child edge `(v', e_i)` between two of them, the fan angle between consecutive `e_i`
-/// signed by the fan's area vector (the sum of the quads' Newell normals), and, with
-/// `edge_places`, the place of the points of the interior spokes' edges. Walked with
+/// The audit's trust of boundary star `v` whose form `cf` the scheme kept (Kobbelt; Loop,
+/// Butterfly and Catmull–Clark on a level cut along its sharp edges, whose boundary stars are
+/// crease vertices): [`star_audit`] on the open fan of child faces of the star's faces, the
+/// corner quads `(v', e_i, f_i, e_{i+1})` or triangles `(v', e_i, e_{i+1})`. The pair angle
+/// across every child edge `(v', e_i)` between two of them (with `middles`, also each corner
+/// triangle against its middle triangle), the fan angle between consecutive `e_i` signed by
+/// the fan's area vector (the sum of the faces' Newell normals), and, with `edge_places`, the
+/// place of the points of the interior spokes' edges. Walked with
 /// [`Topology::star`] and each face's Newell sum on its own: boundary stars are few.
 fn open_star_audit(
     topo: &Topology<'_, '_>,

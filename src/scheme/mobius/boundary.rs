@@ -272,7 +272,6 @@ impl Driver<'_, '_, '_, '_> {
                     continue;
                 }
                 let out_h = topo.vertex_half_edge(v)?; // v → b0
-
                 let in_h = topo.prev_boundary(out_h)?; // b1 → v
                 if self.short_curve(out_h)? {
                     continue;
