@@ -22,7 +22,9 @@
 //! (`docs/folds.md` section 8). Which points move, and by how much, is decided by `τ` alone,
 //! so it stays Möbius-invariant; the blend itself is equivariant under similarities only,
 //! like every fallback toward the linear rule. This runs only when some star is distrusted
-//! (`Driver::guarded_pass`), so a mesh that needs nothing pays nothing.
+//! (`Driver::guarded_pass`) or, on a level cut along its sharp edges, a crease vertex's curve
+//! terms are below 1 (`Driver::curve_terms_into_trust`), so a mesh that needs nothing pays
+//! nothing here.
 
 use super::driver::{chunk_fallback, Driver};
 use super::edges::LinearEdge;
