@@ -362,6 +362,37 @@ mod tests {
         derive_equals_build(Pattern::Split1To4, &pos, &offs, &idx, 3);
     }
 
+    #[test]
+    fn corner_cut_cube() {
+        let (pos, offs, idx) = cube();
+        derive_equals_build(Pattern::CornerCut, &pos, &offs, &idx, 3);
+    }
+
+    /// Quads, triangles and a pentagon with a boundary, three interior vertices (5, 6, 9) and
+    /// two isolated ones (3, 15): boundary points of every valence, E-faces with one or two
+    /// ends on the boundary, isolated vertices after the points.
+    #[test]
+    fn corner_cut_mixed_open_with_isolated_vertices() {
+        let pos = grid_positions::<16>();
+        let idx = [
+            0, 1, 5, 4, 1, 2, 6, 5, 2, 7, 6, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 9, 10, 14, 13,
+            12, 8, 9, 12,
+        ];
+        let offs = [0, 4, 8, 11, 15, 19, 23, 28, 31];
+        derive_equals_build(Pattern::CornerCut, &pos, &offs, &idx, 3);
+    }
+
+    /// An open fan of three triangles and a quad around boundary vertex 0: corners whose
+    /// two edges are both interior at a boundary vertex (their outgoing boundary half-edge
+    /// is in an E-face), and a second boundary loop through the quad.
+    #[test]
+    fn corner_cut_open_fan() {
+        let pos = grid_positions::<8>();
+        let idx = [0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 6, 5];
+        let offs = [0, 3, 6, 9, 13];
+        derive_equals_build(Pattern::CornerCut, &pos, &offs, &idx, 3);
+    }
+
     /// A child that is not the pattern's is refused, never described wrongly.
     #[test]
     fn wrong_child_is_an_error() {
@@ -383,6 +414,6 @@ mod tests {
         assert!(child_topology(&topo, Pattern::Split1To4, child, s2, &Serial).is_err());
         assert!(child_topology(&topo, Pattern::Quads, child, s2, &Serial).is_err());
         assert!(child_topology(&topo, Pattern::Dual, child, s2, &Serial).is_err());
-        assert!(!derivable(Pattern::CornerCut) && derivable(Pattern::Quads));
+        assert!(!derivable(Pattern::Dual) && derivable(Pattern::CornerCut));
     }
 }

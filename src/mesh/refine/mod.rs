@@ -43,6 +43,7 @@
 //! preconditions of the dual patterns).
 
 mod corner_cut;
+mod corner_cut_topology;
 pub(crate) mod counts;
 pub(crate) mod derive;
 mod dual;
@@ -328,7 +329,10 @@ impl LevelCounts {
 
 /// Whether [`child_topology`] derives the child topology of `pattern`.
 pub(crate) fn derivable(pattern: Pattern) -> bool {
-    matches!(pattern, Pattern::Quads | Pattern::Split1To4)
+    matches!(
+        pattern,
+        Pattern::Quads | Pattern::Split1To4 | Pattern::CornerCut
+    )
 }
 
 /// The child topology of `pattern` ([`derivable`]) on `mesh`, the level that [`write_pattern`]
@@ -349,6 +353,7 @@ pub(crate) fn child_topology<'m2, 's2>(
     let counts: Counts = match pattern {
         Pattern::Quads => quads::derive(parent, &mesh, scratch, exec)?,
         Pattern::Split1To4 => split_1to4::derive(parent, &mesh, scratch, exec)?,
+        Pattern::CornerCut => corner_cut_topology::derive(parent, &mesh, scratch, exec)?,
         _ => return Err(internal()),
     };
     Topology::from_parts(mesh, scratch, counts)
