@@ -24,9 +24,12 @@
 //! **Edges** are numbered in `(min, max)` order ([`Topology`]): by the smaller point, then
 //! the larger. A point has at most four neighbours, so edge `(p, q)`, `p < q`, is `E0(p)` plus
 //! the rank of `q` among `p`'s larger neighbours, `E0` the prefix sum of the numbers of larger
-//! neighbours (each chunk sums its range, the chunks' totals are summed in order). Its
-//! representative is the half-edge `p → q`, or `q → p` on a boundary edge where only that
-//! one exists.
+//! neighbours (each chunk sums its range, the chunks' totals are summed in order). One pass
+//! over the points keeps, besides `E0`, each point's four ranks (its *rank code*, one field
+//! per neighbour slot), so a child half-edge finds its edge from the slot it leaves by: the
+//! neighbour of `p` in slot `next` has `p` in slot `prev`, in slot `next(twin ·)` it has `p`
+//! in slot `twin(prev ·)`, and back. An edge's representative is the half-edge `p → q`, or
+//! `q → p` on a boundary edge where only that one exists.
 //!
 //! **Stars.** A point at an interior vertex is interior, valence 4, and its star starts at
 //! its F-face half-edge `c`, the lowest of its outgoing half-edges (E- and V-faces come
@@ -37,7 +40,8 @@
 //!
 //! The per-edge `B(e)` and per-vertex `W(a)` are prefix sums over the parent (one serial pass
 //! over its edges and vertices, the cheap part); they and `E0` live in the child's vertex
-//! arrays until the last pass overwrites those. Every child corner the derivation relies on
+//! arrays until the last pass overwrites those, the rank codes in its `edge_he` until the
+//! representatives overwrite them. Every child corner the derivation relies on
 //! is checked against the written faces: a mismatch is an internal error.
 
 use arrayvec::ArrayVec;
@@ -729,17 +733,29 @@ fn stars(
         let s = get(raw.vert_he, get(raw.indices, c)? as usize)?;
         Ok(get(raw.twin, s as usize)? == NONE)
     };
-    // The boundary rank of each range's first point (none on a closed parent).
-    let mut ranks = ArrayVec::<u32, MAX_CHUNKS>::new();
-    let mut acc = 0u32;
+    // The boundary rank of each range's first point: the boundary points of the ranges
+    // before it, counted per range (none on a closed parent).
+    let mut ranks = ArrayVec::<(usize, usize, u32), MAX_CHUNKS>::new();
     for i in 0..k {
-        ranks.try_push(acc).map_err(|_| internal())?;
-        if parent.num_boundary_vertices() > 0 && i + 1 < k {
-            let (p0, p1) = exec::chunk_range(nv2, k, i);
-            for c in p0..p1.min(nh) {
-                acc += u32::from(boundary(c)?);
-            }
-        }
+        let (p0, p1) = exec::chunk_range(nv2, k, i);
+        ranks.try_push((p0, p1.min(nh).max(p0), 0)).map_err(|_| internal())?;
+    }
+    if parent.num_boundary_vertices() > 0 {
+        exec::parts(
+            exec,
+            &mut ranks,
+            |r| r.1 - r.0,
+            |r, _| {
+                for c in r.0..r.1 {
+                    r.2 += u32::from(boundary(c)?);
+                }
+                Ok(())
+            },
+        )?;
+    }
+    let mut acc = 0u32;
+    for r in &mut ranks {
+        (r.2, acc) = (acc, acc + r.2);
     }
     let (mut a, mut b, mut c) = (vert_he, valence, bnd_rank);
     let mut parts = ArrayVec::<Part<'_>, MAX_CHUNKS>::new();
@@ -748,7 +764,7 @@ fn stars(
         parts
             .try_push(Part {
                 first: p0,
-                rank: get(&ranks, i)?,
+                rank: ranks.get(i).ok_or(internal())?.2,
                 vert_he: exec::take_front(&mut a, p1 - p0)?,
                 valence: exec::take_front(&mut b, p1 - p0)?,
                 bnd_rank: exec::take_front(&mut c, p1 - p0)?,

@@ -29,9 +29,11 @@
 //! is an internal error, never a wrong topology.
 
 //!
-//! This file holds what both derivations share (the edges from old vertices to edge points,
-//! the old vertices' arrays); each derivation lives with its pattern, and
-//! [`super::child_topology`] dispatches.
+//! This file holds what the derivations of `Quads` and `Split1To4` share (the edges from old
+//! vertices to edge points, the old vertices' arrays) and the tests of all three; each
+//! derivation lives with its pattern (Doo–Sabin's [`super::Pattern::CornerCut`], whose
+//! vertices are the parent's corners and whose edges are numbered by a prefix sum, in
+//! `corner_cut_topology.rs`), and [`super::child_topology`] dispatches.
 
 use arrayvec::ArrayVec;
 

@@ -37,9 +37,10 @@
 //!
 //! One file per pattern, each owning what the pattern decides: its output sizes (`size`), the
 //! faces it writes (`write`), the counts of the next level for multi-level plans (`next`; the
-//! counts in `counts.rs`), and for [`Pattern::Split1To4`] and [`Pattern::Quads`] the
-//! derivation of the child topology from the parent's (`derive`; the shared parts in
-//! `derive.rs`). Also shared: `face_writer.rs` (the CSR cursor), `dual_checks.rs` (the
+//! counts in `counts.rs`), and for [`Pattern::Split1To4`], [`Pattern::Quads`] and
+//! [`Pattern::CornerCut`] the derivation of the child topology from the parent's (`derive`;
+//! the shared parts and the tests in `derive.rs`; Doo–Sabin's in its own file,
+//! `corner_cut_topology.rs`). Also shared: `face_writer.rs` (the CSR cursor), `dual_checks.rs` (the
 //! preconditions of the dual patterns).
 
 mod corner_cut;
