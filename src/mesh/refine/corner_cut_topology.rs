@@ -50,7 +50,7 @@ use super::derive::check_eq;
 use crate::error::Result;
 use crate::exec::{self, Executor, MAX_CHUNKS};
 use crate::mesh::topology::{regions, Counts, Raw, Regions};
-use crate::mesh::{get, internal, Mesh, Topology, MAX_COUNT, NONE};
+use crate::mesh::{cadd, cmul, get, idx, internal, Mesh, Topology, MAX_COUNT, NONE};
 
 /// The parent's arrays with the few queries the derivation makes of them.
 #[derive(Clone, Copy)]
@@ -191,9 +191,10 @@ pub(super) fn derive(
         parent.num_interior_vertices(),
         parent.interior_valence_sum(),
     );
-    let nv2 = nh + parent.num_isolated_vertices();
-    let nh2 = nh + 4 * ei + sigma;
-    let nf2 = nf + ei + vi;
+    // The plan has checked these sizes; checked again so that no bug can wrap them.
+    let nv2 = cadd(nh, parent.num_isolated_vertices())?;
+    let nh2 = cadd(cadd(nh, cmul(4, ei)?)?, sigma)?;
+    let nf2 = cadd(cadd(nf, ei)?, vi)?;
     if nv2 > MAX_COUNT
         || nh2 > MAX_COUNT
         || mesh.num_vertices() != nv2
@@ -265,8 +266,8 @@ pub(super) fn derive(
         n_boundary_edges: sb.checked_sub(nb).ok_or(internal())?,
         n_boundary_vertices: sb.checked_sub(nb).ok_or(internal())?,
         n_isolated: parent.num_isolated_vertices(),
-        interior_spokes: 4 * sigma,
-        boundary_spokes: (4 * sb).checked_sub(6 * eb).ok_or(internal())?,
+        interior_spokes: cmul(4, sigma)?,
+        boundary_spokes: cmul(4, sb)?.checked_sub(cmul(6, eb)?).ok_or(internal())?,
         max_face: face_max.max(max_vi),
         min_face: face_min,
     })
@@ -547,7 +548,8 @@ fn e_faces(cx: &Ctx<'_, '_, '_>, edges: (usize, usize), s: &mut Span<'_>) -> Res
             continue;
         }
         let b = get(par.e_base, e)?;
-        let face = (cx.nf + (b as usize - cx.nh) / 4) as u32;
+        let k = (b as usize).checked_sub(cx.nh).ok_or(internal())? / 4;
+        let face = idx(cx.nf + k)?;
         check_eq(get(offsets, face as usize)?, b)?;
         let (nh_, nt) = (par.next_prev(h)?.0, par.next_prev(t)?.0);
         let Some(&[c0, c1, c2, c3]) = indices.get(b as usize..b as usize + 4) else {
@@ -738,7 +740,9 @@ fn stars(
     let mut ranks = ArrayVec::<(usize, usize, u32), MAX_CHUNKS>::new();
     for i in 0..k {
         let (p0, p1) = exec::chunk_range(nv2, k, i);
-        ranks.try_push((p0, p1.min(nh).max(p0), 0)).map_err(|_| internal())?;
+        ranks
+            .try_push((p0, p1.min(nh).max(p0), 0))
+            .map_err(|_| internal())?;
     }
     if parent.num_boundary_vertices() > 0 {
         exec::parts(
