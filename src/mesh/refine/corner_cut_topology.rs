@@ -1,7 +1,7 @@
 //! The child topology of [`Pattern::CornerCut`](super::Pattern::CornerCut) (Doo–Sabin) derived
 //! from its parent's: the arrays [`Topology::build`] gives on the child, array for array
 //! (`derive.rs` states the contract; tested there against `build`), without its sorts and
-//! with every pass split into disjoint output ranges.
+//! with every pass but one cheap prefix sum split into disjoint output ranges.
 //!
 //! Child vertex `c < H` is the point of parent corner `c`, at vertex `a = origin(c)`. Its
 //! neighbours are `next(c)` and `prev(c)` (its F-face), `next(twin c)` and `twin(prev c)` (the
@@ -12,8 +12,9 @@
 //! * E-face of an interior edge `e` with `h` its `min → max` half-edge and `t` the twin, from
 //!   corner `B(e) = H + 4·(interior edges before e)` on: `B + 0: next h → h`, `B + 1: h → next t`
 //!   (at `origin h`), `B + 2: next t → t`, `B + 3: t → next h` (at `origin t`);
-//! * V-face of an interior vertex `a`, from corner `W(a)` on: `W(a) + j: s_j → s_{j+1}`, with
-//!   `s_0, s_1, …` the spokes of `a`'s star (`s_{j+1} = twin(prev s_j)`).
+//! * V-face of an interior vertex `a`, from corner `W(a) = H + 4·E_i + (the valences of the
+//!   interior vertices before a)` on: `W(a) + j: s_j → s_{j+1}`, with `s_0, s_1, …` the spokes
+//!   of `a`'s star (`s_{j+1} = twin(prev s_j)`).
 //!
 //! **Twins.** F-face `c` and `B(edge c) + 0` (`c = h`) or `+ 2` (`c = t`); none on a boundary
 //! edge. `B + 1` and the V-face half-edge of `origin h` that leaves `next t`, `B + 3` and the
@@ -86,14 +87,16 @@ impl Parent<'_, '_, '_> {
         get(self.e_base, get(self.raw.edge_of, h as usize)? as usize)
     }
 
-    /// Whether vertex `a` (referenced) is interior: its star starts at a half-edge with a twin.
+    /// Whether vertex `a` is interior: its star starts at a half-edge with a twin (`false`
+    /// for an isolated vertex).
     fn interior(&self, a: u32) -> Result<bool> {
         let s = get(self.raw.vert_he, a as usize)?;
         Ok(s != NONE && self.twin(s)? != NONE)
     }
 
-    /// The position of spoke `x` in the star of its vertex `a` (from the star's first spoke,
-    /// counter-clockwise): the corner of the V-face of `a` at point `x`.
+    /// The position `j` of spoke `x` in the star of its vertex `a` (from the star's first
+    /// spoke, counter-clockwise): the V-face of `a` has point `x` at its corner `W(a) + j`.
+    /// `O(valence)`; only the first level has valences above 4.
     fn star_pos(&self, a: u32, x: u32) -> Result<u32> {
         let mut s = get(self.raw.vert_he, a as usize)?;
         for j in 0..get(self.raw.valence, a as usize)? {
@@ -241,9 +244,9 @@ pub(super) fn derive(
         ei,
     };
     half_edges(&cx, &v_faces, k, exec, twin, face_of, edge_of)?;
-    let reps = edge_he.get_mut(..n_edges).ok_or(internal())?;
-    edge_representatives(&par, e0, nh, k, exec, reps)?;
     let twin: &[u32] = twin;
+    let reps = edge_he.get_mut(..n_edges).ok_or(internal())?;
+    edge_representatives(&par, twin, e0, nh, k, exec, reps)?;
     stars(parent, twin, k, exec, vert_he, valence, bnd_rank)?;
     let (sb, eb) = (parent.boundary_valence_sum(), parent.num_boundary_edges());
     let nb = parent.num_boundary_vertices();
@@ -261,12 +264,15 @@ pub(super) fn derive(
     };
     Ok(Counts {
         n_edges,
-        // The boundary edges: the old ones and one per interior edge at a boundary vertex
-        // (the corner points of the boundary vertices, one boundary edge leaving each).
+        // One boundary edge leaves each corner point at a boundary vertex (the old boundary
+        // edges' F-face edges, and one E-face edge per pair of an interior edge and a
+        // boundary end): as many as those points, `Σ_b (valence − 1) = sb − nb`.
         n_boundary_edges: sb.checked_sub(nb).ok_or(internal())?,
         n_boundary_vertices: sb.checked_sub(nb).ok_or(internal())?,
         n_isolated: parent.num_isolated_vertices(),
         interior_spokes: cmul(4, sigma)?,
+        // Σ_b of the valences 2 + (interior F-face edges) of a boundary vertex's `k` points:
+        // 2k + 2(k − 1) = 4k − 2 (`corner_cut::next`), and eb = nb on a manifold boundary.
         boundary_spokes: cmul(4, sb)?.checked_sub(cmul(6, eb)?).ok_or(internal())?,
         max_face: face_max.max(max_vi),
         min_face: face_min,
@@ -473,8 +479,9 @@ fn half_edges(
             at(par.w_base, vertices.0, nh2 as u32)?,
             at(par.w_base, vertices.1, nh2 as u32)?,
         );
-        let (nc, nee) = (corners.1 - corners.0, (eb1 - eb0) as usize);
-        let nvv = (w1 - w0) as usize;
+        let nc = corners.1 - corners.0;
+        let nee = eb1.checked_sub(eb0).ok_or(internal())? as usize;
+        let nvv = w1.checked_sub(w0).ok_or(internal())? as usize;
         parts
             .try_push(HalfEdgePart {
                 corners,
@@ -620,6 +627,7 @@ fn v_faces_of(
 /// points `[p0, p1)` are `[E0(p0), E0(p1))`).
 fn edge_representatives(
     par: &Parent<'_, '_, '_>,
+    twin: &[u32],
     e0: &[u32],
     nh: usize,
     k: usize,
@@ -650,6 +658,8 @@ fn edge_representatives(
         |p| p.points.1 - p.points.0,
         |p, _| {
             let mut at = 0usize;
+            // The neighbours and ranks again (the rank codes were in the array this pass
+            // writes).
             for c in p.points.0 as u32..p.points.1 as u32 {
                 let (nx, pv) = par.next_prev(c)?;
                 let (t, tp) = (par.twin(c)?, par.twin(pv)?);
@@ -662,7 +672,7 @@ fn edge_representatives(
                     }
                     // Its rank among the larger neighbours (distinct: checked by rank_code).
                     let r = n.iter().filter(|&&x| x != NONE && x > c && x < q).count();
-                    let x = representative(par, c, slot, (pv, t, tp))?;
+                    let x = representative(par, twin, c, slot, (pv, t, tp))?;
                     *p.out.get_mut(at + r).ok_or(internal())? = x;
                     up += 1;
                 }
@@ -679,33 +689,31 @@ fn edge_representatives(
 
 /// The child half-edge from point `c` to its neighbour in `slot`, or from that neighbour to
 /// `c` where that is the only one (a boundary edge of the child); `(prev c, twin c,
-/// twin(prev c))` as the caller has them.
+/// twin(prev c))` as the caller has them, `twin` the child's (complete by now).
 fn representative(
     par: &Parent<'_, '_, '_>,
+    twin: &[u32],
     c: u32,
     slot: u32,
     around: (u32, u32, u32),
 ) -> Result<u32> {
     let (pv, t, tp) = around;
+    // The twin of child half-edge `x`, or `x` itself on a boundary edge.
+    let reverse = |x: u32| -> Result<u32> {
+        let r = get(twin, x as usize)?;
+        Ok(if r == NONE { x } else { r })
+    };
     match slot {
         // The F-face edge c → next c.
         NEXT => Ok(c),
-        // c → prev c in the E-face of prev c's edge; on a boundary edge only the F-face's
-        // prev c → c.
-        PREV if tp == NONE => Ok(pv),
-        PREV => Ok(par.b(pv)? + if par.is_rep(pv)? { 0 } else { 2 }),
+        // c → prev c, the twin of the F-face's prev c → c (in the E-face of prev c's edge);
+        // on a boundary edge only that one.
+        PREV => reverse(pv),
         // c → next(twin c) in the E-face of c's edge.
         ACROSS if t != NONE => Ok(par.b(c)? + if par.is_rep(c)? { 1 } else { 3 }),
-        ACROSS_PREV if tp != NONE => {
-            let a = get(par.raw.indices, c as usize)?;
-            // c → twin(prev c) in the V-face of c's vertex; at a boundary vertex only the
-            // E-face's twin(prev c) → next(twin(twin(prev c))) = c.
-            if par.interior(a)? {
-                Ok(get(par.w_base, a as usize)? + par.star_pos(a, c)?)
-            } else {
-                Ok(par.b(tp)? + if par.is_rep(tp)? { 1 } else { 3 })
-            }
-        }
+        // c → twin(prev c), the twin of the E-face's twin(prev c) → next(twin(twin(prev c)))
+        // = c (in the V-face of c's vertex); at a boundary vertex only that one.
+        ACROSS_PREV if tp != NONE => reverse(par.b(tp)? + if par.is_rep(tp)? { 1 } else { 3 }),
         _ => Err(internal()),
     }
 }

@@ -3,7 +3,10 @@
 //! from its parent), instead of validating and sorting the refined mesh again.
 //!
 //! A refined valid mesh is valid by construction, and every array of [`Topology::build`] on
-//! it is a combinatorial function of the parent's arrays:
+//! it is a combinatorial function of the parent's arrays. For the primal patterns
+//! ([`super::Pattern::Quads`], [`super::Pattern::Split1To4`]), which keep the old vertices
+//! and add edge points (Doo–Sabin's corner cut, whose points are the parent's corners, is
+//! described in `corner_cut_topology.rs`):
 //!
 //! * **twins**: each child half-edge lies on a half of a parent edge (its twin is in the
 //!   child face of the neighbouring parent corner) or inside a parent face;

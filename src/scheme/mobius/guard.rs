@@ -474,11 +474,16 @@ impl Driver<'_, '_, '_, '_> {
 
     /// Raises the trust of every distrusted star whose valence `pick` selects toward 1 by its
     /// sphericity, `τ ← τ + (1 − τ)·s` (`trust::sphericity`; step 4 of the module docs), and
-    /// says whether it changed any trust.
+    /// says whether it changed any trust. Each star reads and writes only its own trust, so
+    /// the vertex ranges of `exec` give the same values in any order.
     /// Out of line, so that its star form is off the stack before the re-evaluation makes
     /// its own.
     #[inline(never)]
-    pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool) -> Result<bool> {
+    pub(super) fn raise_spherical(&mut self, pick: impl Fn(usize) -> bool + Sync) -> Result<bool> {
+        let k = chunk_count(self.exec, self.topo.num_vertices());
+        if k > 1 {
+            return self.split_raise_spherical(k, &pick);
+        }
         let mut form = StarForm::blank();
         let mut raised = false;
         // The spokes and tangent polygons in the workspaces (no other pass holds them now).
@@ -508,6 +513,56 @@ impl Driver<'_, '_, '_, '_> {
         self.work = tangents;
         self.spoke_work = spoke_work;
         r
+    }
+
+    /// [`Driver::raise_spherical`] in `k ≥ 2` vertex ranges, each with its share of the star
+    /// workspaces (out of line: the serial path keeps a small stack frame).
+    #[inline(never)]
+    fn split_raise_spherical(
+        &mut self,
+        k: usize,
+        pick: &(dyn Fn(usize) -> bool + Sync),
+    ) -> Result<bool> {
+        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+        let a = Arrays {
+            pos: &mut [],
+            trust: &mut *self.trust,
+            centre: &mut [],
+            radius: &mut [],
+            edge_c: &mut *self.edge_c,
+            face_c: &mut *self.face_c,
+            work: &mut *self.work,
+            spoke_work: &mut *self.spoke_work,
+        };
+        let mut ranges = ArrayVec::<(Part<'_, '_, '_>, bool), MAX_CHUNKS>::new();
+        for part in Part::ranges(topo, slots, guard, k, a)? {
+            ranges.try_push((part, false)).map_err(|_| internal())?;
+        }
+        parts(
+            exec,
+            &mut ranges,
+            |(p, _)| p.vertices().len(),
+            |(part, raised), _| {
+                let mut form = StarForm::blank();
+                let (mut spokes, tangents) = part.take_stars()?;
+                for v in part.vertices() {
+                    let tau = part.trust(v)?;
+                    if tau >= 1.0 || retarget(topo, v, &mut form, &mut spokes, tangents)?.is_none()
+                    {
+                        continue;
+                    }
+                    if pick(spokes.len()) {
+                        let t = tangents.get(..spokes.len()).ok_or(internal())?;
+                        let s = sphericity(t, form.centre());
+                        let raised_tau = tau + (1.0 - tau) * s;
+                        *raised |= raised_tau != tau;
+                        part.set_trust(v, raised_tau, None)?;
+                    }
+                }
+                Ok(())
+            },
+        )?;
+        Ok(ranges.iter().any(|r| r.1))
     }
 
     /// [`Driver::raise_spherical`] for every distrusted star, with the diagonals of its quads

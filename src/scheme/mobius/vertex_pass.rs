@@ -288,6 +288,11 @@ impl Part<'_, '_, '_> {
         Ok(())
     }
 
+    /// The fold guard's trust of vertex `v` (a part that holds the trust).
+    pub(super) fn trust(&self, v: u32) -> Result<f64> {
+        self.trust.get(self.vertex(v)?).copied().ok_or(internal())
+    }
+
     /// Writes the fold guard's values of vertex `v`: its trust and, when given, the centre
     /// and radius of its canonical form.
     pub(super) fn set_trust(&mut self, v: u32, tau: f64, form: Option<(Point, f64)>) -> Result<()> {
