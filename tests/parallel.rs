@@ -301,7 +301,9 @@ fn mobius_vertex_ranges_around_isolated_vertices() {
 
 /// Shared meshes on which the fold guard re-evaluates stars (`tests/mesh_fold_guard.rs`):
 /// the guarded counts and firsts and the output are the serial run's for every chunking (the
-/// re-evaluation is split into vertex ranges too); in strict mode, the serial run's refusal.
+/// re-evaluation and the sphericity raise are split into vertex ranges too, and Kobbelt's
+/// raise with its quads' diagonals; Doo–Sabin's derived topology in ranges); in strict mode,
+/// the serial run's refusal.
 #[test]
 fn guarded_meshes_every_chunking() {
     let test = "parallel::guarded_meshes_every_chunking";
@@ -312,6 +314,8 @@ fn guarded_meshes_every_chunking() {
         (Scheme::ModifiedButterfly, "pawn_tri"),
         (Scheme::CatmullClark, "spot_quad"),
         (Scheme::Loop, "bunny"),
+        (Scheme::Kobbelt, "spot_quad"),
+        (Scheme::DooSabin, "spot_quad"),
     ] {
         let path = dir.join(format!("{name}.off"));
         let Ok(m) = read_off(&path) else {

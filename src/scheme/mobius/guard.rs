@@ -570,8 +570,13 @@ impl Driver<'_, '_, '_, '_> {
     /// ([`trust::sphericity_with`](super::trust::sphericity_with)): Kobbelt, whose rules read
     /// them (seed 000 §4.3), and whose fallback is the blend toward the linear rule alone, so
     /// that a star of valence 3 on a sphere must keep the paper's rules by this evidence.
+    /// In the vertex ranges of `exec`, as [`Driver::raise_spherical`].
     #[inline(never)]
     pub(super) fn raise_spherical_quads(&mut self) -> Result<()> {
+        let k = chunk_count(self.exec, self.topo.num_vertices());
+        if k > 1 {
+            return self.split_raise_spherical_quads(k);
+        }
         let mut form = StarForm::blank();
         let spoke_work = core::mem::take(&mut self.spoke_work);
         let mut spokes = Spokes::new(&mut *spoke_work);
@@ -587,15 +592,8 @@ impl Driver<'_, '_, '_, '_> {
                 {
                     continue;
                 }
-                let pv = topo.position(v)?;
-                let mut diagonals = topo.star(v).filter(|s| s.half_edge != NONE).map(|s| {
-                    crate::mesh::gather::apex(topo, s.half_edge)
-                        .and_then(|a| topo.position(a))
-                        .ok()
-                        .and_then(|d| CanonicalForm::tangent(pv, d))
-                });
                 let t = tangents.get(..spokes.len()).ok_or(internal())?;
-                let s = sphericity_with(t, form.centre(), &mut diagonals);
+                let s = quad_sphericity(topo, v, t, form.centre())?;
                 set(self.trust, v as usize, tau + (1.0 - tau) * s)?;
             }
             Ok(())
@@ -603,6 +601,45 @@ impl Driver<'_, '_, '_, '_> {
         self.work = tangents;
         self.spoke_work = spoke_work;
         r
+    }
+
+    /// [`Driver::raise_spherical_quads`] in `k ≥ 2` vertex ranges, each with its share of the
+    /// star workspaces (out of line: the serial path keeps a small stack frame).
+    #[inline(never)]
+    fn split_raise_spherical_quads(&mut self, k: usize) -> Result<()> {
+        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+        let a = Arrays {
+            pos: &mut [],
+            trust: &mut *self.trust,
+            centre: &mut [],
+            radius: &mut [],
+            edge_c: &mut *self.edge_c,
+            face_c: &mut *self.face_c,
+            work: &mut *self.work,
+            spoke_work: &mut *self.spoke_work,
+        };
+        let mut ranges = Part::ranges(topo, slots, guard, k, a)?;
+        parts(
+            exec,
+            &mut ranges,
+            |p| p.vertices().len(),
+            |part, _| {
+                let mut form = StarForm::blank();
+                let (mut spokes, tangents) = part.take_stars()?;
+                for v in part.vertices() {
+                    let tau = part.trust(v)?;
+                    if tau >= 1.0 || retarget(topo, v, &mut form, &mut spokes, tangents)?.is_none()
+                    {
+                        continue;
+                    }
+                    let t = tangents.get(..spokes.len()).ok_or(internal())?;
+                    let s = quad_sphericity(topo, v, t, form.centre())?;
+                    part.set_trust(v, tau + (1.0 - tau) * s, None)?;
+                }
+                Ok(())
+            },
+        )?;
+        Ok(())
     }
 
     /// Adds the points the guard moved ([`Driver::blend_toward_linear`]) to the report.
@@ -679,6 +716,19 @@ impl Driver<'_, '_, '_, '_> {
         self.report.fallbacks = before.fallbacks;
         self.report.first_fallback = before.first_fallback;
     }
+}
+
+/// The sphericity of the star of `v` with its quads' far corners as further evidence
+/// ([`Driver::raise_spherical_quads`]): `t` its tangent polygon, `centre` its form's centre.
+fn quad_sphericity(topo: &Topology<'_, '_>, v: u32, t: &[Point], centre: Point) -> Result<f64> {
+    let pv = topo.position(v)?;
+    let mut diagonals = topo.star(v).filter(|s| s.half_edge != NONE).map(|s| {
+        crate::mesh::gather::apex(topo, s.half_edge)
+            .and_then(|a| topo.position(a))
+            .ok()
+            .and_then(|d| CanonicalForm::tangent(pv, d))
+    });
+    Ok(sphericity_with(t, centre, &mut diagonals))
 }
 
 /// One vertex range of the guard's re-evaluation: its share of the arrays, the trust of every
