@@ -515,15 +515,9 @@ impl Driver<'_, '_, '_, '_> {
         r
     }
 
-    /// [`Driver::raise_spherical`] in `k ≥ 2` vertex ranges, each with its share of the star
-    /// workspaces (out of line: the serial path keeps a small stack frame).
-    #[inline(never)]
-    fn split_raise_spherical(
-        &mut self,
-        k: usize,
-        pick: &(dyn Fn(usize) -> bool + Sync),
-    ) -> Result<bool> {
-        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
+    /// The trust and the star workspaces split into the `k` vertex ranges of the sphericity
+    /// raises ([`Part::ranges`]; the candidate slots come along, unused).
+    fn trust_ranges(&mut self, k: usize) -> Result<ArrayVec<Part<'_, '_, '_>, MAX_CHUNKS>> {
         let a = Arrays {
             pos: &mut [],
             trust: &mut *self.trust,
@@ -534,8 +528,20 @@ impl Driver<'_, '_, '_, '_> {
             work: &mut *self.work,
             spoke_work: &mut *self.spoke_work,
         };
+        Part::ranges(self.topo, self.slots, self.guard, k, a)
+    }
+
+    /// [`Driver::raise_spherical`] in `k ≥ 2` vertex ranges, each with its share of the star
+    /// workspaces (out of line: the serial path keeps a small stack frame).
+    #[inline(never)]
+    fn split_raise_spherical(
+        &mut self,
+        k: usize,
+        pick: &(dyn Fn(usize) -> bool + Sync),
+    ) -> Result<bool> {
+        let (topo, exec) = (self.topo, self.exec);
         let mut ranges = ArrayVec::<(Part<'_, '_, '_>, bool), MAX_CHUNKS>::new();
-        for part in Part::ranges(topo, slots, guard, k, a)? {
+        for part in self.trust_ranges(k)? {
             ranges.try_push((part, false)).map_err(|_| internal())?;
         }
         parts(
@@ -607,18 +613,8 @@ impl Driver<'_, '_, '_, '_> {
     /// star workspaces (out of line: the serial path keeps a small stack frame).
     #[inline(never)]
     fn split_raise_spherical_quads(&mut self, k: usize) -> Result<()> {
-        let (topo, slots, guard, exec) = (self.topo, self.slots, self.guard, self.exec);
-        let a = Arrays {
-            pos: &mut [],
-            trust: &mut *self.trust,
-            centre: &mut [],
-            radius: &mut [],
-            edge_c: &mut *self.edge_c,
-            face_c: &mut *self.face_c,
-            work: &mut *self.work,
-            spoke_work: &mut *self.spoke_work,
-        };
-        let mut ranges = Part::ranges(topo, slots, guard, k, a)?;
+        let (topo, exec) = (self.topo, self.exec);
+        let mut ranges = self.trust_ranges(k)?;
         parts(
             exec,
             &mut ranges,
