@@ -398,6 +398,45 @@ mod tests {
         derive_equals_build(Pattern::CornerCut, &pos, &offs, &idx, 3);
     }
 
+    /// A Doo–Sabin child whose faces are not the pattern's (two corners of an F-face, of an
+    /// E-face or of a V-face swapped, or an offset moved) is refused, never described wrongly.
+    #[test]
+    fn corner_cut_wrong_child_is_an_error() {
+        let (pos, offs, idx) = cube();
+        let mesh = Mesh::new(&pos, &offs, &idx);
+        let mut sc = [0u32; 256];
+        let need = topology_scratch_size(8, 24).unwrap();
+        let topo = Topology::build(mesh, &mut sc[..need]).unwrap();
+        let sz = pattern_size(Pattern::CornerCut, &topo).unwrap();
+        let (mut o, mut i) = ([0u32; 64], [0u32; 128]);
+        let (o, i) = (&mut o[..sz.faces + 1], &mut i[..sz.indices]);
+        write_pattern(Pattern::CornerCut, &topo, o, i).unwrap();
+        let p = [[0.0; 3]; 64];
+        let mut s2 = [0u32; 1024];
+        let s2 = &mut s2[..topology_scratch_size(sz.vertices, sz.indices).unwrap()];
+        let child = Mesh::new(&p[..sz.vertices], o, i);
+        assert!(child_topology(&topo, Pattern::CornerCut, child, s2, &Serial).is_ok());
+        // F-face 0 (corners 0..4), E-face 0 (24..28), V-face 0 (the first after the 12 E-faces).
+        let v0 = o[6 + 12] as usize;
+        for (a, b) in [(0, 1), (24, 25), (v0, v0 + 1)] {
+            let mut bad = [0u32; 128];
+            let bad = &mut bad[..sz.indices];
+            bad.copy_from_slice(i);
+            bad.swap(a, b);
+            let child = Mesh::new(&p[..sz.vertices], o, bad);
+            assert!(
+                child_topology(&topo, Pattern::CornerCut, child, s2, &Serial).is_err(),
+                "corners {a} and {b} swapped"
+            );
+        }
+        let mut moved = [0u32; 64];
+        let moved = &mut moved[..sz.faces + 1];
+        moved.copy_from_slice(o);
+        moved[7] += 1;
+        let child = Mesh::new(&p[..sz.vertices], moved, i);
+        assert!(child_topology(&topo, Pattern::CornerCut, child, s2, &Serial).is_err());
+    }
+
     /// A child that is not the pattern's is refused, never described wrongly.
     #[test]
     fn wrong_child_is_an_error() {
