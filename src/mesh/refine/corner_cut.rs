@@ -390,7 +390,7 @@ mod tests {
     use super::super::face_writer::FaceWriter;
     use crate::exec::testing::{take, Reverse};
     use crate::exec::MAX_CHUNKS;
-    use crate::mesh::refine::fixtures::{cube, grid_positions};
+    use crate::mesh::refine::fixtures::{cube, mixed_open_dual};
     use crate::mesh::refine::{pattern_size, write_pattern, write_pattern_with, Pattern};
     use crate::mesh::{topology_scratch_size, Mesh, MeshSizes, Topology, NONE};
     use crate::point::Point;
@@ -482,12 +482,7 @@ mod tests {
     /// two isolated ones (3, 15).
     #[test]
     fn chunked_mixed_open_with_isolated_vertices() {
-        let pos = grid_positions::<16>();
-        let idx = [
-            0, 1, 5, 4, 1, 2, 6, 5, 2, 7, 6, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 9, 10, 14, 13,
-            12, 8, 9, 12,
-        ];
-        let offs = [0, 4, 8, 11, 15, 19, 23, 28, 31];
+        let (pos, offs, idx) = mixed_open_dual();
         chunked_equals_serial(&pos, &offs, &idx, 3);
     }
 }

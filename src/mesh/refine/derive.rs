@@ -205,7 +205,7 @@ mod tests {
     use crate::error::Error;
     use crate::exec::testing::{take, Reverse};
     use crate::exec::Serial;
-    use crate::mesh::refine::fixtures::{cube, grid_positions};
+    use crate::mesh::refine::fixtures::{cube, grid_positions, mixed_open_dual};
     use crate::mesh::refine::{
         child_topology, derivable, pattern_size, write_pattern, write_pattern_with, Pattern,
     };
@@ -378,12 +378,7 @@ mod tests {
     /// ends on the boundary, isolated vertices after the points.
     #[test]
     fn corner_cut_mixed_open_with_isolated_vertices() {
-        let pos = grid_positions::<16>();
-        let idx = [
-            0, 1, 5, 4, 1, 2, 6, 5, 2, 7, 6, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 9, 10, 14, 13,
-            12, 8, 9, 12,
-        ];
-        let offs = [0, 4, 8, 11, 15, 19, 23, 28, 31];
+        let (pos, offs, idx) = mixed_open_dual();
         derive_equals_build(Pattern::CornerCut, &pos, &offs, &idx, 3);
     }
 

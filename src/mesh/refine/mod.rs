@@ -66,6 +66,21 @@ pub(crate) mod fixtures {
         core::array::from_fn(|v| [(v % 4) as f64, (v / 4) as f64, 0.0])
     }
 
+    /// Quads, triangles and a pentagon with a boundary, three interior vertices (5, 6, 9, each
+    /// of valence at least 3, as the dual patterns need) and two isolated ones (3, 15):
+    /// positions, offsets, indices.
+    pub(crate) fn mixed_open_dual() -> ([Point; 16], [u32; 9], [u32; 31]) {
+        let idx = [
+            0, 1, 5, 4, 1, 2, 6, 5, 2, 7, 6, 4, 5, 9, 8, 5, 6, 10, 9, 6, 7, 11, 10, 9, 10, 14, 13,
+            12, 8, 9, 12,
+        ];
+        (
+            grid_positions::<16>(),
+            [0, 4, 8, 11, 15, 19, 23, 28, 31],
+            idx,
+        )
+    }
+
     /// The unit cube as six outward quads: positions, offsets, indices.
     pub(crate) fn cube() -> ([Point; 8], [u32; 7], [u32; 24]) {
         let pos =
