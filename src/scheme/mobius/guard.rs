@@ -161,7 +161,8 @@ impl Part<'_, '_, '_> {
         }
         let form = star.form.canonical().map(|cf| (cf.c, cf.r));
         if star.boundary {
-            // Exempt; its form kept only for a scheme that audits open stars (Kobbelt).
+            // Exempt; its form kept only for a scheme whose output audit reads open stars
+            // (`audit.rs`).
             return self.set_trust(star.v, EXEMPT, form.filter(|_| keep_boundary_form));
         }
         let mut tau = spread_trust(ring);

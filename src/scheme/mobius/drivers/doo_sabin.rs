@@ -29,12 +29,13 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
         || (),
         |p, star, _| {
             // The fold guard's spread term, from the ring's images (`guard.rs`); the form's
-            // memo keeps them for the corner rules below.
+            // memo keeps them for the corner rules below. A boundary star's form is kept
+            // for the output audit of its E-faces and F-faces (`audit.rs`).
             if p.guard {
                 p.with_work(|p, mut work| {
                     let ring = take(&mut work, star.spokes.len())?;
                     star.ring_images(topo, ring)?;
-                    p.trust_star(star, ring, &[], false)
+                    p.trust_star(star, ring, &[], true)
                 })?;
             }
             for (j, s) in star.spokes.iter().enumerate() {
@@ -72,9 +73,11 @@ const RINGS: u8 = 1;
 
 /// The fold guard (`guard.rs`) on the paper's output of the step, as Kobbelt's: the spread
 /// term of every interior star (kept by the vertex pass) and the output audit of its V-face,
-/// E-faces and F-faces (`audit.rs`, [`Children::Corners`]); spherical stars keep the paper's
-/// rules, with the far corners of their faces as further evidence of the sphere; then every
-/// corner point within one ring of a distrusted star moves toward the linear Doo–Sabin
+/// E-faces and F-faces (`audit.rs`, [`Children::Corners`]), and of every boundary star's
+/// E-faces and F-faces in its own frame (without them helmet_quad folded at level 3 next to
+/// the corners of its open boundary, `docs/folds.md` section 10); spherical stars keep the
+/// paper's rules, with the far corners of their faces as further evidence of the sphere; then
+/// every corner point within one ring of a distrusted star moves toward the linear Doo–Sabin
 /// corner point (`toward_linear.rs`). A star's corner points are all made in its own form
 /// and feed no blend, so there is nothing to evaluate again in `m_τ`.
 #[inline(never)]
