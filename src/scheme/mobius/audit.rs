@@ -265,16 +265,21 @@ impl Driver<'_, '_, '_, '_> {
             split_audit(self.exec, k, out, work, &measure)?;
         }
         // Lower the trust of each distrusted star and its interior neighbours (serial: a
-        // neighbour is shared by several stars; `min` makes the order irrelevant).
+        // neighbour is shared by several stars; `min` makes the order irrelevant). Boundary
+        // stars (`t > 1`, exempt from the a-priori terms, `guard.rs`) keep the paper's rules
+        // as neighbours and take only their own verdict, in a second walk: lowered in the
+        // first, a boundary star would read as interior to the stars after it, and its trust
+        // would depend on the vertex order.
         for v in 0..topo.num_vertices() {
             let a = get(self.centre, v)?[0];
             if a < 1.0 {
                 let t = get(self.trust, v)?;
-                set(self.trust, v, t.min(a))?;
+                if t <= 1.0 {
+                    set(self.trust, v, t.min(a))?;
+                }
                 for s in topo.star(v as u32) {
                     let u = s.neighbour as usize;
                     let t = get(self.trust, u)?;
-                    // Boundary neighbours (`t > 1`) keep the paper's rules (`guard.rs`).
                     if t <= 1.0 {
                         set(self.trust, u, t.min(a))?;
                     }
@@ -282,6 +287,12 @@ impl Driver<'_, '_, '_, '_> {
             }
             // The kept form is spent (the guarded pass builds its own frames).
             set(self.radius, v, 0.0)?;
+        }
+        for v in 0..topo.num_vertices() {
+            let a = get(self.centre, v)?[0];
+            if a < 1.0 && get(self.trust, v)? > 1.0 {
+                set(self.trust, v, a)?;
+            }
         }
         Ok(())
     }
