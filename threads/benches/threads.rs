@@ -1,7 +1,9 @@
 //! 1 thread against 2 (or `NLS_BENCH_THREADS`) on the Möbius benchmark rows (`MOBIUS_BENCH_ROWS`),
-//! linear and Möbius (the guarded default), interleaved A B A B, best of 7 each: each row is
-//! one multi-level call as a host makes it (`plan`, the buffers, `subdivide_with` on
-//! [`nlsubdiv_threads::Threads`]). Every pair's outputs are also compared bit for bit.
+//! linear and Möbius (the guarded default), interleaved A B C A B C, best of 7 each: each row
+//! is one multi-level call as a host makes it (`plan`, the buffers, `subdivide_with` on
+//! [`nlsubdiv_threads::Threads`]), on the persistent pool (`Threads::new`) and on threads
+//! spawned for each pass (`Threads::scoped`). Every run's output is also compared bit for
+//! bit with the one thread's.
 //!
 //! `cargo bench -p nlsubdiv-threads --bench threads` (reads `../shared/data/meshes`).
 #![allow(
@@ -74,22 +76,29 @@ fn main() {
     let reps = 7;
     let dir = shared_meshes_dir();
     println!(
-        "| row | output faces | cold: 1 thread ms | {n} threads ms | speed-up | warm: 1 thread ms | {n} threads ms | speed-up |"
+        "| row | output faces | cold: 1 thread ms | {n} threads ms | speed-up | scoped ms | warm: 1 thread ms | {n} threads ms | speed-up | scoped ms |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for (name, s, levels) in MOBIUS_BENCH_ROWS {
         let Ok(m) = read_off(&dir.join(name)) else {
-            println!("| {name} | SKIP: {} not found | | | | | | |", dir.display());
+            println!(
+                "| {name} | SKIP: {} not found | | | | | | | | |",
+                dir.display()
+            );
             continue;
         };
         for mobius in [false, true] {
             let opts = Options::new(s).mobius(mobius).levels(levels);
-            let (one, many) = (Threads::new(1), Threads::new(n));
+            let (one, many, scoped) = (Threads::new(1), Threads::new(n), Threads::scoped(n));
             // Cold: a fresh call with its own buffers each time (allocation and first touch
             // inside the timed region, as in a fresh process); warm: the same buffers again.
-            let (mut a, mut b) = (f64::MAX, f64::MAX);
-            let (mut wa, mut wb) = (f64::MAX, f64::MAX);
-            let (mut ba, mut bb) = (Buffers::new(&m, &opts), Buffers::new(&m, &opts));
+            let (mut a, mut b, mut c) = (f64::MAX, f64::MAX, f64::MAX);
+            let (mut wa, mut wb, mut wc) = (f64::MAX, f64::MAX, f64::MAX);
+            let (mut ba, mut bb, mut bc) = (
+                Buffers::new(&m, &opts),
+                Buffers::new(&m, &opts),
+                Buffers::new(&m, &opts),
+            );
             let mut faces = 0;
             for _ in 0..reps {
                 let t = Instant::now();
@@ -98,15 +107,21 @@ fn main() {
                 let t = Instant::now();
                 let (ob, _) = run_with(&m, &opts, &many).expect("n threads");
                 b = b.min(t.elapsed().as_secs_f64() * 1e3);
+                let t = Instant::now();
+                let (oc, _) = run_with(&m, &opts, &scoped).expect("n scoped threads");
+                c = c.min(t.elapsed().as_secs_f64() * 1e3);
                 assert_eq!(hash(&oa), hash(&ob), "{name}: outputs differ");
+                assert_eq!(hash(&oa), hash(&oc), "{name}: outputs differ");
                 wa = wa.min(ba.call(&m, &opts, &one));
                 wb = wb.min(bb.call(&m, &opts, &many));
+                wc = wc.min(bc.call(&m, &opts, &scoped));
                 assert_eq!(hash(&ba.out), hash(&oa), "{name}: warm output differs");
                 assert_eq!(hash(&bb.out), hash(&oa), "{name}: warm output differs");
+                assert_eq!(hash(&bc.out), hash(&oa), "{name}: warm output differs");
                 faces = ob.num_faces();
             }
             println!(
-                "| {} {}{} {levels} | {faces} | {a:.1} | {b:.1} | {:.2} | {wa:.1} | {wb:.1} | {:.2} |",
+                "| {} {}{} {levels} | {faces} | {a:.1} | {b:.1} | {:.2} | {c:.1} | {wa:.1} | {wb:.1} | {:.2} | {wc:.1} |",
                 s.name(),
                 name.trim_end_matches(".off"),
                 if mobius { " Möbius" } else { "" },

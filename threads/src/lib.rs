@@ -1,8 +1,9 @@
 //! # nlsubdiv-threads
 //!
 //! The std layer of nlsubdiv's deterministic parallel evaluation: [`Threads`], an
-//! [`Executor`] that runs the chunks of every pass on `n` scoped std threads
-//! ([`std::thread::scope`]), and [`subdivide`], the core's
+//! [`Executor`] that runs the chunks of every pass on the calling thread and `n − 1` worker
+//! threads (a persistent pool, or threads scoped to each pass with [`Threads::scoped`]), and
+//! [`subdivide`], the core's
 //! [`nlsubdiv::subdivide_with`] with a thread count. The core stays `no_std` and
 //! single-threaded; it only splits each pass into disjoint output ranges. The output, the
 //! report and the errors are bit-identical for every thread count.
@@ -23,13 +24,16 @@
 //! nlsubdiv_threads::subdivide(mesh, &opts, scratch, &mut out, 2).unwrap();
 //! ```
 
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
+
+use rayon_core::{ThreadPool, ThreadPoolBuilder};
 
 use nlsubdiv::exec::{Chunk, Executor};
 use nlsubdiv::{Mesh, MeshOut, Options, Report, Result, Scratch};
 
-/// The smallest number of output elements per chunk worth a thread (a spawn costs tens of
-/// microseconds; a point between a fraction of a microsecond and a few).
+/// The smallest number of output elements per chunk worth a thread (waking a pool thread
+/// costs microseconds, a spawn tens of them; a point between a fraction of a microsecond and
+/// a few).
 pub const MIN_CHUNK: usize = 2048;
 
 /// The smallest number of rows per chunk of differential-space subdivision's passes
@@ -44,13 +48,22 @@ pub const DIFFERENTIAL_MIN_CHUNK: usize = 32768;
 /// shared out instead of left to one thread.
 pub const CHUNKS_PER_THREAD: usize = 4;
 
-/// Runs every pass on up to `n` scoped std threads: the calling thread and `n − 1` others
-/// each take the next chunk not yet taken until none is left, so the work balances while
-/// every chunk still writes only its own range (the output does not depend on which thread
-/// ran which chunk, nor on their order).
+/// Runs every pass on up to `n` threads: the calling thread and `n − 1` workers each take
+/// the next chunk not yet taken until none is left, so the work balances while every chunk
+/// still writes only its own range (the output does not depend on which thread ran which
+/// chunk, nor on their order).
+///
+/// The workers of [`Threads::new`] are a process-wide pool, started by the first pass that
+/// needs them and kept, parked, for the next (grown when a later call asks for more): a pass
+/// wakes them instead of spawning threads, which on a 2-core Linux machine cost about 35 µs a
+/// thread, tens of times a call (`benches/threads.rs` compares the two). [`Threads::scoped`]
+/// spawns them for each pass instead ([`std::thread::scope`]), for a host that wants no
+/// thread of the library to outlive a call. Both give the same bits.
 #[derive(Clone, Copy, Debug)]
 pub struct Threads {
     n: usize,
+    /// Workers scoped to each pass instead of the pool.
+    scoped: bool,
     /// A fixed number of chunks per pass (tests of odd chunkings), or `None`: up to
     /// [`CHUNKS_PER_THREAD`] chunks per thread, each of at least `min_chunk` elements.
     fixed: Option<usize>,
@@ -63,8 +76,19 @@ impl Threads {
     pub fn new(n: usize) -> Threads {
         Threads {
             n: n.max(1),
+            scoped: false,
             fixed: None,
             min_chunk: MIN_CHUNK,
+        }
+    }
+
+    /// `n` threads (0 is taken as 1) of which `n − 1` are spawned for each pass and joined
+    /// before it returns ([`std::thread::scope`]): no thread outlives the pass, at the cost of
+    /// a spawn per worker and pass. The same bits as [`Threads::new`].
+    pub fn scoped(n: usize) -> Threads {
+        Threads {
+            scoped: true,
+            ..Threads::new(n)
         }
     }
 
@@ -81,9 +105,8 @@ impl Threads {
     /// for tests of odd chunkings.
     pub fn with_chunks(n: usize, k: usize) -> Threads {
         Threads {
-            n: n.max(1),
             fixed: Some(k.max(1)),
-            min_chunk: MIN_CHUNK,
+            ..Threads::new(n)
         }
     }
 
@@ -123,13 +146,42 @@ impl Executor for Threads {
                 None => break,
             }
         };
-        std::thread::scope(|s| {
-            for _ in 1..workers {
-                s.spawn(work);
-            }
-            work();
-        });
+        // The pool's workers, unless scoped or the pool cannot be had (the OS refused a
+        // thread): then workers spawned for this pass.
+        match (!self.scoped).then(|| pool(workers - 1)).flatten() {
+            Some(pool) => pool.in_place_scope(|s| {
+                for _ in 1..workers {
+                    s.spawn(|_| work());
+                }
+                work();
+            }),
+            None => std::thread::scope(|s| {
+                for _ in 1..workers {
+                    s.spawn(work);
+                }
+                work();
+            }),
+        }
     }
+}
+
+/// The process-wide pool with at least `workers` threads: the one kept, or a larger one that
+/// replaces it (the old one's threads end when the last pass using it has returned). `None`
+/// when the OS refuses a thread.
+fn pool(workers: usize) -> Option<Arc<ThreadPool>> {
+    static POOL: Mutex<Option<Arc<ThreadPool>>> = Mutex::new(None);
+    let mut kept = POOL.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(p) = kept.as_ref().filter(|p| p.current_num_threads() >= workers) {
+        return Some(Arc::clone(p));
+    }
+    let p = ThreadPoolBuilder::new()
+        .num_threads(workers)
+        .thread_name(|i| format!("nlsubdiv-{i}"))
+        .build()
+        .ok()
+        .map(Arc::new)?;
+    *kept = Some(Arc::clone(&p));
+    Some(p)
 }
 
 /// [`nlsubdiv::subdivide`] on `threads` std threads (0 or 1: the calling thread only): the

@@ -77,6 +77,8 @@ fn every_thread_count_and_chunking_gives_the_same_bits() {
         Threads::new(16).min_chunk(16),
         Threads::with_chunks(2, 5),
         Threads::with_chunks(3, 64),
+        Threads::scoped(2).min_chunk(64),
+        Threads::scoped(5).min_chunk(16),
     ];
     let mut split_runs = 0;
     for scheme in Scheme::ALL {
@@ -111,6 +113,28 @@ fn every_thread_count_and_chunking_gives_the_same_bits() {
 }
 
 #[test]
+fn concurrent_calls_share_the_pool_and_keep_their_bits() {
+    // Several host threads subdividing at once: their passes meet in the one process-wide
+    // pool (grown when a call asks for more workers), and each call's output is its own.
+    let quads = torus(24, 16, false, 0.08);
+    let (p, o, i) = &quads;
+    let mesh = Mesh::new(p, o, i);
+    let opts = Options::new(Scheme::CatmullClark).levels(2).mobius(true);
+    let want = run(mesh, &opts, &Threads::new(1));
+    assert!(want.is_ok(), "{want:?}");
+    std::thread::scope(|s| {
+        let calls: Vec<_> = [2, 4, 3, 9]
+            .into_iter()
+            .map(|n| s.spawn(move || (n, run(mesh, &opts, &Threads::new(n).min_chunk(32)))))
+            .collect();
+        for c in calls {
+            let (n, got) = c.join().expect("a host thread");
+            assert!(got == want, "{n} threads: the output differs");
+        }
+    });
+}
+
+#[test]
 fn errors_are_the_same_for_every_thread_count() {
     // A non-finite position: the plan refuses it naming the vertex, whatever the threads.
     let (mut p, o, i) = torus(24, 16, false, 0.08);
@@ -119,7 +143,11 @@ fn errors_are_the_same_for_every_thread_count() {
     let opts = Options::new(Scheme::CatmullClark).levels(2).mobius(true);
     let want = run(mesh, &opts, &Threads::new(1));
     assert!(want.is_err());
-    for t in [Threads::new(2).min_chunk(64), Threads::with_chunks(3, 7)] {
+    for t in [
+        Threads::new(2).min_chunk(64),
+        Threads::with_chunks(3, 7),
+        Threads::scoped(2).min_chunk(64),
+    ] {
         assert!(run(mesh, &opts, &t) == want, "{t:?}");
     }
 }
