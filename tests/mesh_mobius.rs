@@ -900,6 +900,41 @@ fn nearest_gap(a: &OwnedMesh, b: &OwnedMesh) -> f64 {
 }
 
 #[test]
+fn guarded_boundary_stars_do_not_depend_on_vertex_numbering() {
+    // The fold guard audits the boundary stars of Doo–Sabin and the simplest scheme too, and
+    // each takes its own verdict only: were a boundary star lowered by its own verdict and
+    // then read as interior by a distrusted neighbour after it in vertex order, its trust,
+    // and the points around it, would depend on the numbering (`audit.rs`, `Driver::audit`).
+    // Open, strongly bumped grids, 2 levels, each under two random renumberings: the same
+    // points (up to rounding) where the guard moved some.
+    let mut acted = 0;
+    for seed in 0..4u64 {
+        let k = seed as f64;
+        let g = quad_grid(9, 7).map_positions(|p| {
+            let z = (0.8 + 0.1 * k) * libm::sin((1.3 + 0.2 * k) * p[0]) * libm::cos(1.1 * p[1]);
+            [p[0], p[1], z]
+        });
+        let m = jitter(&g, 0.2, 40 + seed);
+        for s in [Scheme::DooSabin, Scheme::Simplest] {
+            let (a, _) = msub_n(s, &m, 2);
+            let (lit, _) = msub_n_mode(s, &m, 2, true);
+            if nearest_gap(&a, &lit) > 1e-9 {
+                acted += 1;
+            }
+            for r in [3 + seed, 17 + seed] {
+                let (b, _) = msub_n(s, &renumbered(&m, r), 2);
+                let gap = nearest_gap(&a, &b).max(nearest_gap(&b, &a));
+                assert!(
+                    gap < 1e-12,
+                    "{s:?}, bump {seed}, renumbering {r}: the guarded result moves by {gap:e}"
+                );
+            }
+        }
+    }
+    assert!(acted >= 4, "the guard moved points in {acted} of 8 runs");
+}
+
+#[test]
 fn mobius_schemes_versus_vertex_renumbering() {
     // Ties of the §4.4.3 sort go by vertex id, so numbering can only enter through them. The
     // reversed quadruplets of an even face always tie; their chains are oriented by the face
