@@ -54,11 +54,17 @@ pub const CHUNKS_PER_THREAD: usize = 4;
 /// chunk, nor on their order).
 ///
 /// The workers of [`Threads::new`] are a process-wide pool, started by the first pass that
-/// needs them and kept, parked, for the next (grown when a later call asks for more): a pass
-/// wakes them instead of spawning threads, which on a 2-core Linux machine cost about 35 µs a
-/// thread, tens of times a call (`benches/threads.rs` compares the two). [`Threads::scoped`]
-/// spawns them for each pass instead ([`std::thread::scope`]), for a host that wants no
-/// thread of the library to outlive a call. Both give the same bits.
+/// needs them and kept, parked, for the next (`n − 1` of them, grown when a later call asks
+/// for more; a child process made by `fork` builds its own): a pass wakes them instead of
+/// spawning threads, which on a 2-core Linux machine cost about 35 µs a thread, tens of times
+/// a call (`benches/threads.rs` compares the two). [`Threads::scoped`] spawns them for each
+/// pass instead ([`std::thread::scope`]), for a host that wants no thread of the library to
+/// outlive a call. Both give the same bits.
+///
+/// The bits assume the default floating-point environment (round to nearest, no
+/// flush-to-zero) on every thread, as Rust itself does; the C ABI checks it on every thread
+/// and refuses another. A pool worker keeps the environment of the thread that built the
+/// pool, a scoped worker takes the calling thread's.
 #[derive(Clone, Copy, Debug)]
 pub struct Threads {
     n: usize,
@@ -146,9 +152,12 @@ impl Executor for Threads {
                 None => break,
             }
         };
-        // The pool's workers, unless scoped or the pool cannot be had (the OS refused a
-        // thread): then workers spawned for this pass.
-        match (!self.scoped).then(|| pool(workers - 1)).flatten() {
+        // The pool's workers (sized for the whole call, `n − 1`, so that a later, longer pass
+        // does not build it again), unless scoped or the pool cannot be had (the OS refused
+        // a thread): then workers spawned for this pass. A worker the OS refuses is simply
+        // not there: the calling thread takes every chunk the others do not, so the output
+        // is the same and nothing panics.
+        match (!self.scoped).then(|| pool(self.n - 1)).flatten() {
             Some(pool) => pool.in_place_scope(|s| {
                 for _ in 1..workers {
                     s.spawn(|_| work());
@@ -157,7 +166,8 @@ impl Executor for Threads {
             }),
             None => std::thread::scope(|s| {
                 for _ in 1..workers {
-                    s.spawn(work);
+                    // An error leaves the chunks to the threads there are.
+                    let _ = std::thread::Builder::new().spawn_scoped(s, work);
                 }
                 work();
             }),
@@ -165,23 +175,32 @@ impl Executor for Threads {
     }
 }
 
-/// The process-wide pool with at least `workers` threads: the one kept, or a larger one that
-/// replaces it (the old one's threads end when the last pass using it has returned). `None`
-/// when the OS refuses a thread.
+/// The process-wide pool with at least `workers` threads, and the process it was built in:
+/// the one kept, or a larger one that replaces it (the old one's threads end when the last
+/// pass using it has returned). A child process made by `fork` inherits the kept pool but
+/// not its threads, so a pool built in another process is left alone (never dropped: its
+/// drop would signal threads that do not exist here) and a new one is built. `None` when the
+/// OS refuses a thread.
 fn pool(workers: usize) -> Option<Arc<ThreadPool>> {
-    static POOL: Mutex<Option<Arc<ThreadPool>>> = Mutex::new(None);
+    static POOL: Mutex<Option<(u32, Arc<ThreadPool>)>> = Mutex::new(None);
     let mut kept = POOL.lock().unwrap_or_else(PoisonError::into_inner);
-    if let Some(p) = kept.as_ref().filter(|p| p.current_num_threads() >= workers) {
-        return Some(Arc::clone(p));
+    let pid = std::process::id();
+    match kept.take() {
+        Some((p, pool)) if p == pid && pool.current_num_threads() >= workers => {
+            *kept = Some((p, Arc::clone(&pool)));
+            return Some(pool);
+        }
+        Some((p, pool)) if p != pid => std::mem::forget(pool),
+        _ => {}
     }
-    let p = ThreadPoolBuilder::new()
+    let pool = ThreadPoolBuilder::new()
         .num_threads(workers)
         .thread_name(|i| format!("nlsubdiv-{i}"))
         .build()
         .ok()
         .map(Arc::new)?;
-    *kept = Some(Arc::clone(&p));
-    Some(p)
+    *kept = Some((pid, Arc::clone(&pool)));
+    Some(pool)
 }
 
 /// [`nlsubdiv::subdivide`] on `threads` std threads (0 or 1: the calling thread only): the
