@@ -31,10 +31,13 @@ use rayon_core::{ThreadPool, ThreadPoolBuilder};
 use nlsubdiv::exec::{Chunk, Executor};
 use nlsubdiv::{Mesh, MeshOut, Options, Report, Result, Scratch};
 
-/// The smallest number of output elements per chunk worth a thread (waking a pool thread
-/// costs microseconds, a spawn tens of them; a point between a fraction of a microsecond and
-/// a few).
-pub const MIN_CHUNK: usize = 2048;
+/// The smallest number of output elements per chunk worth a thread: waking a pool thread
+/// costs microseconds, and a point between a fraction of a microsecond (linear rules) and a
+/// few (Möbius). With 512 the small first levels of a Möbius call split too: its serial share
+/// at 2 threads fell from 7.2 % to 3.3 % (Catmull–Clark spot_quad, 3 levels) and 10.1 % to
+/// 6.6 % (Loop epcot, 4) of the instructions against 2048, with no change of the 2-thread
+/// times beyond their spread (`benches/serial_share.sh`, `benches/threads.rs`).
+pub const MIN_CHUNK: usize = 512;
 
 /// The smallest number of rows per chunk of differential-space subdivision's passes
 /// ([`differential_subdivide`]): a row of the reconstruction's sparse products costs a few
