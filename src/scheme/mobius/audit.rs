@@ -584,19 +584,12 @@ fn corner_star_audit(
         // The F-face f_i's Newell sum, its middle corners mapped as the face is walked.
         let last = cyc(a, i + 1)?;
         let end = topo.prev(h)?;
-        let mut fi = cross(qi, get(b, i)?);
-        let mut p = get(b, i)?;
-        let mut c = topo.next(topo.next(h)?)?;
-        while c != end {
-            let m = at(c)?;
-            if !present(&m) {
-                return Ok(0.0);
-            }
-            fi = add(fi, cross(p, m));
-            p = m;
-            c = topo.next(c)?;
-        }
-        fi = add(add(fi, cross(p, last)), cross(last, qi));
+        let bi = get(b, i)?;
+        let start = topo.next(topo.next(h)?)?;
+        let Some((fi, p)) = newell_walk(topo, &at, cross(qi, bi), bi, start, end)? else {
+            return Ok(0.0);
+        };
+        let fi = add(add(fi, cross(p, last)), cross(last, qi));
         pair = pair.min(cos_between(vn, e)).min(cos_between(e, fi));
         // The F-face before spoke i is the one after spoke i − 1.
         if let Some(fp) = f_prev {
@@ -615,6 +608,30 @@ fn corner_star_audit(
         pair = pair.min(cos_between(e0, fl));
     }
     Ok(ramp(pair, 0.0, PAIR_TRUSTED).min(ramp(fan, FAN_DISTRUSTED, FAN_TRUSTED)))
+}
+
+/// The Newell sum `sum` of a face continued from its corner `p` along the face's half-edges
+/// from `c` up to (not including) `end`, each corner's output point mapped by `at`: the sum
+/// and the last corner, or `None` when a corner cannot be mapped (a fold, the module docs'
+/// first term). The caller closes the polygon.
+fn newell_walk(
+    topo: &Topology<'_, '_>,
+    at: &impl Fn(u32) -> Result<Point>,
+    mut sum: Point,
+    mut p: Point,
+    mut c: u32,
+    end: u32,
+) -> Result<Option<(Point, Point)>> {
+    while c != end {
+        let m = at(c)?;
+        if !present(&m) {
+            return Ok(None);
+        }
+        sum = add(sum, cross(p, m));
+        p = m;
+        c = topo.next(c)?;
+    }
+    Ok(Some((sum, p)))
 }
 
 /// The audit's trust of boundary star `v` of a Doo–Sabin step, whose form `cf` the scheme
@@ -659,18 +676,10 @@ fn open_corner_star_audit(
         if !present(&q) {
             return Ok(0.0);
         }
-        let (mut fi, mut p) = ([0.0; 3], q);
-        let mut c = topo.next(h)?;
-        while c != h {
-            let m = at(c)?;
-            if !present(&m) {
-                return Ok(0.0);
-            }
-            fi = add(fi, cross(p, m));
-            p = m;
-            c = topo.next(c)?;
-        }
-        fi = add(fi, cross(p, q));
+        let Some((fi, p)) = newell_walk(topo, &at, [0.0; 3], q, topo.next(h)?, h)? else {
+            return Ok(0.0);
+        };
+        let fi = add(fi, cross(p, q));
         if let Some((fp, qp)) = before {
             // Spoke `i` has a face on both sides: its E-face, `a_i = q(u_i, f_{i−1})` at the
             // twin and `b_i = q(u_i, f_i)` after `h` (corners of the two F-faces walked).
