@@ -165,7 +165,7 @@ pub(crate) fn step(
     if !any && !any_corner {
         // Nothing sharp at this level: the untagged step, bit for bit.
         let cand = &mut *points;
-        return super::step(scheme, topo, out, cand, u32s, opts, exec, &[]);
+        return super::step(scheme, topo, out, cand, u32s, opts, exec, &[], &[]);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
@@ -201,6 +201,7 @@ pub(crate) fn step(
         opts,
         exec,
         corner,
+        topo.raw().twin,
     )
     .map_err(rename)?;
     // The uncut level's output: its pattern, the first copy's vertex point (the vertex

@@ -165,7 +165,9 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 /// not finite.
 ///
 /// `corners` marks the vertices where a boundary loop ends as an open curve (sharp
-/// features, [`crease`]); empty otherwise.
+/// features, [`crease`]), and `across` gives each half-edge its twin on the level before
+/// the cut (a boundary half-edge of a crease: the crease's half-edge on the other side);
+/// both empty otherwise.
 #[allow(clippy::too_many_arguments)] // the level, its output, two scratch buffers, the options
 pub(crate) fn step(
     scheme: Scheme,
@@ -176,6 +178,7 @@ pub(crate) fn step(
     opts: MobiusOptions,
     exec: &dyn Executor,
     corners: &[u32],
+    across: &[u32],
 ) -> Result<(MeshSizes, MobiusReport)> {
     if !scheme.has_mobius_form() {
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
@@ -235,6 +238,7 @@ pub(crate) fn step(
     d.work = work;
     d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
+    d.across = across;
     d.edge_trust = edge_trust;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the

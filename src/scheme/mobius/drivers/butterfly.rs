@@ -72,7 +72,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             )?;
         }
         // The crease curves (`boundary.rs`), on a level cut along its sharp edges.
-        d.guard_curves(nv, butterfly::edge_boundary, false, RINGS)?;
+        d.guard_curves(nv, butterfly::edge_boundary, false, RINGS, false)?;
     }
     Ok(())
 }

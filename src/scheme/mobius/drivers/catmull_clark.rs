@@ -102,6 +102,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             |_, a, b, _| catmull_clark::edge_boundary(a, b),
             true,
             RINGS,
+            false,
         )?;
     }
     Ok(())

@@ -35,8 +35,15 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
     face_points(d)?;
     if d.guard {
         fold_guard(d)?;
-        // The crease curves (`boundary.rs`), on a level cut along its sharp edges.
-        d.guard_curves(d.topo.num_vertices(), kobbelt::four_point, false, RINGS)?;
+        // The crease curves (`boundary.rs`), on a level cut along its sharp edges, each
+        // crease point judged from both sides of its crease.
+        d.guard_curves(
+            d.topo.num_vertices(),
+            kobbelt::four_point,
+            false,
+            RINGS,
+            true,
+        )?;
     }
     Ok(())
 }

@@ -88,6 +88,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             |_, a, b, _| loop_scheme::edge_boundary(a, b),
             true,
             RINGS,
+            false,
         )?;
     }
     Ok(())
