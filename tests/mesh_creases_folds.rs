@@ -245,8 +245,9 @@ fn the_guarded_elements_at_creases_are_the_same_on_mobius_images() {
         (Scheme::ModifiedButterfly, "fandisk", 2),
         // The crease curves' guard (`boundary.rs`) acts on fertility's curve points.
         (Scheme::Loop, "fertility", 2),
-        // Kobbelt's crease points take the trust of both sides of their crease
-        // (`boundary.rs`).
+        // Kobbelt's crease points take the trust of both sides of their crease, and its
+        // interior edge points at a crease that of their faces' points (`boundary.rs`,
+        // `toward_linear.rs`).
         (Scheme::Kobbelt, "horse_quad", 2),
     ] {
         let path = dir.join(format!("{name}.off"));

@@ -142,6 +142,10 @@ pub(super) struct Outputs {
     /// scheme but dual truncation, whose vertex points take two rings, the least trust of
     /// the face points around them (`docs/folds.md` section 12).
     pub(super) vertex_rings: u8,
+    /// On a level cut along its sharp edges: whether an interior edge point with an end on
+    /// a boundary loop (a crease, or the mesh's boundary) also takes the least `τ` of the
+    /// face points of its two faces (Kobbelt; `toward_linear.rs`).
+    pub(super) crease_edge_faces: bool,
 }
 
 impl Part<'_, '_, '_> {

@@ -110,6 +110,7 @@ fn dual_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         boundary_edges: false,
         rings: DUAL_RINGS,
         vertex_rings: DUAL_RINGS,
+        crease_edge_faces: false,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -157,6 +158,7 @@ fn insertion_guard(d: &mut Driver<'_, '_, '_, '_>, faces: usize) -> Result<()> {
         boundary_edges: false,
         rings: RINGS,
         vertex_rings: RINGS,
+        crease_edge_faces: false,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),
@@ -208,6 +210,7 @@ pub(in crate::scheme::mobius) fn dual_truncation(d: &mut Driver<'_, '_, '_, '_>)
         boundary_edges: false,
         rings: RINGS,
         vertex_rings: TRUNCATION_VERTEX_RINGS,
+        crease_edge_faces: false,
     };
     // Step 5 of `guard.rs`: the rules of every distrusted star again in `m_τ` (seed 000
     // §7.2), its face candidates and its vertex point, as Catmull–Clark's, whose vertex

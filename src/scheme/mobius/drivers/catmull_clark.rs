@@ -76,6 +76,7 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             boundary_edges: false,
             rings: RINGS,
             vertex_rings: RINGS,
+            crease_edge_faces: false,
         };
         let again = d.guarded_pass(out, || (), star_rule)?;
         if again {

@@ -79,6 +79,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>) -> Result<()> {
         boundary_edges: false,
         rings: RINGS,
         vertex_rings: RINGS,
+        crease_edge_faces: true,
     };
     let linear = LinearRules {
         vertex: &|_, _, p| Ok(p),

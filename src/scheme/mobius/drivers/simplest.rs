@@ -92,6 +92,7 @@ fn fold_guard(d: &mut Driver<'_, '_, '_, '_>, linear: &LinearEdge<'_>) -> Result
         boundary_edges: true,
         rings: RINGS,
         vertex_rings: RINGS,
+        crease_edge_faces: false,
     };
     let rules = LinearRules {
         vertex: &|_, _, p| Ok(p),
