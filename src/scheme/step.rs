@@ -47,9 +47,7 @@ pub(crate) fn step(
     match (mobius, sharp) {
         (None, None) => linear_with(scheme, topo, out, exec).map(|s| (s, MobiusReport::default())),
         (None, Some(sh)) => tagged(scheme, topo, sh, out).map(|s| (s, MobiusReport::default())),
-        (Some(opts), None) => {
-            mobius::step(scheme, topo, out, candidates, u32s, opts, exec, &[], &[])
-        }
+        (Some(opts), None) => mobius::step(scheme, topo, out, candidates, u32s, opts, exec),
         (Some(opts), Some(sh)) if opts.spectrum < 1.0 => {
             let blend = Blend::Global(opts.spectrum);
             mobius_tagged_spectrum(scheme, topo, sh, out, u32s, candidates, opts, blend, exec)
@@ -100,8 +98,7 @@ pub(crate) fn step_weighted(
                 let n = w.len();
                 let split = candidates.len().checked_sub(n).ok_or(internal())?;
                 let (cand, lin) = candidates.split_at_mut_checked(split).ok_or(internal())?;
-                let (sizes, report) =
-                    mobius::step(scheme, topo, out, cand, u32s, full, exec, &[], &[])?;
+                let (sizes, report) = mobius::step(scheme, topo, out, cand, u32s, full, exec)?;
                 linear::positions(scheme, topo, lin, exec)?;
                 let pos = out.positions.get_mut(..n).ok_or(internal())?;
                 Blend::PerVertex(w, of_linear).apply(pos, lin)?;

@@ -165,7 +165,7 @@ pub(crate) fn step(
     if !any && !any_corner {
         // Nothing sharp at this level: the untagged step, bit for bit.
         let cand = &mut *points;
-        return super::step(scheme, topo, out, cand, u32s, opts, exec, &[], &[]);
+        return super::step_cut(scheme, topo, out, cand, u32s, opts, exec, &[], &[]);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
@@ -192,7 +192,7 @@ pub(crate) fn step(
     let mut cut_out = MeshOut::new(c_pos, c_offs, c_idx);
     let corner: &[u32] = corner;
     let rename = |e: Error| rename_error(e, topo, &cut_topo, copy_of);
-    let (_, mut report) = super::step(
+    let (_, mut report) = super::step_cut(
         scheme,
         &cut_topo,
         &mut cut_out,

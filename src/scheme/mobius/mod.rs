@@ -177,6 +177,45 @@ pub(crate) fn step(
     spoke_work: &mut [u32],
     opts: MobiusOptions,
     exec: &dyn Executor,
+) -> Result<(MeshSizes, MobiusReport)> {
+    step_with::<false>(scheme, topo, out, scratch, spoke_work, opts, exec, &[], &[])
+}
+
+/// [`step`] of a level cut along its sharp edges ([`crease`]), for the schemes that take
+/// sharp-feature tags (Loop, Catmull–Clark, Modified Butterfly, Kobbelt; the others are
+/// refused before, `TagsNotSupported`). `corners` marks the vertices where a boundary loop
+/// ends as an open curve, and `across` gives each half-edge its twin on the level before the
+/// cut (a boundary half-edge of a crease: the crease's half-edge on the other side); both
+/// empty on a level with nothing sharp. Its own instance of the step, whose dispatch holds
+/// only those four drivers: the tagged call's deepest stack path does not pass through the
+/// drivers it never runs (`docs/firmware.md`, "Stack").
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn step_cut(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    scratch: &mut [Point],
+    spoke_work: &mut [u32],
+    opts: MobiusOptions,
+    exec: &dyn Executor,
+    corners: &[u32],
+    across: &[u32],
+) -> Result<(MeshSizes, MobiusReport)> {
+    step_with::<true>(
+        scheme, topo, out, scratch, spoke_work, opts, exec, corners, across,
+    )
+}
+
+/// [`step`], or with `CUT` [`step_cut`].
+#[allow(clippy::too_many_arguments)]
+fn step_with<const CUT: bool>(
+    scheme: Scheme,
+    topo: &Topology<'_, '_>,
+    out: &mut MeshOut<'_>,
+    scratch: &mut [Point],
+    spoke_work: &mut [u32],
+    opts: MobiusOptions,
+    exec: &dyn Executor,
     corners: &[u32],
     across: &[u32],
 ) -> Result<(MeshSizes, MobiusReport)> {
@@ -253,19 +292,26 @@ pub(crate) fn step(
             drivers::butterfly::run(&mut d)?
         }
         Scheme::Kobbelt if mobius && cfg!(feature = "kobbelt") => drivers::kobbelt::run(&mut d)?,
-        Scheme::DooSabin if mobius && cfg!(feature = "doo-sabin") => {
+        // Schemes without sharp-feature rules: never a cut level.
+        Scheme::DooSabin if !CUT && mobius && cfg!(feature = "doo-sabin") => {
             drivers::doo_sabin::run(&mut d)?
         }
-        Scheme::Simplest if mobius && cfg!(feature = "simplest") => drivers::simplest::run(&mut d)?,
-        Scheme::Dual if mobius && cfg!(feature = "akleman") => drivers::akleman::dual(&mut d)?,
-        Scheme::VertexInsertion if mobius && cfg!(feature = "akleman") => {
+        Scheme::Simplest if !CUT && mobius && cfg!(feature = "simplest") => {
+            drivers::simplest::run(&mut d)?
+        }
+        Scheme::Dual if !CUT && mobius && cfg!(feature = "akleman") => {
+            drivers::akleman::dual(&mut d)?
+        }
+        Scheme::VertexInsertion if !CUT && mobius && cfg!(feature = "akleman") => {
             drivers::akleman::vertex_insertion(&mut d)?
         }
-        Scheme::DualTruncation if mobius && cfg!(feature = "akleman") => {
+        Scheme::DualTruncation if !CUT && mobius && cfg!(feature = "akleman") => {
             drivers::akleman::dual_truncation(&mut d)?
         }
         // No Möbius form (refused above).
         Scheme::Spherelike => return Err(Error::new(Status::InvalidArgument)),
+        // A scheme without sharp-feature rules on a cut level (refused before, by the plan).
+        _ if CUT => return Err(Error::new(Status::TagsNotSupported)),
         _ => return Err(super::built::not_built()),
     }
     let report = d.report;
