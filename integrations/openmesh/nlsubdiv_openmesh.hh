@@ -627,7 +627,9 @@ template <typename M> using MobiusButterflyBulkT = BulkSubdividerT<M, NLS_SCHEME
 template <typename M> using MobiusKobbeltT = BulkSubdividerT<M, NLS_SCHEME_KOBBELT, NLS_SUBDIVIDE_MOBIUS>;
 /// Möbius Doo–Sabin (bulk path; the mesh must be a PolyMesh).
 template <typename M> using MobiusDooSabinT = BulkSubdividerT<M, NLS_SCHEME_DOO_SABIN, NLS_SUBDIVIDE_MOBIUS>;
-/// Bulk Möbius Loop and Catmull–Clark (the same results as the tier-1 classes below).
+/// Bulk Möbius Loop and Catmull–Clark: the default mode, with the fold guard (the tier-1
+/// classes below run the paper's rules, the driver's literal mode; the two agree where the
+/// guard changes nothing).
 template <typename M> using MobiusLoopBulkT = BulkSubdividerT<M, NLS_SCHEME_LOOP, NLS_SUBDIVIDE_MOBIUS>;
 template <typename M> using MobiusCatmullClarkBulkT = BulkSubdividerT<M, NLS_SCHEME_CATMULL_CLARK, NLS_SUBDIVIDE_MOBIUS>;
 /// The linear schemes (equal to OpenMesh's LoopT, ModifiedButterflyT, CatmullClarkT on the

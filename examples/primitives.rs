@@ -1,6 +1,8 @@
-//! The main job on a bundled input: Möbius primitives at work.
+//! The Möbius primitives at work on small inputs built here: F4 reproducing a circle,
+//! canonical forms, Möbius maps and the star measures. (The project's main job on its bundled
+//! input is `nlsubdiv demo`, `cli/src/cmd/demo.rs`.)
 //!
-//! `cargo run --release --example demo`
+//! `cargo run --release --example primitives`
 #![allow(clippy::expect_used, clippy::indexing_slicing)] // a std program, not the core
 use nlsubdiv::blend::f4;
 use nlsubdiv::metrics::{mobius_regularity, willmore_energy};
