@@ -86,7 +86,11 @@ pub(crate) fn butterfly_positions(
 }
 
 /// The tagged Modified Butterfly edge point of edge `e`.
-fn butterfly_edge(topo: &Topology<'_, '_>, sharp: &Sharpness<'_>, e: u32) -> Result<Point> {
+pub(crate) fn butterfly_edge(
+    topo: &Topology<'_, '_>,
+    sharp: &Sharpness<'_>,
+    e: u32,
+) -> Result<Point> {
     let h = topo.edge_half_edge(e)?;
     let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
     let s = sharp.edge(topo, e)?;

@@ -227,10 +227,10 @@ impl Driver<'_, '_, '_, '_> {
     }
 
     /// The half-edge on the other side of the crease from boundary half-edge `h` of a cut
-    /// level, itself a boundary half-edge of the cut level (`Driver::across`); `NONE` on a
-    /// boundary of the uncut level or without sharp features.
+    /// level, itself a boundary half-edge of the cut level (its twin on `Driver::uncut`);
+    /// `NONE` on a boundary of the uncut level or without sharp features.
     fn across(&self, h: u32) -> u32 {
-        self.across.get(h as usize).copied().unwrap_or(NONE)
+        self.uncut.and_then(|u| u.topo.twin(h).ok()).unwrap_or(NONE)
     }
 
     /// The trust of the crease edge point of boundary half-edge `h` seen from `h`'s side of
@@ -272,7 +272,7 @@ impl Driver<'_, '_, '_, '_> {
     /// curves keep the linear rule they took.
     ///
     /// With `both_sides` (Kobbelt), `τ` of an edge point is the least of the terms read
-    /// from either side of its crease ([`Driver::across`]). Each side of the cut level
+    /// from either side of its crease (`Driver::across`). Each side of the cut level
     /// computes the crease's edge point, with the trusts of its own side, and the uncut level
     /// reads one side's point back (`crease.rs`): where only the other side's interior points
     /// had moved toward the linear rule, the point kept the paper's place between them, a

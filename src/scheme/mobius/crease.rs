@@ -77,6 +77,16 @@ use crate::scheme::size::step_size;
 use crate::scheme::tags::Sharpness;
 use crate::scheme::Scheme;
 
+/// The level before the cut, for the cut level's step: its topology (whose half-edge ids are
+/// the cut level's, so a half-edge's twin there names a crease's half-edge on the other side)
+/// and its sharpness values (the fold guard's linear rule with the level's tags,
+/// `drivers/butterfly.rs`).
+#[derive(Clone, Copy)]
+pub(crate) struct Uncut<'a> {
+    pub(crate) topo: &'a Topology<'a, 'a>,
+    pub(crate) sharp: &'a Sharpness<'a>,
+}
+
 /// Whether a sharpness value is sharp at this level (module docs: whole levels).
 fn sharp(s: f32) -> bool {
     s >= 0.5
@@ -165,7 +175,7 @@ pub(crate) fn step(
     if !any && !any_corner {
         // Nothing sharp at this level: the untagged step, bit for bit.
         let cand = &mut *points;
-        return super::step_cut(scheme, topo, out, cand, u32s, opts, exec, &[], &[]);
+        return super::step_cut(scheme, topo, out, cand, u32s, opts, exec, &[], None);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
@@ -201,7 +211,7 @@ pub(crate) fn step(
         opts,
         exec,
         corner,
-        topo.raw().twin,
+        Some(Uncut { topo, sharp: sh }),
     )
     .map_err(rename)?;
     // The uncut level's output: its pattern, the first copy's vertex point (the vertex

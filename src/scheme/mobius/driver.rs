@@ -49,10 +49,11 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// Per vertex: non-zero where a boundary loop ends as an open curve (a corner of a
     /// sharp feature, `crease.rs`); empty without sharp features (`boundary.rs`).
     pub(super) corners: &'o [u32],
-    /// Per half-edge: its twin on the level before the cut (`crease.rs`; the half-edge ids
-    /// of the cut level are those of the uncut one), so a boundary half-edge of a crease
-    /// names the crease's half-edge on the other side; empty without sharp features.
-    pub(super) across: &'o [u32],
+    /// The level before the cut (`crease.rs`; the half-edge ids of the cut level are those
+    /// of the uncut one), so that the twin there of a boundary half-edge of a crease names
+    /// the crease's half-edge on the other side, and the fold guard can take the linear rule
+    /// with the level's tags (`drivers/butterfly.rs`); `None` without sharp features.
+    pub(super) uncut: Option<super::crease::Uncut<'o>>,
     /// The star workspace of the vertex pass (`workspace.rs`): per chunk, the per-star
     /// arrays of the scheme's rule.
     pub(super) work: &'o mut [Point],
@@ -118,7 +119,7 @@ impl<'t, 'm, 's, 'o> Driver<'t, 'm, 's, 'o> {
             guard: opts.guard,
             exec,
             corners: &[],
-            across: &[],
+            uncut: None,
             work: &mut [],
             spoke_work: &mut [],
             edge_trust: &mut [],

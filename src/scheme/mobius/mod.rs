@@ -165,9 +165,9 @@ pub(crate) fn candidate_points(num_vertices: usize, num_corners: usize) -> Resul
 /// not finite.
 ///
 /// `corners` marks the vertices where a boundary loop ends as an open curve (sharp
-/// features, [`crease`]), and `across` gives each half-edge its twin on the level before
-/// the cut (a boundary half-edge of a crease: the crease's half-edge on the other side);
-/// both empty otherwise.
+/// features, [`crease`]), and `uncut` is the level before the cut (whose twin of a boundary
+/// half-edge of a crease is the crease's half-edge on the other side, and whose tags give
+/// the fold guard's linear rule); empty and `None` otherwise.
 #[allow(clippy::too_many_arguments)] // the level, its output, two scratch buffers, the options
 pub(crate) fn step(
     scheme: Scheme,
@@ -178,15 +178,26 @@ pub(crate) fn step(
     opts: MobiusOptions,
     exec: &dyn Executor,
 ) -> Result<(MeshSizes, MobiusReport)> {
-    step_with::<false>(scheme, topo, out, scratch, spoke_work, opts, exec, &[], &[])
+    step_with::<false>(
+        scheme,
+        topo,
+        out,
+        scratch,
+        spoke_work,
+        opts,
+        exec,
+        &[],
+        None,
+    )
 }
 
 /// [`step`] of a level cut along its sharp edges ([`crease`]), for the schemes that take
 /// sharp-feature tags (Loop, Catmull–Clark, Modified Butterfly, Kobbelt; the others are
 /// refused before, `TagsNotSupported`). `corners` marks the vertices where a boundary loop
-/// ends as an open curve, and `across` gives each half-edge its twin on the level before the
-/// cut (a boundary half-edge of a crease: the crease's half-edge on the other side); both
-/// empty on a level with nothing sharp. Its own instance of the step, whose dispatch holds
+/// ends as an open curve, and `uncut` is the level before the cut (its twin of a half-edge
+/// is, for a boundary half-edge of a crease, the crease's half-edge on the other side, and
+/// its tags give the fold guard's linear rule); empty and `None` on a level with nothing
+/// sharp. Its own instance of the step, whose dispatch holds
 /// only those four drivers: the tagged call's deepest stack path does not pass through the
 /// drivers it never runs (`docs/firmware.md`, "Stack").
 #[allow(clippy::too_many_arguments)]
@@ -199,10 +210,10 @@ pub(crate) fn step_cut(
     opts: MobiusOptions,
     exec: &dyn Executor,
     corners: &[u32],
-    across: &[u32],
+    uncut: Option<crease::Uncut<'_>>,
 ) -> Result<(MeshSizes, MobiusReport)> {
     step_with::<true>(
-        scheme, topo, out, scratch, spoke_work, opts, exec, corners, across,
+        scheme, topo, out, scratch, spoke_work, opts, exec, corners, uncut,
     )
 }
 
@@ -217,7 +228,7 @@ fn step_with<const CUT: bool>(
     opts: MobiusOptions,
     exec: &dyn Executor,
     corners: &[u32],
-    across: &[u32],
+    uncut: Option<crease::Uncut<'_>>,
 ) -> Result<(MeshSizes, MobiusReport)> {
     if !scheme.has_mobius_form() {
         // Refused before anything is written (seed 003's spherelike rule has no Möbius form).
@@ -277,7 +288,7 @@ fn step_with<const CUT: bool>(
     d.work = work;
     d.spoke_work = spoke_work.get_mut(..spokes).ok_or(internal())?;
     d.corners = corners;
-    d.across = across;
+    d.uncut = uncut;
     d.edge_trust = edge_trust;
     // A driver is reached only when this build contains its scheme and the Möbius forms
     // (`super::built`): an arm of a scheme left out has a constant `false` guard, so the

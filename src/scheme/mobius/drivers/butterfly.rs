@@ -16,6 +16,7 @@ use crate::error::Result;
 use crate::mesh::{Topology, NONE};
 use crate::point::Point;
 use crate::scheme::carry::copy_old;
+use crate::scheme::interpolating_tagged::butterfly_edge as butterfly_edge_tagged;
 use crate::scheme::linear::butterfly_edge;
 use crate::stencil::butterfly;
 
@@ -60,12 +61,30 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             d.blend_interior_edges_again(nv, &linear, near)?;
         }
         let curves = d.curve_terms_into_trust()?;
+        // On a level cut along its sharp edges, the linear rule the guard moves toward is the
+        // linear scheme's with the level's tags (`interpolating_tagged.rs`), read on the
+        // uncut level. The cut level's own linear rule differs from it only at the chains
+        // the cut gives up as darts, which it refines smooth: on cow (30° tags, one level)
+        // the guard moved the edge points there fully to that smooth rule, which folds there
+        // as untagged linear Butterfly does, and the tagged rule's crease does not
+        // (`docs/creases.md`, "Folds next to corners", (g)). Which points move, and by how
+        // much, is unchanged.
+        let uncut = d.uncut;
+        let tagged = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
+            match uncut {
+                Some(u) => {
+                    let e = u.topo.edge(t.edge_half_edge(e)?)?;
+                    butterfly_edge_tagged(u.topo, u.sharp, e)
+                }
+                None => butterfly_edge(t, e),
+            }
+        };
         if again || curves || d.any_crease_edge_term() {
             d.blend_toward_linear(
                 out,
                 LinearRules {
                     vertex: &|_, _, p| Ok(p),
-                    edge: &linear,
+                    edge: &tagged,
                     face: &face_centroid,
                     corner: &no_corner,
                 },
