@@ -142,9 +142,9 @@ const ROWS: [(Scheme, &str, usize); 17] = [
 /// Rows where the tagged Möbius output still folds more than the tagged linear output at
 /// some level (`docs/creases.md`, "Folds next to corners"): the test checks that they still
 /// do, so that a change that fixes one must take it off this list, and prints the counts.
-/// None left: Butterfly on cow, a scanned mesh whose 30° crease angle tags a fifth of the
-/// edges, left it when the guard's linear rule became the one with the level's tags
-/// (`docs/creases.md`, (g)); at level 3 (not held here) it still folds more than linear.
+/// None: every row folds no more than linear at the levels it checks. (Butterfly on cow, a
+/// scanned mesh whose 30° crease angle tags a fifth of the edges, still folds more than linear
+/// at level 3, which this test does not run: `docs/creases.md`, (g).)
 const OPEN: [(Scheme, &str); 0] = [];
 
 #[test]

@@ -135,10 +135,10 @@ fn butterfly_across(
 fn butterfly_smooth(topo: &Topology<'_, '_>, sharp: &Sharpness<'_>, e: u32) -> Result<Point> {
     let h = topo.edge_half_edge(e)?;
     let t = topo.twin(h)?;
-    if t == NONE {
-        return linear::butterfly_edge(topo, e);
-    }
     let (i0, i1) = (topo.origin(h)?, topo.dest(h)?);
+    if t == NONE {
+        return linear::butterfly_boundary_edge(topo, i0, i1);
+    }
     let irr0 = sharp_count(topo, sharp, i0, e)? < 2 && topo.valence(i0)? != 6;
     let irr1 = sharp_count(topo, sharp, i1, e)? < 2 && topo.valence(i1)? != 6;
     Ok(match (irr0, irr1) {

@@ -349,9 +349,7 @@ pub(crate) fn butterfly_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
     let a1 = topo.position(i1)?;
     let t = topo.twin(h)?;
     if t == NONE {
-        let p0 = topo.position(boundary_beyond(topo, i0, i1)?)?;
-        let p1 = topo.position(boundary_beyond(topo, i1, i0)?)?;
-        return Ok(butterfly::edge_boundary(p0, a0, a1, p1));
+        return butterfly_boundary_edge(topo, i0, i1);
     }
     // The valence of a boundary endpoint is never examined (OpenMesh).
     let irr0 = !topo.is_boundary_vertex(i0)? && topo.valence(i0)? != 6;
@@ -378,6 +376,21 @@ pub(crate) fn butterfly_edge(topo: &Topology<'_, '_>, e: u32) -> Result<Point> {
             crate::point::midpoint(s0, s1)
         }
     })
+}
+
+/// The Modified Butterfly point of the boundary edge from `i0` to `i1`: the 4-point rule along
+/// the boundary loop. Its own function so that the tagged rule's boundary case
+/// (`interpolating_tagged.rs`) does not take the whole untagged rule's stack frame
+/// (`docs/firmware.md`, "Stack").
+pub(crate) fn butterfly_boundary_edge(topo: &Topology<'_, '_>, i0: u32, i1: u32) -> Result<Point> {
+    let p0 = topo.position(boundary_beyond(topo, i0, i1)?)?;
+    let p1 = topo.position(boundary_beyond(topo, i1, i0)?)?;
+    Ok(butterfly::edge_boundary(
+        p0,
+        topo.position(i0)?,
+        topo.position(i1)?,
+        p1,
+    ))
 }
 
 // ---- Kobbelt ----
