@@ -284,6 +284,14 @@ impl core::error::Error for Error {}
 /// Result alias of the crate.
 pub type Result<T> = core::result::Result<T, Error>;
 
+/// The error for a broken internal invariant (an index that validation guarantees in range).
+/// Never expected; returned instead of panicking. Defined here, at the bottom of the layers,
+/// so that every module can use it without importing a layer above its own (`crate::mesh`
+/// re-exports it for the mesh code and the drivers).
+pub(crate) const fn internal() -> Error {
+    Error::new(Status::InvalidArgument)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -33,8 +33,7 @@
 
 use arrayvec::ArrayVec;
 
-use crate::error::{Result, NO_ELEMENT};
-use crate::mesh::internal;
+use crate::error::{internal, Result, NO_ELEMENT};
 use crate::point::Point;
 
 /// The largest number of chunks one pass is split into: 64 unless the build sets

@@ -219,11 +219,10 @@ impl<'a> MeshOut<'a> {
 
 // ---- small panic-free helpers shared by the mesh code and the drivers ----
 
-/// The error for a broken internal invariant (an index that validation guarantees in range).
-/// Never expected; returned instead of panicking.
-pub(crate) const fn internal() -> Error {
-    Error::new(Status::InvalidArgument)
-}
+// The internal-error constructor lives in `crate::error` (so that `exec`, which the mesh
+// refinement imports, needs nothing from `mesh`); re-exported here for the mesh code and the
+// drivers, which take it with `get` and `set`.
+pub(crate) use crate::error::internal;
 
 /// `s[i]`, or an internal error.
 #[inline]
