@@ -228,6 +228,7 @@ pub(super) fn run(
             edges: in_s.get(..ne).unwrap_or(&[]),
             vertices: in_s.get(ne..ne + nv).unwrap_or(&[]),
             method: tags.method,
+            whole: false,
         };
         let sharp = tagged.then_some(&sharp);
         // Weights of level k + 1 in buffer k % 2, carried from level k's (the caller's for

@@ -187,6 +187,19 @@ pub(crate) struct Sharpness<'s> {
     pub(crate) edges: &'s [u32],
     pub(crate) vertices: &'s [u32],
     pub(crate) method: CreaseMethod,
+    /// Read every value in whole levels, as the Möbius schemes take them: infinitely sharp
+    /// while at least ½, else smooth ([`whole_level`]; `mobius/crease.rs`).
+    pub(crate) whole: bool,
+}
+
+/// A sharpness value as the Möbius schemes act on it in a level (`mobius/crease.rs`, "whole
+/// levels"): infinitely sharp while at least ½, else smooth.
+pub(crate) fn whole_level(s: f32) -> f32 {
+    if s >= 0.5 {
+        crease::INFINITE
+    } else {
+        0.0
+    }
 }
 
 impl Sharpness<'_> {
@@ -195,12 +208,22 @@ impl Sharpness<'_> {
         if topo.is_boundary_edge(e)? {
             return Ok(crease::INFINITE);
         }
-        Ok(f32::from_bits(get(self.edges, e as usize)?))
+        let s = f32::from_bits(get(self.edges, e as usize)?);
+        Ok(if self.whole { whole_level(s) } else { s })
     }
 
     /// The value of vertex `v`.
     pub(crate) fn vertex(&self, v: u32) -> Result<f32> {
-        Ok(f32::from_bits(get(self.vertices, v as usize)?))
+        let s = f32::from_bits(get(self.vertices, v as usize)?);
+        Ok(if self.whole { whole_level(s) } else { s })
+    }
+
+    /// The same values read in whole levels ([`Sharpness::whole`]).
+    pub(crate) fn in_whole_levels(&self) -> Self {
+        Self {
+            whole: true,
+            ..*self
+        }
     }
 
     /// The incident edges' values of `v` (its star's order) into `parent`, their children's

@@ -62,7 +62,9 @@
 //!
 //! Output bits: an untagged level, and a tagged level with nothing sharp at it and no
 //! corner tag (nor a boundary vertex left a corner by peeled darts), run the untagged step
-//! itself.
+//! itself; in the default mode Modified Butterfly's fold guard there still moves its
+//! distrusted edge points toward the linear rule with the level's tags where some edge
+//! carries a value (`drivers/butterfly.rs`).
 
 use super::{MobiusOptions, MobiusReport};
 use crate::error::{Error, Result, Status};
@@ -79,8 +81,8 @@ use crate::scheme::Scheme;
 
 /// The level before the cut, for the cut level's step: its topology (whose half-edge ids are
 /// the cut level's, so a half-edge's twin there names a crease's half-edge on the other side)
-/// and its sharpness values (the fold guard's linear rule with the level's tags,
-/// `drivers/butterfly.rs`).
+/// and its sharpness values read in whole levels, as the cut takes them (the fold guard's
+/// linear rule with the level's tags, `drivers/butterfly.rs`).
 #[derive(Clone, Copy)]
 pub(crate) struct Uncut<'a> {
     pub(crate) topo: &'a Topology<'a, 'a>,
@@ -89,7 +91,7 @@ pub(crate) struct Uncut<'a> {
 
 /// Whether a sharpness value is sharp at this level (module docs: whole levels).
 fn sharp(s: f32) -> bool {
-    s >= 0.5
+    crate::scheme::tags::whole_level(s) > 0.0
 }
 
 /// The scratch of one tagged Möbius step on a level of `vertices` vertices and `corners`
@@ -173,9 +175,18 @@ pub(crate) fn step(
     let any = cut_edges(topo, sh, cut, count, corner)?;
     let any_corner = corner.get(..nv).ok_or(internal())?.iter().any(|&c| c != 0);
     if !any && !any_corner {
-        // Nothing sharp at this level: the untagged step, bit for bit.
+        // Nothing sharp at this level: the untagged step, bit for bit, but for the fold
+        // guard's linear rule where a sharp chain was given up as a dart: that stays the
+        // linear rule with the level's tags read in whole levels, as on a cut level
+        // (`drivers/butterfly.rs`). The level is its own uncut level.
+        let whole = sh.in_whole_levels();
+        let dart = sh.edges.iter().any(|&b| sharp(f32::from_bits(b)));
+        let uncut = dart.then_some(Uncut {
+            topo,
+            sharp: &whole,
+        });
         let cand = &mut *points;
-        return super::step_cut(scheme, topo, out, cand, u32s, opts, exec, &[], None);
+        return super::step_cut(scheme, topo, out, cand, u32s, opts, exec, &[], uncut);
     }
     let sizes = step_size(scheme, topo)?;
     out.check(&sizes)?;
@@ -211,7 +222,10 @@ pub(crate) fn step(
         opts,
         exec,
         corner,
-        Some(Uncut { topo, sharp: sh }),
+        Some(Uncut {
+            topo,
+            sharp: &sh.in_whole_levels(),
+        }),
     )
     .map_err(rename)?;
     // The uncut level's output: its pattern, the first copy's vertex point (the vertex

@@ -52,7 +52,8 @@ pub(super) struct Driver<'t, 'm, 's, 'o> {
     /// The level before the cut (`crease.rs`; the half-edge ids of the cut level are those
     /// of the uncut one), so that the twin there of a boundary half-edge of a crease names
     /// the crease's half-edge on the other side, and the fold guard can take the linear rule
-    /// with the level's tags (`drivers/butterfly.rs`); `None` without sharp features.
+    /// with the level's tags (`drivers/butterfly.rs`); `None` on a level without tags (on a
+    /// tagged level where nothing is cut, the level itself).
     pub(super) uncut: Option<super::crease::Uncut<'o>>,
     /// The star workspace of the vertex pass (`workspace.rs`): per chunk, the per-star
     /// arrays of the scheme's rule.

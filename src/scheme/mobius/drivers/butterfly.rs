@@ -55,20 +55,14 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
             vertex_rings: RINGS,
             crease_edge_faces: false,
         };
-        let again = d.guarded_pass(out, || (), star_rule)?;
-        if again {
-            let near = d.rewind_for_blends_again(before);
-            d.blend_interior_edges_again(nv, &linear, near)?;
-        }
-        let curves = d.curve_terms_into_trust()?;
-        // On a level cut along its sharp edges, the linear rule the guard moves toward is the
-        // linear scheme's with the level's tags (`interpolating_tagged.rs`), read on the
-        // uncut level. The cut level's own linear rule differs from it only at the chains
-        // the cut gives up as darts, which it refines smooth: on cow (30° tags, one level)
-        // the guard moved the edge points there fully to that smooth rule, which folds there
-        // as untagged linear Butterfly does, and the tagged rule's crease does not
-        // (`docs/creases.md`, "Folds next to corners", (g)). Which points move, and by how
-        // much, is unchanged.
+        // The linear rule the guard moves toward (and a fallback of the second blends takes):
+        // on a tagged level, the linear rule with the level's tags (`interpolating_tagged.rs`)
+        // on the uncut level, the values read in whole levels as the cut reads them
+        // (`crease::Uncut`). The cut level's own linear rule differs from it only at the
+        // chains the cut gives up as darts, which it refines smooth, and which fold there as
+        // untagged linear Butterfly does (`docs/creases.md`, "Folds next to corners", (g)).
+        // Which points move and their weights τ come from the trusts alone, never from this
+        // rule.
         let uncut = d.uncut;
         let tagged = |t: &Topology<'_, '_>, e: u32| -> Result<Point> {
             match uncut {
@@ -79,6 +73,12 @@ pub(in crate::scheme::mobius) fn run(d: &mut Driver<'_, '_, '_, '_>) -> Result<(
                 None => butterfly_edge(t, e),
             }
         };
+        let again = d.guarded_pass(out, || (), star_rule)?;
+        if again {
+            let near = d.rewind_for_blends_again(before);
+            d.blend_interior_edges_again(nv, &tagged, near)?;
+        }
+        let curves = d.curve_terms_into_trust()?;
         if again || curves || d.any_crease_edge_term() {
             d.blend_toward_linear(
                 out,
